@@ -1,0 +1,87 @@
+/* Shared pieces of the command-line tool: unit parsing, setup options,
+ * output helpers. The tool is a thin client of the library. */
+#ifndef JUMPCYL_CLI_H
+#define JUMPCYL_CLI_H
+
+#include <jumpcyl/jumpcyl.h>
+
+#include <getopt.h>
+#include <stdio.h>
+
+/* Exit statuses. */
+enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2 };
+
+/* ---- units.c ---- */
+typedef enum {
+    Q_LENGTH,        /* m; plain number = m */
+    Q_MASS,          /* kg; plain number = kg */
+    Q_ANGLE,         /* rad; plain number = DEGREES */
+    Q_ANGULAR_SPEED, /* rad/s; plain number = rad/s */
+    Q_ACCELERATION,  /* m/s2 */
+    Q_NUMBER         /* dimensionless, no unit */
+} cli_Quantity;
+
+/* Parses a whole token "number[unit]" into SI. 0 on success; otherwise a
+ * one-line message naming the token and what is allowed. */
+int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err, size_t err_len);
+const char *cli_units_allowed(cli_Quantity q);
+
+/* ---- options.c ---- */
+#define CLI_SETUP_OPTION_COUNT 17
+#define CLI_SETUP_OPT_BASE 1000
+extern const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT];
+
+/* Setup options, collected first and applied in a fixed order (preset,
+ * parts, then single values) so that their order on the line does not matter. */
+typedef struct {
+    const char *preset;
+    int part_count;
+    const char *part_text[JC_MAX_PARTS];
+    const char *value[CLI_SETUP_OPTION_COUNT]; /* by option index, NULL if absent */
+} cli_SetupArgs;
+
+/* If opt is a setup option's val, records it and returns 1; 0 otherwise;
+ * -1 with a message on a repeated option or too many parts. */
+int cli_setup_take(cli_SetupArgs *args, int opt, const char *optarg_text, char *err, size_t err_len);
+/* Builds and validates the setup. */
+int cli_setup_build(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
+/* Index of a setup option by long name, for commands that forbid one. */
+int cli_setup_given(const cli_SetupArgs *args, const char *long_name);
+/* Help text for the setup options. */
+void cli_setup_help(FILE *out);
+
+/* Builds an option table: command options followed by the setup options. */
+void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd, int cmd_count);
+
+/* Parses a command's arguments: its own options (handled by own_take, which
+ * returns 0 when it took the option, -1 when it printed an error) and the
+ * setup options. Returns -1 for help printed (exit 0), EXIT_USAGE after a
+ * message, or 0 to go on. */
+typedef int (*cli_own_take_fn)(int opt, const char *arg, void *ctx);
+int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
+                   cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args);
+
+/* ---- report.c ---- */
+#define CLI_PI 3.14159265358979323846
+double cli_deg(double rad);
+void cli_print_setup(FILE *out, const jc_Model *m, int show_incline);
+/* Prints "jumpcyl: <msg>" on stderr. */
+void cli_error(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* JSON helpers (cJSON). */
+struct cJSON;
+/* {"theta": rad, "x": m, "omega": rad/s, "normal": N, "friction": N, "grazing": bool} or null */
+struct cJSON *cli_json_crossing(const jc_RollCrossing *c);
+struct cJSON *cli_json_setup(const jc_Model *m);
+/* Prints the document on stdout and frees it; EXIT_FAIL if that fails. */
+int cli_json_print(struct cJSON *doc);
+
+/* ---- commands ---- */
+int cmd_paper(int argc, char **argv);
+int cmd_predict(int argc, char **argv);
+
+#endif

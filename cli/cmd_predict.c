@@ -1,0 +1,122 @@
+/* jumpcyl predict: the paper's model and the exact rolling model for one setup. */
+#include "cli.h"
+
+#include <cjson/cJSON.h>
+#include <string.h>
+
+typedef struct {
+    int json;
+} predict_opts;
+
+static void help(void)
+{
+    puts("Usage: jumpcyl predict [SETUP OPTIONS] [--json]\n"
+         "The paper's model (its Eq. 9) and the exact rolling model for one setup.\n"
+         "\n"
+         "  --json      machine-readable output: paper_model.roots (rad), rolling.liftoff and\n"
+         "              rolling.slip, each null or {theta (rad), x (m), omega (rad/s),\n"
+         "              normal (N), friction (N)}; x is the centre's travel along the incline\n"
+         "  -h, --help  this help\n");
+    cli_setup_help(stdout);
+}
+
+static int take(int opt, const char *arg, void *ctx)
+{
+    (void)arg;
+    predict_opts *o = ctx;
+    if (opt == 'j') { o->json = 1; return 0; }
+    if (opt == 'h') { help(); return -1; }
+    return EXIT_USAGE;
+}
+
+static void print_crossing(const char *label, const jc_RollCrossing *c)
+{
+    if (!c->found) {
+        printf("  %-34s none on the rolling path\n", label);
+        return;
+    }
+    const jc_RollState *s = &c->state;
+    printf("  %-34s th = %9.5f rad  x = %7.2f cm  w = %7.3f rad/s  N = %8.5f N  F = %8.5f N%s\n",
+           label, s->theta_rad, s->x_m * 100, s->omega_radps, s->normal_N, s->friction_N,
+           c->grazing ? "  (grazing)" : "");
+}
+
+static void print_text(const jc_Model *m, const jc_PaperResult *p, const jc_RollingResult *r)
+{
+    cli_print_setup(stdout, m, 1);
+    printf("\nPaper's model (Eq. 9 as printed; d = %.4f cm, M1 = %.2f g; starts at rest at th = 0):\n",
+           p->cm_offset_m * 100, p->disc_mass_kg * 1e3);
+    if (p->first < 0) {
+        printf("  no intersection before the ramp end: the paper's model predicts no jump\n");
+    } else {
+        printf("  first intersection (its jump):     th = %9.5f rad  x = %7.2f cm\n",
+               p->theta_rad[p->first], p->x_m[p->first] * 100);
+        printf("  all intersections (rad):          ");
+        for (int i = 0; i < p->root_count; ++i) printf(" %.4f", p->theta_rad[i]);
+        printf("%s\n", p->truncated ? " ..." : "");
+    }
+    printf("\nExact rolling model (rolls without slipping; closed form, roots to 1e-12 rad):\n");
+    char label[64];
+    snprintf(label, sizeof label, "slip onset |F| = mu_s N (%.3g):", m->setup.mu_static);
+    print_crossing(label, &r->slip);
+    print_crossing("N = 0 on the rolling path:", &r->liftoff);
+    printf("  rolling path ends:                 %s at x = %.2f cm\n", jc_roll_end_name(r->end),
+           r->end_x_m * 100);
+    if (r->liftoff.found)
+        printf("\nNote: the rolling N = 0 point is a diagnostic, not the physical jump: there F = %.4g N,\n"
+               "not 0, so with any finite friction the cylinder slips before it (|F|/N grows without\n"
+               "bound as N -> 0), and the real lift-off happens from sliding (docs/physics.md).\n",
+               r->liftoff.state.friction_N);
+}
+
+static cJSON *json_doc(const jc_Model *m, const jc_PaperResult *p, const jc_RollingResult *r)
+{
+    cJSON *doc = cJSON_CreateObject();
+    cJSON_AddItemToObject(doc, "setup", cli_json_setup(m));
+    cJSON *pm = cJSON_AddObjectToObject(doc, "paper_model");
+    cJSON_AddNumberToObject(pm, "cm_offset", p->cm_offset_m);
+    cJSON_AddNumberToObject(pm, "disc_mass", p->disc_mass_kg);
+    cJSON_AddItemToObject(pm, "roots", cJSON_CreateDoubleArray(p->theta_rad, p->root_count));
+    cJSON_AddBoolToObject(pm, "truncated", p->truncated);
+    if (p->first >= 0) {
+        cJSON *f = cJSON_AddObjectToObject(pm, "first");
+        cJSON_AddNumberToObject(f, "theta", p->theta_rad[p->first]);
+        cJSON_AddNumberToObject(f, "x", p->x_m[p->first]);
+    } else {
+        cJSON_AddNullToObject(pm, "first");
+    }
+    cJSON *ro = cJSON_AddObjectToObject(doc, "rolling");
+    cJSON_AddItemToObject(ro, "liftoff", cli_json_crossing(&r->liftoff));
+    cJSON_AddItemToObject(ro, "slip", cli_json_crossing(&r->slip));
+    cJSON_AddStringToObject(ro, "end", jc_roll_end_name(r->end));
+    cJSON_AddNumberToObject(ro, "end_x", r->end_x_m);
+    return doc;
+}
+
+int cmd_predict(int argc, char **argv)
+{
+    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
+    predict_opts o = {0};
+    cli_SetupArgs sa;
+    int st = cli_parse_args(argc, argv, own, 2, take, &o, &sa);
+    if (st) return st < 0 ? EXIT_OK : st;
+
+    char err[512];
+    jc_Setup setup;
+    if (cli_setup_build(&sa, &setup, err, sizeof err) != 0) {
+        cli_error("predict: %s", err);
+        return EXIT_USAGE;
+    }
+    jc_Model model;
+    jc_PaperResult paper;
+    jc_RollingResult rolling;
+    if ((st = jc_model_init(&model, &setup, err, sizeof err)) != JC_OK ||
+        (st = jc_paper_solve(&model, &paper, err, sizeof err)) != JC_OK ||
+        (st = jc_rolling_predict(&model, &rolling, err, sizeof err)) != JC_OK) {
+        cli_error("predict: %s", err);
+        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
+    }
+    if (o.json) return cli_json_print(json_doc(&model, &paper, &rolling));
+    print_text(&model, &paper, &rolling);
+    return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+}

@@ -1,0 +1,62 @@
+/* jumpcyl: command dispatch. Data goes to stdout, messages to stderr;
+ * exit 0 ok, 1 failure, 2 bad usage or input. */
+#include "cli.h"
+
+#include <gsl/gsl_errno.h>
+#include <string.h>
+
+static int cmd_presets(int argc, char **argv)
+{
+    (void)argv;
+    if (argc > 1) {
+        cli_error("presets: takes no arguments");
+        return EXIT_USAGE;
+    }
+    for (int i = 0; jc_preset_name(i); ++i) printf("%-8s %s\n", jc_preset_name(i), jc_preset_description(i));
+    return EXIT_OK;
+}
+
+static void usage(FILE *out)
+{
+    fputs("Usage: jumpcyl [COMMAND] [OPTIONS]\n"
+          "Where an off-centre-mass cylinder rolling down an incline loses contact and jumps.\n"
+          "\n"
+          "Commands:\n"
+          "  paper      the seed paper's Table 1 recomputed beside the exact model and the\n"
+          "             measurement (the default when no command is given)\n"
+          "  predict    the paper's model and the exact rolling model for one setup\n"
+          "  presets    list the built-in setups\n"
+          "\n"
+          "  jumpcyl COMMAND --help   options of a command\n"
+          "  jumpcyl --version        version\n",
+          out);
+}
+
+int main(int argc, char **argv)
+{
+    /* GSL's default handler aborts; the library checks its own preconditions. */
+    gsl_set_error_handler_off();
+    if (argc < 2) {
+        char *args[] = {"paper", NULL};
+        return cmd_paper(1, args);
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+        usage(stdout);
+        return EXIT_OK;
+    }
+    if (strcmp(cmd, "--version") == 0) {
+        printf("jumpcyl %s\n", jc_version());
+        return EXIT_OK;
+    }
+    if (strcmp(cmd, "paper") == 0) return cmd_paper(argc - 1, argv + 1);
+    if (strcmp(cmd, "predict") == 0) return cmd_predict(argc - 1, argv + 1);
+    if (strcmp(cmd, "presets") == 0) return cmd_presets(argc - 1, argv + 1);
+    if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
+        static char paper_name[] = "paper";
+        argv[0] = paper_name;
+        return cmd_paper(argc, argv);
+    }
+    cli_error("unknown command '%s' (allowed: paper, predict, presets; see 'jumpcyl --help')", cmd);
+    return EXIT_USAGE;
+}

@@ -1,0 +1,307 @@
+/* The setup options every command shares, and how they build a jc_Setup. */
+#include "cli.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+enum {
+    O_PRESET, O_RADIUS, O_DISC_MASS, O_ROD_MASS, O_ROD_OFFSET, O_ROD_RADIUS, O_PART,
+    O_INCLINE, O_G, O_MU, O_MU_S, O_MU_K, O_RESTITUTION, O_THETA0, O_OMEGA0,
+    O_RAMP_LENGTH, O_PAPER_D
+};
+
+#define B CLI_SETUP_OPT_BASE
+const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT] = {
+    {"preset", required_argument, 0, B + O_PRESET},
+    {"radius", required_argument, 0, B + O_RADIUS},
+    {"disc-mass", required_argument, 0, B + O_DISC_MASS},
+    {"rod-mass", required_argument, 0, B + O_ROD_MASS},
+    {"rod-offset", required_argument, 0, B + O_ROD_OFFSET},
+    {"rod-radius", required_argument, 0, B + O_ROD_RADIUS},
+    {"part", required_argument, 0, B + O_PART},
+    {"incline", required_argument, 0, B + O_INCLINE},
+    {"g", required_argument, 0, B + O_G},
+    {"mu", required_argument, 0, B + O_MU},
+    {"mu-s", required_argument, 0, B + O_MU_S},
+    {"mu-k", required_argument, 0, B + O_MU_K},
+    {"restitution", required_argument, 0, B + O_RESTITUTION},
+    {"theta0", required_argument, 0, B + O_THETA0},
+    {"omega0", required_argument, 0, B + O_OMEGA0},
+    {"ramp-length", required_argument, 0, B + O_RAMP_LENGTH},
+    {"paper-d", required_argument, 0, B + O_PAPER_D},
+};
+
+void cli_setup_help(FILE *out)
+{
+    fputs(
+        "Setup options (a plain number is SI, angles are degrees; a number may carry a unit:\n"
+        "10cm, 34.2g, 15deg, 0.3rad, 9.78m/s2, 120rpm). Without --preset or --part the setup\n"
+        "is the 'paper' preset on a 30 deg incline.\n"
+        "  --preset NAME        built-in setup: paper, hoop, disc (see 'jumpcyl presets')\n"
+        "  --radius LEN         rim radius r (the disc of a disc+rod body fills the rim)\n"
+        "  --disc-mass MASS     mass of the disc                 (disc+rod bodies)\n"
+        "  --rod-mass MASS      mass of the rod                  (disc+rod bodies)\n"
+        "  --rod-offset LEN     distance of the rod's axis from the cylinder's axis\n"
+        "  --rod-radius LEN     the rod's own radius (0 = a line mass)\n"
+        "  --part KIND:KEY=VALUE,...\n"
+        "                       a body part; repeat for each; parts replace the preset's body.\n"
+        "                       KIND: disc, hoop, rod, point; KEY: mass (required), offset,\n"
+        "                       radius (disc, hoop default: the rim radius), angle.\n"
+        "                       e.g. --part disc:mass=34.2g --part rod:mass=32.1g,offset=5.5cm\n"
+        "  --incline ANGLE      incline angle, [0, 90) deg; 0 is a horizontal floor\n"
+        "  --g ACCEL            gravity (paper: 9.78 m/s2)\n"
+        "  --mu X               static and kinetic friction coefficient\n"
+        "  --mu-s X, --mu-k X   static, kinetic friction coefficient separately\n"
+        "  --restitution X      normal restitution at impacts, [0, 1]\n"
+        "  --theta0 ANGLE       initial angle of the CM from the outward normal\n"
+        "  --omega0 W           initial angular velocity (> 0 rolls downhill), rad/s\n"
+        "  --ramp-length LEN    from the start contact point to the ramp's lower end\n"
+        "  --paper-d LEN        CM offset the paper's model uses (default: the printed\n"
+        "                       2.65 cm for the paper preset, the exact d otherwise)\n",
+        out);
+}
+
+void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd, int cmd_count)
+{
+    int n = 0;
+    for (int i = 0; i < cmd_count && n < dst_cap - 1; ++i) dst[n++] = cmd[i];
+    for (int i = 0; i < CLI_SETUP_OPTION_COUNT && n < dst_cap - 1; ++i) dst[n++] = cli_setup_options[i];
+    dst[n] = (struct option){0, 0, 0, 0};
+}
+
+int cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, size_t err_len)
+{
+    const int i = opt - B;
+    if (i < 0 || i >= CLI_SETUP_OPTION_COUNT) return 0;
+    if (i == O_PART) {
+        if (args->part_count >= JC_MAX_PARTS) {
+            snprintf(err, err_len, "--part: too many parts (allowed: at most %d)", JC_MAX_PARTS);
+            return -1;
+        }
+        args->part_text[args->part_count++] = text;
+        return 1;
+    }
+    if (args->value[i]) {
+        snprintf(err, err_len, "--%s given twice ('%s' and '%s')", cli_setup_options[i].name,
+                 args->value[i], text);
+        return -1;
+    }
+    args->value[i] = text;
+    if (i == O_PRESET) args->preset = text;
+    return 1;
+}
+
+int cli_setup_given(const cli_SetupArgs *args, const char *long_name)
+{
+    for (int i = 0; i < CLI_SETUP_OPTION_COUNT; ++i)
+        if (strcmp(cli_setup_options[i].name, long_name) == 0)
+            return i == O_PART ? args->part_count > 0 : args->value[i] != NULL;
+    return 0;
+}
+
+static int parse_option(const cli_SetupArgs *args, int i, cli_Quantity q, double *out, char *err,
+                        size_t err_len)
+{
+    char msg[256];
+    if (cli_parse_quantity(args->value[i], q, out, msg, sizeof msg) != 0) {
+        snprintf(err, err_len, "--%s: %s", cli_setup_options[i].name, msg);
+        return -1;
+    }
+    return 0;
+}
+
+static int parse_kind(const char *s, size_t len, jc_PartKind *kind)
+{
+    static const jc_PartKind kinds[] = {JC_PART_DISC, JC_PART_HOOP, JC_PART_ROD, JC_PART_POINT};
+    for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; ++k) {
+        const char *name = jc_part_kind_name(kinds[k]);
+        if (strlen(name) == len && strncmp(s, name, len) == 0) {
+            *kind = kinds[k];
+            return 0;
+        }
+    }
+    return -1;
+}
+
+/* "rod:mass=32.1g,offset=5.5cm,radius=4.75mm,angle=0" */
+static int parse_part(const char *text, double rim_m, jc_Part *p, char *err, size_t err_len)
+{
+    const char *colon = strchr(text, ':');
+    size_t kind_len = colon ? (size_t)(colon - text) : strlen(text);
+    if (parse_kind(text, kind_len, &p->kind) != 0) {
+        snprintf(err, err_len, "--part '%s': unknown kind '%.*s' (allowed: disc, hoop, rod, point)",
+                 text, (int)kind_len, text);
+        return -1;
+    }
+    *p = (jc_Part){p->kind, 0.0, 0.0, 0.0, 0.0};
+    if (p->kind == JC_PART_DISC || p->kind == JC_PART_HOOP) p->radius_m = rim_m;
+    int have_mass = 0, seen[4] = {0};
+    const char *keys[4] = {"mass", "offset", "radius", "angle"};
+    const cli_Quantity qs[4] = {Q_MASS, Q_LENGTH, Q_LENGTH, Q_ANGLE};
+    double *dst[4] = {&p->mass_kg, &p->offset_m, &p->radius_m, &p->angle_rad};
+    const char *s = colon ? colon + 1 : "";
+    while (*s) {
+        char item[128];
+        size_t n = strcspn(s, ",");
+        if (n == 0 || n >= sizeof item) {
+            snprintf(err, err_len, "--part '%s': %s item (expected KEY=VALUE)", text, n ? "overlong" : "empty");
+            return -1;
+        }
+        memcpy(item, s, n);
+        item[n] = '\0';
+        s += n + (s[n] == ',');
+        if (s[-1] == ',' && !*s) {
+            snprintf(err, err_len, "--part '%s': trailing comma", text);
+            return -1;
+        }
+        char *eq = strchr(item, '=');
+        if (!eq) {
+            snprintf(err, err_len, "--part '%s': '%s' is not KEY=VALUE", text, item);
+            return -1;
+        }
+        *eq = '\0';
+        int k = 0;
+        while (k < 4 && strcmp(item, keys[k]) != 0) ++k;
+        if (k == 4) {
+            snprintf(err, err_len, "--part '%s': unknown key '%s' (allowed: mass, offset, radius, angle)", text, item);
+            return -1;
+        }
+        if (seen[k]++) {
+            snprintf(err, err_len, "--part '%s': key '%s' given twice", text, item);
+            return -1;
+        }
+        char msg[200];
+        if (cli_parse_quantity(eq + 1, qs[k], dst[k], msg, sizeof msg) != 0) {
+            snprintf(err, err_len, "--part '%s': %s: %s", text, keys[k], msg);
+            return -1;
+        }
+        if (k == 0) have_mass = 1;
+    }
+    if (!have_mass) {
+        snprintf(err, err_len, "--part '%s': mass is required (e.g. %s:mass=30g)", text, jc_part_kind_name(p->kind));
+        return -1;
+    }
+    return 0;
+}
+
+/* The first part of a kind, for the disc+rod shortcuts. */
+static jc_Part *find_part(jc_BodyDef *b, jc_PartKind kind)
+{
+    for (int i = 0; i < b->part_count; ++i)
+        if (b->parts[i].kind == kind) return &b->parts[i];
+    return NULL;
+}
+
+static int apply_body_options(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
+{
+    double v;
+    if (a->value[O_RADIUS]) {
+        if (parse_option(a, O_RADIUS, Q_LENGTH, &v, err, err_len)) return -1;
+        jc_Part *disc = find_part(&s->body, JC_PART_DISC);
+        if (disc && disc->radius_m == s->body.radius_m) disc->radius_m = v;
+        s->body.radius_m = v;
+    }
+    static const struct { int opt; jc_PartKind kind; int field; } shortcut[] = {
+        {O_DISC_MASS, JC_PART_DISC, 0}, {O_ROD_MASS, JC_PART_ROD, 0},
+        {O_ROD_OFFSET, JC_PART_ROD, 1}, {O_ROD_RADIUS, JC_PART_ROD, 2}};
+    for (size_t k = 0; k < sizeof shortcut / sizeof shortcut[0]; ++k) {
+        const int o = shortcut[k].opt;
+        if (!a->value[o]) continue;
+        jc_Part *p = find_part(&s->body, shortcut[k].kind);
+        if (!p) {
+            snprintf(err, err_len, "--%s needs a body with a %s part (the paper or disc preset); with --part, set it in the part",
+                     cli_setup_options[o].name, jc_part_kind_name(shortcut[k].kind));
+            return -1;
+        }
+        if (parse_option(a, o, shortcut[k].field == 0 ? Q_MASS : Q_LENGTH, &v, err, err_len)) return -1;
+        *(shortcut[k].field == 0 ? &p->mass_kg : shortcut[k].field == 1 ? &p->offset_m : &p->radius_m) = v;
+    }
+    return 0;
+}
+
+int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
+{
+    char msg[256];
+    *s = jc_paper_setup();
+    if (a->preset && jc_preset_setup(a->preset, s, msg, sizeof msg) != JC_OK) {
+        snprintf(err, err_len, "--preset: %s", msg);
+        return -1;
+    }
+    const double rim = a->value[O_RADIUS] ? 0.0 : s->body.radius_m;
+    if (a->part_count > 0) {
+        double r = rim;
+        if (a->value[O_RADIUS] && parse_option(a, O_RADIUS, Q_LENGTH, &r, err, err_len)) return -1;
+        s->body.part_count = a->part_count;
+        for (int i = 0; i < a->part_count; ++i)
+            if (parse_part(a->part_text[i], r, &s->body.parts[i], err, err_len)) return -1;
+    }
+    if (apply_body_options(a, s, err, err_len)) return -1;
+    const int body_changed = a->part_count > 0 || a->value[O_RADIUS] || a->value[O_DISC_MASS] ||
+                             a->value[O_ROD_MASS] || a->value[O_ROD_OFFSET] || a->value[O_ROD_RADIUS];
+    if (body_changed) s->paper_cm_offset_m = 0.0; /* the printed d was for the paper's body */
+
+    static const struct { int opt; cli_Quantity q; size_t field; } scalars[] = {
+        {O_INCLINE, Q_ANGLE, offsetof(jc_Setup, incline_rad)},
+        {O_G, Q_ACCELERATION, offsetof(jc_Setup, gravity_mps2)},
+        {O_MU, Q_NUMBER, offsetof(jc_Setup, mu_static)},
+        {O_MU_S, Q_NUMBER, offsetof(jc_Setup, mu_static)},
+        {O_MU_K, Q_NUMBER, offsetof(jc_Setup, mu_kinetic)},
+        {O_RESTITUTION, Q_NUMBER, offsetof(jc_Setup, restitution)},
+        {O_THETA0, Q_ANGLE, offsetof(jc_Setup, theta0_rad)},
+        {O_OMEGA0, Q_ANGULAR_SPEED, offsetof(jc_Setup, omega0_radps)},
+        {O_RAMP_LENGTH, Q_LENGTH, offsetof(jc_Setup, ramp_length_m)},
+        {O_PAPER_D, Q_LENGTH, offsetof(jc_Setup, paper_cm_offset_m)},
+    };
+    for (size_t k = 0; k < sizeof scalars / sizeof scalars[0]; ++k) {
+        double v;
+        if (!a->value[scalars[k].opt]) continue;
+        if (parse_option(a, scalars[k].opt, scalars[k].q, &v, err, err_len)) return -1;
+        *(double *)((char *)s + scalars[k].field) = v;
+        if (scalars[k].opt == O_MU) s->mu_kinetic = v;
+    }
+    if (a->value[O_MU] && (a->value[O_MU_S] || a->value[O_MU_K])) {
+        snprintf(err, err_len, "--mu sets both coefficients; give either --mu or --mu-s/--mu-k");
+        return -1;
+    }
+    if (jc_setup_validate(s, msg, sizeof msg) != JC_OK) {
+        snprintf(err, err_len, "invalid setup: %s", msg);
+        return -1;
+    }
+    return 0;
+}
+
+int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
+                   cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args)
+{
+    struct option all[64];
+    cli_merge_options(all, 64, own, own_count);
+    *setup_args = (cli_SetupArgs){0};
+    optind = 1;
+    opterr = 0;
+    int c;
+    while ((c = getopt_long(argc, argv, ":h", all, NULL)) != -1) {
+        char msg[512];
+        if (c == '?') {
+            if (optopt) cli_error("%s: unknown option '-%c' (see 'jumpcyl %s --help')", argv[0], optopt, argv[0]);
+            else cli_error("%s: unknown option '%s' (see 'jumpcyl %s --help')", argv[0], argv[optind - 1], argv[0]);
+            return EXIT_USAGE;
+        }
+        if (c == ':') {
+            cli_error("%s: option '%s' needs a value", argv[0], argv[optind - 1]);
+            return EXIT_USAGE;
+        }
+        int took = cli_setup_take(setup_args, c, optarg, msg, sizeof msg);
+        if (took < 0) {
+            cli_error("%s", msg);
+            return EXIT_USAGE;
+        }
+        if (took > 0) continue;
+        int r = own_take(c, optarg, ctx);
+        if (r != 0) return r;
+    }
+    if (optind < argc) {
+        cli_error("%s: unexpected argument '%s' (see 'jumpcyl %s --help')", argv[0], argv[optind], argv[0]);
+        return EXIT_USAGE;
+    }
+    return 0;
+}

@@ -1,0 +1,103 @@
+/* Output helpers shared by the commands. */
+#include "cli.h"
+
+#include <stdarg.h>
+
+double cli_deg(double rad) { return rad * 180.0 / CLI_PI; }
+
+void cli_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("jumpcyl: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+void cli_print_setup(FILE *out, const jc_Model *m, int show_incline)
+{
+    const jc_Setup *s = &m->setup;
+    const jc_Body *b = &m->body;
+    fprintf(out, "Body:  r = %.2f cm, M = %.2f g, d = %.4f cm, I_C = %.4e kg m2, I_G = %.4e kg m2 (",
+            b->radius_m * 100, b->mass_kg * 1e3, b->cm_offset_m * 100, b->inertia_c_kgm2, b->inertia_g_kgm2);
+    for (int i = 0; i < s->body.part_count; ++i) {
+        const jc_Part *p = &s->body.parts[i];
+        fprintf(out, "%s%s %.4g g", i ? ", " : "", jc_part_kind_name(p->kind), p->mass_kg * 1e3);
+        if (p->offset_m > 0) fprintf(out, " at %.4g cm", p->offset_m * 100);
+        if (p->kind != JC_PART_POINT && p->radius_m > 0)
+            fprintf(out, " radius %.4g cm", p->radius_m * 100);
+    }
+    fprintf(out, ")\n");
+    if (show_incline) fprintf(out, "Setup: incline %.2f deg, ", cli_deg(s->incline_rad));
+    else fprintf(out, "Setup: incline per column, ");
+    fprintf(out, "g = %.4g m/s2, mu_s = %.3g, mu_k = %.3g, e = %.3g, "
+                 "theta0 = %.4g deg, omega0 = %.4g rad/s, ramp %.3f m\n",
+            s->gravity_mps2, s->mu_static, s->mu_kinetic, s->restitution,
+            cli_deg(s->theta0_rad), s->omega0_radps, s->ramp_length_m);
+}
+
+#include <cjson/cJSON.h>
+#include <stdlib.h>
+
+cJSON *cli_json_crossing(const jc_RollCrossing *c)
+{
+    if (!c->found) return cJSON_CreateNull();
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "theta", c->state.theta_rad);
+    cJSON_AddNumberToObject(o, "x", c->state.x_m);
+    cJSON_AddNumberToObject(o, "omega", c->state.omega_radps);
+    cJSON_AddNumberToObject(o, "normal", c->state.normal_N);
+    cJSON_AddNumberToObject(o, "friction", c->state.friction_N);
+    cJSON_AddBoolToObject(o, "grazing", c->grazing);
+    return o;
+}
+
+cJSON *cli_json_setup(const jc_Model *m)
+{
+    const jc_Setup *s = &m->setup;
+    cJSON *o = cJSON_CreateObject();
+    cJSON *body = cJSON_AddObjectToObject(o, "body");
+    cJSON_AddNumberToObject(body, "radius", m->body.radius_m);
+    cJSON_AddNumberToObject(body, "mass", m->body.mass_kg);
+    cJSON_AddNumberToObject(body, "cm_offset", m->body.cm_offset_m);
+    cJSON_AddNumberToObject(body, "inertia_c", m->body.inertia_c_kgm2);
+    cJSON_AddNumberToObject(body, "inertia_g", m->body.inertia_g_kgm2);
+    cJSON *parts = cJSON_AddArrayToObject(body, "parts");
+    for (int i = 0; i < s->body.part_count; ++i) {
+        const jc_Part *p = &s->body.parts[i];
+        cJSON *q = cJSON_CreateObject();
+        cJSON_AddStringToObject(q, "kind", jc_part_kind_name(p->kind));
+        cJSON_AddNumberToObject(q, "mass", p->mass_kg);
+        cJSON_AddNumberToObject(q, "offset", p->offset_m);
+        cJSON_AddNumberToObject(q, "angle", p->angle_rad);
+        cJSON_AddNumberToObject(q, "radius", p->radius_m);
+        cJSON_AddItemToArray(parts, q);
+    }
+    cJSON_AddNumberToObject(o, "incline_deg", cli_deg(s->incline_rad));
+    cJSON_AddNumberToObject(o, "g", s->gravity_mps2);
+    cJSON_AddNumberToObject(o, "mu_s", s->mu_static);
+    cJSON_AddNumberToObject(o, "mu_k", s->mu_kinetic);
+    cJSON_AddNumberToObject(o, "restitution", s->restitution);
+    cJSON_AddNumberToObject(o, "theta0", s->theta0_rad);
+    cJSON_AddNumberToObject(o, "omega0", s->omega0_radps);
+    cJSON_AddNumberToObject(o, "ramp_length", s->ramp_length_m);
+    return o;
+}
+
+int cli_json_print(cJSON *doc)
+{
+    char *text = doc ? cJSON_Print(doc) : NULL;
+    cJSON_Delete(doc);
+    if (!text) {
+        cli_error("could not format the JSON output (out of memory)");
+        return EXIT_FAIL;
+    }
+    int ok = puts(text) >= 0;
+    free(text);
+    if (!ok || fflush(stdout) != 0) {
+        cli_error("could not write to standard output");
+        return EXIT_FAIL;
+    }
+    return EXIT_OK;
+}

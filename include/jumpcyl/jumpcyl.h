@@ -1,0 +1,256 @@
+/*
+ * jumpcyl — an off-centre-mass cylinder rolling on an incline: where it loses
+ * contact and jumps.
+ *
+ * Conventions (docs/physics.md): x along the incline pointing downhill, y along
+ * the outward normal; the cylinder's centre C is at height r while in contact;
+ * the centre of mass G = C + d (sin th, cos th), so th = 0 puts G on the
+ * outward normal through C, and th grows while the cylinder rolls downhill.
+ * SI units everywhere; angles in radians. Degrees only appear at the edges
+ * (command line, files).
+ *
+ * Habits: value-type definitions with defaults (jc_paper_setup()), an
+ * immutable jc_Model built once and read by any number of computations, int
+ * status codes with a caller-provided message buffer. The library keeps no
+ * global mutable state, never prints and never exits: it is thread-safe as
+ * long as each thread writes only to its own outputs.
+ */
+#ifndef JUMPCYL_JUMPCYL_H
+#define JUMPCYL_JUMPCYL_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define JC_VERSION_MAJOR 0
+#define JC_VERSION_MINOR 1
+#define JC_VERSION_PATCH 0
+#define JC_VERSION_STRING "0.1.0"
+
+/* Status codes returned by every fallible function. */
+enum {
+    JC_OK = 0,
+    JC_EINVAL = 1,   /* an input is out of its allowed range; see the message */
+    JC_ELIMIT = 2,   /* a bounded loop hit its bound before finishing */
+    JC_ENUMERIC = 3, /* a numerical method failed (reported, never hidden) */
+    JC_ENOMEM = 4
+};
+
+/* The library's version string, for callers linked against a shared build. */
+const char *jc_version(void);
+
+/* Short text for a status code ("ok", "invalid input", …). */
+const char *jc_status_text(int status);
+
+/* ------------------------------------------------------------------------ */
+/* Body: a rigid cylinder built from parts (src/body.c)                      */
+/* ------------------------------------------------------------------------ */
+
+typedef enum {
+    JC_PART_DISC,  /* uniform disc of radius radius_m, I = m R^2/2 about its own axis */
+    JC_PART_HOOP,  /* thin hoop of radius radius_m, I = m R^2 about its own axis */
+    JC_PART_ROD,   /* rod parallel to the axis, own radius radius_m (0 = line mass) */
+    JC_PART_POINT  /* point mass; radius_m must be 0 */
+} jc_PartKind;
+
+/* One part, placed in the body frame: its own axis sits offset_m from the
+ * cylinder's axis C, at angle_rad measured from the body's reference
+ * direction in the direction of rolling. Each part is a full-length prism:
+ * only the cross-section matters in this planar model. */
+typedef struct {
+    jc_PartKind kind;
+    double mass_kg;   /* >= 0 */
+    double offset_m;  /* >= 0, distance of the part's axis from C */
+    double angle_rad; /* any finite value */
+    double radius_m;  /* disc, hoop: > 0; rod: >= 0; point: 0 */
+} jc_Part;
+
+#define JC_MAX_PARTS 16
+
+typedef struct {
+    double radius_m; /* rim radius r, > 0: the surface that touches the incline */
+    int part_count;  /* 1 .. JC_MAX_PARTS */
+    jc_Part parts[JC_MAX_PARTS];
+} jc_BodyDef;
+
+/* What the dynamics needs of a body. */
+typedef struct {
+    double radius_m;        /* r */
+    double mass_kg;         /* M = sum of m */
+    double cm_offset_m;     /* d = |sum m a| / M */
+    double cm_angle_rad;    /* direction of G in the body frame (0 when d = 0) */
+    double inertia_c_kgm2;  /* I_C, about the cylinder's axis */
+    double inertia_g_kgm2;  /* I_G = I_C - M d^2, about the centre of mass */
+    double disc_mass_kg;    /* sum of the disc parts' masses (the paper's M1) */
+} jc_Body;
+
+/* Name of a part kind: "disc", "hoop", "rod", "point". */
+const char *jc_part_kind_name(jc_PartKind kind);
+
+/* Mass properties of a body. Checks every part: finite numbers, masses >= 0,
+ * total > 0, radii in range, every part inside the rim. */
+int jc_body_compute(const jc_BodyDef *def, jc_Body *out, char *err, size_t err_len);
+
+/* ------------------------------------------------------------------------ */
+/* Setup: body + incline + contact + start (src/setup.c)                     */
+/* ------------------------------------------------------------------------ */
+
+typedef struct {
+    jc_BodyDef body;
+    double incline_rad;        /* [0, pi/2); 0 is a horizontal floor */
+    double gravity_mps2;       /* > 0 */
+    double mu_static;          /* >= 0, friction coefficient for sticking */
+    double mu_kinetic;         /* >= 0, friction coefficient while sliding */
+    double restitution;        /* [0, 1], normal restitution at impacts */
+    double theta0_rad;         /* initial CM angle from the outward normal */
+    double omega0_radps;       /* initial angular velocity, > 0 rolls downhill */
+    double ramp_length_m;      /* > 0: from the start contact point to the lower end */
+    /* Centre-of-mass offset the paper's model uses; 0 means the body's exact d.
+     * The paper preset sets the printed, rounded 2.65 cm. */
+    double paper_cm_offset_m;
+} jc_Setup;
+
+/* Bounds checked by jc_setup_validate, shared with the edges for messages. */
+#define JC_MAX_INCLINE_RAD 1.5707963267948966 /* exclusive */
+#define JC_MAX_RAMP_TURNS 1.0e5 /* ramp_length / (2 pi r) */
+
+/* The paper's experiment: Styrofoam disc (r 10.0 cm, 34.2 g) with a brass rod
+ * (32.1 g, diameter 9.50 mm) at 5.50 cm, g 9.78 m/s^2, ramp 3.20 m, at rest
+ * with the CM on the outward normal, on a 30 degree incline. */
+jc_Setup jc_paper_setup(void);
+
+/* A built-in setup by name. Names: see jc_preset_name(). */
+int jc_preset_setup(const char *name, jc_Setup *out, char *err, size_t err_len);
+
+/* The i-th preset's name and one-line description; NULL past the end. */
+const char *jc_preset_name(int i);
+const char *jc_preset_description(int i);
+
+/* Checks every field; the message names the field, its value and the range. */
+int jc_setup_validate(const jc_Setup *setup, char *err, size_t err_len);
+
+/* ------------------------------------------------------------------------ */
+/* Model: the immutable, validated, precomputed form of a setup (src/model.c) */
+/* ------------------------------------------------------------------------ */
+
+/* Functions of th of the form T0(th) + th T1(th), T0 and T1 trigonometric
+ * polynomials of degree <= JC_TRIG_DEGREE. Every quantity of the rolling and
+ * paper models, multiplied by a positive factor, has this form; that is what
+ * makes the first-crossing search provable (src/trigpoly.c). */
+#define JC_TRIG_DEGREE 4
+typedef struct {
+    double c0[JC_TRIG_DEGREE + 1], s0[JC_TRIG_DEGREE + 1]; /* T0: cos k th, sin k th */
+    double c1[JC_TRIG_DEGREE + 1], s1[JC_TRIG_DEGREE + 1]; /* T1 */
+} jc_TrigLin;
+
+typedef struct {
+    jc_Setup setup;
+    jc_Body body;
+    double sin_incline, cos_incline;
+    double theta_end_rad; /* th at which the rolling contact point reaches the ramp end */
+    /* Rolling model, as positive multiples of the physical quantities:
+     * energy_poly = I_P w^2, normal_poly = N I_P^2, friction_poly = F I_P^2. */
+    jc_TrigLin energy_poly, normal_poly, friction_poly;
+    /* Paper's Eq. 9 as lhs_minus_rhs_poly = (LHS - RHS) * d cos th * den > 0 side. */
+    jc_TrigLin paper_poly;
+    double paper_d_m; /* the d the paper's model uses */
+} jc_Model;
+
+/* Validates the setup and precomputes everything the models read. */
+int jc_model_init(jc_Model *model, const jc_Setup *setup, char *err, size_t err_len);
+
+/* ------------------------------------------------------------------------ */
+/* The paper's model: Eq. 9 as printed (src/paper_model.c)                   */
+/* ------------------------------------------------------------------------ */
+
+#define JC_PAPER_MAX_ROOTS 256
+
+typedef struct {
+    int root_count;                       /* intersections with cos th > 0 */
+    double theta_rad[JC_PAPER_MAX_ROOTS]; /* ascending, from 0 to the ramp end */
+    double x_m[JC_PAPER_MAX_ROOTS];       /* r th: where the paper puts the jump */
+    int first;                            /* index of the prediction, -1 if none */
+    int truncated;                        /* 1 if more roots exist than fit */
+    double cm_offset_m;                   /* d used (printed 2.65 cm for the paper) */
+    double disc_mass_kg;                  /* M1 used in I_CM = M1 r^2 / 2 */
+} jc_PaperResult;
+
+/* One column of the paper's Table 1: what it printed and what it measured.
+ * These are the only numbers of the paper that jumpcyl holds as data. */
+typedef struct {
+    double incline_deg;
+    double printed_theta_rad;  /* "theoretical jumping angle" */
+    double printed_x_m;        /* "theoretical jumping position" */
+    double measured_x_m;       /* "experimental jumping position" */
+    double measured_error_m;   /* its stated maximum error */
+} jc_PaperTableRow;
+
+/* The rows of Table 1 (15, 30, 45 degrees); returns their count. */
+int jc_paper_table(const jc_PaperTableRow **rows);
+
+/* Both sides of Eq. 9: th'^2/g (Eqs. 1, 5, 6) and cos(alpha)/(d cos th).
+ * The model always starts at th = 0 at rest, as the paper assumes. */
+double jc_paper_lhs(const jc_Model *model, double theta_rad);
+double jc_paper_rhs(const jc_Model *model, double theta_rad);
+
+/* Every intersection of the two sides with cos th > 0, th in (0, r-ramp end]. */
+int jc_paper_solve(const jc_Model *model, jc_PaperResult *out, char *err, size_t err_len);
+
+/* ------------------------------------------------------------------------ */
+/* The exact rolling model: closed form while rolling (src/rolling.c)        */
+/* ------------------------------------------------------------------------ */
+
+typedef struct {
+    double theta_rad;
+    double omega_radps;     /* sign of the motion times sqrt(w^2) */
+    double alpha_radps2;    /* th'' */
+    double x_m;             /* centre's travel along the incline, r (th - th0) */
+    double normal_N;        /* N, contact force along +y */
+    double friction_N;      /* F, contact force along +x (downhill) */
+    double kinetic_J, potential_J; /* potential relative to the start */
+} jc_RollState;
+
+/* State on the rolling solution at th (w from the energy integral, taken
+ * with the sign of omega0, or of the initial th'' when omega0 = 0).
+ * JC_EINVAL if th is out of reach (w^2 < 0 there). */
+int jc_rolling_state(const jc_Model *model, double theta_rad, jc_RollState *out,
+                     char *err, size_t err_len);
+
+typedef struct {
+    int found;          /* 0: does not happen before the rolling path ends */
+    int grazing;        /* 1: the quantity touched zero without a clean sign change */
+    jc_RollState state; /* at the crossing */
+} jc_RollCrossing;
+
+typedef enum {
+    JC_ROLL_END_RAMP_END,  /* reached the lower end of the ramp */
+    JC_ROLL_END_TURN_BACK, /* w = 0: rolls back (and rocks, if it started at rest) */
+    JC_ROLL_END_RAMP_TOP,  /* starts by rolling uphill, off the start of the ramp */
+    JC_ROLL_END_AT_REST    /* starts at rest in equilibrium */
+} jc_RollEnd;
+
+typedef struct {
+    /* First rolling N = 0. A DIAGNOSTIC, not the physical jump: with any finite
+     * friction the cylinder slips first, and at this point F != 0. */
+    jc_RollCrossing liftoff;
+    /* First |F| = mu_s N: where rolling without slipping ends. */
+    jc_RollCrossing slip;
+    jc_RollEnd end;          /* how the rolling path ends if nothing else happens */
+    double end_theta_rad;    /* where it ends */
+    double end_x_m;
+} jc_RollingResult;
+
+const char *jc_roll_end_name(jc_RollEnd end);
+
+/* Follows the rolling solution from the start; finds the first N = 0 and the
+ * first slip onset, each to ~1e-12 rad, by a search that cannot step over a
+ * root window. */
+int jc_rolling_predict(const jc_Model *model, jc_RollingResult *out, char *err, size_t err_len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* JUMPCYL_JUMPCYL_H */

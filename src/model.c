@@ -1,0 +1,109 @@
+/*
+ * jc_Model: a validated setup with everything the models read precomputed.
+ * Built once, then only read: any number of predictions and runs may share it.
+ *
+ * The rolling quantities are stored as the exact functions of th they are
+ * (docs/physics.md §2), cleared of the positive factor I_P(th):
+ *   P(th)      = I_P w^2        = I_P(th0) w0^2 + 2 (U(th0) - U(th))
+ *   Z(th)      = I_P^2 th''     = M g Q I_P + M r d sin(th) P
+ *   N I_P^2    = M [ g cos(a) I_P^2 - d sin(th) Z - d cos(th) P I_P ]
+ *   F I_P^2    = M [ (r + d cos th) Z - d sin(th) P I_P - g sin(a) I_P^2 ]
+ * with I_P = I_C + M r^2 + 2 M r d cos th,
+ *      U   = M g [ (r + d cos th) cos a - (r th + d sin th) sin a ],
+ *      Q   = (r + d cos th) sin a + d sin th cos a.
+ */
+#include "internal.h"
+
+#include <math.h>
+#include <string.h>
+
+static void tl_const(jc_TrigLin *p, double c)
+{
+    jc_tl_zero(p);
+    jc_tl_add_cos(p, 0, 0, c);
+}
+
+/* a + b cos th + c sin th */
+static void tl_first_order(jc_TrigLin *p, double a, double b, double c)
+{
+    tl_const(p, a);
+    jc_tl_add_cos(p, 0, 1, b);
+    jc_tl_add_sin(p, 0, 1, c);
+}
+
+static int build_rolling(jc_Model *m)
+{
+    const double M = m->body.mass_kg, d = m->body.cm_offset_m, r = m->body.radius_m;
+    const double g = m->setup.gravity_mps2, sa = m->sin_incline, ca = m->cos_incline;
+    const double th0 = m->setup.theta0_rad, w0 = m->setup.omega0_radps;
+
+    jc_TrigLin ip, u, p, q, z, t1, t2, t3, sin1, cos1, rdc, ip2;
+    tl_first_order(&ip, m->body.inertia_c_kgm2 + M * r * r, 2.0 * M * r * d, 0.0);
+    tl_first_order(&u, M * g * r * ca, M * g * d * ca, -M * g * d * sa);
+    jc_tl_add_cos(&u, 1, 0, -M * g * r * sa);
+    tl_first_order(&q, r * sa, d * sa, d * ca);
+    tl_first_order(&sin1, 0.0, 0.0, 1.0);
+    tl_first_order(&cos1, 0.0, 1.0, 0.0);
+    tl_first_order(&rdc, r, d, 0.0);
+
+    const double e0 = jc_tl_value(&ip, th0) * w0 * w0 + 2.0 * jc_tl_value(&u, th0);
+    jc_TrigLin one;
+    tl_const(&one, 1.0);
+    jc_tl_axpby(&p, e0, &one, -2.0, &u);
+    m->energy_poly = p;
+
+    int st = 0;
+    st |= jc_tl_mul(&t1, &q, &ip);                   /* Q I_P */
+    st |= jc_tl_mul(&t2, &sin1, &p);                 /* sin P */
+    jc_tl_axpby(&z, M * g, &t1, M * r * d, &t2);     /* Z */
+    st |= jc_tl_mul(&ip2, &ip, &ip);                 /* I_P^2 */
+    jc_TrigLin pip, sz, cpip, spip, rz;
+    st |= jc_tl_mul(&pip, &p, &ip);                  /* P I_P */
+    st |= jc_tl_mul(&sz, &sin1, &z);                 /* sin Z */
+    st |= jc_tl_mul(&cpip, &cos1, &pip);             /* cos P I_P */
+    st |= jc_tl_mul(&spip, &sin1, &pip);             /* sin P I_P */
+    st |= jc_tl_mul(&rz, &rdc, &z);                  /* (r + d cos) Z */
+
+    jc_tl_axpby(&t3, M * g * ca, &ip2, -M * d, &sz);
+    jc_tl_axpby(&m->normal_poly, 1.0, &t3, -M * d, &cpip);
+    jc_tl_axpby(&t3, M, &rz, -M * d, &spip);
+    jc_tl_axpby(&m->friction_poly, 1.0, &t3, -M * g * sa, &ip2);
+    return st ? JC_ENUMERIC : JC_OK;
+}
+
+/* The paper's Eq. 9 cleared of denominators:
+ *   f = 2 M d cos(th) num - cos(a) den,
+ *   num = d (1 - cos th) cos a + r th sin a,
+ *   den = M1 r^2 / 2 + M (r^2 + d^2 + 2 r d cos th);
+ * for cos th > 0, f > 0 exactly when th'^2/g > cos(a) / (d cos th). */
+static int build_paper(jc_Model *m)
+{
+    const double M = m->body.mass_kg, r = m->body.radius_m, M1 = m->body.disc_mass_kg;
+    const double d = m->paper_d_m, sa = m->sin_incline, ca = m->cos_incline;
+    jc_TrigLin num, den, cos1, t;
+    tl_first_order(&num, d * ca, -d * ca, 0.0);
+    jc_tl_add_cos(&num, 1, 0, r * sa);
+    tl_first_order(&den, 0.5 * M1 * r * r + M * (r * r + d * d), 2.0 * M * r * d, 0.0);
+    tl_first_order(&cos1, 0.0, 1.0, 0.0);
+    if (jc_tl_mul(&t, &cos1, &num) != JC_OK) return JC_ENUMERIC;
+    jc_tl_axpby(&m->paper_poly, 2.0 * M * d, &t, -ca, &den);
+    return JC_OK;
+}
+
+int jc_model_init(jc_Model *model, const jc_Setup *setup, char *err, size_t err_len)
+{
+    int st = jc_setup_validate(setup, err, err_len);
+    if (st != JC_OK) return st;
+    memset(model, 0, sizeof *model);
+    model->setup = *setup;
+    st = jc_body_compute(&setup->body, &model->body, err, err_len);
+    if (st != JC_OK) return st;
+    model->sin_incline = sin(setup->incline_rad);
+    model->cos_incline = cos(setup->incline_rad);
+    model->theta_end_rad = setup->theta0_rad + setup->ramp_length_m / model->body.radius_m;
+    model->paper_d_m = setup->paper_cm_offset_m > 0.0 ? setup->paper_cm_offset_m
+                                                      : model->body.cm_offset_m;
+    if (build_rolling(model) != JC_OK || build_paper(model) != JC_OK)
+        return jc_fail(err, err_len, JC_ENUMERIC, "internal error: polynomial degree exceeded");
+    return JC_OK;
+}

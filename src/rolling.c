@@ -1,0 +1,150 @@
+/*
+ * The exact rolling model (docs/physics.md §2): one degree of freedom, and the
+ * energy integral gives w^2(th) in closed form, so N and F are functions of th
+ * alone. The first N = 0 and the first |F| = mu_s N are found along th by the
+ * provable crossing search of scan.c on the polynomial forms built in model.c.
+ */
+#include "internal.h"
+
+#include <math.h>
+
+#define ROLL_ROOT_TOL_RAD 1e-12
+
+const char *jc_roll_end_name(jc_RollEnd end)
+{
+    switch (end) {
+    case JC_ROLL_END_RAMP_END: return "ramp_end";
+    case JC_ROLL_END_TURN_BACK: return "turn_back";
+    case JC_ROLL_END_RAMP_TOP: return "ramp_top";
+    case JC_ROLL_END_AT_REST: return "at_rest";
+    }
+    return "unknown";
+}
+
+static double inertia_p(const jc_Model *m, double th)
+{
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    return m->body.inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * cos(th);
+}
+
+static double potential(const jc_Model *m, double th)
+{
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    return M * m->setup.gravity_mps2 *
+           ((r + d * cos(th)) * m->cos_incline - (r * th + d * sin(th)) * m->sin_incline);
+}
+
+/* th'' for a given w^2 (physics.md §2). */
+static double angular_accel(const jc_Model *m, double th, double w2)
+{
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    const double g = m->setup.gravity_mps2;
+    const double torque = M * g * ((r + d * cos(th)) * m->sin_incline + d * sin(th) * m->cos_incline);
+    return (torque + M * r * d * sin(th) * w2) / inertia_p(m, th);
+}
+
+/* Direction of motion along th at the start; 0 if at rest in equilibrium. */
+static int start_direction(const jc_Model *m)
+{
+    const double w0 = m->setup.omega0_radps;
+    if (w0 != 0.0) return w0 > 0.0 ? 1 : -1;
+    const double a0 = angular_accel(m, m->setup.theta0_rad, 0.0);
+    return a0 > 0.0 ? 1 : (a0 < 0.0 ? -1 : 0);
+}
+
+int jc_rolling_state(const jc_Model *m, double th, jc_RollState *out, char *err, size_t err_len)
+{
+    if (!isfinite(th))
+        return jc_fail(err, err_len, JC_EINVAL, "angle %g rad is not a finite number", th);
+    const double th0 = m->setup.theta0_rad, w0 = m->setup.omega0_radps;
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    const double g = m->setup.gravity_mps2;
+    const double ip = inertia_p(m, th);
+    const double u0 = potential(m, th0), u = potential(m, th);
+    double two_ke = inertia_p(m, th0) * w0 * w0 + 2.0 * (u0 - u);
+    /* Tolerate rounding at a turning point, where w^2 is exactly 0. */
+    const double slack = 1e-12 * (inertia_p(m, th0) * w0 * w0 + 2.0 * M * g * (r + d) * (1.0 + fabs(th - th0)));
+    if (two_ke < -slack)
+        return jc_fail(err, err_len, JC_EINVAL,
+                       "angle %g rad is out of reach of the rolling motion (w^2 = %g rad^2/s^2 < 0 there)",
+                       th, two_ke / ip);
+    if (two_ke < 0.0) two_ke = 0.0;
+    const double w2 = two_ke / ip;
+    const double acc = angular_accel(m, th, w2);
+    const double s = sin(th), c = cos(th);
+    out->theta_rad = th;
+    out->omega_radps = start_direction(m) * sqrt(w2);
+    out->alpha_radps2 = acc;
+    out->x_m = r * (th - th0);
+    out->normal_N = M * (g * m->cos_incline - d * s * acc - d * c * w2);
+    out->friction_N = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline);
+    out->kinetic_J = 0.5 * two_ke;
+    out->potential_J = u - u0;
+    return JC_OK;
+}
+
+static int fill_crossing(const jc_Model *m, const jc_ScanHit *hit, jc_RollCrossing *c,
+                         char *err, size_t err_len)
+{
+    c->found = 1;
+    c->grazing = hit->grazing;
+    return jc_rolling_state(m, hit->theta, &c->state, err, err_len);
+}
+
+enum { WATCH_NORMAL, WATCH_SLIP_POS, WATCH_SLIP_NEG, WATCH_ENERGY, WATCH_COUNT };
+
+int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size_t err_len)
+{
+    *out = (jc_RollingResult){0};
+    const double th0 = m->setup.theta0_rad, mu = m->setup.mu_static;
+    const int dir = start_direction(m);
+
+    /* mu_s N -/+ F, both cleared of I_P^2: rolling holds while both are > 0. */
+    jc_TrigLin slip_pos, slip_neg;
+    jc_tl_axpby(&slip_pos, mu, &m->normal_poly, -1.0, &m->friction_poly);
+    jc_tl_axpby(&slip_neg, mu, &m->normal_poly, 1.0, &m->friction_poly);
+    const jc_TrigLin *watch[WATCH_COUNT] = {&m->normal_poly, &slip_pos, &slip_neg, &m->energy_poly};
+    int active[WATCH_COUNT] = {1, 1, 1, dir != 0};
+
+    /* Uphill or at rest, the path is only the start point. */
+    double th_end = dir > 0 ? m->theta_end_rad : th0;
+    out->end = dir > 0 ? JC_ROLL_END_RAMP_END : (dir < 0 ? JC_ROLL_END_RAMP_TOP : JC_ROLL_END_AT_REST);
+    out->end_theta_rad = th_end;
+
+    double th = th0;
+    while (active[WATCH_NORMAL] || active[WATCH_SLIP_POS]) {
+        jc_ScanSet set = {0};
+        int who[WATCH_COUNT];
+        for (int i = 0; i < WATCH_COUNT; ++i) {
+            if (!active[i]) continue;
+            who[set.count] = i;
+            set.f[set.count] = watch[i];
+            set.sign[set.count] = 1.0;
+            set.count++;
+        }
+        jc_ScanHit hit;
+        int st = jc_scan_first(&set, th, th_end, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
+        if (st != JC_OK) return st;
+        if (hit.index < 0) break;
+        th = hit.theta;
+        switch (who[hit.index]) {
+        case WATCH_NORMAL:
+            active[WATCH_NORMAL] = 0;
+            st = fill_crossing(m, &hit, &out->liftoff, err, err_len);
+            break;
+        case WATCH_SLIP_POS:
+        case WATCH_SLIP_NEG:
+            active[WATCH_SLIP_POS] = active[WATCH_SLIP_NEG] = 0;
+            st = fill_crossing(m, &hit, &out->slip, err, err_len);
+            break;
+        case WATCH_ENERGY:
+            out->end = JC_ROLL_END_TURN_BACK;
+            out->end_theta_rad = th;
+            active[WATCH_NORMAL] = active[WATCH_SLIP_POS] = 0;
+            break;
+        }
+        if (st != JC_OK) return st;
+    }
+    out->end_x_m = m->body.radius_m * (out->end_theta_rad - th0);
+    return JC_OK;
+}

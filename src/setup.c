@@ -1,0 +1,114 @@
+/* Setups: presets and validation of everything a model is built from. */
+#include "internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+static void paper_body(jc_BodyDef *b)
+{
+    *b = (jc_BodyDef){0};
+    b->radius_m = 0.100;
+    b->part_count = 2;
+    b->parts[0] = (jc_Part){JC_PART_DISC, 0.0342, 0.0, 0.0, 0.100};
+    b->parts[1] = (jc_Part){JC_PART_ROD, 0.0321, 0.0550, 0.0, 0.5 * 9.50e-3};
+}
+
+jc_Setup jc_paper_setup(void)
+{
+    jc_Setup s = {0};
+    paper_body(&s.body);
+    s.incline_rad = 30.0 * DEG;
+    s.gravity_mps2 = 9.78;
+    /* Friction is not given in the paper; docs/physics.md explains the 0.5. */
+    s.mu_static = 0.5;
+    s.mu_kinetic = 0.5;
+    s.restitution = 0.3;
+    s.theta0_rad = 0.0;
+    s.omega0_radps = 0.0;
+    s.ramp_length_m = 3.20;
+    s.paper_cm_offset_m = 0.0265; /* printed, rounded from 2.663 cm */
+    return s;
+}
+
+/* The classic hopping hoop: a light hoop with a point mass on its rim, on a
+ * floor, started with the mass on top and a small spin. */
+static jc_Setup hoop_setup(void)
+{
+    jc_Setup s = jc_paper_setup();
+    s.body = (jc_BodyDef){0};
+    s.body.radius_m = 0.10;
+    s.body.part_count = 2;
+    s.body.parts[0] = (jc_Part){JC_PART_HOOP, 0.010, 0.0, 0.0, 0.10};
+    s.body.parts[1] = (jc_Part){JC_PART_POINT, 0.100, 0.10, 0.0, 0.0};
+    s.incline_rad = 0.0;
+    s.mu_static = s.mu_kinetic = 0.5;
+    s.omega0_radps = 0.1;
+    s.ramp_length_m = 3.0;
+    s.paper_cm_offset_m = 0.0;
+    return s;
+}
+
+static jc_Setup disc_setup(void)
+{
+    jc_Setup s = jc_paper_setup();
+    s.body = (jc_BodyDef){0};
+    s.body.radius_m = 0.10;
+    s.body.part_count = 1;
+    s.body.parts[0] = (jc_Part){JC_PART_DISC, 0.0663, 0.0, 0.0, 0.10};
+    s.paper_cm_offset_m = 0.0;
+    return s;
+}
+
+static const struct {
+    const char *name, *description;
+    jc_Setup (*make)(void);
+} presets[] = {
+    {"paper", "the seed paper's Styrofoam disc with a brass rod, 30 deg incline, 3.20 m ramp", jc_paper_setup},
+    {"hoop", "light hoop (10 g) with a 100 g point mass on its rim, on a floor, mass on top, 0.1 rad/s", hoop_setup},
+    {"disc", "uniform disc of the paper's size and mass (d = 0), 30 deg incline", disc_setup},
+};
+#define PRESET_COUNT ((int)(sizeof presets / sizeof presets[0]))
+
+const char *jc_preset_name(int i) { return i >= 0 && i < PRESET_COUNT ? presets[i].name : NULL; }
+const char *jc_preset_description(int i) { return i >= 0 && i < PRESET_COUNT ? presets[i].description : NULL; }
+
+int jc_preset_setup(const char *name, jc_Setup *out, char *err, size_t err_len)
+{
+    for (int i = 0; i < PRESET_COUNT; ++i) {
+        if (name && strcmp(name, presets[i].name) == 0) {
+            *out = presets[i].make();
+            return JC_OK;
+        }
+    }
+    return jc_fail(err, err_len, JC_EINVAL, "unknown preset '%s' (allowed: paper, hoop, disc)", name ? name : "(null)");
+}
+
+static int check_range(const char *what, const char *unit, double v, double lo, int lo_open,
+                       double hi, int hi_open, char *err, size_t err_len)
+{
+    int ok = isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+    if (ok) return JC_OK;
+    return jc_fail(err, err_len, JC_EINVAL, "%s %g %s is out of range (allowed: %s%g, %g%s)",
+                   what, v, unit, lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+}
+
+int jc_setup_validate(const jc_Setup *s, char *err, size_t err_len)
+{
+    jc_Body body;
+    int st = jc_body_compute(&s->body, &body, err, err_len);
+    if (st != JC_OK) return st;
+    if (!isfinite(s->incline_rad) || s->incline_rad < 0.0 || s->incline_rad >= JC_MAX_INCLINE_RAD)
+        return jc_fail(err, err_len, JC_EINVAL, "incline %g deg is out of range (allowed: [0, 90) deg)", s->incline_rad / DEG);
+    if ((st = check_range("gravity", "m/s2", s->gravity_mps2, 0.0, 1, 1e3, 0, err, err_len))) return st;
+    if ((st = check_range("static friction", "", s->mu_static, 0.0, 0, 1e6, 0, err, err_len))) return st;
+    if ((st = check_range("kinetic friction", "", s->mu_kinetic, 0.0, 0, 1e6, 0, err, err_len))) return st;
+    if ((st = check_range("restitution", "", s->restitution, 0.0, 0, 1.0, 0, err, err_len))) return st;
+    if ((st = check_range("initial angle", "rad", s->theta0_rad, -1e4, 0, 1e4, 0, err, err_len))) return st;
+    if ((st = check_range("initial angular velocity", "rad/s", s->omega0_radps, -1e4, 0, 1e4, 0, err, err_len))) return st;
+    const double max_ramp = JC_MAX_RAMP_TURNS * 2.0 * 3.14159265358979323846 * s->body.radius_m;
+    if ((st = check_range("ramp length", "m", s->ramp_length_m, 0.0, 1, max_ramp, 0, err, err_len))) return st;
+    if ((st = check_range("paper-model CM offset", "m", s->paper_cm_offset_m, 0.0, 0, s->body.radius_m, 0, err, err_len))) return st;
+    return JC_OK;
+}

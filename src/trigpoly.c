@@ -1,0 +1,141 @@
+/*
+ * Functions of the form f(th) = T0(th) + th T1(th), where T0 and T1 are
+ * trigonometric polynomials of low degree.
+ *
+ * Why this exists: on the rolling solution, I_P w^2, N I_P^2 and F I_P^2 are
+ * exactly of this form (the energy integral is linear in th through the
+ * r th sin(alpha) descent), and so is the paper's Eq. 9 cleared of its
+ * denominators. Holding them as coefficients gives exact derivatives and a
+ * cheap, rigorous bound on |f''| over a range of th, which is what lets the
+ * crossing search in scan.c take large steps and still never step over a
+ * root.
+ */
+#include "internal.h"
+
+#include <math.h>
+#include <string.h>
+
+void jc_tl_zero(jc_TrigLin *p) { memset(p, 0, sizeof *p); }
+
+void jc_tl_add_cos(jc_TrigLin *p, int lin, int k, double a)
+{
+    if (k < 0) k = -k; /* cos(-k th) = cos(k th) */
+    (lin ? p->c1 : p->c0)[k] += a;
+}
+
+void jc_tl_add_sin(jc_TrigLin *p, int lin, int k, double a)
+{
+    if (k == 0) return;
+    if (k < 0) { k = -k; a = -a; } /* sin(-k th) = -sin(k th) */
+    (lin ? p->s1 : p->s0)[k] += a;
+}
+
+void jc_tl_axpby(jc_TrigLin *out, double a, const jc_TrigLin *x, double b, const jc_TrigLin *y)
+{
+    for (int k = 0; k <= JC_TRIG_DEGREE; ++k) {
+        out->c0[k] = a * x->c0[k] + b * y->c0[k];
+        out->s0[k] = a * x->s0[k] + b * y->s0[k];
+        out->c1[k] = a * x->c1[k] + b * y->c1[k];
+        out->s1[k] = a * x->s1[k] + b * y->s1[k];
+    }
+}
+
+static int degree_of(const double *c, const double *s)
+{
+    int deg = -1;
+    for (int k = 0; k <= JC_TRIG_DEGREE; ++k)
+        if (c[k] != 0.0 || s[k] != 0.0) deg = k;
+    return deg;
+}
+
+static int has_lin(const jc_TrigLin *p) { return degree_of(p->c1, p->s1) >= 0; }
+
+static int degree(const jc_TrigLin *p)
+{
+    int d0 = degree_of(p->c0, p->s0), d1 = degree_of(p->c1, p->s1);
+    return d0 > d1 ? d0 : d1;
+}
+
+/* Adds (xc, xs) * (yc, ys) into (oc, os), by product-to-sum. */
+static void mul_into(double *oc, double *os, const double *xc, const double *xs,
+                     const double *yc, const double *ys)
+{
+    for (int i = 0; i <= JC_TRIG_DEGREE; ++i) {
+        for (int j = 0; j <= JC_TRIG_DEGREE; ++j) {
+            double cc = xc[i] * yc[j], ss = xs[i] * ys[j];
+            double sc = xs[i] * yc[j], cs = xc[i] * ys[j];
+            if (cc == 0.0 && ss == 0.0 && sc == 0.0 && cs == 0.0) continue;
+            int sum = i + j, dif = i - j;
+            /* cos a cos b = (cos(a-b) + cos(a+b))/2; sin a sin b = (cos(a-b) - cos(a+b))/2 */
+            oc[dif < 0 ? -dif : dif] += 0.5 * (cc + ss);
+            oc[sum] += 0.5 * (cc - ss);
+            /* sin a cos b = (sin(a+b) + sin(a-b))/2; cos a sin b = (sin(a+b) - sin(a-b))/2 */
+            if (sum > 0) os[sum] += 0.5 * (sc + cs);
+            if (dif > 0) os[dif] += 0.5 * (sc - cs);
+            else if (dif < 0) os[-dif] -= 0.5 * (sc - cs);
+        }
+    }
+}
+
+int jc_tl_mul(jc_TrigLin *out, const jc_TrigLin *x, const jc_TrigLin *y)
+{
+    if ((has_lin(x) && has_lin(y)) || degree(x) + degree(y) > JC_TRIG_DEGREE)
+        return JC_EINVAL;
+    jc_TrigLin r;
+    jc_tl_zero(&r);
+    mul_into(r.c0, r.s0, x->c0, x->s0, y->c0, y->s0);
+    mul_into(r.c1, r.s1, x->c1, x->s1, y->c0, y->s0);
+    mul_into(r.c1, r.s1, x->c0, x->s0, y->c1, y->s1);
+    *out = r;
+    return JC_OK;
+}
+
+void jc_tl_eval(const jc_TrigLin *p, double th, double *f, double *df)
+{
+    /* cos(k th), sin(k th) by the angle-addition recurrence: one sincos call. */
+    double c1 = cos(th), s1 = sin(th);
+    double ck = 1.0, sk = 0.0;
+    double t0 = 0.0, d0 = 0.0, t1 = 0.0, d1 = 0.0;
+    for (int k = 0; k <= JC_TRIG_DEGREE; ++k) {
+        t0 += p->c0[k] * ck + p->s0[k] * sk;
+        d0 += k * (p->s0[k] * ck - p->c0[k] * sk);
+        t1 += p->c1[k] * ck + p->s1[k] * sk;
+        d1 += k * (p->s1[k] * ck - p->c1[k] * sk);
+        double cn = ck * c1 - sk * s1;
+        sk = sk * c1 + ck * s1;
+        ck = cn;
+    }
+    *f = t0 + th * t1;
+    if (df) *df = d0 + t1 + th * d1;
+}
+
+double jc_tl_value(const jc_TrigLin *p, double th)
+{
+    double f;
+    jc_tl_eval(p, th, &f, NULL);
+    return f;
+}
+
+double jc_tl_magnitude_bound(const jc_TrigLin *p, double th_abs_max)
+{
+    double b0 = 0.0, b1 = 0.0;
+    for (int k = 0; k <= JC_TRIG_DEGREE; ++k) {
+        b0 += fabs(p->c0[k]) + fabs(p->s0[k]);
+        b1 += fabs(p->c1[k]) + fabs(p->s1[k]);
+    }
+    return b0 + th_abs_max * b1;
+}
+
+double jc_tl_curvature_bound(const jc_TrigLin *p, double th_abs_max)
+{
+    /* f'' = T0'' + 2 T1' + th T1'', and |d^n/dth^n (a cos k th + b sin k th)| <= k^n (|a|+|b|). */
+    double b0 = 0.0, b1 = 0.0, b2 = 0.0;
+    for (int k = 1; k <= JC_TRIG_DEGREE; ++k) {
+        double kk = (double)k * k;
+        b0 += kk * (fabs(p->c0[k]) + fabs(p->s0[k]));
+        b1 += k * (fabs(p->c1[k]) + fabs(p->s1[k]));
+        b2 += kk * (fabs(p->c1[k]) + fabs(p->s1[k]));
+    }
+    /* 1 + 1e-12: covers rounding in the sums above. */
+    return (b0 + 2.0 * b1 + th_abs_max * b2) * (1.0 + 1e-12);
+}
