@@ -10,6 +10,7 @@
 int jc_fail(char *err, size_t err_len, int status, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 4, 5)))
+
 #endif
     ;
 
@@ -24,6 +25,10 @@ void jc_tl_axpby(jc_TrigLin *out, double a, const jc_TrigLin *x, double b, const
 /* out = x*y; at most one of them may have a T1 part, and the degrees must add
  * up to at most JC_TRIG_DEGREE (both checked; returns JC_EINVAL if not). */
 int jc_tl_mul(jc_TrigLin *out, const jc_TrigLin *x, const jc_TrigLin *y);
+/* f, f', f'' at th. */
+void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3]);
+/* A bound on |f'''| for |th| <= th_abs_max. */
+double jc_tl_third_bound(const jc_TrigLin *p, double th_abs_max);
 /* Value and derivative at th. */
 void jc_tl_eval(const jc_TrigLin *p, double th, double *f, double *df);
 double jc_tl_value(const jc_TrigLin *p, double th);
@@ -36,6 +41,17 @@ double jc_tl_curvature_bound(const jc_TrigLin *p, double th_abs_max);
  * positive, found by steps that cannot cross a root (see scan.c). ---- */
 
 #define JC_SCAN_MAX 8
+
+/* A watched function of the scan variable u: eval writes f, f', f'' at u;
+ * third_bound bounds |f'''| over the whole scanned range; noise is the size
+ * of rounding in f (values within it count as zero). */
+typedef struct {
+    void (*eval)(const void *ctx, double u, double out[3]);
+    const void *ctx;
+    double third_bound;
+    double noise;
+    double sign; /* watch sign * f, which must stay > 0 */
+} jc_ScanFn;
 
 typedef struct {
     int count;
@@ -53,5 +69,86 @@ typedef struct {
 /* Scans from th_from to th_to (either direction). Root located to tol_rad. */
 int jc_scan_first(const jc_ScanSet *set, double th_from, double th_to, double tol_rad,
                   jc_ScanHit *hit, char *err, size_t err_len);
+
+/* The general form: scans from u_from to u_to (either direction) for the
+ * first u where one of the functions stops being positive; root to tol. */
+int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, double tol,
+                jc_ScanHit *hit, char *err, size_t err_len);
+
+
+/* ---- the simulator's shared pieces (simulate.c and one file per phase) ---- */
+
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_odeiv2.h>
+
+typedef enum {
+    PHASE_SLIP,        /* rolling: the friction cone is reached */
+    PHASE_LIFTOFF,     /* contact: N = 0 */
+    PHASE_SLIP_ZERO,   /* sliding: the slip velocity returned to 0 */
+    PHASE_TOUCHDOWN,   /* flight: the rim meets the incline */
+    PHASE_RAMP_END,
+    PHASE_RAMP_TOP,
+    PHASE_PAINLEVE,
+    PHASE_TIME_LIMIT,
+    PHASE_AT_REST,
+    PHASE_STEP_LIMIT
+} jc_PhaseEnd;
+
+typedef struct jc_Sim {
+    const jc_Model *m;
+    const jc_SimOptions *opt;
+    jc_Run *run;
+    jc_State s;
+    jc_Mode mode;
+    int slip_dir;                  /* sliding: sign of the slip velocity */
+    double friction_loss_J, impact_loss_J;
+    double energy0_J;              /* K + U at the start */
+    double next_sample_t;          /* INFINITY when not sampling at fixed steps */
+    double hop_height_m;           /* the last flight's largest gap */
+    gsl_integration_workspace *quad;
+    gsl_odeiv2_step *ode_step;
+    gsl_odeiv2_control *ode_control;
+    gsl_odeiv2_evolve *ode_evolve;
+} jc_Sim;
+
+/* simulate.c: records a trajectory sample (derived fields computed here). */
+int jc_sim_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);
+/* Whether a fixed-step sample falls in (.., t_end]; its time in *t. */
+int jc_sim_sample_due(const jc_Sim *sim, double t_end, double *t);
+
+/* rolling.c */
+void jc_roll_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction);
+int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
+
+/* sliding.c */
+typedef struct {
+    double normal_N, friction_N, theta_acc, x_acc, denominator;
+} jc_SlideForces;
+void jc_slide_forces(const jc_Model *m, double th, double w, int slip_dir, jc_SlideForces *f);
+int jc_slide_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
+
+/* flight.c */
+double jc_flight_gap(const jc_Model *m, const jc_State *s); /* rim's lowest point above the incline */
+int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len);
+
+/* impact.c */
+typedef struct {
+    double impulse_normal_Ns, impulse_tangent_Ns;
+    double approach_speed_mps;   /* normal speed of the contact point before, >= 0 */
+    double rebound_speed_mps;    /* after */
+    int sticks;                  /* tangential slip stopped by the impulse */
+    int painleve;                /* sliding impulse with no consistent solution */
+} jc_ImpactResult;
+/* Applies the impact law at a state touching the incline; e is the restitution used. */
+void jc_impact_apply(const jc_Model *m, jc_State *s, double e, jc_ImpactResult *out);
+
+/* mode.c */
+typedef enum { CHOICE_ROLL, CHOICE_SLIDE, CHOICE_FLY, CHOICE_PAINLEVE, CHOICE_REST } jc_ModeChoice;
+/* The contact mode consistent with the forces at a state on the incline
+ * (y = r, vy = 0); *slip_dir for CHOICE_SLIDE. allow_roll = 0 where the
+ * rolling path was just found to leave the friction cone: on the cone's edge
+ * rounding must not put the body back into rolling. */
+jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_roll, int *slip_dir);
+
 
 #endif

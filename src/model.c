@@ -4,10 +4,12 @@
  *
  * The rolling quantities are stored as the exact functions of th they are
  * (docs/physics.md §2), cleared of the positive factor I_P(th):
- *   P(th)      = I_P w^2        = I_P(th0) w0^2 + 2 (U(th0) - U(th))
+ *   P(th)      = I_P w^2        = e - 2 U(th),  e = I_P(th0) w0^2 + 2 U(th0)
  *   Z(th)      = I_P^2 th''     = M g Q I_P + M r d sin(th) P
  *   N I_P^2    = M [ g cos(a) I_P^2 - d sin(th) Z - d cos(th) P I_P ]
  *   F I_P^2    = M [ (r + d cos th) Z - d sin(th) P I_P - g sin(a) I_P^2 ]
+ * N I_P^2 and F I_P^2 are affine in the energy constant e; the model keeps
+ * both parts so that rolling can restart from any state (the simulator).
  * with I_P = I_C + M r^2 + 2 M r d cos th,
  *      U   = M g [ (r + d cos th) cos a - (r th + d sin th) sin a ],
  *      Q   = (r + d cos th) sin a + d sin th cos a.
@@ -37,7 +39,7 @@ static int build_rolling(jc_Model *m)
     const double g = m->setup.gravity_mps2, sa = m->sin_incline, ca = m->cos_incline;
     const double th0 = m->setup.theta0_rad, w0 = m->setup.omega0_radps;
 
-    jc_TrigLin ip, u, p, q, z, t1, t2, t3, sin1, cos1, rdc, ip2;
+    jc_TrigLin ip, u, q, sin1, cos1, rdc, one, t1, t2, t3;
     tl_first_order(&ip, m->body.inertia_c_kgm2 + M * r * r, 2.0 * M * r * d, 0.0);
     tl_first_order(&u, M * g * r * ca, M * g * d * ca, -M * g * d * sa);
     jc_tl_add_cos(&u, 1, 0, -M * g * r * sa);
@@ -45,29 +47,39 @@ static int build_rolling(jc_Model *m)
     tl_first_order(&sin1, 0.0, 0.0, 1.0);
     tl_first_order(&cos1, 0.0, 1.0, 0.0);
     tl_first_order(&rdc, r, d, 0.0);
-
-    const double e0 = jc_tl_value(&ip, th0) * w0 * w0 + 2.0 * jc_tl_value(&u, th0);
-    jc_TrigLin one;
     tl_const(&one, 1.0);
-    jc_tl_axpby(&p, e0, &one, -2.0, &u);
-    m->energy_poly = p;
+    m->inertia_p_poly = ip;
+    m->potential_poly = u;
 
+    /* With P = I_P w^2 = e - 2 U:  N I_P^2 = n0 + P n1,  F I_P^2 = f0 + P f1. */
     int st = 0;
-    st |= jc_tl_mul(&t1, &q, &ip);                   /* Q I_P */
-    st |= jc_tl_mul(&t2, &sin1, &p);                 /* sin P */
-    jc_tl_axpby(&z, M * g, &t1, M * r * d, &t2);     /* Z */
-    st |= jc_tl_mul(&ip2, &ip, &ip);                 /* I_P^2 */
-    jc_TrigLin pip, sz, cpip, spip, rz;
-    st |= jc_tl_mul(&pip, &p, &ip);                  /* P I_P */
-    st |= jc_tl_mul(&sz, &sin1, &z);                 /* sin Z */
-    st |= jc_tl_mul(&cpip, &cos1, &pip);             /* cos P I_P */
-    st |= jc_tl_mul(&spip, &sin1, &pip);             /* sin P I_P */
-    st |= jc_tl_mul(&rz, &rdc, &z);                  /* (r + d cos) Z */
+    jc_TrigLin qip, ip2, n0, n1, f0, f1, sin2, sinip, cosip;
+    st |= jc_tl_mul(&qip, &q, &ip);
+    st |= jc_tl_mul(&ip2, &ip, &ip);
+    st |= jc_tl_mul(&sin2, &sin1, &sin1);
+    st |= jc_tl_mul(&sinip, &sin1, &ip);
+    st |= jc_tl_mul(&cosip, &cos1, &ip);
+    st |= jc_tl_mul(&t1, &sin1, &qip);                 /* sin Q I_P */
+    jc_tl_axpby(&n0, M * g * ca, &ip2, -M * M * g * d, &t1);
+    jc_tl_axpby(&n1, -M * M * r * d * d, &sin2, -M * d, &cosip);
+    st |= jc_tl_mul(&t2, &rdc, &qip);                  /* (r + d cos) Q I_P */
+    jc_tl_axpby(&f0, M * M * g, &t2, -M * g * sa, &ip2);
+    st |= jc_tl_mul(&t3, &rdc, &sin1);                 /* (r + d cos) sin */
+    jc_tl_axpby(&f1, M * M * r * d, &t3, -M * d, &sinip);
 
-    jc_tl_axpby(&t3, M * g * ca, &ip2, -M * d, &sz);
-    jc_tl_axpby(&m->normal_poly, 1.0, &t3, -M * d, &cpip);
-    jc_tl_axpby(&t3, M, &rz, -M * d, &spip);
-    jc_tl_axpby(&m->friction_poly, 1.0, &t3, -M * g * sa, &ip2);
+    /* Fold P = e - 2U in: part_a = x0 - 2 U x1, part_b = x1. */
+    st |= jc_tl_mul(&t1, &u, &n1);
+    jc_tl_axpby(&m->roll_normal_a, 1.0, &n0, -2.0, &t1);
+    m->roll_normal_b = n1;
+    st |= jc_tl_mul(&t1, &u, &f1);
+    jc_tl_axpby(&m->roll_friction_a, 1.0, &f0, -2.0, &t1);
+    m->roll_friction_b = f1;
+
+    /* The setup's own start. */
+    const double e0 = jc_tl_value(&ip, th0) * w0 * w0 + 2.0 * jc_tl_value(&u, th0);
+    jc_tl_axpby(&m->energy_poly, e0, &one, -2.0, &u);
+    jc_tl_axpby(&m->normal_poly, 1.0, &m->roll_normal_a, e0, &m->roll_normal_b);
+    jc_tl_axpby(&m->friction_poly, 1.0, &m->roll_friction_a, e0, &m->roll_friction_b);
     return st ? JC_ENUMERIC : JC_OK;
 }
 

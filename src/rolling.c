@@ -6,6 +6,8 @@
  */
 #include "internal.h"
 
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
 #include <math.h>
 
 #define ROLL_ROOT_TOL_RAD 1e-12
@@ -52,6 +54,18 @@ static int start_direction(const jc_Model *m)
     return a0 > 0.0 ? 1 : (a0 < 0.0 ? -1 : 0);
 }
 
+void jc_roll_forces(const jc_Model *m, double th, double w, double *thdd, double *normal,
+                    double *friction)
+{
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    const double g = m->setup.gravity_mps2, w2 = w * w;
+    const double acc = angular_accel(m, th, w2);
+    const double s = sin(th), c = cos(th);
+    *thdd = acc;
+    *normal = M * (g * m->cos_incline - d * s * acc - d * c * w2);
+    *friction = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline);
+}
+
 int jc_rolling_state(const jc_Model *m, double th, jc_RollState *out, char *err, size_t err_len)
 {
     if (!isfinite(th))
@@ -60,6 +74,7 @@ int jc_rolling_state(const jc_Model *m, double th, jc_RollState *out, char *err,
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2;
     const double ip = inertia_p(m, th);
+    (void)M;
     const double u0 = potential(m, th0), u = potential(m, th);
     double two_ke = inertia_p(m, th0) * w0 * w0 + 2.0 * (u0 - u);
     /* Tolerate rounding at a turning point, where w^2 is exactly 0. */
@@ -70,14 +85,10 @@ int jc_rolling_state(const jc_Model *m, double th, jc_RollState *out, char *err,
                        th, two_ke / ip);
     if (two_ke < 0.0) two_ke = 0.0;
     const double w2 = two_ke / ip;
-    const double acc = angular_accel(m, th, w2);
-    const double s = sin(th), c = cos(th);
     out->theta_rad = th;
     out->omega_radps = start_direction(m) * sqrt(w2);
-    out->alpha_radps2 = acc;
+    jc_roll_forces(m, th, out->omega_radps, &out->alpha_radps2, &out->normal_N, &out->friction_N);
     out->x_m = r * (th - th0);
-    out->normal_N = M * (g * m->cos_incline - d * s * acc - d * c * w2);
-    out->friction_N = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline);
     out->kinetic_J = 0.5 * two_ke;
     out->potential_J = u - u0;
     return JC_OK;
@@ -146,5 +157,216 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
         if (st != JC_OK) return st;
     }
     out->end_x_m = m->body.radius_m * (out->end_theta_rad - th0);
+    return JC_OK;
+}
+
+/* ---- the rolling phase of the simulator ---- */
+
+#define ROLL_MAX_SWINGS 1000000L
+#define QUAD_LIMIT 200
+
+/* The rolling path from a state: its polynomials for the state's energy. */
+typedef struct {
+    jc_TrigLin energy, normal, friction, slip_pos, slip_neg;
+    const jc_TrigLin *inertia;
+} roll_path;
+
+static void roll_path_init(const jc_Model *m, double th, double w, roll_path *p)
+{
+    const double e = jc_tl_value(&m->inertia_p_poly, th) * w * w + 2.0 * jc_tl_value(&m->potential_poly, th);
+    jc_TrigLin one;
+    jc_tl_zero(&one);
+    jc_tl_add_cos(&one, 0, 0, 1.0);
+    jc_tl_axpby(&p->energy, e, &one, -2.0, &m->potential_poly);
+    jc_tl_axpby(&p->normal, 1.0, &m->roll_normal_a, e, &m->roll_normal_b);
+    jc_tl_axpby(&p->friction, 1.0, &m->roll_friction_a, e, &m->roll_friction_b);
+    jc_tl_axpby(&p->slip_pos, m->setup.mu_static, &p->normal, -1.0, &p->friction);
+    jc_tl_axpby(&p->slip_neg, m->setup.mu_static, &p->normal, 1.0, &p->friction);
+    p->inertia = &m->inertia_p_poly;
+}
+
+/* dt/du for th = anchor + sigma u^2: 2 u / |w(th)|, finite at a turning point. */
+typedef struct {
+    const roll_path *path;
+    double anchor, sigma;
+    double p0, p1; /* P and sigma * P' at the anchor, for u -> 0 */
+} time_integrand;
+
+static double dt_du(double u, void *params)
+{
+    const time_integrand *ti = params;
+    const double th = ti->anchor + ti->sigma * u * u;
+    double p = jc_tl_value(&ti->path->energy, th);
+    const double lin = ti->p0 + ti->p1 * u * u;
+    /* Near the anchor P is dominated by rounding when P(anchor) = 0: use its
+     * linearisation there, where it is exact to O(u^4). */
+    if (u * u < 1e-7 && lin > 0.0) p = lin;
+    if (p <= 0.0) {
+        if (ti->p0 <= 0.0 && ti->p1 > 0.0) p = ti->p1 * u * u; /* u = 0 at a turning point */
+        else return 0.0;
+    }
+    const double ip = jc_tl_value(ti->path->inertia, th);
+    if (u == 0.0) return ti->p0 > 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
+    return 2.0 * u / sqrt(p / ip);
+}
+
+/* Time to roll from th_a to th_b (either may be a turning point). */
+static int roll_time(jc_Sim *sim, const roll_path *path, double th_a, double th_b, double *dt,
+                     char *err, size_t err_len)
+{
+    *dt = 0.0;
+    if (th_a == th_b) return JC_OK;
+    const double mid = 0.5 * (th_a + th_b);
+    const double ends[2] = {th_a, th_b};
+    for (int k = 0; k < 2; ++k) {
+        double f[2];
+        jc_tl_eval(&path->energy, ends[k], &f[0], &f[1]);
+        const double sigma = mid > ends[k] ? 1.0 : -1.0;
+        time_integrand ti = {path, ends[k], sigma, f[0], sigma * f[1]};
+        gsl_function fn = {dt_du, &ti};
+        double part, abserr;
+        int st = gsl_integration_qag(&fn, 0.0, sqrt(fabs(mid - ends[k])), 0.0, 1e-13, QUAD_LIMIT,
+                                     GSL_INTEG_GAUSS21, sim->quad, &part, &abserr);
+        if (st != GSL_SUCCESS && abserr > 1e-3 * sim->opt->event_tol_s + 1e-12 * fabs(part))
+            return jc_fail(err, err_len, JC_ENUMERIC,
+                           "rolling time quadrature failed between th = %.9g and %.9g rad (%s)",
+                           th_a, th_b, gsl_strerror(st));
+        *dt += part;
+    }
+    return JC_OK;
+}
+
+typedef struct {
+    jc_Sim *sim;
+    const roll_path *path;
+    double th_a, target;
+    int status;
+} time_target;
+
+static double time_minus_target(double th, void *params)
+{
+    time_target *tt = params;
+    double dt = 0.0;
+    if (roll_time(tt->sim, tt->path, tt->th_a, th, &dt, NULL, 0) != JC_OK) tt->status = JC_ENUMERIC;
+    return dt - tt->target;
+}
+
+/* The th between th_a and th_b reached dt after th_a. */
+static int roll_theta_at(jc_Sim *sim, const roll_path *path, double th_a, double th_b, double dt,
+                         double *th, char *err, size_t err_len)
+{
+    time_target tt = {sim, path, th_a, dt, JC_OK};
+    gsl_function fn = {time_minus_target, &tt};
+    const double lo = fmin(th_a, th_b), hi = fmax(th_a, th_b);
+    const double flo = time_minus_target(lo, &tt), fhi = time_minus_target(hi, &tt);
+    if (flo == 0.0) { *th = lo; return JC_OK; }
+    if (fhi == 0.0) { *th = hi; return JC_OK; }
+    if (flo * fhi > 0.0) {
+        *th = fabs(flo) < fabs(fhi) ? lo : hi;
+        return JC_OK;
+    }
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!s) return jc_fail(err, err_len, JC_ENOMEM, "out of memory");
+    gsl_root_fsolver_set(s, &fn, lo, hi);
+    int status = GSL_CONTINUE;
+    for (int it = 0; it < 200 && status == GSL_CONTINUE; ++it) {
+        gsl_root_fsolver_iterate(s);
+        status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 1e-13, 0.0);
+    }
+    *th = gsl_root_fsolver_root(s);
+    gsl_root_fsolver_free(s);
+    if (tt.status != JC_OK) return jc_fail(err, err_len, JC_ENUMERIC, "rolling time inversion failed");
+    return JC_OK;
+}
+
+/* The state on the rolling path at th. */
+static jc_State roll_state_at(const jc_Model *m, const roll_path *path, const jc_State *start,
+                              double th, int dir)
+{
+    const double r = m->body.radius_m;
+    const double p = fmax(jc_tl_value(&path->energy, th), 0.0);
+    const double w = dir * sqrt(p / jc_tl_value(path->inertia, th));
+    jc_State s = *start;
+    s.theta_rad = th;
+    s.omega_radps = w;
+    s.x_m = start->x_m + r * (th - start->theta_rad);
+    s.y_m = r;
+    s.vx_mps = r * w;
+    s.vy_mps = 0.0;
+    return s;
+}
+
+static int emit_samples(jc_Sim *sim, const roll_path *path, const jc_State *start, double th_end,
+                        int dir, double t_end, char *err, size_t err_len)
+{
+    double ts;
+    while (jc_sim_sample_due(sim, t_end, &ts)) {
+        double th;
+        int st = roll_theta_at(sim, path, start->theta_rad, th_end, ts - start->t_s, &th, err, err_len);
+        if (st != JC_OK) return st;
+        jc_State s = roll_state_at(sim->m, path, start, th, dir);
+        s.t_s = ts;
+        double thdd, n, f;
+        jc_roll_forces(sim->m, th, s.omega_radps, &thdd, &n, &f);
+        if ((st = jc_sim_sample(sim, &s, JC_MODE_ROLLING, n, f)) != JC_OK)
+            return jc_fail(err, err_len, st, "out of memory for samples");
+    }
+    return JC_OK;
+}
+
+enum { RW_NORMAL, RW_SLIP_POS, RW_SLIP_NEG, RW_ENERGY };
+
+int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
+{
+    const jc_Model *m = sim->m;
+    const double r = m->body.radius_m, L = m->setup.ramp_length_m;
+    roll_path path;
+    roll_path_init(m, sim->s.theta_rad, sim->s.omega_radps, &path);
+    double thdd, n, f;
+    jc_roll_forces(m, sim->s.theta_rad, sim->s.omega_radps, &thdd, &n, &f);
+    int dir = sim->s.omega_radps != 0.0 ? (sim->s.omega_radps > 0.0 ? 1 : -1) : (thdd > 0.0) - (thdd < 0.0);
+    if (dir == 0) {
+        *end = PHASE_AT_REST;
+        return JC_OK;
+    }
+    for (long swing = 0; swing < ROLL_MAX_SWINGS; ++swing) {
+        const jc_State start = sim->s;
+        const double th_lim = dir > 0 ? start.theta_rad + (L - start.x_m) / r : start.theta_rad - start.x_m / r;
+        jc_ScanSet set = {4, {&path.normal, &path.slip_pos, &path.slip_neg, &path.energy}, {1, 1, 1, 1}};
+        jc_ScanHit hit;
+        int st = jc_scan_first(&set, start.theta_rad, th_lim, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
+        if (st != JC_OK) return st;
+        double dt;
+        if ((st = roll_time(sim, &path, start.theta_rad, hit.theta, &dt, err, err_len)) != JC_OK) return st;
+        const double t_max = sim->opt->t_max_s;
+        double th_end = hit.theta;
+        if (start.t_s + dt > t_max) {
+            if ((st = roll_theta_at(sim, &path, start.theta_rad, hit.theta, t_max - start.t_s, &th_end, err, err_len)))
+                return st;
+            dt = t_max - start.t_s;
+        }
+        if ((st = emit_samples(sim, &path, &start, th_end, dir, start.t_s + dt, err, err_len)) != JC_OK) return st;
+        sim->s = roll_state_at(m, &path, &start, th_end, dir);
+        sim->s.t_s = start.t_s + dt;
+        if (th_end != hit.theta) {
+            *end = PHASE_TIME_LIMIT;
+            return JC_OK;
+        }
+        switch (hit.index) {
+        case RW_NORMAL: *end = PHASE_LIFTOFF; return JC_OK;
+        case RW_SLIP_POS:
+        case RW_SLIP_NEG: *end = PHASE_SLIP; return JC_OK;
+        case RW_ENERGY:
+            /* A turning point: roll back the other way (not a mode change). */
+            sim->s.omega_radps = 0.0;
+            sim->s.vx_mps = 0.0;
+            dir = -dir;
+            continue;
+        default:
+            *end = dir > 0 ? PHASE_RAMP_END : PHASE_RAMP_TOP;
+            return JC_OK;
+        }
+    }
+    *end = PHASE_STEP_LIMIT;
     return JC_OK;
 }

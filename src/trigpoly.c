@@ -139,3 +139,38 @@ double jc_tl_curvature_bound(const jc_TrigLin *p, double th_abs_max)
     /* 1 + 1e-12: covers rounding in the sums above. */
     return (b0 + 2.0 * b1 + th_abs_max * b2) * (1.0 + 1e-12);
 }
+
+void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3])
+{
+    double c1 = cos(th), s1 = sin(th);
+    double ck = 1.0, sk = 0.0;
+    double t0 = 0.0, d0 = 0.0, e0 = 0.0, t1 = 0.0, d1 = 0.0, e1 = 0.0;
+    for (int k = 0; k <= JC_TRIG_DEGREE; ++k) {
+        const double kk = (double)k * k;
+        t0 += p->c0[k] * ck + p->s0[k] * sk;
+        d0 += k * (p->s0[k] * ck - p->c0[k] * sk);
+        e0 -= kk * (p->c0[k] * ck + p->s0[k] * sk);
+        t1 += p->c1[k] * ck + p->s1[k] * sk;
+        d1 += k * (p->s1[k] * ck - p->c1[k] * sk);
+        e1 -= kk * (p->c1[k] * ck + p->s1[k] * sk);
+        double cn = ck * c1 - sk * s1;
+        sk = sk * c1 + ck * s1;
+        ck = cn;
+    }
+    out[0] = t0 + th * t1;
+    out[1] = d0 + t1 + th * d1;
+    out[2] = e0 + 2.0 * d1 + th * e1;
+}
+
+double jc_tl_third_bound(const jc_TrigLin *p, double th_abs_max)
+{
+    /* f''' = T0''' + 3 T1'' + th T1''' */
+    double b0 = 0.0, b1 = 0.0, b2 = 0.0;
+    for (int k = 1; k <= JC_TRIG_DEGREE; ++k) {
+        const double kk = (double)k * k, kkk = kk * k;
+        b0 += kkk * (fabs(p->c0[k]) + fabs(p->s0[k]));
+        b1 += kk * (fabs(p->c1[k]) + fabs(p->s1[k]));
+        b2 += kkk * (fabs(p->c1[k]) + fabs(p->s1[k]));
+    }
+    return (b0 + 3.0 * b1 + th_abs_max * b2) * (1.0 + 1e-12);
+}

@@ -150,9 +150,15 @@ typedef struct {
     jc_Body body;
     double sin_incline, cos_incline;
     double theta_end_rad; /* th at which the rolling contact point reaches the ramp end */
-    /* Rolling model, as positive multiples of the physical quantities:
-     * energy_poly = I_P w^2, normal_poly = N I_P^2, friction_poly = F I_P^2. */
+    /* Rolling model, as positive multiples of the physical quantities, for
+     * the setup's start: energy_poly = I_P w^2, normal_poly = N I_P^2,
+     * friction_poly = F I_P^2. */
     jc_TrigLin energy_poly, normal_poly, friction_poly;
+    /* The same for any start, with e = I_P w^2 + 2 U at that start:
+     * N I_P^2 = roll_normal_a + e roll_normal_b, likewise F. */
+    jc_TrigLin roll_normal_a, roll_normal_b, roll_friction_a, roll_friction_b;
+    jc_TrigLin potential_poly; /* U(th), up to a constant */
+    jc_TrigLin inertia_p_poly; /* I_P(th) */
     /* Paper's Eq. 9 as lhs_minus_rhs_poly = (LHS - RHS) * d cos th * den > 0 side. */
     jc_TrigLin paper_poly;
     double paper_d_m; /* the d the paper's model uses */
@@ -248,6 +254,122 @@ const char *jc_roll_end_name(jc_RollEnd end);
  * first slip onset, each to ~1e-12 rad, by a search that cannot step over a
  * root window. */
 int jc_rolling_predict(const jc_Model *model, jc_RollingResult *out, char *err, size_t err_len);
+
+/* ------------------------------------------------------------------------ */
+/* The full motion: rolling, sliding, flight, impacts (src/simulate.c)        */
+/* ------------------------------------------------------------------------ */
+
+typedef enum {
+    JC_MODE_ROLLING, /* contact without slip: closed form (energy integral) */
+    JC_MODE_SLIDING, /* contact with slip: ODE (GSL rk8pd) */
+    JC_MODE_FLIGHT   /* no contact: ballistic, closed form */
+} jc_Mode;
+
+typedef enum {
+    JC_EVENT_SLIP,          /* rolling -> sliding: |F| reached mu_s N */
+    JC_EVENT_STICK,         /* sliding -> rolling: slip velocity 0, friction fits the cone */
+    JC_EVENT_SLIP_REVERSAL, /* sliding -> sliding the other way */
+    JC_EVENT_LIFTOFF,       /* contact -> flight: N = 0 */
+    JC_EVENT_TOUCHDOWN,     /* impact that ends in contact */
+    JC_EVENT_BOUNCE,        /* impact that ends in flight again */
+    JC_EVENT_RAMP_END,      /* the centre passed the ramp's lower end */
+    JC_EVENT_RAMP_TOP,      /* the centre went uphill past the start */
+    JC_EVENT_PAINLEVE,      /* sliding with no consistent contact force (stops the run) */
+    JC_EVENT_COUNT
+} jc_EventKind;
+
+typedef enum {
+    JC_END_RAMP_END,   /* reached the lower end of the ramp */
+    JC_END_RAMP_TOP,   /* went uphill past the start */
+    JC_END_TIME_LIMIT, /* simulated time reached t_max_s */
+    JC_END_EVENT_LIMIT,/* max_events events recorded */
+    JC_END_PAINLEVE,   /* Painleve condition while sliding */
+    JC_END_AT_REST,    /* at rest in equilibrium */
+    JC_END_STEP_LIMIT  /* a phase hit its bound on integration steps */
+} jc_Termination;
+
+/* The body's state. C is the geometric centre, G the centre of mass. */
+typedef struct {
+    double t_s;
+    double x_m, y_m;       /* centre C: along the incline from its start, height above the incline */
+    double vx_mps, vy_mps; /* velocity of C */
+    double theta_rad, omega_radps;
+} jc_State;
+
+typedef struct {
+    jc_EventKind kind;
+    jc_Mode mode_before, mode_after;
+    jc_State state;            /* at the event (after the impulse, for impacts) */
+    double slip_mps;           /* contact-point slip velocity x_C' - r w (before) */
+    double normal_N, friction_N; /* contact force just before (0 in flight) */
+    /* liftoff: */
+    double flight_time_s;      /* until the next impact (or the end of the run) */
+    double hop_height_m;       /* largest gap between rim and incline during the flight */
+    double landing_x_m;        /* centre's x at the next impact (NaN if none) */
+    /* touchdown, bounce: */
+    double impact_speed_mps;   /* normal approach speed of the contact point */
+    double impulse_normal_Ns, impulse_tangent_Ns;
+} jc_Event;
+
+typedef struct {
+    jc_State state;
+    jc_Mode mode;
+    double cm_x_m, cm_y_m;           /* centre of mass G */
+    double normal_N, friction_N;     /* contact force (0 in flight) */
+    double slip_mps;                 /* x_C' - r w while in contact */
+    double gap_m;                    /* lowest rim point above the incline (0 in contact) */
+    double kinetic_J, potential_J;   /* potential relative to the start */
+    double friction_loss_J, impact_loss_J; /* dissipated so far */
+} jc_Sample;
+
+typedef struct {
+    double kinetic_J, potential_J, friction_loss_J, impact_loss_J;
+    double balance_error_J; /* (K + U + losses) - (K0 + U0): integrator error */
+} jc_EnergyReport;
+
+typedef struct {
+    double t_max_s;         /* simulated time limit, > 0 (default 60 s) */
+    int max_events;         /* > 0 (default 10000) */
+    double sample_dt_s;     /* trajectory sample spacing; 0: samples only at events */
+    int max_samples;        /* cap on samples (default 10^6) */
+    double ode_rtol;        /* sliding integrator tolerances (default 1e-11, 1e-13) */
+    double ode_atol;
+    double event_tol_s;     /* event location tolerance in time (default 1e-12 s) */
+    /* An impact whose rebound would rise less than this ends in contact:
+     * the physical threshold that ends Zeno bounce sequences (default 1 um,
+     * below the roughness of a real ramp). */
+    double contact_height_m;
+} jc_SimOptions;
+
+jc_SimOptions jc_default_sim_options(void);
+int jc_sim_options_validate(const jc_SimOptions *o, char *err, size_t err_len);
+
+typedef struct {
+    jc_Event *events;
+    int event_count;
+    jc_Sample *samples;
+    int sample_count;
+    jc_Termination termination;
+    char termination_detail[160];
+    jc_State final_state;
+    jc_Mode final_mode;
+    jc_EnergyReport energy;
+    long ode_steps;          /* sliding integrator steps taken */
+} jc_Run;
+
+const char *jc_mode_name(jc_Mode mode);
+const char *jc_event_name(jc_EventKind kind);
+const char *jc_termination_name(jc_Termination t);
+
+/* Simulates the setup from its start until a termination condition.
+ * *out is owned by the caller: free it with jc_run_free, also after errors. */
+int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out,
+                char *err, size_t err_len);
+void jc_run_free(jc_Run *run);
+
+/* Energies of a state (potential relative to the setup's start). */
+double jc_kinetic_energy(const jc_Model *model, const jc_State *s);
+double jc_potential_energy(const jc_Model *model, const jc_State *s);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,231 @@
+/*
+ * Flight (docs/physics.md §4): no contact; G moves ballistically, w is
+ * constant. Everything is closed form. The height of the rim's lowest point
+ * above the incline (the gap) is written relative to the flight's start,
+ *   gap(t) = gap0 + v0 t + a0 t^2/2 + d R3(th0, w t),
+ *   R3(f, u) = cos f (1 - u^2/2 - cos u) + sin f (sin u - u),
+ * so that the t^3 growth of the gap right after a lift-off (where gap0, v0
+ * and a0 all vanish) is computed to full relative precision. Touchdown is the
+ * first root of gap(t), found by the crossing search of scan.c with
+ * |gap'''| <= d |w|^3: the search step is bounded by the rotation rate and
+ * cannot skip a root.
+ */
+#include "internal.h"
+
+#include <float.h>
+#include <math.h>
+
+/* 1 - u^2/2 - cos u and sin u - u without cancellation. */
+static double cos_rem2(double u)
+{
+    if (fabs(u) > 0.5) return 1.0 - 0.5 * u * u - cos(u);
+    const double u2 = u * u;
+    /* -u^4/4! + u^6/6! - u^8/8! + u^10/10! - u^12/12! + u^14/14! */
+    return u2 * u2 * (-1.0 / 24 + u2 * (1.0 / 720 + u2 * (-1.0 / 40320 + u2 * (1.0 / 3628800 +
+           u2 * (-1.0 / 479001600 + u2 * (1.0 / 87178291200.0))))));
+}
+
+static double sin_rem1(double u)
+{
+    if (fabs(u) > 0.5) return sin(u) - u;
+    const double u2 = u * u;
+    return u * u2 * (-1.0 / 6 + u2 * (1.0 / 120 + u2 * (-1.0 / 5040 + u2 * (1.0 / 362880 +
+           u2 * (-1.0 / 39916800 + u2 * (1.0 / 6227020800.0))))));
+}
+
+/* 1 - cos u */
+static double cos_rem0(double u)
+{
+    const double s = sin(0.5 * u);
+    return 2.0 * s * s;
+}
+
+typedef struct {
+    const jc_Model *m;
+    double th0, w;
+    double y0, vy0, ay0; /* of C, relative to r for y */
+    double x0, vx0, ax0;
+    double ramp_length;
+} flight;
+
+static void flight_init(const jc_Model *m, const jc_State *s, flight *f)
+{
+    const double d = m->body.cm_offset_m, g = m->setup.gravity_mps2, w = s->omega_radps;
+    f->m = m;
+    f->th0 = s->theta_rad;
+    f->w = w;
+    f->y0 = s->y_m - m->body.radius_m;
+    f->vy0 = s->vy_mps;
+    f->ay0 = -g * m->cos_incline + d * w * w * cos(s->theta_rad);
+    f->x0 = s->x_m;
+    f->vx0 = s->vx_mps;
+    f->ax0 = g * m->sin_incline + d * w * w * sin(s->theta_rad);
+    f->ramp_length = m->setup.ramp_length_m;
+}
+
+/* gap and its first two time derivatives at t. */
+static void gap_eval(const void *ctx, double t, double out[3])
+{
+    const flight *f = ctx;
+    const double d = f->m->body.cm_offset_m, w = f->w, u = w * t;
+    const double c = cos(f->th0), s = sin(f->th0);
+    const double r3 = c * cos_rem2(u) + s * sin_rem1(u);
+    const double r3u = c * sin_rem1(u) - s * cos_rem0(u);
+    const double r3uu = -c * cos_rem0(u) - s * sin(u);
+    out[0] = f->y0 + f->vy0 * t + 0.5 * f->ay0 * t * t + d * r3;
+    out[1] = f->vy0 + f->ay0 * t + d * w * r3u;
+    out[2] = f->ay0 + d * w * w * r3uu;
+}
+
+/* gap', gap'', gap''' (for the largest gap: the roots of gap'). */
+static void gap_rate_eval(const void *ctx, double t, double out[3])
+{
+    const flight *f = ctx;
+    double g[3];
+    gap_eval(ctx, t, g);
+    out[0] = g[1];
+    out[1] = g[2];
+    out[2] = -f->m->body.cm_offset_m * f->w * f->w * f->w * sin(f->th0 + f->w * t);
+}
+
+/* x of C and its derivatives: S3(f, u) = sin f (1 - u^2/2 - cos u) - cos f (sin u - u). */
+static void x_eval(const flight *f, double t, double out[3])
+{
+    const double d = f->m->body.cm_offset_m, w = f->w, u = w * t;
+    const double c = cos(f->th0), s = sin(f->th0);
+    const double s3 = s * cos_rem2(u) - c * sin_rem1(u);
+    const double s3u = s * sin_rem1(u) + c * cos_rem0(u);
+    const double s3uu = -s * cos_rem0(u) + c * sin(u);
+    out[0] = f->x0 + f->vx0 * t + 0.5 * f->ax0 * t * t + d * s3;
+    out[1] = f->vx0 + f->ax0 * t + d * w * s3u;
+    out[2] = f->ax0 + d * w * w * s3uu;
+}
+
+static void to_end_eval(const void *ctx, double t, double out[3])
+{
+    const flight *f = ctx;
+    x_eval(f, t, out);
+    out[0] = f->ramp_length - out[0];
+    out[1] = -out[1];
+    out[2] = -out[2];
+}
+
+static void from_top_eval(const void *ctx, double t, double out[3])
+{
+    x_eval(ctx, t, out);
+    out[0] += 1e-9; /* the start, with the same 1 nm slack as in sliding */
+}
+
+static jc_State flight_state(const flight *f, double t, double t0)
+{
+    double x[3], g[3];
+    x_eval(f, t, x);
+    gap_eval(f, t, g);
+    jc_State s = {.t_s = t0 + t, .x_m = x[0], .y_m = f->m->body.radius_m + g[0],
+                  .vx_mps = x[1], .vy_mps = g[1], .theta_rad = f->th0 + f->w * t, .omega_radps = f->w};
+    return s;
+}
+
+double jc_flight_gap(const jc_Model *m, const jc_State *s)
+{
+    return s->y_m - m->body.radius_m;
+}
+
+/* Time after which the gap is surely negative: the centre of mass has fallen
+ * below r - d, so no point of the rim can still be above the incline. */
+static double fall_bound(const flight *f)
+{
+    const jc_Model *m = f->m;
+    const double d = m->body.cm_offset_m, r = m->body.radius_m;
+    const double a = 0.5 * m->setup.gravity_mps2 * m->cos_incline;
+    const double yg = r + f->y0 + d * cos(f->th0), vyg = f->vy0 - d * f->w * sin(f->th0);
+    const double drop = yg - (r - d) + 1e-3; /* 1 mm past: the root is strictly inside */
+    return (vyg + sqrt(vyg * vyg + 4.0 * a * drop)) / (2.0 * a);
+}
+
+/* The largest gap over [0, T]: at the ends or where gap' changes sign. */
+static int largest_gap(const flight *f, double T, double *hop, char *err, size_t err_len)
+{
+    double g[3];
+    gap_eval(f, 0.0, g);
+    double best = g[0];
+    gap_eval(f, T, g);
+    best = fmax(best, g[0]);
+    const double d = f->m->body.cm_offset_m, w4 = f->w * f->w * f->w * f->w;
+    jc_ScanFn fn = {gap_rate_eval, f, d * w4, 0.0, 1.0};
+    double t = 0.0;
+    for (int pass = 0; pass < 100000 && t < T; ++pass) {
+        double r[3];
+        gap_rate_eval(f, t, r);
+        if (r[0] == 0.0) { t = nextafter(t, INFINITY) + 1e-15; continue; }
+        fn.sign = r[0] > 0.0 ? 1.0 : -1.0;
+        jc_ScanHit hit;
+        int st = jc_scan_fns(&fn, 1, t, T, 1e-13, &hit, err, err_len);
+        if (st != JC_OK) return st;
+        if (hit.index < 0) break;
+        gap_eval(f, hit.theta, g);
+        best = fmax(best, g[0]);
+        t = hit.theta + 1e-13;
+    }
+    *hop = best;
+    return JC_OK;
+}
+
+static int emit_samples(jc_Sim *sim, const flight *f, double t0, double t_end)
+{
+    double ts;
+    while (jc_sim_sample_due(sim, t_end, &ts)) {
+        jc_State s = flight_state(f, ts - t0, t0);
+        int st = jc_sim_sample(sim, &s, JC_MODE_FLIGHT, 0.0, 0.0);
+        if (st != JC_OK) return st;
+    }
+    return JC_OK;
+}
+
+enum { FW_GAP, FW_END, FW_TOP };
+
+int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len)
+{
+    flight f;
+    flight_init(sim->m, &sim->s, &f);
+    const double t0 = sim->s.t_s;
+    double t_start = 0.0;
+    if (from_liftoff) {
+        /* At a lift-off the gap, its rate and its acceleration vanish (the
+         * N = 0 condition); drop their rounding residues and let the t^3 term
+         * open the gap, which starts the search a picosecond in. */
+        f.y0 = 0.0;
+        f.vy0 = fmax(f.vy0, 0.0);
+        f.ay0 = fmax(f.ay0, 0.0);
+        t_start = 1e-12;
+    }
+    const double horizon = fmin(fall_bound(&f), sim->opt->t_max_s - t0);
+    const double d = sim->m->body.cm_offset_m, w3 = fabs(f.w * f.w * f.w);
+    jc_ScanFn fns[3] = {
+        {gap_eval, &f, d * w3, 0.0, 1.0},
+        {to_end_eval, &f, d * w3, 0.0, 1.0},
+        {from_top_eval, &f, d * w3, 0.0, 1.0},
+    };
+    jc_ScanHit hit = {.index = -1};
+    double T = horizon;
+    if (horizon > t_start) {
+        int st = jc_scan_fns(fns, 3, t_start, horizon, sim->opt->event_tol_s, &hit, err, err_len);
+        if (st != JC_OK) return st;
+        T = hit.index >= 0 ? hit.theta : horizon;
+    }
+    int st = largest_gap(&f, T, &sim->hop_height_m, err, err_len);
+    if (st != JC_OK) return st;
+    if ((st = emit_samples(sim, &f, t0, t0 + T)) != JC_OK)
+        return jc_fail(err, err_len, st, "out of memory for samples");
+    sim->s = flight_state(&f, T, t0);
+    switch (hit.index) {
+    case FW_GAP:
+        sim->s.y_m = sim->m->body.radius_m; /* on the incline, up to the located root */
+        *end = PHASE_TOUCHDOWN;
+        break;
+    case FW_END: *end = PHASE_RAMP_END; break;
+    case FW_TOP: *end = PHASE_RAMP_TOP; break;
+    default: *end = PHASE_TIME_LIMIT; break; /* the fall bound always lies beyond a touchdown */
+    }
+    return JC_OK;
+}

@@ -1,0 +1,72 @@
+/*
+ * Choosing the contact mode consistent with the forces (docs/physics.md §4a),
+ * at the start, after every event and after every impact, instead of
+ * assuming one. Getting this wrong produces zero-length flights that repeat
+ * forever, or a body that keeps rolling with a negative normal force.
+ */
+#include "internal.h"
+
+#include <math.h>
+
+/* Slip speeds below this are no slip: 1 nm/s, far below anything a ramp
+ * experiment resolves, and far above the rounding of a located stick event. */
+#define NO_SLIP_MPS 1e-9
+
+/* Free flight needs the rim's lowest point to accelerate away: d w^2 cos th >= g cos a. */
+static int flight_consistent(const jc_Model *m, const jc_State *s)
+{
+    const double d = m->body.cm_offset_m;
+    return d * s->omega_radps * s->omega_radps * cos(s->theta_rad) >=
+           m->setup.gravity_mps2 * m->cos_incline;
+}
+
+/* Sliding from zero slip in direction dir: N > 0, no Painleve, and the slip
+ * accelerates along dir. */
+static jc_ModeChoice start_slide(const jc_Model *m, const jc_State *s, int dir, int *slip_dir)
+{
+    const double r = m->body.radius_m;
+    for (int attempt = 0; attempt < 2; ++attempt, dir = -dir) {
+        jc_SlideForces f;
+        jc_slide_forces(m, s->theta_rad, s->omega_radps, dir, &f);
+        if (f.denominator <= 0.0) return CHOICE_PAINLEVE;
+        if (f.normal_N <= 0.0) return flight_consistent(m, s) ? CHOICE_FLY : CHOICE_PAINLEVE;
+        /* At a slip onset friction is already at the cone's edge, so the
+         * slip acceleration starts from zero: only a clear opposition (beyond
+         * rounding of the terms) rules a direction out. */
+        const double slip_acc = f.x_acc - r * f.theta_acc;
+        const double scale = m->setup.gravity_mps2 + fabs(f.x_acc) + r * fabs(f.theta_acc);
+        if (dir * slip_acc >= -1e-9 * scale) {
+            *slip_dir = dir;
+            return CHOICE_SLIDE;
+        }
+    }
+    return CHOICE_PAINLEVE; /* neither direction is consistent */
+}
+
+jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_roll, int *slip_dir)
+{
+    const double r = m->body.radius_m;
+    const double slip = s->vx_mps - r * s->omega_radps;
+    if (fabs(slip) > NO_SLIP_MPS) {
+        const int dir = slip > 0.0 ? 1 : -1;
+        jc_SlideForces f;
+        jc_slide_forces(m, s->theta_rad, s->omega_radps, dir, &f);
+        if (f.denominator <= 0.0) return CHOICE_PAINLEVE;
+        if (f.normal_N > 0.0) {
+            *slip_dir = dir;
+            return CHOICE_SLIDE;
+        }
+        return CHOICE_FLY;
+    }
+    double thdd, normal, friction;
+    jc_roll_forces(m, s->theta_rad, s->omega_radps, &thdd, &normal, &friction);
+    if (allow_roll && normal > 0.0 && fabs(friction) <= m->setup.mu_static * normal) {
+        if (s->omega_radps == 0.0 && thdd == 0.0) return CHOICE_REST;
+        return CHOICE_ROLL;
+    }
+    if (normal <= 0.0 && flight_consistent(m, s)) return CHOICE_FLY;
+    /* Rolling needs more friction than the cone holds (or a pull into the
+     * incline at N <= 0): slide so that friction acts along the friction
+     * rolling needed. */
+    return start_slide(m, s, friction > 0.0 ? -1 : 1, slip_dir);
+}

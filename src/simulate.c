@@ -1,0 +1,474 @@
+/*
+ * The mode machine: rolling, sliding and flight phases joined by events and
+ * impacts, each transition into the mode consistent with the forces
+ * (mode.c). Every loop is bounded: by simulated time, by the event count,
+ * and inside each phase by a step bound; every run ends with a reason.
+ */
+#include "internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+jc_SimOptions jc_default_sim_options(void)
+{
+    return (jc_SimOptions){
+        .t_max_s = 60.0,
+        .max_events = 10000,
+        .sample_dt_s = 0.0,
+        .max_samples = 1000000,
+        .ode_rtol = 1e-11,
+        .ode_atol = 1e-13,
+        .event_tol_s = 1e-12,
+        .contact_height_m = 1e-6,
+    };
+}
+
+int jc_sim_options_validate(const jc_SimOptions *o, char *err, size_t err_len)
+{
+    if (!(o->t_max_s > 0.0 && o->t_max_s <= 1e6))
+        return jc_fail(err, err_len, JC_EINVAL, "time limit %g s is out of range (allowed: (0, 1e6] s)", o->t_max_s);
+    if (o->max_events < 1 || o->max_events > 10000000)
+        return jc_fail(err, err_len, JC_EINVAL, "event limit %d is out of range (allowed: 1 to 10^7)", o->max_events);
+    if (!(o->sample_dt_s >= 0.0 && o->sample_dt_s <= 1e6))
+        return jc_fail(err, err_len, JC_EINVAL, "sample step %g s is out of range (allowed: 0 or up to 1e6 s)", o->sample_dt_s);
+    if (o->max_samples < 1 || o->max_samples > 100000000)
+        return jc_fail(err, err_len, JC_EINVAL, "sample limit %d is out of range (allowed: 1 to 10^8)", o->max_samples);
+    if (!(o->ode_rtol >= 1e-15 && o->ode_rtol <= 1e-3))
+        return jc_fail(err, err_len, JC_EINVAL, "relative tolerance %g is out of range (allowed: [1e-15, 1e-3])", o->ode_rtol);
+    if (!(o->ode_atol >= 1e-18 && o->ode_atol <= 1e-3))
+        return jc_fail(err, err_len, JC_EINVAL, "absolute tolerance %g is out of range (allowed: [1e-18, 1e-3])", o->ode_atol);
+    if (!(o->event_tol_s >= 1e-15 && o->event_tol_s <= 1e-3))
+        return jc_fail(err, err_len, JC_EINVAL, "event tolerance %g s is out of range (allowed: [1e-15, 1e-3] s)", o->event_tol_s);
+    if (!(o->contact_height_m >= 0.0 && o->contact_height_m <= 1.0))
+        return jc_fail(err, err_len, JC_EINVAL, "contact height %g m is out of range (allowed: [0, 1] m)", o->contact_height_m);
+    return JC_OK;
+}
+
+const char *jc_mode_name(jc_Mode mode)
+{
+    switch (mode) {
+    case JC_MODE_ROLLING: return "rolling";
+    case JC_MODE_SLIDING: return "sliding";
+    case JC_MODE_FLIGHT: return "flight";
+    }
+    return "unknown";
+}
+
+const char *jc_event_name(jc_EventKind kind)
+{
+    static const char *names[JC_EVENT_COUNT] = {"slip", "stick", "slip_reversal", "liftoff", "touchdown",
+                                                "bounce", "ramp_end", "ramp_top", "painleve"};
+    return kind >= 0 && kind < JC_EVENT_COUNT ? names[kind] : "unknown";
+}
+
+const char *jc_termination_name(jc_Termination t)
+{
+    switch (t) {
+    case JC_END_RAMP_END: return "ramp_end";
+    case JC_END_RAMP_TOP: return "ramp_top";
+    case JC_END_TIME_LIMIT: return "time_limit";
+    case JC_END_EVENT_LIMIT: return "event_limit";
+    case JC_END_PAINLEVE: return "painleve";
+    case JC_END_AT_REST: return "at_rest";
+    case JC_END_STEP_LIMIT: return "step_limit";
+    }
+    return "unknown";
+}
+
+/* ---- energy ---- */
+
+double jc_kinetic_energy(const jc_Model *m, const jc_State *s)
+{
+    const double d = m->body.cm_offset_m, th = s->theta_rad, w = s->omega_radps;
+    const double vgx = s->vx_mps + d * cos(th) * w, vgy = s->vy_mps - d * sin(th) * w;
+    return 0.5 * m->body.mass_kg * (vgx * vgx + vgy * vgy) + 0.5 * m->body.inertia_g_kgm2 * w * w;
+}
+
+static double potential_abs(const jc_Model *m, const jc_State *s)
+{
+    const double d = m->body.cm_offset_m;
+    const double xg = s->x_m + d * sin(s->theta_rad), yg = s->y_m + d * cos(s->theta_rad);
+    return m->body.mass_kg * m->setup.gravity_mps2 * (yg * m->cos_incline - xg * m->sin_incline);
+}
+
+double jc_potential_energy(const jc_Model *m, const jc_State *s)
+{
+    const jc_State start = {.y_m = m->body.radius_m, .theta_rad = m->setup.theta0_rad};
+    return potential_abs(m, s) - potential_abs(m, &start);
+}
+
+/* ---- run storage ---- */
+
+void jc_run_free(jc_Run *run)
+{
+    if (!run) return;
+    free(run->events);
+    free(run->samples);
+    run->events = NULL;
+    run->samples = NULL;
+    run->event_count = run->sample_count = 0;
+}
+
+static int grow(void **arr, int count, int *cap, size_t size)
+{
+    if (count < *cap) return JC_OK;
+    int n = *cap ? 2 * *cap : 64;
+    void *p = realloc(*arr, (size_t)n * size);
+    if (!p) return JC_ENOMEM;
+    *arr = p;
+    *cap = n;
+    return JC_OK;
+}
+
+typedef struct {
+    jc_Sim sim;
+    int event_cap, sample_cap;
+    int flight_event; /* the lift-off or bounce whose flight is under way, or -1 */
+} machine;
+
+int jc_sim_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N)
+{
+    machine *mc = (machine *)sim;
+    jc_Run *run = sim->run;
+    if (run->sample_count >= sim->opt->max_samples) return JC_OK;
+    if (grow((void **)&run->samples, run->sample_count, &mc->sample_cap, sizeof(jc_Sample))) return JC_ENOMEM;
+    const jc_Model *m = sim->m;
+    const double d = m->body.cm_offset_m;
+    jc_Sample *p = &run->samples[run->sample_count++];
+    p->state = *s;
+    p->mode = mode;
+    p->cm_x_m = s->x_m + d * sin(s->theta_rad);
+    p->cm_y_m = s->y_m + d * cos(s->theta_rad);
+    p->normal_N = normal_N;
+    p->friction_N = friction_N;
+    p->slip_mps = mode == JC_MODE_FLIGHT ? 0.0 : s->vx_mps - m->body.radius_m * s->omega_radps;
+    p->gap_m = mode == JC_MODE_FLIGHT ? jc_flight_gap(m, s) : 0.0;
+    p->kinetic_J = jc_kinetic_energy(m, s);
+    p->potential_J = jc_potential_energy(m, s);
+    p->friction_loss_J = sim->friction_loss_J;
+    p->impact_loss_J = sim->impact_loss_J;
+    if (sim->opt->sample_dt_s > 0.0 && s->t_s >= sim->next_sample_t)
+        sim->next_sample_t = (floor(s->t_s / sim->opt->sample_dt_s + 1e-9) + 1.0) * sim->opt->sample_dt_s;
+    return JC_OK;
+}
+
+int jc_sim_sample_due(const jc_Sim *sim, double t_end, double *t)
+{
+    if (sim->run->sample_count >= sim->opt->max_samples || !(sim->next_sample_t <= t_end)) return 0;
+    *t = sim->next_sample_t;
+    return 1;
+}
+
+/* Contact force in the current mode at the current state. */
+static void contact_force(const jc_Sim *sim, double *normal, double *friction)
+{
+    *normal = *friction = 0.0;
+    double thdd;
+    jc_SlideForces f;
+    switch (sim->mode) {
+    case JC_MODE_ROLLING:
+        jc_roll_forces(sim->m, sim->s.theta_rad, sim->s.omega_radps, &thdd, normal, friction);
+        break;
+    case JC_MODE_SLIDING:
+        jc_slide_forces(sim->m, sim->s.theta_rad, sim->s.omega_radps, sim->slip_dir, &f);
+        *normal = f.normal_N;
+        *friction = f.friction_N;
+        break;
+    case JC_MODE_FLIGHT: break;
+    }
+}
+
+static int sample_now(jc_Sim *sim)
+{
+    double n, f;
+    contact_force(sim, &n, &f);
+    return jc_sim_sample(sim, &sim->s, sim->mode, n, f);
+}
+
+/* Records an event at the current state; forces and slip are those just before. */
+static int add_event(machine *mc, jc_EventKind kind, jc_Mode before, double normal, double friction,
+                     double slip, jc_Event **out)
+{
+    jc_Run *run = mc->sim.run;
+    if (grow((void **)&run->events, run->event_count, &mc->event_cap, sizeof(jc_Event))) return JC_ENOMEM;
+    jc_Event *e = &run->events[run->event_count++];
+    memset(e, 0, sizeof *e);
+    e->kind = kind;
+    e->mode_before = before;
+    e->mode_after = mc->sim.mode;
+    e->state = mc->sim.s;
+    e->slip_mps = slip;
+    e->normal_N = normal;
+    e->friction_N = friction;
+    e->landing_x_m = NAN;
+    if (out) *out = e;
+    return JC_OK;
+}
+
+/* Closes the open flight's record at an impact or at the end of the run. */
+static void close_flight(machine *mc, int landed)
+{
+    if (mc->flight_event < 0) return;
+    jc_Event *e = &mc->sim.run->events[mc->flight_event];
+    e->flight_time_s = mc->sim.s.t_s - e->state.t_s;
+    e->hop_height_m = mc->sim.hop_height_m;
+    e->landing_x_m = landed ? mc->sim.s.x_m : NAN;
+    mc->flight_event = -1;
+}
+
+/* Puts the body into the mode consistent with the forces at its contact state.
+ * Returns the event kind that the change amounts to, or -1 for no change. */
+static int enter_contact_mode(machine *mc, int allow_roll, jc_ModeChoice *choice_out)
+{
+    jc_Sim *sim = &mc->sim;
+    int dir = sim->slip_dir;
+    jc_ModeChoice c = jc_mode_choose(sim->m, &sim->s, allow_roll, &dir);
+    *choice_out = c;
+    const jc_Mode before = sim->mode;
+    switch (c) {
+    case CHOICE_ROLL:
+    case CHOICE_REST:
+        sim->s.vx_mps = sim->m->body.radius_m * sim->s.omega_radps;
+        sim->s.vy_mps = 0.0;
+        sim->mode = JC_MODE_ROLLING;
+        return before == JC_MODE_SLIDING ? JC_EVENT_STICK : -1;
+    case CHOICE_SLIDE: {
+        const int reversal = before == JC_MODE_SLIDING && dir != sim->slip_dir;
+        sim->mode = JC_MODE_SLIDING;
+        sim->slip_dir = dir;
+        if (before == JC_MODE_SLIDING) return reversal ? JC_EVENT_SLIP_REVERSAL : -1;
+        return JC_EVENT_SLIP;
+    }
+    case CHOICE_FLY:
+        sim->mode = JC_MODE_FLIGHT;
+        return JC_EVENT_LIFTOFF;
+    case CHOICE_PAINLEVE:
+        return JC_EVENT_PAINLEVE;
+    }
+    return -1;
+}
+
+static void finish(machine *mc, jc_Termination why, const char *detail)
+{
+    jc_Sim *sim = &mc->sim;
+    jc_Run *run = sim->run;
+    close_flight(mc, 0);
+    run->termination = why;
+    snprintf(run->termination_detail, sizeof run->termination_detail, "%s", detail);
+    run->final_state = sim->s;
+    run->final_mode = sim->mode;
+    jc_EnergyReport *e = &run->energy;
+    e->kinetic_J = jc_kinetic_energy(sim->m, &sim->s);
+    e->potential_J = jc_potential_energy(sim->m, &sim->s);
+    e->friction_loss_J = sim->friction_loss_J;
+    e->impact_loss_J = sim->impact_loss_J;
+    e->balance_error_J = e->kinetic_J + e->potential_J + e->friction_loss_J + e->impact_loss_J - sim->energy0_J;
+}
+
+/* One impact at a touchdown: bounce or contact. */
+static int do_impact(machine *mc, char *err, size_t err_len, int *stop)
+{
+    jc_Sim *sim = &mc->sim;
+    const jc_Model *m = sim->m;
+    const jc_State before = sim->s;
+    const double k0 = jc_kinetic_energy(m, &before);
+    const double slip = before.vx_mps - m->body.radius_m * before.omega_radps;
+    jc_ImpactResult res;
+    jc_impact_apply(m, &sim->s, m->setup.restitution, &res);
+    const double rise = res.rebound_speed_mps * res.rebound_speed_mps /
+                        (2.0 * m->setup.gravity_mps2 * m->cos_incline);
+    const int bounce = !res.painleve && rise > sim->opt->contact_height_m;
+    if (!bounce && !res.painleve) {
+        /* Too small a rebound to leave the incline: a plastic impact, then contact. */
+        sim->s = before;
+        jc_impact_apply(m, &sim->s, 0.0, &res);
+        sim->s.vy_mps = 0.0;
+    }
+    close_flight(mc, 1);
+    jc_Event *e;
+    if (res.painleve) {
+        sim->s = before;
+        int st = add_event(mc, JC_EVENT_PAINLEVE, JC_MODE_FLIGHT, 0.0, 0.0, slip, &e);
+        if (st) return jc_fail(err, err_len, st, "out of memory for events");
+        finish(mc, JC_END_PAINLEVE, "impact with friction has no consistent impulse (Painleve)");
+        *stop = 1;
+        return JC_OK;
+    }
+    sim->impact_loss_J += k0 - jc_kinetic_energy(m, &sim->s);
+    jc_ModeChoice choice = CHOICE_FLY;
+    if (!bounce) {
+        sim->mode = JC_MODE_FLIGHT;
+        enter_contact_mode(mc, 1, &choice);
+        if (choice == CHOICE_FLY) sim->mode = JC_MODE_FLIGHT;
+    }
+    const int st = add_event(mc, bounce || choice == CHOICE_FLY ? JC_EVENT_BOUNCE : JC_EVENT_TOUCHDOWN,
+                             JC_MODE_FLIGHT, 0.0, 0.0, slip, &e);
+    if (st) return jc_fail(err, err_len, st, "out of memory for events");
+    e->impact_speed_mps = res.approach_speed_mps;
+    e->impulse_normal_Ns = res.impulse_normal_Ns;
+    e->impulse_tangent_Ns = res.impulse_tangent_Ns;
+    if (sim->mode == JC_MODE_FLIGHT) mc->flight_event = sim->run->event_count - 1;
+    if (choice == CHOICE_PAINLEVE) {
+        finish(mc, JC_END_PAINLEVE, "after an impact, no contact mode is consistent (Painleve)");
+        *stop = 1;
+    }
+    return JC_OK;
+}
+
+static int run_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len)
+{
+    switch (sim->mode) {
+    case JC_MODE_ROLLING: return jc_roll_phase(sim, end, err, err_len);
+    case JC_MODE_SLIDING: return jc_slide_phase(sim, end, err, err_len);
+    case JC_MODE_FLIGHT: return jc_flight_phase(sim, from_liftoff, end, err, err_len);
+    }
+    return JC_EINVAL;
+}
+
+static int alloc_workspaces(jc_Sim *sim)
+{
+    sim->quad = gsl_integration_workspace_alloc(200);
+    sim->ode_step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, 5);
+    sim->ode_control = gsl_odeiv2_control_y_new(sim->opt->ode_atol, sim->opt->ode_rtol);
+    sim->ode_evolve = gsl_odeiv2_evolve_alloc(5);
+    return sim->quad && sim->ode_step && sim->ode_control && sim->ode_evolve ? JC_OK : JC_ENOMEM;
+}
+
+static void free_workspaces(jc_Sim *sim)
+{
+    if (sim->quad) gsl_integration_workspace_free(sim->quad);
+    if (sim->ode_step) gsl_odeiv2_step_free(sim->ode_step);
+    if (sim->ode_control) gsl_odeiv2_control_free(sim->ode_control);
+    if (sim->ode_evolve) gsl_odeiv2_evolve_free(sim->ode_evolve);
+}
+
+/* The mode machine proper. Returns a status; sets *stop when the run ended. */
+static int step_machine(machine *mc, int *from_liftoff, char *err, size_t err_len, int *stop)
+{
+    jc_Sim *sim = &mc->sim;
+    double n0, f0;
+    jc_PhaseEnd end;
+    int st = run_phase(sim, *from_liftoff, &end, err, err_len);
+    if (st != JC_OK) return st;
+    *from_liftoff = 0;
+    const jc_Mode before = sim->mode;
+    contact_force(sim, &n0, &f0);
+    const double slip = before == JC_MODE_FLIGHT ? 0.0 : sim->s.vx_mps - sim->m->body.radius_m * sim->s.omega_radps;
+    jc_Event *e;
+    switch (end) {
+    case PHASE_TOUCHDOWN: return do_impact(mc, err, err_len, stop);
+    case PHASE_LIFTOFF:
+        sim->mode = JC_MODE_FLIGHT;
+        if ((st = add_event(mc, JC_EVENT_LIFTOFF, before, n0, f0, slip, &e))) break;
+        mc->flight_event = sim->run->event_count - 1;
+        *from_liftoff = 1;
+        return JC_OK;
+    case PHASE_SLIP:
+    case PHASE_SLIP_ZERO: {
+        jc_ModeChoice choice;
+        const int kind = enter_contact_mode(mc, end != PHASE_SLIP, &choice);
+        if (kind == JC_EVENT_PAINLEVE) {
+            if ((st = add_event(mc, JC_EVENT_PAINLEVE, before, n0, f0, slip, &e))) break;
+            finish(mc, JC_END_PAINLEVE, "no contact mode is consistent with the forces (Painleve)");
+            *stop = 1;
+            return JC_OK;
+        }
+        if (kind >= 0 && (st = add_event(mc, (jc_EventKind)kind, before, n0, f0, slip, &e))) break;
+        if (kind == JC_EVENT_LIFTOFF) {
+            mc->flight_event = sim->run->event_count - 1;
+            *from_liftoff = 1;
+        }
+        if (choice == CHOICE_REST) {
+            finish(mc, JC_END_AT_REST, "at rest in equilibrium");
+            *stop = 1;
+        }
+        return JC_OK;
+    }
+    case PHASE_RAMP_END:
+    case PHASE_RAMP_TOP:
+        if ((st = add_event(mc, end == PHASE_RAMP_END ? JC_EVENT_RAMP_END : JC_EVENT_RAMP_TOP, before, n0, f0,
+                            slip, &e)))
+            break;
+        finish(mc, end == PHASE_RAMP_END ? JC_END_RAMP_END : JC_END_RAMP_TOP,
+               end == PHASE_RAMP_END ? "the centre reached the lower end of the ramp"
+                                     : "the centre went uphill past the start");
+        *stop = 1;
+        return JC_OK;
+    case PHASE_PAINLEVE:
+        if ((st = add_event(mc, JC_EVENT_PAINLEVE, before, n0, f0, slip, &e))) break;
+        finish(mc, JC_END_PAINLEVE, "sliding reached D = 1 + M d sin(th) k / I_G = 0 (Painleve)");
+        *stop = 1;
+        return JC_OK;
+    case PHASE_TIME_LIMIT: finish(mc, JC_END_TIME_LIMIT, "simulated time reached the limit"); *stop = 1; return JC_OK;
+    case PHASE_AT_REST: finish(mc, JC_END_AT_REST, "at rest in equilibrium"); *stop = 1; return JC_OK;
+    case PHASE_STEP_LIMIT: finish(mc, JC_END_STEP_LIMIT, "a phase reached its step bound"); *stop = 1; return JC_OK;
+    }
+    return st ? jc_fail(err, err_len, st, "out of memory for events") : JC_OK;
+}
+
+int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out, char *err, size_t err_len)
+{
+    memset(out, 0, sizeof *out);
+    int st = jc_sim_options_validate(options, err, err_len);
+    if (st != JC_OK) return st;
+    machine mc;
+    memset(&mc, 0, sizeof mc);
+    mc.flight_event = -1;
+    jc_Sim *sim = &mc.sim;
+    sim->m = model;
+    sim->opt = options;
+    sim->run = out;
+    sim->next_sample_t = options->sample_dt_s > 0.0 ? 0.0 : INFINITY;
+    const double r = model->body.radius_m;
+    sim->s = (jc_State){0.0, 0.0, r, r * model->setup.omega0_radps, 0.0, model->setup.theta0_rad,
+                        model->setup.omega0_radps};
+    sim->energy0_J = jc_kinetic_energy(model, &sim->s) + jc_potential_energy(model, &sim->s);
+    if ((st = alloc_workspaces(sim)) != JC_OK) {
+        free_workspaces(sim);
+        return jc_fail(err, err_len, st, "out of memory for the integrator");
+    }
+
+    /* The start: the mode consistent with the forces, which need not be rolling. */
+    int stop = 0, from_liftoff = 0;
+    sim->mode = JC_MODE_ROLLING;
+    jc_ModeChoice choice;
+    const int kind = enter_contact_mode(&mc, 1, &choice);
+    if (kind == JC_EVENT_PAINLEVE) {
+        st = add_event(&mc, JC_EVENT_PAINLEVE, JC_MODE_ROLLING, 0.0, 0.0, 0.0, NULL);
+        finish(&mc, JC_END_PAINLEVE, "no contact mode is consistent at the start (Painleve)");
+        stop = 1;
+    } else {
+        if (kind >= 0) st = add_event(&mc, (jc_EventKind)kind, JC_MODE_ROLLING, 0.0, 0.0, 0.0, NULL);
+        if (kind == JC_EVENT_LIFTOFF) {
+            mc.flight_event = 0;
+            from_liftoff = 1;
+        }
+        if (choice == CHOICE_REST) {
+            finish(&mc, JC_END_AT_REST, "at rest in equilibrium at the start");
+            stop = 1;
+        }
+    }
+    if (st == JC_OK) st = sample_now(sim);
+    /* Every phase ends in an event or a turning point of rolling; a phase
+     * count far beyond the event limit means the machine is not advancing. */
+    const long max_phases = 4L * options->max_events + 1000;
+    for (long phase = 0; st == JC_OK && !stop; ++phase) {
+        if (out->event_count >= options->max_events) {
+            finish(&mc, JC_END_EVENT_LIMIT, "the event limit was reached");
+            break;
+        }
+        if (phase >= max_phases) {
+            finish(&mc, JC_END_STEP_LIMIT, "the mode machine stopped advancing (phase bound reached)");
+            break;
+        }
+        const int events_before = out->event_count;
+        st = step_machine(&mc, &from_liftoff, err, err_len, &stop);
+        if (st == JC_OK && out->event_count > events_before) st = sample_now(sim);
+    }
+    if (st == JC_OK && (out->sample_count == 0 || out->samples[out->sample_count - 1].state.t_s < sim->s.t_s))
+        st = sample_now(sim);
+    free_workspaces(sim);
+    if (st == JC_ENOMEM) return jc_fail(err, err_len, st, "out of memory");
+    return st;
+}
