@@ -58,8 +58,35 @@ void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd
  * setup options. Returns -1 for help printed (exit 0), EXIT_USAGE after a
  * message, or 0 to go on. */
 typedef int (*cli_own_take_fn)(int opt, const char *arg, void *ctx);
+struct cli_SimArgs_s;
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
-                   cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args);
+                   cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args,
+                   struct cli_SimArgs_s *sim_args);
+
+/* Simulator options (--t-max, --sample-dt, ...), for commands that simulate. */
+#define CLI_SIM_OPTION_COUNT 7
+#define CLI_SIM_OPT_BASE 1100
+extern const struct option cli_sim_options[CLI_SIM_OPTION_COUNT];
+typedef struct cli_SimArgs_s {
+    const char *value[CLI_SIM_OPTION_COUNT];
+} cli_SimArgs;
+int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len);
+int cli_sim_build(const cli_SimArgs *args, jc_SimOptions *out, char *err, size_t err_len);
+void cli_sim_help(FILE *out);
+
+/* Runs the full model; prints the library's message on failure. Returns a
+ * status (JC_OK, ...). The caller frees the run. */
+int cli_simulate(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd);
+
+/* ---- output.c: files written whole or not at all ---- */
+typedef struct {
+    FILE *f;
+    const char *final_path;
+    char tmp_path[4096];
+} cli_AtomicFile;
+int cli_atomic_open(cli_AtomicFile *af, const char *path);
+int cli_atomic_commit(cli_AtomicFile *af); /* 0, or -1 after a message */
+void cli_atomic_abort(cli_AtomicFile *af);
 
 /* ---- report.c ---- */
 #define CLI_PI 3.14159265358979323846
@@ -77,11 +104,14 @@ struct cJSON;
 /* {"theta": rad, "x": m, "omega": rad/s, "normal": N, "friction": N, "grazing": bool} or null */
 struct cJSON *cli_json_crossing(const jc_RollCrossing *c);
 struct cJSON *cli_json_setup(const jc_Model *m);
+struct cJSON *cli_json_event(const jc_Event *e);
+struct cJSON *cli_json_energy(const jc_EnergyReport *e);
 /* Prints the document on stdout and frees it; EXIT_FAIL if that fails. */
 int cli_json_print(struct cJSON *doc);
 
 /* ---- commands ---- */
 int cmd_paper(int argc, char **argv);
 int cmd_predict(int argc, char **argv);
+int cmd_simulate(int argc, char **argv);
 
 #endif

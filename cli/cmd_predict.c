@@ -11,11 +11,13 @@ typedef struct {
 static void help(void)
 {
     puts("Usage: jumpcyl predict [SETUP OPTIONS] [--json]\n"
-         "The paper's model (its Eq. 9) and the exact rolling model for one setup.\n"
+         "The paper's model (its Eq. 9), the exact rolling model and the full model's first\n"
+         "lift-off for one setup.\n"
          "\n"
          "  --json      machine-readable output: paper_model.roots (rad), rolling.liftoff and\n"
          "              rolling.slip, each null or {theta (rad), x (m), omega (rad/s),\n"
-         "              normal (N), friction (N)}; x is the centre's travel along the incline\n"
+         "              normal (N), friction (N)}; full.liftoff {theta, x, t} or null, full.hops;\n"
+         "              x is the centre's travel along the incline\n"
          "  -h, --help  this help\n");
     cli_setup_help(stdout);
 }
@@ -41,7 +43,23 @@ static void print_crossing(const char *label, const jc_RollCrossing *c)
            c->grazing ? "  (grazing)" : "");
 }
 
-static void print_text(const jc_Model *m, const jc_PaperResult *p, const jc_RollingResult *r)
+static void print_full(const jc_Run *run)
+{
+    jc_RunSummary sum;
+    jc_run_summarize(run, &sum);
+    printf("\nFull model (slip, flight, impacts; 'jumpcyl simulate' shows every event):\n");
+    if (sum.first_liftoff < 0) {
+        printf("  no lift-off before the run ended (%s)\n", jc_termination_name(run->termination));
+        return;
+    }
+    const jc_Event *e = &run->events[sum.first_liftoff];
+    printf("  first lift-off:                    th = %9.5f rad  x = %7.2f cm  t = %.5f s  from %s\n",
+           e->state.theta_rad, e->state.x_m * 100, e->state.t_s, jc_mode_name(e->mode_before));
+    printf("  hops on the ramp: %d lift-off(s), %d bounce(s); largest hop %.2f mm; run ended: %s\n",
+           sum.liftoffs, sum.bounces, sum.largest_hop_m * 1e3, jc_termination_name(run->termination));
+}
+
+static void print_text(const jc_Model *m, const jc_PaperResult *p, const jc_RollingResult *r, const jc_Run *run)
 {
     cli_print_setup(stdout, m, 1);
     printf("\nPaper's model (Eq. 9 as printed; d = %.4f cm, M1 = %.2f g; starts at rest at th = 0):\n",
@@ -62,6 +80,7 @@ static void print_text(const jc_Model *m, const jc_PaperResult *p, const jc_Roll
     print_crossing("N = 0 on the rolling path:", &r->liftoff);
     printf("  rolling path ends:                 %s at x = %.2f cm\n", jc_roll_end_name(r->end),
            r->end_x_m * 100);
+    print_full(run);
     if (r->liftoff.found)
         printf("\nNote: the rolling N = 0 point is a diagnostic, not the physical jump: there F = %.4g N,\n"
                "not 0, so with any finite friction the cylinder slips before it (|F|/N grows without\n"
@@ -69,7 +88,7 @@ static void print_text(const jc_Model *m, const jc_PaperResult *p, const jc_Roll
                r->liftoff.state.friction_N);
 }
 
-static cJSON *json_doc(const jc_Model *m, const jc_PaperResult *p, const jc_RollingResult *r)
+static cJSON *json_doc(const jc_Model *m, const jc_PaperResult *p, const jc_RollingResult *r, const jc_Run *run)
 {
     cJSON *doc = cJSON_CreateObject();
     cJSON_AddItemToObject(doc, "setup", cli_json_setup(m));
@@ -90,6 +109,22 @@ static cJSON *json_doc(const jc_Model *m, const jc_PaperResult *p, const jc_Roll
     cJSON_AddItemToObject(ro, "slip", cli_json_crossing(&r->slip));
     cJSON_AddStringToObject(ro, "end", jc_roll_end_name(r->end));
     cJSON_AddNumberToObject(ro, "end_x", r->end_x_m);
+    jc_RunSummary sum;
+    jc_run_summarize(run, &sum);
+    cJSON *fu = cJSON_AddObjectToObject(doc, "full");
+    if (sum.first_liftoff >= 0) {
+        const jc_Event *e = &run->events[sum.first_liftoff];
+        cJSON *lo = cJSON_AddObjectToObject(fu, "liftoff");
+        cJSON_AddNumberToObject(lo, "theta", e->state.theta_rad);
+        cJSON_AddNumberToObject(lo, "x", e->state.x_m);
+        cJSON_AddNumberToObject(lo, "t", e->state.t_s);
+    } else {
+        cJSON_AddNullToObject(fu, "liftoff");
+    }
+    cJSON_AddNumberToObject(fu, "hops", sum.liftoffs);
+    cJSON_AddNumberToObject(fu, "bounces", sum.bounces);
+    cJSON_AddNumberToObject(fu, "largest_hop", sum.largest_hop_m);
+    cJSON_AddStringToObject(fu, "termination", jc_termination_name(run->termination));
     return doc;
 }
 
@@ -98,7 +133,7 @@ int cmd_predict(int argc, char **argv)
     static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
     predict_opts o = {0};
     cli_SetupArgs sa;
-    int st = cli_parse_args(argc, argv, own, 2, take, &o, &sa);
+    int st = cli_parse_args(argc, argv, own, 2, take, &o, &sa, NULL);
     if (st) return st < 0 ? EXIT_OK : st;
 
     char err[512];
@@ -116,7 +151,19 @@ int cmd_predict(int argc, char **argv)
         cli_error("predict: %s", err);
         return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
     }
-    if (o.json) return cli_json_print(json_doc(&model, &paper, &rolling));
-    print_text(&model, &paper, &rolling);
-    return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+    const jc_SimOptions sim = jc_default_sim_options();
+    jc_Run run;
+    if (cli_simulate(&model, &sim, &run, "predict") != JC_OK) {
+        jc_run_free(&run);
+        return EXIT_FAIL;
+    }
+    int rc;
+    if (o.json) {
+        rc = cli_json_print(json_doc(&model, &paper, &rolling, &run));
+    } else {
+        print_text(&model, &paper, &rolling, &run);
+        rc = fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+    }
+    jc_run_free(&run);
+    return rc;
 }

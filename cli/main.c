@@ -25,6 +25,7 @@ static void usage(FILE *out)
           "  paper      the seed paper's Table 1 recomputed beside the exact model and the\n"
           "             measurement (the default when no command is given)\n"
           "  predict    the paper's model and the exact rolling model for one setup\n"
+          "  simulate   the full motion: slip, lift-off, flight, landing, further hops\n"
           "  presets    list the built-in setups\n"
           "\n"
           "  jumpcyl COMMAND --help   options of a command\n"
@@ -51,12 +52,13 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "paper") == 0) return cmd_paper(argc - 1, argv + 1);
     if (strcmp(cmd, "predict") == 0) return cmd_predict(argc - 1, argv + 1);
+    if (strcmp(cmd, "simulate") == 0) return cmd_simulate(argc - 1, argv + 1);
     if (strcmp(cmd, "presets") == 0) return cmd_presets(argc - 1, argv + 1);
     if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
         static char paper_name[] = "paper";
         argv[0] = paper_name;
         return cmd_paper(argc, argv);
     }
-    cli_error("unknown command '%s' (allowed: paper, predict, presets; see 'jumpcyl --help')", cmd);
+    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
 }

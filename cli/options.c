@@ -1,6 +1,7 @@
 /* The setup options every command shares, and how they build a jc_Setup. */
 #include "cli.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -271,11 +272,15 @@ int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_l
 }
 
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
-                   cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args)
+                   cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args, cli_SimArgs *sim_args)
 {
-    struct option all[64];
-    cli_merge_options(all, 64, own, own_count);
+    struct option cmd[32], all[64];
+    int n = 0;
+    for (int i = 0; i < own_count && n < 32; ++i) cmd[n++] = own[i];
+    for (int i = 0; sim_args && i < CLI_SIM_OPTION_COUNT && n < 32; ++i) cmd[n++] = cli_sim_options[i];
+    cli_merge_options(all, 64, cmd, n);
     *setup_args = (cli_SetupArgs){0};
+    if (sim_args) *sim_args = (cli_SimArgs){0};
     optind = 1;
     opterr = 0;
     int c;
@@ -296,6 +301,11 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
             return EXIT_USAGE;
         }
         if (took > 0) continue;
+        if (sim_args && (took = cli_sim_take(sim_args, c, optarg, msg, sizeof msg)) != 0) {
+            if (took > 0) continue;
+            cli_error("%s", msg);
+            return EXIT_USAGE;
+        }
         int r = own_take(c, optarg, ctx);
         if (r != 0) return r;
     }
@@ -304,4 +314,114 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
         return EXIT_USAGE;
     }
     return 0;
+}
+
+/* ---- simulator options ---- */
+
+enum { S_T_MAX, S_MAX_EVENTS, S_SAMPLE_DT, S_RTOL, S_ATOL, S_EVENT_TOL, S_CONTACT_HEIGHT };
+#define SB CLI_SIM_OPT_BASE
+const struct option cli_sim_options[CLI_SIM_OPTION_COUNT] = {
+    {"t-max", required_argument, 0, SB + S_T_MAX},
+    {"max-events", required_argument, 0, SB + S_MAX_EVENTS},
+    {"sample-dt", required_argument, 0, SB + S_SAMPLE_DT},
+    {"rtol", required_argument, 0, SB + S_RTOL},
+    {"atol", required_argument, 0, SB + S_ATOL},
+    {"event-tol", required_argument, 0, SB + S_EVENT_TOL},
+    {"contact-height", required_argument, 0, SB + S_CONTACT_HEIGHT},
+};
+
+void cli_sim_help(FILE *out)
+{
+    const jc_SimOptions d = jc_default_sim_options();
+    fprintf(out,
+            "Simulation options:\n"
+            "  --t-max T            simulated time limit, s (default %g)\n"
+            "  --max-events N       event limit (default %d)\n"
+            "  --sample-dt T        trajectory sample spacing, s (default: samples at events only)\n"
+            "  --rtol X, --atol X   sliding integrator tolerances (default %g, %g)\n"
+            "  --event-tol T        event location tolerance, s (default %g)\n"
+            "  --contact-height LEN an impact whose rebound would rise less than this ends in\n"
+            "                       contact: ends Zeno bounce sequences (default %g m)\n",
+            d.t_max_s, d.max_events, d.ode_rtol, d.ode_atol, d.event_tol_s, d.contact_height_m);
+}
+
+int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len)
+{
+    const int i = opt - SB;
+    if (i < 0 || i >= CLI_SIM_OPTION_COUNT) return 0;
+    if (args->value[i]) {
+        snprintf(err, err_len, "--%s given twice ('%s' and '%s')", cli_sim_options[i].name, args->value[i], text);
+        return -1;
+    }
+    args->value[i] = text;
+    return 1;
+}
+
+/* Time values: seconds, or ms. */
+static int parse_time(const char *text, double *out, char *err, size_t err_len)
+{
+    size_t n = strlen(text);
+    if (n > 2 && strcmp(text + n - 2, "ms") == 0) {
+        char buf[64];
+        if (n - 2 >= sizeof buf) { snprintf(err, err_len, "'%s' is too long", text); return -1; }
+        memcpy(buf, text, n - 2);
+        buf[n - 2] = '\0';
+        if (cli_parse_quantity(buf, Q_NUMBER, out, err, err_len)) return -1;
+        *out *= 1e-3;
+        return 0;
+    }
+    if (n > 1 && text[n - 1] == 's') {
+        char buf[64];
+        if (n - 1 >= sizeof buf) { snprintf(err, err_len, "'%s' is too long", text); return -1; }
+        memcpy(buf, text, n - 1);
+        buf[n - 1] = '\0';
+        return cli_parse_quantity(buf, Q_NUMBER, out, err, err_len);
+    }
+    return cli_parse_quantity(text, Q_NUMBER, out, err, err_len);
+}
+
+int cli_sim_build(const cli_SimArgs *a, jc_SimOptions *o, char *err, size_t err_len)
+{
+    *o = jc_default_sim_options();
+    char msg[256];
+    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i) {
+        if (!a->value[i]) continue;
+        double v = 0.0;
+        int bad;
+        switch (i) {
+        case S_T_MAX: case S_SAMPLE_DT: case S_EVENT_TOL: bad = parse_time(a->value[i], &v, msg, sizeof msg); break;
+        case S_CONTACT_HEIGHT: bad = cli_parse_quantity(a->value[i], Q_LENGTH, &v, msg, sizeof msg); break;
+        default: bad = cli_parse_quantity(a->value[i], Q_NUMBER, &v, msg, sizeof msg); break;
+        }
+        if (!bad && i == S_MAX_EVENTS && (v != floor(v) || v < 1 || v > 1e7)) {
+            snprintf(msg, sizeof msg, "'%s' is out of range (allowed: a whole number from 1 to 10000000)", a->value[i]);
+            bad = 1;
+        }
+        if (bad) {
+            snprintf(err, err_len, "--%s: %s", cli_sim_options[i].name, msg);
+            return -1;
+        }
+        switch (i) {
+        case S_T_MAX: o->t_max_s = v; break;
+        case S_MAX_EVENTS: o->max_events = (int)v; break;
+        case S_SAMPLE_DT: o->sample_dt_s = v; break;
+        case S_RTOL: o->ode_rtol = v; break;
+        case S_ATOL: o->ode_atol = v; break;
+        case S_EVENT_TOL: o->event_tol_s = v; break;
+        case S_CONTACT_HEIGHT: o->contact_height_m = v; break;
+        }
+    }
+    if (jc_sim_options_validate(o, msg, sizeof msg) != JC_OK) {
+        snprintf(err, err_len, "invalid simulation options: %s", msg);
+        return -1;
+    }
+    return 0;
+}
+
+int cli_simulate(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd)
+{
+    char err[512];
+    int st = jc_simulate(m, o, run, err, sizeof err);
+    if (st != JC_OK) cli_error("%s: simulation failed: %s", cmd, err);
+    return st;
 }

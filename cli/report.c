@@ -1,6 +1,7 @@
 /* Output helpers shared by the commands. */
 #include "cli.h"
 
+#include <math.h>
 #include <stdarg.h>
 
 double cli_deg(double rad) { return rad * 180.0 / CLI_PI; }
@@ -100,4 +101,45 @@ int cli_json_print(cJSON *doc)
         return EXIT_FAIL;
     }
     return EXIT_OK;
+}
+
+cJSON *cli_json_event(const jc_Event *e)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "kind", jc_event_name(e->kind));
+    cJSON_AddStringToObject(o, "mode_before", jc_mode_name(e->mode_before));
+    cJSON_AddStringToObject(o, "mode_after", jc_mode_name(e->mode_after));
+    cJSON_AddNumberToObject(o, "t", e->state.t_s);
+    cJSON_AddNumberToObject(o, "x", e->state.x_m);
+    cJSON_AddNumberToObject(o, "y", e->state.y_m);
+    cJSON_AddNumberToObject(o, "theta", e->state.theta_rad);
+    cJSON_AddNumberToObject(o, "omega", e->state.omega_radps);
+    cJSON_AddNumberToObject(o, "vx", e->state.vx_mps);
+    cJSON_AddNumberToObject(o, "vy", e->state.vy_mps);
+    cJSON_AddNumberToObject(o, "slip", e->slip_mps);
+    cJSON_AddNumberToObject(o, "normal", e->normal_N);
+    cJSON_AddNumberToObject(o, "friction", e->friction_N);
+    if (e->kind == JC_EVENT_LIFTOFF || (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT)) {
+        cJSON_AddNumberToObject(o, "flight_time", e->flight_time_s);
+        cJSON_AddNumberToObject(o, "hop_height", e->hop_height_m);
+        if (isnan(e->landing_x_m)) cJSON_AddNullToObject(o, "landing_x");
+        else cJSON_AddNumberToObject(o, "landing_x", e->landing_x_m);
+    }
+    if (e->kind == JC_EVENT_TOUCHDOWN || e->kind == JC_EVENT_BOUNCE) {
+        cJSON_AddNumberToObject(o, "impact_speed", e->impact_speed_mps);
+        cJSON_AddNumberToObject(o, "impulse_normal", e->impulse_normal_Ns);
+        cJSON_AddNumberToObject(o, "impulse_tangent", e->impulse_tangent_Ns);
+    }
+    return o;
+}
+
+cJSON *cli_json_energy(const jc_EnergyReport *e)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "kinetic", e->kinetic_J);
+    cJSON_AddNumberToObject(o, "potential", e->potential_J);
+    cJSON_AddNumberToObject(o, "friction_loss", e->friction_loss_J);
+    cJSON_AddNumberToObject(o, "impact_loss", e->impact_loss_J);
+    cJSON_AddNumberToObject(o, "balance_error", e->balance_error_J);
+    return o;
 }

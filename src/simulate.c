@@ -98,7 +98,28 @@ double jc_potential_energy(const jc_Model *m, const jc_State *s)
     return potential_abs(m, s) - potential_abs(m, &start);
 }
 
-/* ---- run storage ---- */
+/* ---- run storage and summary ---- */
+
+void jc_run_summarize(const jc_Run *run, jc_RunSummary *out)
+{
+    *out = (jc_RunSummary){.first_liftoff = -1, .largest_hop = -1};
+    for (int i = 0; i < run->event_count; ++i) {
+        const jc_Event *e = &run->events[i];
+        if (e->kind == JC_EVENT_LIFTOFF) {
+            if (out->first_liftoff < 0) out->first_liftoff = i;
+            out->liftoffs++;
+        } else if (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT) {
+            out->bounces++;
+        } else {
+            continue;
+        }
+        out->flight_time_s += e->flight_time_s;
+        if (out->largest_hop < 0 || e->hop_height_m > out->largest_hop_m) {
+            out->largest_hop = i;
+            out->largest_hop_m = e->hop_height_m;
+        }
+    }
+}
 
 void jc_run_free(jc_Run *run)
 {

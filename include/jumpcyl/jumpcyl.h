@@ -367,6 +367,19 @@ int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out
                 char *err, size_t err_len);
 void jc_run_free(jc_Run *run);
 
+/* What a run amounts to: its hops. A hop starts at a lift-off; bounces
+ * continue it. */
+typedef struct {
+    int liftoffs;            /* lift-off events (hops) */
+    int bounces;             /* impacts that ended in flight again */
+    int first_liftoff;       /* event index, -1 if none */
+    int largest_hop;         /* event index (lift-off or bounce) of the highest flight, -1 if none */
+    double largest_hop_m;    /* its largest gap under the rim */
+    double flight_time_s;    /* total time in flight */
+} jc_RunSummary;
+
+void jc_run_summarize(const jc_Run *run, jc_RunSummary *out);
+
 /* Energies of a state (potential relative to the setup's start). */
 double jc_kinetic_energy(const jc_Model *model, const jc_State *s);
 double jc_potential_energy(const jc_Model *model, const jc_State *s);
