@@ -1,2 +1,122 @@
-/* Placeholder replaced below. */
-int main(void) { return 0; }
+/*
+ * jumpcyl benchmarks: median wall time per full simulation of the paper's
+ * cylinder down its 3.2 m ramp (15, 30, 45 deg), per rolling-model
+ * prediction and per paper-model solve, single thread, with the accuracy the
+ * default tolerances reach (first lift-off against a run with tolerances
+ * 100 times tighter). The last line is one JSON object.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <jumpcyl/jumpcyl.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+static double now_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static void die(const char *what, const char *err)
+{
+    fprintf(stderr, "bench: %s: %s\n", what, err);
+    exit(1);
+}
+
+/* First lift-off time and position of a run; NAN if none. */
+static void first_liftoff(const jc_Run *run, double *t, double *x)
+{
+    jc_RunSummary s;
+    jc_run_summarize(run, &s);
+    *t = s.first_liftoff >= 0 ? run->events[s.first_liftoff].state.t_s : NAN;
+    *x = s.first_liftoff >= 0 ? run->events[s.first_liftoff].state.x_m : NAN;
+}
+
+#define SIM_REPS 400
+#define BATCH 200
+#define BATCHES 200
+
+int main(void)
+{
+    char err[256];
+    const double inclines[3] = {15, 30, 45};
+    double sim_all[3 * SIM_REPS], roll_all[3 * BATCHES], paper_all[3 * BATCHES];
+    int n_sim = 0, n_roll = 0, n_paper = 0;
+    double worst_dt = 0.0, worst_dx = 0.0;
+    printf("jumpcyl %s benchmark: the paper's cylinder, 3.20 m ramp, mu 0.5, single thread\n\n", jc_version());
+    printf("incline  full sim median (us)  events  ode steps  rolling predict (us)  paper solve (us)  "
+           "first lift-off dt vs tight (s)  dx (m)\n");
+    for (int c = 0; c < 3; ++c) {
+        jc_Setup s = jc_paper_setup();
+        s.incline_rad = inclines[c] * 3.14159265358979323846 / 180.0;
+        jc_Model m;
+        if (jc_model_init(&m, &s, err, sizeof err)) die("model", err);
+        jc_SimOptions o = jc_default_sim_options();
+        double t_sim[SIM_REPS];
+        jc_Run run;
+        int events = 0;
+        long steps = 0;
+        for (int i = 0; i < SIM_REPS; ++i) {
+            const double t0 = now_us();
+            if (jc_simulate(&m, &o, &run, err, sizeof err)) die("simulate", err);
+            t_sim[i] = now_us() - t0;
+            events = run.event_count;
+            steps = run.ode_steps;
+            if (i < SIM_REPS - 1) jc_run_free(&run);
+        }
+        double t_def, x_def, t_tight, x_tight;
+        first_liftoff(&run, &t_def, &x_def);
+        jc_run_free(&run);
+        jc_SimOptions tight = o;
+        tight.ode_rtol *= 1e-2;
+        tight.ode_atol *= 1e-2;
+        tight.event_tol_s *= 1e-2;
+        if (jc_simulate(&m, &tight, &run, err, sizeof err)) die("simulate", err);
+        first_liftoff(&run, &t_tight, &x_tight);
+        jc_run_free(&run);
+        const double dt = fabs(t_def - t_tight), dx = fabs(x_def - x_tight);
+        worst_dt = fmax(worst_dt, dt);
+        worst_dx = fmax(worst_dx, dx);
+
+        double t_roll[BATCHES], t_paper[BATCHES];
+        jc_RollingResult rr;
+        jc_PaperResult pr;
+        for (int b = 0; b < BATCHES; ++b) {
+            double t0 = now_us();
+            for (int i = 0; i < BATCH; ++i)
+                if (jc_rolling_predict(&m, &rr, err, sizeof err)) die("rolling", err);
+            t_roll[b] = (now_us() - t0) / BATCH;
+            t0 = now_us();
+            for (int i = 0; i < BATCH / 10; ++i)
+                if (jc_paper_solve(&m, &pr, err, sizeof err)) die("paper", err);
+            t_paper[b] = (now_us() - t0) / (BATCH / 10);
+        }
+        for (int i = 0; i < SIM_REPS; ++i) sim_all[n_sim++] = t_sim[i];
+        for (int b = 0; b < BATCHES; ++b) { roll_all[n_roll++] = t_roll[b]; paper_all[n_paper++] = t_paper[b]; }
+        const double ms = median(t_sim, SIM_REPS), mr = median(t_roll, BATCHES), mp = median(t_paper, BATCHES);
+        printf("%5.0f deg %21.1f %7d %10ld %21.3f %17.2f %31.1e %7.1e\n", inclines[c], ms, events, steps, mr, mp, dt, dx);
+    }
+    const double ms = median(sim_all, n_sim), mr = median(roll_all, n_roll), mp = median(paper_all, n_paper);
+    printf("\nall inclines: full simulation %.1f us median (%.0f runs/s), rolling prediction %.3f us median "
+           "(%.0f /s), paper model %.2f us\n", ms, 1e6 / ms, mr, 1e6 / mr, mp);
+    printf("event accuracy: first lift-off within %.1e s and %.1e m of a run with 100x tighter tolerances\n",
+           worst_dt, worst_dx);
+    printf("{\"full_sim_us_median\": %.3f, \"rolling_predict_us_median\": %.4f, \"paper_solve_us_median\": %.3f, "
+           "\"first_liftoff_dt_s\": %.3e, \"first_liftoff_dx_m\": %.3e}\n", ms, mr, mp, worst_dt, worst_dx);
+    return 0;
+}
