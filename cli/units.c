@@ -6,19 +6,40 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A unit is a power of ten (applied to the decimal exponent, so that "32.1g"
+ * is exactly the double nearest 0.0321, as "0.0321" is) or a factor. */
 typedef struct {
     const char *name;
-    double factor; /* to SI */
+    int pow10;
+    double factor; /* to SI, applied after the power of ten */
 } unit;
 
-static const unit length_units[] = {{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"km", 1e3}, {NULL, 0}};
-static const unit mass_units[] = {{"kg", 1.0}, {"g", 1e-3}, {"mg", 1e-6}, {NULL, 0}};
-static const unit angle_units[] = {{"deg", CLI_PI / 180.0}, {"rad", 1.0}, {NULL, 0}};
-static const unit angular_speed_units[] = {{"rad/s", 1.0}, {"deg/s", CLI_PI / 180.0},
-                                           {"rpm", 2.0 * CLI_PI / 60.0}, {"rev/s", 2.0 * CLI_PI},
-                                           {NULL, 0}};
-static const unit acceleration_units[] = {{"m/s2", 1.0}, {"m/s^2", 1.0}, {"cm/s2", 1e-2}, {NULL, 0}};
-static const unit no_units[] = {{NULL, 0}};
+static const unit length_units[] = {{"m", 0, 1.0}, {"cm", -2, 1.0}, {"mm", -3, 1.0}, {"km", 3, 1.0}, {NULL, 0, 0}};
+static const unit mass_units[] = {{"kg", 0, 1.0}, {"g", -3, 1.0}, {"mg", -6, 1.0}, {NULL, 0, 0}};
+static const unit angle_units[] = {{"deg", 0, CLI_PI / 180.0}, {"rad", 0, 1.0}, {NULL, 0, 0}};
+static const unit angular_speed_units[] = {{"rad/s", 0, 1.0}, {"deg/s", 0, CLI_PI / 180.0},
+                                           {"rpm", 0, 2.0 * CLI_PI / 60.0}, {"rev/s", 0, 2.0 * CLI_PI},
+                                           {NULL, 0, 0}};
+static const unit acceleration_units[] = {{"m/s2", 0, 1.0}, {"m/s^2", 0, 1.0}, {"cm/s2", -2, 1.0}, {NULL, 0, 0}};
+static const unit no_units[] = {{NULL, 0, 0}};
+
+/* Re-reads the number text[0, len) with its decimal exponent shifted by p. */
+static double shift_decimal(const char *text, size_t len, int p)
+{
+    char buf[128];
+    if (len >= 96) return NAN;
+    memcpy(buf, text, len);
+    buf[len] = '\0';
+    char *e = strpbrk(buf, "eE");
+    long exp10 = 0;
+    if (e) {
+        exp10 = strtol(e + 1, NULL, 10);
+        *e = '\0';
+    }
+    if (exp10 > 100000 || exp10 < -100000) return exp10 > 0 ? HUGE_VAL : 0.0;
+    snprintf(buf + strlen(buf), sizeof buf - strlen(buf), "e%ld", exp10 + p);
+    return strtod(buf, NULL);
+}
 
 static const unit *units_for(cli_Quantity q)
 {
@@ -60,7 +81,8 @@ int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err,
         snprintf(err, err_len, "'%s' is not a number", text);
         return -1;
     }
-    if (strstr(text, "0x") || strstr(text, "0X")) {
+    const char *digits = (c0 == '+' || c0 == '-') ? text + 1 : text;
+    if (digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) {
         snprintf(err, err_len, "'%s' is not a decimal number", text);
         return -1;
     }
@@ -93,8 +115,9 @@ int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err,
             return -1;
         }
         factor = u->factor;
+        if (u->pow10 != 0) v = shift_decimal(text, (size_t)(end - text), u->pow10);
     }
-    *out = v * factor;
+    *out = factor == 1.0 ? v : v * factor;
     if (!isfinite(*out)) {
         snprintf(err, err_len, "'%s' is too large", text);
         return -1;

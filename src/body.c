@@ -95,7 +95,9 @@ int jc_body_compute(const jc_BodyDef *def, jc_Body *out, char *err, size_t err_l
     /* I_G = I_C - M d^2 >= 0 always (parallel axes); clamp rounding only. */
     out->inertia_g_kgm2 = fmax(inertia_c - mass * d * d, 0.0);
     out->disc_mass_kg = disc_mass;
-    if (!(out->inertia_g_kgm2 > 0.0))
+    /* Relative test: a lone point mass leaves I_G at rounding level (~1e-20),
+     * not at exactly 0. */
+    if (!(out->inertia_g_kgm2 > 1e-12 * mass * def->radius_m * def->radius_m))
         return jc_fail(err, err_len, JC_EINVAL,
                        "the body has no rotational inertia about its centre of mass (a single point mass); add a disc, hoop or rod");
     return JC_OK;

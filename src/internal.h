@@ -25,6 +25,14 @@ void jc_tl_axpby(jc_TrigLin *out, double a, const jc_TrigLin *x, double b, const
 /* out = x*y; at most one of them may have a T1 part, and the degrees must add
  * up to at most JC_TRIG_DEGREE (both checked; returns JC_EINVAL if not). */
 int jc_tl_mul(jc_TrigLin *out, const jc_TrigLin *x, const jc_TrigLin *y);
+/* cos(k th), sin(k th) for k = 0..JC_TRIG_DEGREE: shared by every function
+ * evaluated at the same th. */
+typedef struct {
+    double th;
+    double c[JC_TRIG_DEGREE + 1], s[JC_TRIG_DEGREE + 1];
+} jc_TrigBasis;
+void jc_tl_basis(jc_TrigBasis *b, double th);
+void jc_tl_eval3_basis(const jc_TrigLin *p, const jc_TrigBasis *b, double out[3]);
 /* f, f', f'' at th. */
 void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3]);
 /* A bound on |f'''| for |th| <= th_abs_max. */

@@ -115,7 +115,8 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
     jc_tl_axpby(&slip_pos, mu, &m->normal_poly, -1.0, &m->friction_poly);
     jc_tl_axpby(&slip_neg, mu, &m->normal_poly, 1.0, &m->friction_poly);
     const jc_TrigLin *watch[WATCH_COUNT] = {&m->normal_poly, &slip_pos, &slip_neg, &m->energy_poly};
-    int active[WATCH_COUNT] = {1, 1, 1, dir != 0};
+    /* The turning point is watched only along a path that goes downhill. */
+    int active[WATCH_COUNT] = {1, 1, 1, dir > 0};
 
     /* Uphill or at rest, the path is only the start point. */
     double th_end = dir > 0 ? m->theta_end_rad : th0;

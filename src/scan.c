@@ -63,6 +63,19 @@ static double safe_step(double g, double g1, double g2, double m3)
     return h * (1.0 - 1e-12);
 }
 
+/* Whether g + g1 x + g2 x^2/2 - m3 x^3/6 stays >= 0 on [0, h], by a
+ * sufficient test: there -m3 x^3/6 >= -m3 h x^2/6, which leaves a quadratic.
+ * Spares the exact cubic root for every function but the limiting one
+ * (measured: gsl_poly_solve_cubic was a fifth of a rolling prediction). */
+static int safe_over(double g, double g1, double g2, double m3, double h)
+{
+    const double c = g2 - m3 * h / 3.0;
+    if (g + h * (g1 + 0.5 * c * h) < 0.0) return 0;
+    if (c <= 0.0 || g1 >= 0.0) return 1;
+    const double x = -g1 / c; /* the convex quadratic's vertex */
+    return x >= h || g - 0.5 * g1 * g1 / c >= 0.0;
+}
+
 static int polish(const jc_ScanFn *fn, double a, double b, double tol, double *root,
                   char *err, size_t err_len)
 {
@@ -94,6 +107,7 @@ int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, dou
     double u = 0.0;       /* distance travelled from u_from */
     double cand_u = span; /* a confirmed root (or the range end) ahead */
     int cand_i = -1;
+    int first = 0;        /* the function that limited the last step goes first */
     *hit = (jc_ScanHit){.index = -1, .theta = u_to, .grazing = 0, .steps = 0};
 
     for (long step = 0; step < SCAN_MAX_STEPS; ++step) {
@@ -101,7 +115,8 @@ int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, dou
         double h = cand_u - u;
         int min_i = -1;
         hit->steps = (int)step;
-        for (int i = 0; i < count; ++i) {
+        for (int j = 0; j < count; ++j) {
+            const int i = (first + j) % count;
             if (i == cand_i) continue; /* positive up to its confirmed root */
             double d[3];
             fns[i].eval(fns[i].ctx, at, d);
@@ -113,7 +128,9 @@ int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, dou
                 if (g < -fns[i].noise || g1 < 0.0 || (g1 == 0.0 && g2 <= 0.0)) {
                     hit->index = i;
                     hit->theta = at;
-                    hit->grazing = (g1 == 0.0);
+                    /* Touching rather than crossing: within the tolerance the
+                     * slope moves the function by less than its noise. */
+                    hit->grazing = fabs(g1) * tol <= fns[i].noise;
                     return JC_OK;
                 }
                 g = 0.0;
@@ -123,7 +140,9 @@ int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, dou
                 const double w = 2.0 * g / -g1;
                 if (g1 + fmax(g2, 0.0) * w + 0.5 * fns[i].third_bound * w * w < 0.0 && u + w < cand_u) {
                     const double b = at + dir * w;
-                    if (fn_value(b, (void *)&fns[i]) <= 0.0) {
+                    /* A clear sign change only: a value within noise of zero
+                     * may be a double root touched, not crossed. */
+                    if (fn_value(b, (void *)&fns[i]) < -fns[i].noise) {
                         double root = b;
                         int st = polish(&fns[i], at, b, tol, &root, err, err_len);
                         if (st != JC_OK) return st;
@@ -134,9 +153,11 @@ int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, dou
                     }
                 }
             }
+            if (safe_over(g, g1, g2, fns[i].third_bound, h)) continue;
             const double hi = safe_step(g, g1, g2, fns[i].third_bound);
             if (hi < h) { h = hi; min_i = i; }
         }
+        if (min_i >= 0) first = min_i;
         if (u + h >= cand_u) {
             hit->index = cand_i;
             hit->theta = cand_i < 0 ? u_to : u_from + dir * cand_u;
@@ -157,16 +178,34 @@ int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, dou
 
 /* ---- the rolling and paper models' form: f = T0(th) + th T1(th) ---- */
 
-static void trig_eval(const void *ctx, double th, double out[3]) { jc_tl_eval3(ctx, th, out); }
+/* All functions of a set are evaluated at the same th in turn: they share
+ * one basis of cos(k th), sin(k th) (measured: 2.3x fewer instructions per
+ * rolling prediction than one sincos and recurrence per function). */
+typedef struct {
+    const jc_TrigLin *f;
+    jc_TrigBasis *basis;
+} trig_fn;
+
+static void trig_eval(const void *ctx, double th, double out[3])
+{
+    const trig_fn *t = ctx;
+    if (t->basis->th != th) jc_tl_basis(t->basis, th);
+    jc_tl_eval3_basis(t->f, t->basis, out);
+}
 
 int jc_scan_first(const jc_ScanSet *set, double th_from, double th_to, double tol_rad,
                   jc_ScanHit *hit, char *err, size_t err_len)
 {
     const double th_abs_max = fmax(fabs(th_from), fabs(th_to));
     jc_ScanFn fns[JC_SCAN_MAX];
-    for (int i = 0; i < set->count; ++i)
-        fns[i] = (jc_ScanFn){trig_eval, set->f[i], jc_tl_third_bound(set->f[i], th_abs_max),
+    trig_fn tf[JC_SCAN_MAX];
+    jc_TrigBasis basis;
+    jc_tl_basis(&basis, th_from);
+    for (int i = 0; i < set->count; ++i) {
+        tf[i] = (trig_fn){set->f[i], &basis};
+        fns[i] = (jc_ScanFn){trig_eval, &tf[i], jc_tl_third_bound(set->f[i], th_abs_max),
                              64.0 * DBL_EPSILON * jc_tl_magnitude_bound(set->f[i], th_abs_max),
                              set->sign[i]};
+    }
     return jc_scan_fns(fns, set->count, th_from, th_to, tol_rad, hit, err, err_len);
 }

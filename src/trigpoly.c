@@ -140,26 +140,42 @@ double jc_tl_curvature_bound(const jc_TrigLin *p, double th_abs_max)
     return (b0 + 2.0 * b1 + th_abs_max * b2) * (1.0 + 1e-12);
 }
 
-void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3])
+void jc_tl_basis(jc_TrigBasis *b, double th)
 {
-    double c1 = cos(th), s1 = sin(th);
-    double ck = 1.0, sk = 0.0;
+    const double c1 = cos(th), s1 = sin(th);
+    b->th = th;
+    b->c[0] = 1.0;
+    b->s[0] = 0.0;
+    for (int k = 1; k <= JC_TRIG_DEGREE; ++k) {
+        b->c[k] = b->c[k - 1] * c1 - b->s[k - 1] * s1;
+        b->s[k] = b->s[k - 1] * c1 + b->c[k - 1] * s1;
+    }
+}
+
+void jc_tl_eval3_basis(const jc_TrigLin *p, const jc_TrigBasis *b, double out[3])
+{
     double t0 = 0.0, d0 = 0.0, e0 = 0.0, t1 = 0.0, d1 = 0.0, e1 = 0.0;
     for (int k = 0; k <= JC_TRIG_DEGREE; ++k) {
-        const double kk = (double)k * k;
-        t0 += p->c0[k] * ck + p->s0[k] * sk;
+        const double kk = (double)k * k, ck = b->c[k], sk = b->s[k];
+        const double a0 = p->c0[k] * ck + p->s0[k] * sk, a1 = p->c1[k] * ck + p->s1[k] * sk;
+        t0 += a0;
         d0 += k * (p->s0[k] * ck - p->c0[k] * sk);
-        e0 -= kk * (p->c0[k] * ck + p->s0[k] * sk);
-        t1 += p->c1[k] * ck + p->s1[k] * sk;
+        e0 -= kk * a0;
+        t1 += a1;
         d1 += k * (p->s1[k] * ck - p->c1[k] * sk);
-        e1 -= kk * (p->c1[k] * ck + p->s1[k] * sk);
-        double cn = ck * c1 - sk * s1;
-        sk = sk * c1 + ck * s1;
-        ck = cn;
+        e1 -= kk * a1;
     }
+    const double th = b->th;
     out[0] = t0 + th * t1;
     out[1] = d0 + t1 + th * d1;
     out[2] = e0 + 2.0 * d1 + th * e1;
+}
+
+void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3])
+{
+    jc_TrigBasis b;
+    jc_tl_basis(&b, th);
+    jc_tl_eval3_basis(p, &b, out);
 }
 
 double jc_tl_third_bound(const jc_TrigLin *p, double th_abs_max)
