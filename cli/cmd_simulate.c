@@ -85,10 +85,13 @@ static void print_text(const jc_Model *m, const jc_SimOptions *o, const jc_Run *
     printf("\nRun ended: %s (%s) at t = %.6f s, x = %.2f cm, in %s.\n", jc_termination_name(run->termination),
            run->termination_detail, f->t_s, f->x_m * 100, jc_mode_name(run->final_mode));
     const jc_EnergyReport *e = &run->energy;
+    /* Relative to the energy that changed hands, or to M g r for a body that hardly moved. */
+    const double scale = fmax(e->kinetic_J + fabs(e->potential_J) + e->friction_loss_J + e->impact_loss_J,
+                              m->body.mass_kg * m->setup.gravity_mps2 * m->body.radius_m);
     printf("Energy (J): kinetic %.6f, potential %.6f (from the start), lost to friction %.6f, lost in impacts %.6f;\n"
-           "            balance error %.2e J (%.1e of the energy exchanged)\n",
+           "            balance error %.2e J (%.1e relative)\n",
            e->kinetic_J, e->potential_J, e->friction_loss_J, e->impact_loss_J, e->balance_error_J,
-           fabs(e->balance_error_J) / fmax(fabs(e->potential_J), 1e-300));
+           fabs(e->balance_error_J) / scale);
     jc_RunSummary sum;
     jc_run_summarize(run, &sum);
     if (sum.first_liftoff >= 0) {

@@ -186,29 +186,35 @@ static void roll_path_init(const jc_Model *m, double th, double w, roll_path *p)
     p->inertia = &m->inertia_p_poly;
 }
 
-/* dt/du for th = anchor + sigma u^2: 2 u / |w(th)|, finite at a turning point. */
+/* U(th) - U(a) without cancellation when th is near a:
+ * cos th - cos a = -2 sin((th+a)/2) sin((th-a)/2), sin th - sin a = 2 cos((th+a)/2) sin((th-a)/2). */
+static double potential_change(const jc_Model *m, double a, double th)
+{
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    const double h = 0.5 * (th - a), c = 0.5 * (th + a), sh = sin(h);
+    const double dcos = -2.0 * sin(c) * sh, dsin = 2.0 * cos(c) * sh;
+    return M * m->setup.gravity_mps2 * (d * m->cos_incline * dcos - m->sin_incline * (r * (th - a) + d * dsin));
+}
+
+/* dt/du for th = anchor + sigma u^2: 2 u / |w(th)|, finite at a turning
+ * point, with P = I_P w^2 taken from the anchor by the exact potential
+ * change (near a turning point P itself is a small difference of large
+ * numbers; this keeps the integrand accurate to rounding). */
 typedef struct {
+    const jc_Model *m;
     const roll_path *path;
     double anchor, sigma;
-    double p0, p1; /* P and sigma * P' at the anchor, for u -> 0 */
+    double p0, p1; /* P and sigma * P' at the anchor */
 } time_integrand;
 
 static double dt_du(double u, void *params)
 {
     const time_integrand *ti = params;
     const double th = ti->anchor + ti->sigma * u * u;
-    double p = jc_tl_value(&ti->path->energy, th);
-    const double lin = ti->p0 + ti->p1 * u * u;
-    /* Near the anchor P is dominated by rounding when P(anchor) = 0: use its
-     * linearisation there, where it is exact to O(u^4). */
-    if (u * u < 1e-7 && lin > 0.0) p = lin;
-    if (p <= 0.0) {
-        if (ti->p0 <= 0.0 && ti->p1 > 0.0) p = ti->p1 * u * u; /* u = 0 at a turning point */
-        else return 0.0;
-    }
     const double ip = jc_tl_value(ti->path->inertia, th);
-    if (u == 0.0) return ti->p0 > 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
-    return 2.0 * u / sqrt(p / ip);
+    if (u == 0.0) return ti->p0 > 0.0 || ti->p1 <= 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
+    const double p = ti->p0 - 2.0 * potential_change(ti->m, ti->anchor, th);
+    return p > 0.0 ? 2.0 * u / sqrt(p / ip) : 0.0;
 }
 
 /* Time to roll from th_a to th_b (either may be a turning point). */
@@ -223,15 +229,21 @@ static int roll_time(jc_Sim *sim, const roll_path *path, double th_a, double th_
         double f[2];
         jc_tl_eval(&path->energy, ends[k], &f[0], &f[1]);
         const double sigma = mid > ends[k] ? 1.0 : -1.0;
-        time_integrand ti = {path, ends[k], sigma, f[0], sigma * f[1]};
+        /* An end where P is negligible against P' over the interval is a
+         * turning point up to rounding: take P = 0 there exactly. */
+        double p0 = f[0];
+        if (p0 <= 1e-12 * fabs(f[1]) * fabs(mid - ends[k])) p0 = 0.0;
+        time_integrand ti = {sim->m, path, ends[k], sigma, p0, sigma * f[1]};
         gsl_function fn = {dt_du, &ti};
         double part, abserr;
         int st = gsl_integration_qag(&fn, 0.0, sqrt(fabs(mid - ends[k])), 0.0, 1e-13, QUAD_LIMIT,
                                      GSL_INTEG_GAUSS21, sim->quad, &part, &abserr);
-        if (st != GSL_SUCCESS && abserr > 1e-3 * sim->opt->event_tol_s + 1e-12 * fabs(part))
+        /* Rounding can stop qag short of 1e-13; what events need is an error
+         * within their tolerance or 1e-11 of the time itself. */
+        if (st != GSL_SUCCESS && abserr > fmax(sim->opt->event_tol_s, 1e-11 * fabs(part)))
             return jc_fail(err, err_len, JC_ENUMERIC,
-                           "rolling time quadrature failed between th = %.9g and %.9g rad (%s)",
-                           th_a, th_b, gsl_strerror(st));
+                           "rolling time quadrature failed between th = %.9g and %.9g rad (%s; %.3g s +- %.3g s)",
+                           th_a, th_b, gsl_strerror(st), part, abserr);
         *dt += part;
     }
     return JC_OK;
@@ -332,7 +344,10 @@ int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
     }
     for (long swing = 0; swing < ROLL_MAX_SWINGS; ++swing) {
         const jc_State start = sim->s;
-        const double th_lim = dir > 0 ? start.theta_rad + (L - start.x_m) / r : start.theta_rad - start.x_m / r;
+        /* Uphill, the start counts as passed 1 nm beyond it (as in sliding and
+         * flight), so that a body rocking back to rest at its start turns there. */
+        const double th_lim = dir > 0 ? start.theta_rad + (L - start.x_m) / r
+                                      : start.theta_rad - (start.x_m + 1e-9) / r;
         jc_ScanSet set = {4, {&path.normal, &path.slip_pos, &path.slip_neg, &path.energy}, {1, 1, 1, 1}};
         jc_ScanHit hit;
         int st = jc_scan_first(&set, start.theta_rad, th_lim, ROLL_ROOT_TOL_RAD, &hit, err, err_len);

@@ -460,7 +460,10 @@ int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out
         finish(&mc, JC_END_PAINLEVE, "no contact mode is consistent at the start (Painleve)");
         stop = 1;
     } else {
-        if (kind >= 0) st = add_event(&mc, (jc_EventKind)kind, JC_MODE_ROLLING, 0.0, 0.0, 0.0, NULL);
+        /* A start that cannot roll: the event shows the rolling forces that rule it out. */
+        double thdd, n_roll, f_roll;
+        jc_roll_forces(model, sim->s.theta_rad, sim->s.omega_radps, &thdd, &n_roll, &f_roll);
+        if (kind >= 0) st = add_event(&mc, (jc_EventKind)kind, JC_MODE_ROLLING, n_roll, f_roll, 0.0, NULL);
         if (kind == JC_EVENT_LIFTOFF) {
             mc.flight_event = 0;
             from_liftoff = 1;
