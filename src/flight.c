@@ -182,10 +182,100 @@ static int emit_samples(jc_Sim *sim, const flight *f, double t0, double t_end)
     return JC_OK;
 }
 
+/* ---- flight with air: no closed form, an ODE ---- */
+
+typedef struct {
+    const jc_Model *m;
+    double apex_sign; /* sign of vy_C until its next zero (an apex or a dip of the rim) */
+    double gap_slack; /* 1 pm after a lift-off: rounding at N = 0 cannot end the flight at once */
+} flight_ode;
+
+static void flight_ode_accel(const jc_Model *m, const double y[], double acc[3], double *air_power)
+{
+    const double M = m->body.mass_kg, d = m->body.cm_offset_m, g = m->setup.gravity_mps2;
+    const double th = y[JC_Y_TH], w = y[JC_Y_W], s = sin(th), c = cos(th);
+    jc_Loads l;
+    jc_loads_at(m, th, y[JC_Y_VX], y[JC_Y_VY], w, &l);
+    const double thdd = l.torque_Nm / m->body.inertia_g_kgm2;
+    acc[0] = g * m->sin_incline + l.fx_N / M - d * c * thdd + d * s * w * w;  /* x_C'' */
+    acc[1] = -g * m->cos_incline + l.fy_N / M + d * s * thdd + d * c * w * w; /* y_C'' */
+    acc[2] = thdd;
+    *air_power = l.air_power_W;
+}
+
+static int flight_ode_rhs(double t, const double y[], double dydt[], void *params)
+{
+    (void)t;
+    const flight_ode *c = params;
+    double acc[3], power;
+    flight_ode_accel(c->m, y, acc, &power);
+    dydt[JC_Y_X] = y[JC_Y_VX];
+    dydt[JC_Y_Y] = y[JC_Y_VY];
+    dydt[JC_Y_TH] = y[JC_Y_W];
+    dydt[JC_Y_VX] = acc[0];
+    dydt[JC_Y_VY] = acc[1];
+    dydt[JC_Y_W] = acc[2];
+    dydt[JC_Y_FRICTION] = 0.0;
+    dydt[JC_Y_AIR] = power;
+    dydt[JC_Y_RR] = 0.0;
+    return 0;
+}
+
+enum { FE_GAP, FE_END, FE_TOP, FE_APEX, FE_COUNT };
+
+static void flight_ode_events(void *params, const double y[], double ev[])
+{
+    const flight_ode *c = params;
+    ev[FE_GAP] = y[JC_Y_Y] - c->m->body.radius_m + c->gap_slack;
+    ev[FE_END] = c->m->setup.ramp_length_m - y[JC_Y_X];
+    ev[FE_TOP] = y[JC_Y_X] + 1e-9;
+    ev[FE_APEX] = c->apex_sign * y[JC_Y_VY];
+}
+
+static int flight_ode_sample(jc_Sim *sim, void *params, double t, const double y[])
+{
+    (void)params;
+    jc_State s;
+    jc_y_to_state(y, t, &s);
+    return jc_sim_sample_y(sim, &s, y, JC_MODE_FLIGHT, 0.0, 0.0);
+}
+
+#define FLIGHT_MAX_APEXES 100000L
+
+static int flight_ode_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len)
+{
+    const double r = sim->m->body.radius_m;
+    flight_ode ctx = {sim->m, sim->s.vy_mps < 0.0 ? -1.0 : 1.0, from_liftoff ? 1e-12 : 0.0};
+    sim->hop_height_m = fmax(sim->s.y_m - r, 0.0);
+    for (long k = 0; k < FLIGHT_MAX_APEXES; ++k) {
+        const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx};
+        int which;
+        int st = jc_ode_run(sim, &phase, &which, err, err_len);
+        if (st != JC_OK) return st;
+        sim->hop_height_m = fmax(sim->hop_height_m, sim->s.y_m - r);
+        switch (which) {
+        case FE_APEX:
+            ctx.apex_sign = -ctx.apex_sign;
+            continue;
+        case FE_GAP:
+            sim->s.y_m = r;
+            *end = PHASE_TOUCHDOWN;
+            return JC_OK;
+        case FE_END: *end = PHASE_RAMP_END; return JC_OK;
+        case FE_TOP: *end = PHASE_RAMP_TOP; return JC_OK;
+        case JC_ODE_TIME_LIMIT: *end = PHASE_TIME_LIMIT; return JC_OK;
+        default: *end = PHASE_STEP_LIMIT; return JC_OK;
+        }
+    }
+    *end = PHASE_STEP_LIMIT;
+    return JC_OK;
+}
+
 enum { FW_GAP, FW_END, FW_TOP };
 
 int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len)
 {
+    if (jc_model_has_resistance(sim->m)) return flight_ode_phase(sim, from_liftoff, end, err, err_len);
     flight f;
     flight_init(sim->m, &sim->s, &f);
     const double t0 = sim->s.t_s;

@@ -109,7 +109,7 @@ typedef struct jc_Sim {
     jc_State s;
     jc_Mode mode;
     int slip_dir;                  /* sliding: sign of the slip velocity */
-    double friction_loss_J, impact_loss_J;
+    double friction_loss_J, impact_loss_J, air_loss_J, rr_loss_J;
     double energy0_J;              /* K + U at the start */
     double next_sample_t;          /* INFINITY when not sampling at fixed steps */
     double hop_height_m;           /* the last flight's largest gap */
@@ -119,20 +119,63 @@ typedef struct jc_Sim {
     gsl_odeiv2_evolve *ode_evolve;
 } jc_Sim;
 
+/* ode.c: phases without a closed form, integrated with rk8pd and ended by
+ * the first event. The state vector is the same in every mode. */
+enum { JC_Y_X, JC_Y_Y, JC_Y_TH, JC_Y_VX, JC_Y_VY, JC_Y_W, JC_Y_FRICTION, JC_Y_AIR, JC_Y_RR, JC_Y_DIM };
+#define JC_ODE_MAX_EVENTS 8
+#define JC_ODE_TIME_LIMIT (-1)
+#define JC_ODE_STEP_LIMIT (-2)
+typedef struct {
+    int (*rhs)(double t, const double y[], double dydt[], void *ctx);
+    /* Event functions, positive while the phase goes on. */
+    void (*events)(void *ctx, const double y[], double ev[]);
+    int event_count;
+    int (*sample)(jc_Sim *sim, void *ctx, double t, const double y[]);
+    void *ctx;
+} jc_OdePhase;
+void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM]);
+void jc_y_to_state(const double y[JC_Y_DIM], double t, jc_State *s);
+/* Runs from sim->s to the first event (its index in *which) or a limit
+ * (JC_ODE_TIME_LIMIT, JC_ODE_STEP_LIMIT); sim->s and the losses advance. */
+int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t err_len);
+
 /* simulate.c: records a trajectory sample (derived fields computed here). */
 int jc_sim_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);
 /* Whether a fixed-step sample falls in (.., t_end]; its time in *t. */
 int jc_sim_sample_due(const jc_Sim *sim, double t_end, double *t);
 
-/* rolling.c */
+/* air.c: loads beyond gravity and the contact force. */
+typedef struct {
+    double fx_N, fy_N;       /* air force, acting at the centre C */
+    double torque_Nm;        /* about G, th sense: the air force's moment plus spin drag */
+    double rr_torque_per_N;  /* rolling resistance torque per newton of N (-b sgn w) */
+    double air_power_W;      /* rate of energy lost to the air, >= 0 */
+} jc_Loads;
+int jc_model_has_resistance(const jc_Model *m);
+void jc_loads_at(const jc_Model *m, double th, double vx, double vy, double w, jc_Loads *out);
+
+/* The sample with the losses carried in y (ode phases). */
+int jc_sim_sample_y(jc_Sim *sim, const jc_State *s, const double y[], jc_Mode mode, double normal_N, double friction_N);
+
+/* rolling.c: rolling accelerations and contact force; loads NULL for none. */
+void jc_roll_accel(const jc_Model *m, double th, double w, const jc_Loads *loads, double *thdd, double *normal,
+                   double *friction);
 void jc_roll_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction);
+/* With the model's loads at the rolling velocity; dir is the direction for
+ * rolling resistance when w = 0. */
+void jc_roll_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
+                jc_Loads *loads);
 int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
 
 /* sliding.c */
 typedef struct {
     double normal_N, friction_N, theta_acc, x_acc, denominator;
 } jc_SlideForces;
-void jc_slide_forces(const jc_Model *m, double th, double w, int slip_dir, jc_SlideForces *f);
+/* Contact forces and accelerations; loads NULL for none. */
+void jc_slide_accel(const jc_Model *m, double th, double w, int dir, const jc_Loads *loads, jc_SlideForces *f);
+void jc_slide_forces(const jc_Model *m, double th, double w, int slip_dir, jc_SlideForces *f); /* no loads */
+/* At a state, with the loads there when the model has any. */
+void jc_slide_at(const jc_Model *m, const jc_State *s, int dir, jc_SlideForces *f, jc_Loads *loads);
 int jc_slide_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
 
 /* flight.c */

@@ -12,12 +12,19 @@
  * experiment resolves, and far above the rounding of a located stick event. */
 #define NO_SLIP_MPS 1e-9
 
-/* Free flight needs the rim's lowest point to accelerate away: d w^2 cos th >= g cos a. */
+/* Free flight needs the rim's lowest point to accelerate away:
+ * y_C'' = -g cos a + Fy/M + d sin th T/I_G + d cos th w^2 >= 0, which without
+ * air is the paper's d w^2 cos th >= g cos a. */
 static int flight_consistent(const jc_Model *m, const jc_State *s)
 {
-    const double d = m->body.cm_offset_m;
-    return d * s->omega_radps * s->omega_radps * cos(s->theta_rad) >=
-           m->setup.gravity_mps2 * m->cos_incline;
+    const double d = m->body.cm_offset_m, th = s->theta_rad, w = s->omega_radps;
+    double acc = d * w * w * cos(th) - m->setup.gravity_mps2 * m->cos_incline;
+    if (jc_model_has_resistance(m)) {
+        jc_Loads l;
+        jc_loads_at(m, th, s->vx_mps, s->vy_mps, w, &l);
+        acc += l.fy_N / m->body.mass_kg + d * sin(th) * l.torque_Nm / m->body.inertia_g_kgm2;
+    }
+    return acc >= 0.0;
 }
 
 /* Sliding from zero slip in direction dir: N > 0, no Painleve, and the slip
@@ -27,7 +34,7 @@ static jc_ModeChoice start_slide(const jc_Model *m, const jc_State *s, int dir, 
     const double r = m->body.radius_m;
     for (int attempt = 0; attempt < 2; ++attempt, dir = -dir) {
         jc_SlideForces f;
-        jc_slide_forces(m, s->theta_rad, s->omega_radps, dir, &f);
+        jc_slide_at(m, s, dir, &f, NULL);
         if (f.denominator <= 0.0) return CHOICE_PAINLEVE;
         if (f.normal_N <= 0.0) return flight_consistent(m, s) ? CHOICE_FLY : CHOICE_PAINLEVE;
         /* At a slip onset friction is already at the cone's edge, so the
@@ -50,7 +57,7 @@ jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_rol
     if (fabs(slip) > NO_SLIP_MPS) {
         const int dir = slip > 0.0 ? 1 : -1;
         jc_SlideForces f;
-        jc_slide_forces(m, s->theta_rad, s->omega_radps, dir, &f);
+        jc_slide_at(m, s, dir, &f, NULL);
         if (f.denominator <= 0.0) return CHOICE_PAINLEVE;
         if (f.normal_N > 0.0) {
             *slip_dir = dir;
@@ -59,7 +66,8 @@ jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_rol
         return CHOICE_FLY;
     }
     double thdd, normal, friction;
-    jc_roll_forces(m, s->theta_rad, s->omega_radps, &thdd, &normal, &friction);
+    const int roll_dir = s->omega_radps > 0.0 ? 1 : (s->omega_radps < 0.0 ? -1 : 0);
+    jc_roll_at(m, s->theta_rad, s->omega_radps, roll_dir, &thdd, &normal, &friction, NULL);
     if (allow_roll && normal > 0.0 && fabs(friction) <= m->setup.mu_static * normal) {
         if (s->omega_radps == 0.0 && thdd == 0.0) return CHOICE_REST;
         return CHOICE_ROLL;

@@ -54,16 +54,55 @@ static int start_direction(const jc_Model *m)
     return a0 > 0.0 ? 1 : (a0 < 0.0 ? -1 : 0);
 }
 
-void jc_roll_forces(const jc_Model *m, double th, double w, double *thdd, double *normal,
-                    double *friction)
+/* Rolling with loads (air force (Fx, Fy) at C, torque T about G, rolling
+ * resistance b sgn(w) = bs): with x_C'' = r th'' and y_C'' = 0,
+ *   (I_P - bs M d sin th) th'' = (d sin th - bs)(M g cos a - M d cos th w^2 - Fy)
+ *                              + (r + d cos th)(M d sin th w^2 + M g sin a + Fx) + T,
+ * which without loads is I_P th'' = M g Q + M r d sin th w^2 (physics.md §2).
+ * Then F and N follow from Newton's law for G. */
+void jc_roll_accel(const jc_Model *m, double th, double w, const jc_Loads *l, double *thdd, double *normal,
+                   double *friction)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2, w2 = w * w;
-    const double acc = angular_accel(m, th, w2);
     const double s = sin(th), c = cos(th);
+    if (!l) {
+        /* The closed-form model's own expressions, kept exact for it. */
+        const double acc = angular_accel(m, th, w2);
+        *thdd = acc;
+        *normal = M * (g * m->cos_incline - d * s * acc - d * c * w2);
+        *friction = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline);
+        return;
+    }
+    const double bs = -l->rr_torque_per_N, fx = l->fx_N, fy = l->fy_N;
+    const double ieff = inertia_p(m, th) - bs * M * d * s;
+    const double rhs = (d * s - bs) * (M * g * m->cos_incline - M * d * c * w2 - fy) +
+                       (r + d * c) * (M * d * s * w2 + M * g * m->sin_incline + fx) + l->torque_Nm;
+    const double acc = rhs / ieff;
     *thdd = acc;
-    *normal = M * (g * m->cos_incline - d * s * acc - d * c * w2);
-    *friction = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline);
+    *normal = M * (g * m->cos_incline - d * s * acc - d * c * w2) - fy;
+    *friction = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline) - fx;
+}
+
+void jc_roll_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction)
+{
+    jc_roll_accel(m, th, w, NULL, thdd, normal, friction);
+}
+
+void jc_roll_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
+                jc_Loads *loads)
+{
+    if (!jc_model_has_resistance(m)) {
+        jc_roll_accel(m, th, w, NULL, thdd, normal, friction);
+        if (loads) *loads = (jc_Loads){0};
+        return;
+    }
+    jc_Loads l;
+    jc_loads_at(m, th, m->body.radius_m * w, 0.0, w, &l);
+    /* At w = 0 rolling resistance opposes the direction about to be taken. */
+    if (w == 0.0) l.rr_torque_per_N = -m->setup.rolling_resistance_m * dir;
+    jc_roll_accel(m, th, w, &l, thdd, normal, friction);
+    if (loads) *loads = l;
 }
 
 int jc_rolling_state(const jc_Model *m, double th, jc_RollState *out, char *err, size_t err_len)
@@ -329,8 +368,114 @@ static int emit_samples(jc_Sim *sim, const roll_path *path, const jc_State *star
 
 enum { RW_NORMAL, RW_SLIP_POS, RW_SLIP_NEG, RW_ENERGY };
 
+/* ---- rolling with air or rolling resistance: no energy integral, an ODE ---- */
+
+typedef struct {
+    const jc_Model *m;
+    int dir; /* sign of w during the phase */
+} roll_ode;
+
+static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f, jc_Loads *l)
+{
+    jc_roll_at(c->m, y[JC_Y_TH], y[JC_Y_W], c->dir, thdd, n, f, l);
+}
+
+static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
+{
+    (void)t;
+    const roll_ode *c = params;
+    double thdd, n, f;
+    jc_Loads l;
+    roll_ode_forces(c, y, &thdd, &n, &f, &l);
+    const double r = c->m->body.radius_m;
+    dydt[JC_Y_X] = r * y[JC_Y_W];
+    dydt[JC_Y_Y] = 0.0;
+    dydt[JC_Y_TH] = y[JC_Y_W];
+    dydt[JC_Y_VX] = r * thdd;
+    dydt[JC_Y_VY] = 0.0;
+    dydt[JC_Y_W] = thdd;
+    dydt[JC_Y_FRICTION] = 0.0;
+    dydt[JC_Y_AIR] = l.air_power_W;
+    dydt[JC_Y_RR] = -l.rr_torque_per_N * n * y[JC_Y_W];
+    return 0;
+}
+
+enum { RE_NORMAL, RE_SLIP_POS, RE_SLIP_NEG, RE_TURN, RE_END, RE_TOP, RE_COUNT };
+
+static void roll_ode_events(void *params, const double y[], double ev[])
+{
+    const roll_ode *c = params;
+    double thdd, n, f;
+    roll_ode_forces(c, y, &thdd, &n, &f, NULL);
+    const double mu = c->m->setup.mu_static;
+    ev[RE_NORMAL] = n;
+    ev[RE_SLIP_POS] = mu * n - f;
+    ev[RE_SLIP_NEG] = mu * n + f;
+    ev[RE_TURN] = c->dir * y[JC_Y_W];
+    ev[RE_END] = c->m->setup.ramp_length_m - y[JC_Y_X];
+    ev[RE_TOP] = y[JC_Y_X] + 1e-9; /* the same 1 nm slack as elsewhere */
+}
+
+static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[])
+{
+    const roll_ode *c = params;
+    double thdd, n, f;
+    roll_ode_forces(c, y, &thdd, &n, &f, NULL);
+    jc_State s;
+    jc_y_to_state(y, t, &s);
+    return jc_sim_sample_y(sim, &s, y, JC_MODE_ROLLING, n, f);
+}
+
+/* Direction in which a body at rest (w = 0) starts to roll, 0 if rolling
+ * resistance (or equilibrium) holds it. */
+static int rest_direction(const jc_Model *m, double th)
+{
+    double thdd, n, f;
+    jc_roll_at(m, th, 0.0, 1, &thdd, &n, &f, NULL);
+    if (thdd > 0.0) return 1;
+    jc_roll_at(m, th, 0.0, -1, &thdd, &n, &f, NULL);
+    return thdd < 0.0 ? -1 : 0;
+}
+
+#define ROLL_ODE_MAX_TURNS 100000L
+
+static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
+{
+    const double w0 = sim->s.omega_radps;
+    roll_ode ctx = {sim->m, w0 > 0.0 ? 1 : (w0 < 0.0 ? -1 : rest_direction(sim->m, sim->s.theta_rad))};
+    for (long turn = 0; turn < ROLL_ODE_MAX_TURNS; ++turn) {
+        if (ctx.dir == 0) {
+            *end = PHASE_AT_REST;
+            return JC_OK;
+        }
+        const jc_OdePhase phase = {roll_ode_rhs, roll_ode_events, RE_COUNT, roll_ode_sample, &ctx};
+        int which;
+        int st = jc_ode_run(sim, &phase, &which, err, err_len);
+        if (st != JC_OK) return st;
+        sim->s.y_m = sim->m->body.radius_m;
+        sim->s.vy_mps = 0.0;
+        sim->s.vx_mps = sim->m->body.radius_m * sim->s.omega_radps;
+        switch (which) {
+        case RE_NORMAL: *end = PHASE_LIFTOFF; return JC_OK;
+        case RE_SLIP_POS:
+        case RE_SLIP_NEG: *end = PHASE_SLIP; return JC_OK;
+        case RE_TURN:
+            sim->s.omega_radps = sim->s.vx_mps = 0.0;
+            ctx.dir = rest_direction(sim->m, sim->s.theta_rad);
+            continue;
+        case RE_END: *end = PHASE_RAMP_END; return JC_OK;
+        case RE_TOP: *end = PHASE_RAMP_TOP; return JC_OK;
+        case JC_ODE_TIME_LIMIT: *end = PHASE_TIME_LIMIT; return JC_OK;
+        default: *end = PHASE_STEP_LIMIT; return JC_OK;
+        }
+    }
+    *end = PHASE_STEP_LIMIT;
+    return JC_OK;
+}
+
 int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
+    if (jc_model_has_resistance(sim->m)) return roll_ode_phase(sim, end, err, err_len);
     const jc_Model *m = sim->m;
     const double r = m->body.radius_m, L = m->setup.ramp_length_m;
     roll_path path;

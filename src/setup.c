@@ -29,6 +29,8 @@ jc_Setup jc_paper_setup(void)
     s.omega0_radps = 0.0;
     s.ramp_length_m = 3.20;
     s.paper_cm_offset_m = 0.0265; /* printed, rounded from 2.663 cm */
+    s.length_m = 0.0555;          /* "high h = 5.55 cm" */
+    s.air_density_kgpm3 = 1.204;  /* resistances stay off: coefficients 0 */
     return s;
 }
 
@@ -94,6 +96,13 @@ static int check_range(const char *what, const char *unit, double v, double lo, 
                    what, v, unit, lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
 }
 
+int jc_setup_has_resistance(const jc_Setup *s)
+{
+    const int air = (s->drag_coefficient != 0.0 || s->lift_coefficient != 0.0) &&
+                    s->air_density_kgpm3 != 0.0 && s->length_m != 0.0;
+    return air || s->spin_drag_Nms2 != 0.0 || s->rolling_resistance_m != 0.0;
+}
+
 int jc_setup_validate(const jc_Setup *s, char *err, size_t err_len)
 {
     jc_Body body;
@@ -110,5 +119,15 @@ int jc_setup_validate(const jc_Setup *s, char *err, size_t err_len)
     const double max_ramp = JC_MAX_RAMP_TURNS * 2.0 * 3.14159265358979323846 * s->body.radius_m;
     if ((st = check_range("ramp length", "m", s->ramp_length_m, 0.0, 1, max_ramp, 0, err, err_len))) return st;
     if ((st = check_range("paper-model CM offset", "m", s->paper_cm_offset_m, 0.0, 0, s->body.radius_m, 0, err, err_len))) return st;
+    if ((st = check_range("length", "m", s->length_m, 0.0, 0, 1e3, 0, err, err_len))) return st;
+    if ((st = check_range("air density", "kg/m3", s->air_density_kgpm3, 0.0, 0, 100.0, 0, err, err_len))) return st;
+    if ((st = check_range("drag coefficient", "", s->drag_coefficient, 0.0, 0, 100.0, 0, err, err_len))) return st;
+    if ((st = check_range("lift coefficient", "", s->lift_coefficient, -100.0, 0, 100.0, 0, err, err_len))) return st;
+    if ((st = check_range("spin drag", "N m s2", s->spin_drag_Nms2, 0.0, 0, 1e3, 0, err, err_len))) return st;
+    if ((st = check_range("rolling resistance", "m", s->rolling_resistance_m, 0.0, 0, 0.5 * s->body.radius_m, 0, err, err_len))) return st;
+    if ((s->drag_coefficient > 0.0 || s->lift_coefficient != 0.0) && !(s->length_m > 0.0 && s->air_density_kgpm3 > 0.0))
+        return jc_fail(err, err_len, JC_EINVAL,
+                       "drag or lift needs a length > 0 m and an air density > 0 kg/m3 (length %g m, density %g kg/m3)",
+                       s->length_m, s->air_density_kgpm3);
     return JC_OK;
 }

@@ -169,9 +169,25 @@ int jc_sim_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N,
     p->potential_J = jc_potential_energy(m, s);
     p->friction_loss_J = sim->friction_loss_J;
     p->impact_loss_J = sim->impact_loss_J;
+    p->air_loss_J = sim->air_loss_J;
+    p->rolling_resistance_loss_J = sim->rr_loss_J;
     if (sim->opt->sample_dt_s > 0.0 && s->t_s >= sim->next_sample_t)
         sim->next_sample_t = (floor(s->t_s / sim->opt->sample_dt_s + 1e-9) + 1.0) * sim->opt->sample_dt_s;
     return JC_OK;
+}
+
+int jc_sim_sample_y(jc_Sim *sim, const jc_State *s, const double y[], jc_Mode mode, double normal_N,
+                    double friction_N)
+{
+    const double saved[3] = {sim->friction_loss_J, sim->air_loss_J, sim->rr_loss_J};
+    sim->friction_loss_J = y[JC_Y_FRICTION];
+    sim->air_loss_J = y[JC_Y_AIR];
+    sim->rr_loss_J = y[JC_Y_RR];
+    const int st = jc_sim_sample(sim, s, mode, normal_N, friction_N);
+    sim->friction_loss_J = saved[0];
+    sim->air_loss_J = saved[1];
+    sim->rr_loss_J = saved[2];
+    return st;
 }
 
 int jc_sim_sample_due(const jc_Sim *sim, double t_end, double *t)
@@ -187,12 +203,13 @@ static void contact_force(const jc_Sim *sim, double *normal, double *friction)
     *normal = *friction = 0.0;
     double thdd;
     jc_SlideForces f;
+    const double w = sim->s.omega_radps;
     switch (sim->mode) {
     case JC_MODE_ROLLING:
-        jc_roll_forces(sim->m, sim->s.theta_rad, sim->s.omega_radps, &thdd, normal, friction);
+        jc_roll_at(sim->m, sim->s.theta_rad, w, (w > 0.0) - (w < 0.0), &thdd, normal, friction, NULL);
         break;
     case JC_MODE_SLIDING:
-        jc_slide_forces(sim->m, sim->s.theta_rad, sim->s.omega_radps, sim->slip_dir, &f);
+        jc_slide_at(sim->m, &sim->s, sim->slip_dir, &f, NULL);
         *normal = f.normal_N;
         *friction = f.friction_N;
         break;
@@ -284,7 +301,10 @@ static void finish(machine *mc, jc_Termination why, const char *detail)
     e->potential_J = jc_potential_energy(sim->m, &sim->s);
     e->friction_loss_J = sim->friction_loss_J;
     e->impact_loss_J = sim->impact_loss_J;
-    e->balance_error_J = e->kinetic_J + e->potential_J + e->friction_loss_J + e->impact_loss_J - sim->energy0_J;
+    e->air_loss_J = sim->air_loss_J;
+    e->rolling_resistance_loss_J = sim->rr_loss_J;
+    e->balance_error_J = e->kinetic_J + e->potential_J + e->friction_loss_J + e->impact_loss_J + e->air_loss_J +
+                         e->rolling_resistance_loss_J - sim->energy0_J;
 }
 
 /* One impact at a touchdown: bounce or contact. */
@@ -350,9 +370,9 @@ static int run_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err,
 static int alloc_workspaces(jc_Sim *sim)
 {
     sim->quad = gsl_integration_workspace_alloc(200);
-    sim->ode_step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, 5);
+    sim->ode_step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, JC_Y_DIM);
     sim->ode_control = gsl_odeiv2_control_y_new(sim->opt->ode_atol, sim->opt->ode_rtol);
-    sim->ode_evolve = gsl_odeiv2_evolve_alloc(5);
+    sim->ode_evolve = gsl_odeiv2_evolve_alloc(JC_Y_DIM);
     return sim->quad && sim->ode_step && sim->ode_control && sim->ode_evolve ? JC_OK : JC_ENOMEM;
 }
 
@@ -462,7 +482,8 @@ int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out
     } else {
         /* A start that cannot roll: the event shows the rolling forces that rule it out. */
         double thdd, n_roll, f_roll;
-        jc_roll_forces(model, sim->s.theta_rad, sim->s.omega_radps, &thdd, &n_roll, &f_roll);
+        jc_roll_at(model, sim->s.theta_rad, sim->s.omega_radps, model->setup.omega0_radps >= 0.0 ? 1 : -1, &thdd,
+                   &n_roll, &f_roll, NULL);
         if (kind >= 0) st = add_event(&mc, (jc_EventKind)kind, JC_MODE_ROLLING, n_roll, f_roll, 0.0, NULL);
         if (kind == JC_EVENT_LIFTOFF) {
             mc.flight_event = 0;

@@ -110,6 +110,18 @@ typedef struct {
     /* Centre-of-mass offset the paper's model uses; 0 means the body's exact d.
      * The paper preset sets the printed, rounded 2.65 cm. */
     double paper_cm_offset_m;
+    /* Air and rolling resistance (docs/physics.md, "Air and rolling
+     * resistance"). All coefficients 0 (the default) switch them off, and then
+     * every result is that of the resistance-free model, bit for bit. */
+    double length_m;             /* cylinder length along its axis, >= 0; frontal area 2 r L */
+    double air_density_kgpm3;    /* [0, 100], default 1.204 (dry air, 20 C, 101.325 kPa) */
+    double drag_coefficient;     /* C_d >= 0: drag 1/2 rho C_d A |v| v on the centre, against v */
+    /* C_L (Magnus): force 1/2 rho C_L A |v|^2 perpendicular to the centre's
+     * velocity; C_L > 0 pushes a forward-rolling (topspinning) cylinder into
+     * the incline, as a real spinning cylinder is pushed. */
+    double lift_coefficient;
+    double spin_drag_Nms2;       /* k >= 0: torque -k w |w| on the spin, N m s^2 */
+    double rolling_resistance_m; /* b in [0, r/2]: lever arm of N against the rolling direction */
 } jc_Setup;
 
 /* Bounds checked by jc_setup_validate, shared with the edges for messages. */
@@ -127,6 +139,9 @@ int jc_preset_setup(const char *name, jc_Setup *out, char *err, size_t err_len);
 /* The i-th preset's name and one-line description; NULL past the end. */
 const char *jc_preset_name(int i);
 const char *jc_preset_description(int i);
+
+/* Whether a setup has any air or rolling resistance switched on. */
+int jc_setup_has_resistance(const jc_Setup *setup);
 
 /* Checks every field; the message names the field, its value and the range. */
 int jc_setup_validate(const jc_Setup *setup, char *err, size_t err_len);
@@ -320,10 +335,13 @@ typedef struct {
     double gap_m;                    /* lowest rim point above the incline (0 in contact) */
     double kinetic_J, potential_J;   /* potential relative to the start */
     double friction_loss_J, impact_loss_J; /* dissipated so far */
+    double air_loss_J, rolling_resistance_loss_J;
 } jc_Sample;
 
 typedef struct {
     double kinetic_J, potential_J, friction_loss_J, impact_loss_J;
+    double air_loss_J;              /* drag on the centre and on the spin */
+    double rolling_resistance_loss_J;
     double balance_error_J; /* (K + U + losses) - (K0 + U0): integrator error */
 } jc_EnergyReport;
 
