@@ -27,7 +27,7 @@ int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err,
 const char *cli_units_allowed(cli_Quantity q);
 
 /* ---- options.c ---- */
-#define CLI_SETUP_OPTION_COUNT 17
+#define CLI_SETUP_OPTION_COUNT 23
 #define CLI_SETUP_OPT_BASE 1000
 extern const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT];
 

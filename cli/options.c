@@ -8,7 +8,7 @@
 enum {
     O_PRESET, O_RADIUS, O_DISC_MASS, O_ROD_MASS, O_ROD_OFFSET, O_ROD_RADIUS, O_PART,
     O_INCLINE, O_G, O_MU, O_MU_S, O_MU_K, O_RESTITUTION, O_THETA0, O_OMEGA0,
-    O_RAMP_LENGTH, O_PAPER_D
+    O_RAMP_LENGTH, O_PAPER_D, O_LENGTH, O_AIR_DENSITY, O_DRAG, O_LIFT, O_SPIN_DRAG, O_ROLLING_RES
 };
 
 #define B CLI_SETUP_OPT_BASE
@@ -30,6 +30,12 @@ const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT] = {
     {"omega0", required_argument, 0, B + O_OMEGA0},
     {"ramp-length", required_argument, 0, B + O_RAMP_LENGTH},
     {"paper-d", required_argument, 0, B + O_PAPER_D},
+    {"length", required_argument, 0, B + O_LENGTH},
+    {"air-density", required_argument, 0, B + O_AIR_DENSITY},
+    {"drag-coefficient", required_argument, 0, B + O_DRAG},
+    {"lift-coefficient", required_argument, 0, B + O_LIFT},
+    {"spin-drag", required_argument, 0, B + O_SPIN_DRAG},
+    {"rolling-resistance", required_argument, 0, B + O_ROLLING_RES},
 };
 
 void cli_setup_help(FILE *out)
@@ -58,7 +64,15 @@ void cli_setup_help(FILE *out)
         "  --omega0 W           initial angular velocity (> 0 rolls downhill), rad/s\n"
         "  --ramp-length LEN    from the start contact point to the ramp's lower end\n"
         "  --paper-d LEN        CM offset the paper's model uses (default: the printed\n"
-        "                       2.65 cm for the paper preset, the exact d otherwise)\n",
+        "                       2.65 cm for the paper preset, the exact d otherwise)\n"
+        "Air and rolling resistance (all off by default, as in the paper):\n"
+        "  --drag-coefficient X C_d: drag 1/2 rho C_d A |v| v on the centre, A = 2 r L\n"
+        "  --lift-coefficient X C_L: Magnus force 1/2 rho C_L A v^2 across the velocity;\n"
+        "                       C_L > 0 pushes a forward-rolling cylinder into the incline\n"
+        "  --spin-drag K        torque -K w|w| on the spin, N m s2\n"
+        "  --rolling-resistance LEN  lever arm b of N against the rolling direction, [0, r/2]\n"
+        "  --length LEN         cylinder length along its axis (paper: 5.55 cm)\n"
+        "  --air-density RHO    kg/m3 (default 1.204, dry air at 20 C and 101.325 kPa)\n",
         out);
 }
 
@@ -252,6 +266,12 @@ int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_l
         {O_OMEGA0, Q_ANGULAR_SPEED, offsetof(jc_Setup, omega0_radps)},
         {O_RAMP_LENGTH, Q_LENGTH, offsetof(jc_Setup, ramp_length_m)},
         {O_PAPER_D, Q_LENGTH, offsetof(jc_Setup, paper_cm_offset_m)},
+        {O_LENGTH, Q_LENGTH, offsetof(jc_Setup, length_m)},
+        {O_AIR_DENSITY, Q_NUMBER, offsetof(jc_Setup, air_density_kgpm3)},
+        {O_DRAG, Q_NUMBER, offsetof(jc_Setup, drag_coefficient)},
+        {O_LIFT, Q_NUMBER, offsetof(jc_Setup, lift_coefficient)},
+        {O_SPIN_DRAG, Q_NUMBER, offsetof(jc_Setup, spin_drag_Nms2)},
+        {O_ROLLING_RES, Q_LENGTH, offsetof(jc_Setup, rolling_resistance_m)},
     };
     for (size_t k = 0; k < sizeof scalars / sizeof scalars[0]; ++k) {
         double v;
