@@ -17,9 +17,15 @@ typedef struct {
 static const double sweep_mu[] = {0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
 #define SWEEP_COUNT ((int)(sizeof sweep_mu / sizeof sweep_mu[0]))
 
+/* Drag coefficient of the drag column: a short cylinder in cross-flow
+ * (length/diameter 0.28, Re about 4e4); docs/physics.md gives the source
+ * and how the result moves with C_d. */
+#define PAPER_DRAG_CD 0.6
+
 typedef struct {
     int found;
     double theta_rad, x_m;
+    double first_hop_m;  /* largest gap of the first flight */
     jc_RunSummary summary;
     jc_Termination termination;
 } full_result;
@@ -31,6 +37,7 @@ typedef struct {
     jc_RollingResult rolling;
     int nearest;  /* index of the intersection nearest the printed angle */
     full_result full;
+    full_result drag; /* the full model with air drag at PAPER_DRAG_CD */
     full_result sweep[SWEEP_COUNT];
 } paper_row;
 
@@ -88,8 +95,10 @@ static int run_full(const jc_Setup *s, full_result *out, char *err, size_t err_l
         out->termination = run.termination;
         out->found = out->summary.first_liftoff >= 0;
         if (out->found) {
-            out->theta_rad = run.events[out->summary.first_liftoff].state.theta_rad;
-            out->x_m = run.events[out->summary.first_liftoff].state.x_m;
+            const jc_Event *e = &run.events[out->summary.first_liftoff];
+            out->theta_rad = e->state.theta_rad;
+            out->x_m = e->state.x_m;
+            out->first_hop_m = e->hop_height_m;
         }
     }
     jc_run_free(&run);
@@ -113,6 +122,9 @@ static int compute_rows(const jc_Setup *base, paper_row *rows, int *count, char 
             return st;
         r->nearest = nearest_root(&r->paper, table[i].printed_theta_rad);
         if ((st = run_full(&s, &r->full, err, err_len)) != JC_OK) return st;
+        jc_Setup with_drag = s;
+        with_drag.drag_coefficient = PAPER_DRAG_CD;
+        if ((st = run_full(&with_drag, &r->drag, err, err_len)) != JC_OK) return st;
         for (int k = 0; k < SWEEP_COUNT; ++k) {
             jc_Setup sw = s;
             sw.mu_static = sw.mu_kinetic = sweep_mu[k];
@@ -189,6 +201,30 @@ static void print_full(const paper_row *rows, int n)
     for (int i = 0; i < n; ++i) printf(" %14d", rows[i].full.summary.bounces);
     printf("\n%-40s", "  largest hop, gap under the rim (mm)");
     for (int i = 0; i < n; ++i) printf(" %14.2f", rows[i].full.summary.largest_hop_m * 1e3);
+    printf("\nFull model with air drag, C_d = %.2f (rho = %.3f kg/m3, A = 2 r L = %.0f cm2; docs/physics.md)\n",
+           PAPER_DRAG_CD, s0->air_density_kgpm3, 2e4 * rows[0].model.body.radius_m * s0->length_m);
+    printf("%-40s", "  first lift-off position (cm)");
+    for (int i = 0; i < n; ++i) {
+        if (rows[i].drag.found) printf(" %14.2f", rows[i].drag.x_m * 100);
+        else printf(" %14s", "none");
+    }
+    printf("\n%-40s", "  moved by drag (cm)");
+    for (int i = 0; i < n; ++i) {
+        if (rows[i].drag.found && rows[i].full.found) printf(" %+14.2f", (rows[i].drag.x_m - rows[i].full.x_m) * 100);
+        else printf(" %14s", "-");
+    }
+    printf("\n%-40s", "  toward the measurement");
+    for (int i = 0; i < n; ++i) {
+        const paper_row *r = &rows[i];
+        if (!r->drag.found || !r->full.found) { printf(" %14s", "-"); continue; }
+        const double before = fabs(r->full.x_m - r->table.measured_x_m), after = fabs(r->drag.x_m - r->table.measured_x_m);
+        printf(" %14s", after < before ? "yes" : "no");
+    }
+    printf("\n%-40s", "  inside the error bar");
+    for (int i = 0; i < n; ++i)
+        printf(" %14s", !rows[i].drag.found ? "-" : inside(rows[i].drag.x_m, &rows[i].table) ? "yes" : "no");
+    printf("\n%-40s", "  first hop (mm): without -> with drag");
+    for (int i = 0; i < n; ++i) printf("   %5.1f -> %4.1f", rows[i].full.first_hop_m * 1e3, rows[i].drag.first_hop_m * 1e3);
     printf("\nFirst lift-off position (cm) against friction mu_s = mu_k:\n");
     for (int k = 0; k < SWEEP_COUNT; ++k) {
         char label[48];
@@ -272,15 +308,16 @@ static void print_text(const paper_row *rows, int n)
     }
     print_flags(rows, n);
     printf("\nNotes:\n"
-           "  * The paper's model uses the printed, rounded d = 2.65 cm and I_CM = M1 r^2/2 + M d^2;\n"
-           "    the exact model uses d = %.4f cm from the parts and I_C with the rod's own inertia.\n"
+           "  * The paper's model uses d = %.4f cm (%s) and I_CM = M1 r^2/2 + M d^2; the exact\n"
+           "    model uses d = %.4f cm from the parts and I_C with every part's own inertia.\n"
            "  * The rolling N = 0 point is a diagnostic, not the physical jump: there F != 0, so with\n"
            "    finite friction the cylinder slips first; the slip onset row is where rolling ends.\n"
            "    The full model follows the motion through slip, re-stick, lift-off and landing.\n"
-           "  * Friction: the paper gives none; mu = 0.5 is a mid value of tabulated coefficients for\n"
-           "    plastics on wood (about 0.3 to 0.6). The sweep shows how little the first lift-off\n"
-           "    depends on it compared with the 5 cm reading error (docs/physics.md).\n",
-           m0->body.cm_offset_m * 100);
+           "  * Friction: the paper gives none; mu = %.2f is a nominal value, not a measurement.\n"
+           "    The sweep shows how far the first lift-off moves with it (docs/physics.md).\n",
+           rows[0].paper.cm_offset_m * 100,
+           m0->setup.paper_cm_offset_m > 0.0 ? "as printed, rounded" : "the exact value",
+           m0->body.cm_offset_m * 100, m0->setup.mu_static);
 }
 
 /* ---- JSON ---- */
@@ -332,6 +369,7 @@ static cJSON *json_row(const paper_row *r)
     cJSON_AddNumberToObject(fu, "hops", r->full.summary.liftoffs);
     cJSON_AddNumberToObject(fu, "bounces", r->full.summary.bounces);
     cJSON_AddNumberToObject(fu, "largest_hop", r->full.summary.largest_hop_m);
+    cJSON_AddNumberToObject(fu, "first_hop", r->full.first_hop_m);
     cJSON_AddBoolToObject(fu, "inside_error_bar", r->full.found && inside(r->full.x_m, &r->table));
     cJSON_AddNumberToObject(fu, "mu_s", r->model.setup.mu_static);
     cJSON_AddNumberToObject(fu, "mu_k", r->model.setup.mu_kinetic);
@@ -345,6 +383,21 @@ static cJSON *json_row(const paper_row *r)
         cJSON_AddItemToArray(sw, point);
     }
     cJSON_AddItemToObject(o, "full", fu);
+    cJSON *dr = r->drag.found ? theta_x(r->drag.theta_rad, r->drag.x_m) : cJSON_CreateObject();
+    if (!r->drag.found) {
+        cJSON_AddNullToObject(dr, "theta");
+        cJSON_AddNullToObject(dr, "x");
+    }
+    cJSON_AddNumberToObject(dr, "drag_coefficient", PAPER_DRAG_CD);
+    cJSON_AddNumberToObject(dr, "hops", r->drag.summary.liftoffs);
+    cJSON_AddNumberToObject(dr, "first_hop", r->drag.first_hop_m);
+    cJSON_AddBoolToObject(dr, "inside_error_bar", r->drag.found && inside(r->drag.x_m, &r->table));
+    if (r->drag.found && r->full.found) {
+        cJSON_AddNumberToObject(dr, "moved_by_drag", r->drag.x_m - r->full.x_m);
+        cJSON_AddBoolToObject(dr, "toward_measurement",
+                              fabs(r->drag.x_m - r->table.measured_x_m) < fabs(r->full.x_m - r->table.measured_x_m));
+    }
+    cJSON_AddItemToObject(o, "drag", dr);
     cJSON *me = theta_x(NAN, r->table.measured_x_m);
     cJSON_AddNumberToObject(me, "error", r->table.measured_error_m);
     cJSON_AddItemToObject(o, "measured", me);
@@ -376,7 +429,9 @@ int cmd_paper(int argc, char **argv)
     }
     if (o.json) {
         cJSON *doc = cJSON_CreateObject();
-        cJSON_AddItemToObject(doc, "setup", cli_json_setup(&rows[0].model));
+        cJSON *setup_json = cli_json_setup(&rows[0].model);
+        cJSON_DeleteItemFromObject(setup_json, "incline_deg"); /* per row */
+        cJSON_AddItemToObject(doc, "setup", setup_json);
         cJSON *arr = cJSON_AddArrayToObject(doc, "rows");
         for (int i = 0; i < n; ++i) cJSON_AddItemToArray(arr, json_row(&rows[i]));
         return cli_json_print(doc);

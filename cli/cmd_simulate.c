@@ -42,14 +42,14 @@ static int write_csv(const jc_Run *run, const char *path)
     cli_AtomicFile af;
     if (cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
     fprintf(af.f, "t_s,mode,x_m,y_m,vx_mps,vy_mps,theta_rad,omega_radps,cm_x_m,cm_y_m,normal_N,friction_N,"
-                  "slip_mps,gap_m,kinetic_J,potential_J,friction_loss_J,impact_loss_J\n");
+                  "slip_mps,gap_m,kinetic_J,potential_J,friction_loss_J,impact_loss_J,air_loss_J,rolling_resistance_loss_J\n");
     for (int i = 0; i < run->sample_count; ++i) {
         const jc_Sample *p = &run->samples[i];
         const jc_State *s = &p->state;
-        fprintf(af.f, "%.12g,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g,%.12g,%.12g,%.9g,%.9g\n",
+        fprintf(af.f, "%.12g,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g\n",
                 s->t_s, jc_mode_name(p->mode), s->x_m, s->y_m, s->vx_mps, s->vy_mps, s->theta_rad, s->omega_radps,
                 p->cm_x_m, p->cm_y_m, p->normal_N, p->friction_N, p->slip_mps, p->gap_m, p->kinetic_J,
-                p->potential_J, p->friction_loss_J, p->impact_loss_J);
+                p->potential_J, p->friction_loss_J, p->impact_loss_J, p->air_loss_J, p->rolling_resistance_loss_J);
     }
     return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
 }
@@ -74,10 +74,18 @@ static void print_event(const jc_Model *m, int i, const jc_Event *e)
 static void print_text(const jc_Model *m, const jc_SimOptions *o, const jc_Run *run)
 {
     cli_print_setup(stdout, m, 1);
-    printf("Full model: rolling (closed form), sliding (rk8pd, rtol %g), flight (ballistic), impacts\n"
-           "(restitution %g, Coulomb friction); events located to %g s; bounces rising less than\n"
-           "%g m end in contact.\n\n",
-           o->ode_rtol, m->setup.restitution, o->event_tol_s, o->contact_height_m);
+    if (jc_setup_has_resistance(&m->setup))
+        printf("Full model with air and rolling resistance (C_d %g, C_L %g, spin drag %g N m s2, lever %g m;\n"
+               "rho %g kg/m3, length %g m): every phase integrated (rk8pd, rtol %g), impacts (restitution %g,\n"
+               "Coulomb friction); events located to %g s; bounces rising less than %g m end in contact.\n\n",
+               m->setup.drag_coefficient, m->setup.lift_coefficient, m->setup.spin_drag_Nms2,
+               m->setup.rolling_resistance_m, m->setup.air_density_kgpm3, m->setup.length_m, o->ode_rtol,
+               m->setup.restitution, o->event_tol_s, o->contact_height_m);
+    else
+        printf("Full model: rolling (closed form), sliding (rk8pd, rtol %g), flight (ballistic), impacts\n"
+               "(restitution %g, Coulomb friction); events located to %g s; bounces rising less than\n"
+               "%g m end in contact.\n\n",
+               o->ode_rtol, m->setup.restitution, o->event_tol_s, o->contact_height_m);
     printf("  # event         mode change           t (s)   x (cm) gap (mm) theta(rad) w (rad/s) slip(m/s)    N (N)    F (N)\n");
     for (int i = 0; i < run->event_count; ++i) print_event(m, i, &run->events[i]);
     if (run->event_count == 0) printf("  (no events)\n");
@@ -86,12 +94,13 @@ static void print_text(const jc_Model *m, const jc_SimOptions *o, const jc_Run *
            run->termination_detail, f->t_s, f->x_m * 100, jc_mode_name(run->final_mode));
     const jc_EnergyReport *e = &run->energy;
     /* Relative to the energy that changed hands, or to M g r for a body that hardly moved. */
-    const double scale = fmax(e->kinetic_J + fabs(e->potential_J) + e->friction_loss_J + e->impact_loss_J,
+    const double losses = e->friction_loss_J + e->impact_loss_J + e->air_loss_J + e->rolling_resistance_loss_J;
+    const double scale = fmax(e->kinetic_J + fabs(e->potential_J) + losses,
                               m->body.mass_kg * m->setup.gravity_mps2 * m->body.radius_m);
-    printf("Energy (J): kinetic %.6f, potential %.6f (from the start), lost to friction %.6f, lost in impacts %.6f;\n"
-           "            balance error %.2e J (%.1e relative)\n",
-           e->kinetic_J, e->potential_J, e->friction_loss_J, e->impact_loss_J, e->balance_error_J,
-           fabs(e->balance_error_J) / scale);
+    printf("Energy (J): kinetic %.6f, potential %.6f (from the start); lost to friction %.6f, in impacts %.6f,\n"
+           "            to the air %.6f, to rolling resistance %.6f; balance error %.2e J (%.1e relative)\n",
+           e->kinetic_J, e->potential_J, e->friction_loss_J, e->impact_loss_J, e->air_loss_J,
+           e->rolling_resistance_loss_J, e->balance_error_J, fabs(e->balance_error_J) / scale);
     jc_RunSummary sum;
     jc_run_summarize(run, &sum);
     if (sum.first_liftoff >= 0) {

@@ -83,6 +83,12 @@ cJSON *cli_json_setup(const jc_Model *m)
     cJSON_AddNumberToObject(o, "theta0", s->theta0_rad);
     cJSON_AddNumberToObject(o, "omega0", s->omega0_radps);
     cJSON_AddNumberToObject(o, "ramp_length", s->ramp_length_m);
+    cJSON_AddNumberToObject(o, "length", s->length_m);
+    cJSON_AddNumberToObject(o, "air_density", s->air_density_kgpm3);
+    cJSON_AddNumberToObject(o, "drag_coefficient", s->drag_coefficient);
+    cJSON_AddNumberToObject(o, "lift_coefficient", s->lift_coefficient);
+    cJSON_AddNumberToObject(o, "spin_drag", s->spin_drag_Nms2);
+    cJSON_AddNumberToObject(o, "rolling_resistance", s->rolling_resistance_m);
     return o;
 }
 
@@ -140,6 +146,8 @@ cJSON *cli_json_energy(const jc_EnergyReport *e)
     cJSON_AddNumberToObject(o, "potential", e->potential_J);
     cJSON_AddNumberToObject(o, "friction_loss", e->friction_loss_J);
     cJSON_AddNumberToObject(o, "impact_loss", e->impact_loss_J);
+    cJSON_AddNumberToObject(o, "air_loss", e->air_loss_J);
+    cJSON_AddNumberToObject(o, "rolling_resistance_loss", e->rolling_resistance_loss_J);
     cJSON_AddNumberToObject(o, "balance_error", e->balance_error_J);
     return o;
 }
