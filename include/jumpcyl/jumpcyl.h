@@ -14,6 +14,12 @@
  * status codes with a caller-provided message buffer. The library keeps no
  * global mutable state, never prints and never exits: it is thread-safe as
  * long as each thread writes only to its own outputs.
+ *
+ * GSL: the library uses GSL (root finding, quadrature, ODE stepping) and
+ * reports its failures as JC_ENUMERIC. GSL's default error handler aborts the
+ * program instead; call gsl_set_error_handler_off() once at the start of a
+ * program that links jumpcyl (the jumpcyl tool does). The library does not
+ * change that process-wide setting itself.
  */
 #ifndef JUMPCYL_JUMPCYL_H
 #define JUMPCYL_JUMPCYL_H
