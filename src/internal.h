@@ -33,6 +33,10 @@ typedef struct {
 } jc_TrigBasis;
 void jc_tl_basis(jc_TrigBasis *b, double th);
 void jc_tl_eval3_basis(const jc_TrigLin *p, const jc_TrigBasis *b, double out[3]);
+/* The same, summing only up to degree deg (>= the polynomial's degree). */
+void jc_tl_eval3_basis_upto(const jc_TrigLin *p, const jc_TrigBasis *b, int deg, double out[3]);
+/* Highest k with a nonzero coefficient (-1 for the zero polynomial). */
+int jc_tl_degree(const jc_TrigLin *p);
 /* f, f', f'' at th. */
 void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3]);
 /* A bound on |f'''| for |th| <= th_abs_max. */

@@ -152,18 +152,29 @@ void jc_tl_basis(jc_TrigBasis *b, double th)
     }
 }
 
+int jc_tl_degree(const jc_TrigLin *p)
+{
+    return degree(p);
+}
+
 void jc_tl_eval3_basis(const jc_TrigLin *p, const jc_TrigBasis *b, double out[3])
 {
+    jc_tl_eval3_basis_upto(p, b, JC_TRIG_DEGREE, out);
+}
+
+void jc_tl_eval3_basis_upto(const jc_TrigLin *p, const jc_TrigBasis *b, int deg, double out[3])
+{
+    static const double kd[JC_TRIG_DEGREE + 1] = {0, 1, 2, 3, 4}, k2[JC_TRIG_DEGREE + 1] = {0, 1, 4, 9, 16};
     double t0 = 0.0, d0 = 0.0, e0 = 0.0, t1 = 0.0, d1 = 0.0, e1 = 0.0;
-    for (int k = 0; k <= JC_TRIG_DEGREE; ++k) {
-        const double kk = (double)k * k, ck = b->c[k], sk = b->s[k];
+    for (int k = 0; k <= deg; ++k) {
+        const double ck = b->c[k], sk = b->s[k];
         const double a0 = p->c0[k] * ck + p->s0[k] * sk, a1 = p->c1[k] * ck + p->s1[k] * sk;
         t0 += a0;
-        d0 += k * (p->s0[k] * ck - p->c0[k] * sk);
-        e0 -= kk * a0;
+        d0 += kd[k] * (p->s0[k] * ck - p->c0[k] * sk);
+        e0 -= k2[k] * a0;
         t1 += a1;
-        d1 += k * (p->s1[k] * ck - p->c1[k] * sk);
-        e1 -= kk * a1;
+        d1 += kd[k] * (p->s1[k] * ck - p->c1[k] * sk);
+        e1 -= k2[k] * a1;
     }
     const double th = b->th;
     out[0] = t0 + th * t1;
