@@ -225,14 +225,15 @@ static void roll_path_init(const jc_Model *m, double th, double w, roll_path *p)
     p->inertia = &m->inertia_p_poly;
 }
 
-/* U(th) - U(a) without cancellation when th is near a:
- * cos th - cos a = -2 sin((th+a)/2) sin((th-a)/2), sin th - sin a = 2 cos((th+a)/2) sin((th-a)/2). */
-static double potential_change(const jc_Model *m, double a, double th)
+/* U(a + delta) - U(a) without cancellation for small delta, which is passed
+ * as itself (a + delta rounded back to delta would lose it near a):
+ * cos(a+delta) - cos a = -2 sin(a + delta/2) sin(delta/2), likewise for sin. */
+static double potential_change(const jc_Model *m, double a, double delta)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    const double h = 0.5 * (th - a), c = 0.5 * (th + a), sh = sin(h);
+    const double h = 0.5 * delta, c = a + h, sh = sin(h);
     const double dcos = -2.0 * sin(c) * sh, dsin = 2.0 * cos(c) * sh;
-    return M * m->setup.gravity_mps2 * (d * m->cos_incline * dcos - m->sin_incline * (r * (th - a) + d * dsin));
+    return M * m->setup.gravity_mps2 * (d * m->cos_incline * dcos - m->sin_incline * (r * delta + d * dsin));
 }
 
 /* dt/du for th = anchor + sigma u^2: 2 u / |w(th)|, finite at a turning
@@ -249,15 +250,18 @@ typedef struct {
 static double dt_du(double u, void *params)
 {
     const time_integrand *ti = params;
-    const double th = ti->anchor + ti->sigma * u * u;
-    const double ip = jc_tl_value(ti->path->inertia, th);
+    const double delta = ti->sigma * u * u;
+    const double ip = jc_tl_value(ti->path->inertia, ti->anchor + delta);
     if (u == 0.0) return ti->p0 > 0.0 || ti->p1 <= 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
-    const double p = ti->p0 - 2.0 * potential_change(ti->m, ti->anchor, th);
+    const double p = ti->p0 - 2.0 * potential_change(ti->m, ti->anchor, delta);
     return p > 0.0 ? 2.0 * u / sqrt(p / ip) : 0.0;
 }
 
-/* Time to roll from th_a to th_b (either may be a turning point). */
-static int roll_time(jc_Sim *sim, const roll_path *path, double th_a, double th_b, double *dt,
+/* Time to roll from th_a to th_b (either may be a turning point). p_a is
+ * I_P w^2 at th_a as known exactly (the phase's start state); taking it from
+ * the energy polynomial instead, e - 2U(th_a), loses it to cancellation when
+ * the body starts almost at rest. */
+static int roll_time(jc_Sim *sim, const roll_path *path, double th_a, double p_a, double th_b, double *dt,
                      char *err, size_t err_len)
 {
     *dt = 0.0;
@@ -267,6 +271,7 @@ static int roll_time(jc_Sim *sim, const roll_path *path, double th_a, double th_
     for (int k = 0; k < 2; ++k) {
         double f[2];
         jc_tl_eval(&path->energy, ends[k], &f[0], &f[1]);
+        if (k == 0) f[0] = p_a;
         const double sigma = mid > ends[k] ? 1.0 : -1.0;
         /* An end where P is negligible against P' over the interval is a
          * turning point up to rounding: take P = 0 there exactly. */
@@ -291,7 +296,7 @@ static int roll_time(jc_Sim *sim, const roll_path *path, double th_a, double th_
 typedef struct {
     jc_Sim *sim;
     const roll_path *path;
-    double th_a, target;
+    double th_a, p_a, target;
     int status;
 } time_target;
 
@@ -299,15 +304,15 @@ static double time_minus_target(double th, void *params)
 {
     time_target *tt = params;
     double dt = 0.0;
-    if (roll_time(tt->sim, tt->path, tt->th_a, th, &dt, NULL, 0) != JC_OK) tt->status = JC_ENUMERIC;
+    if (roll_time(tt->sim, tt->path, tt->th_a, tt->p_a, th, &dt, NULL, 0) != JC_OK) tt->status = JC_ENUMERIC;
     return dt - tt->target;
 }
 
 /* The th between th_a and th_b reached dt after th_a. */
-static int roll_theta_at(jc_Sim *sim, const roll_path *path, double th_a, double th_b, double dt,
+static int roll_theta_at(jc_Sim *sim, const roll_path *path, double th_a, double p_a, double th_b, double dt,
                          double *th, char *err, size_t err_len)
 {
-    time_target tt = {sim, path, th_a, dt, JC_OK};
+    time_target tt = {sim, path, th_a, p_a, dt, JC_OK};
     gsl_function fn = {time_minus_target, &tt};
     const double lo = fmin(th_a, th_b), hi = fmax(th_a, th_b);
     const double flo = time_minus_target(lo, &tt), fhi = time_minus_target(hi, &tt);
@@ -329,6 +334,12 @@ static int roll_theta_at(jc_Sim *sim, const roll_path *path, double th_a, double
     gsl_root_fsolver_free(s);
     if (tt.status != JC_OK) return jc_fail(err, err_len, JC_ENUMERIC, "rolling time inversion failed");
     return JC_OK;
+}
+
+/* I_P w^2 of a state, directly. */
+static double start_p(const jc_Model *m, const jc_State *s)
+{
+    return inertia_p(m, s->theta_rad) * s->omega_radps * s->omega_radps;
 }
 
 /* The state on the rolling path at th. */
@@ -354,7 +365,8 @@ static int emit_samples(jc_Sim *sim, const roll_path *path, const jc_State *star
     double ts;
     while (jc_sim_sample_due(sim, t_end, &ts)) {
         double th;
-        int st = roll_theta_at(sim, path, start->theta_rad, th_end, ts - start->t_s, &th, err, err_len);
+        int st = roll_theta_at(sim, path, start->theta_rad, start_p(sim->m, start), th_end, ts - start->t_s, &th,
+                               err, err_len);
         if (st != JC_OK) return st;
         jc_State s = roll_state_at(sim->m, path, start, th, dir);
         s.t_s = ts;
@@ -498,11 +510,13 @@ int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
         int st = jc_scan_first(&set, start.theta_rad, th_lim, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
         if (st != JC_OK) return st;
         double dt;
-        if ((st = roll_time(sim, &path, start.theta_rad, hit.theta, &dt, err, err_len)) != JC_OK) return st;
+        const double p_start = start_p(m, &start);
+        if ((st = roll_time(sim, &path, start.theta_rad, p_start, hit.theta, &dt, err, err_len)) != JC_OK) return st;
         const double t_max = sim->opt->t_max_s;
         double th_end = hit.theta;
         if (start.t_s + dt > t_max) {
-            if ((st = roll_theta_at(sim, &path, start.theta_rad, hit.theta, t_max - start.t_s, &th_end, err, err_len)))
+            if ((st = roll_theta_at(sim, &path, start.theta_rad, p_start, hit.theta, t_max - start.t_s, &th_end, err,
+                                    err_len)))
                 return st;
             dt = t_max - start.t_s;
         }
