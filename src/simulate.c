@@ -336,7 +336,12 @@ static int do_impact(machine *mc, char *err, size_t err_len, int *stop)
         *stop = 1;
         return JC_OK;
     }
-    sim->impact_loss_J += k0 - jc_kinetic_energy(m, &sim->s);
+    const double gain = jc_kinetic_energy(m, &sim->s) - k0;
+    sim->impact_loss_J -= gain;
+    if (gain > 1e-12 * k0) {
+        sim->run->energy_gaining_impacts++;
+        sim->run->largest_impact_gain_J = fmax(sim->run->largest_impact_gain_J, gain);
+    }
     jc_ModeChoice choice = CHOICE_FLY;
     if (!bounce) {
         sim->mode = JC_MODE_FLIGHT;

@@ -378,7 +378,12 @@ typedef struct {
     jc_State final_state;
     jc_Mode final_mode;
     jc_EnergyReport energy;
-    long ode_steps;          /* sliding integrator steps taken */
+    long ode_steps;          /* integrator steps taken (phases without a closed form) */
+    /* Newton restitution with a sticking friction impulse can add kinetic
+     * energy at an impact of an off-centre body (docs/physics.md §4): such
+     * impacts are counted, not hidden; impact_loss_J includes their gains. */
+    int energy_gaining_impacts;
+    double largest_impact_gain_J;
 } jc_Run;
 
 const char *jc_mode_name(jc_Mode mode);
