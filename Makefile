@@ -7,16 +7,29 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
 # Debian packages the build and tests need.
-DEB_PACKAGES := cmake make gcc pkgconf libgsl-dev libcjson-dev
+DEB_PACKAGES := cmake make gcc pkgconf libgsl-dev libcjson-dev gnuplot-nox libcairo2-dev ffmpeg
+
+# Input safety (docs/config.md): experiment files (inih); the CI's fuzzing
+# (clang and its libFuzzer runtime), valgrind run and static analysis.
+DEB_PACKAGES += libinih-dev clang libclang-rt-14-dev valgrind cppcheck
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS := options config simulate
+LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/test_signals.c tests/cli_run.h
 
 .PHONY: all deps configure build run test asan test-asan bench install-check clean help
+.PHONY: test-valgrind fuzz lint
 
 all: build
 
 help:
-	@echo "make run        install missing packages, build, run 'jumpcyl paper' (the paper's Table 1)"
+	@echo "make run        install missing packages, build, run 'jumpcyl paper' (the paper's Table 1),"
+	@echo "                write out/overview-{15,30,45}.png and the film out/jump-45.gif"
 	@echo "make test       install missing packages, build, run the test suite (ctest)"
 	@echo "make test-asan  the test suite built with AddressSanitizer + UndefinedBehaviorSanitizer"
+	@echo "make test-valgrind  the CLI tests with every run of the tool under valgrind"
+	@echo "make fuzz       build the libFuzzer targets (clang) and run each FUZZ_SECONDS=$(FUZZ_SECONDS) s"
+	@echo "make lint       cppcheck on the sources, zero findings (lint/cppcheck-suppressions.txt)"
 	@echo "make bench      build and run the benchmarks"
 	@echo "make install-check  install into a scratch prefix and build a program against it"
 	@echo "Variables: BUILD=$(BUILD) WERROR=$(WERROR) JOBS=$(JOBS) CMAKE_ARGS=..."
@@ -48,9 +61,13 @@ build: configure
 
 run: build
 	./$(BUILD)/jumpcyl paper
+	@# Figures and a film (docs/figures.md): each command prints the file it wrote.
+	@mkdir -p out
+	@for a in 15 30 45; do ./$(BUILD)/jumpcyl plot --incline $$a --what overview --output out/overview-$$a.png || exit 1; done
+	@./$(BUILD)/jumpcyl animate --incline 45 --size 640x360 --fps 25 --slowmo 6 --output out/jump-45.gif
 
 test: build
-	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -LE valgrind
 
 test-asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DJC_SANITIZE=ON -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
@@ -59,6 +76,28 @@ test-asan: deps
 	  ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
 asan: test-asan
+
+# The CLI tests (bad inputs, experiment files) again, with every run of the
+# tool under valgrind --error-exitcode=1 --leak-check=full (ctest label
+# "valgrind", registered when valgrind was found at configure time).
+test-valgrind: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L valgrind --no-tests=error
+
+# libFuzzer targets (fuzz/) in their own build directory, each run for
+# FUZZ_SECONDS from its corpus (fuzz/run.sh); skipped, with a message, where
+# clang is missing.
+fuzz: deps
+	@if ! command -v clang >/dev/null 2>&1; then echo "make fuzz: clang not found, fuzzing skipped"; exit 0; fi; \
+	set -e; \
+	CC=clang cmake -S . -B $(FUZZ_BUILD) -DJC_FUZZ=ON -DJC_BUILD_TESTS=OFF -DJC_WERROR=$(WERROR) $(CMAKE_ARGS); \
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS)); \
+	fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+# Static analysis: every finding fails, unless lint/cppcheck-suppressions.txt
+# says why it is not a defect.
+lint: deps
+	cppcheck --enable=warning,style,performance,portability --std=c11 --error-exitcode=1 --inline-suppr --quiet \
+	  -I include -I cli -I src --suppressions-list=lint/cppcheck-suppressions.txt $(LINT_SOURCES)
 
 bench: build
 	cmake --build $(BUILD) --target jumpcyl_bench -j $(JOBS)
@@ -78,4 +117,4 @@ install-check: build
 	LD_LIBRARY_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib ./$(BUILD)/install-check/roll_example_pc
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -18,7 +18,10 @@ typedef enum {
     Q_ANGLE,         /* rad; plain number = DEGREES */
     Q_ANGULAR_SPEED, /* rad/s; plain number = rad/s */
     Q_ACCELERATION,  /* m/s2 */
-    Q_NUMBER         /* dimensionless, no unit */
+    Q_NUMBER,        /* dimensionless, no unit */
+    Q_TIME,          /* s; plain number = s */
+    Q_DENSITY,       /* kg/m3; plain number = kg/m3 */
+    Q_SPIN_DRAG      /* N m s2 (= kg m2); plain number = N m s2 */
 } cli_Quantity;
 
 /* Parses a whole token "number[unit]" into SI. 0 on success; otherwise a
@@ -26,8 +29,21 @@ typedef enum {
 int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err, size_t err_len);
 const char *cli_units_allowed(cli_Quantity q);
 
+/* ---- config.c: experiment files (docs/config.md) ---- */
+/* Reads an experiment file over *setup, which holds the values the file
+ * starts from. 0, or -1 with a one-line message "FILE:LINE: ..." (a file
+ * that cannot be read, too large, bad syntax, an unknown or repeated section
+ * or key, a bad value). The setup is not validated here. */
+int cli_config_load(const char *path, jc_Setup *setup, char *err, size_t err_len);
+/* The same for text in memory; name stands for the file in messages. */
+int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *setup, char *err, size_t err_len);
+/* Writes a setup in that format: SI values with their units, each number in
+ * the shortest form that reads back to the same double. 0, or -1 if out
+ * reported an error. */
+int cli_config_write(FILE *out, const jc_Setup *setup);
+
 /* ---- options.c ---- */
-#define CLI_SETUP_OPTION_COUNT 23
+#define CLI_SETUP_OPTION_COUNT 25
 #define CLI_SETUP_OPT_BASE 1000
 extern const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT];
 
@@ -79,14 +95,39 @@ void cli_sim_help(FILE *out);
 int cli_simulate(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd);
 
 /* ---- output.c: files written whole or not at all ---- */
+#define CLI_PATH_MAX 4096
 typedef struct {
     FILE *f;
     const char *final_path;
-    char tmp_path[4096];
+    char tmp_path[CLI_PATH_MAX];
+    int direct;  /* 1: not a regular file (/dev/stdout, /dev/full, a FIFO): written in place */
+    int slot;    /* the temporary file's record in signals.c */
 } cli_AtomicFile;
+/* Opens a temporary file beside path (or path itself when it exists and is
+ * not a regular file). 0, or -1 after a message naming path. */
 int cli_atomic_open(cli_AtomicFile *af, const char *path);
-int cli_atomic_commit(cli_AtomicFile *af); /* 0, or -1 after a message */
+int cli_atomic_commit(cli_AtomicFile *af); /* 0, or -1 after a message naming the path */
 void cli_atomic_abort(cli_AtomicFile *af);
+/* Flushes standard output: EXIT_OK, or EXIT_FAIL after a message. */
+int cli_stdout_finish(void);
+
+/* ---- signals.c: SIGINT and SIGTERM ---- */
+/* At start-up. Until a command calls cli_signals_defer, a signal ends the
+ * process at once (after removing temporary output files). */
+void cli_signals_install(void);
+/* For commands of many runs: the first signal only sets a flag; the command
+ * checks cli_stop_requested between runs, keeps what is complete and returns
+ * cli_stop_status(). A second signal ends the process at once. */
+void cli_signals_defer(void);
+int cli_stop_requested(void); /* the signal number, 0 if none */
+int cli_stop_status(void);    /* 128 + the signal number: 130 SIGINT, 143 SIGTERM */
+const char *cli_signal_name(int sig);
+/* mkstemp, recorded so that a signal that ends the process removes the file.
+ * Returns the descriptor or -1 (errno); *slot is the record. */
+int cli_tmpfile_create(char *template_path, int *slot);
+/* Renames the temporary file to final_path (removes it if final_path is
+ * NULL, or if the rename fails) and drops the record. 0 or -1 (errno). */
+int cli_tmpfile_finish(int slot, const char *tmp_path, const char *final_path);
 
 /* ---- report.c ---- */
 #define CLI_PI 3.14159265358979323846
@@ -113,5 +154,7 @@ int cli_json_print(struct cJSON *doc);
 int cmd_paper(int argc, char **argv);
 int cmd_predict(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
+int cmd_plot(int argc, char **argv);    /* cmd_plot.c: figures with gnuplot */
+int cmd_animate(int argc, char **argv); /* cmd_animate.c: films with cairo and ffmpeg */
 
 #endif

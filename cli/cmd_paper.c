@@ -81,9 +81,15 @@ static int inside(double x, const jc_PaperTableRow *t)
     return fabs(x - t->measured_x_m) <= t->measured_error_m;
 }
 
-/* The full model's first lift-off and hops for a setup. */
+/* compute_rows' status when SIGINT or SIGTERM asked to stop: the rows
+ * counted are complete, the one under way is dropped. */
+#define STOPPED (-1)
+
+/* The full model's first lift-off and hops for a setup. Runs are where the
+ * time goes (27 of them): a stop request is honoured between them. */
 static int run_full(const jc_Setup *s, full_result *out, char *err, size_t err_len)
 {
+    if (cli_stop_requested()) return STOPPED;
     jc_Model m;
     int st = jc_model_init(&m, s, err, err_len);
     if (st != JC_OK) return st;
@@ -111,6 +117,8 @@ static int compute_rows(const jc_Setup *base, paper_row *rows, int *count, char 
     int n = jc_paper_table(&table);
     if (n > ROWS_MAX) n = ROWS_MAX;
     for (int i = 0; i < n; ++i) {
+        *count = i;
+        if (cli_stop_requested()) return STOPPED;
         jc_Setup s = *base;
         s.incline_rad = table[i].incline_deg * CLI_PI / 180.0;
         paper_row *r = &rows[i];
@@ -404,6 +412,22 @@ static cJSON *json_row(const paper_row *r)
     return o;
 }
 
+static int print_rows(const paper_row *rows, int n, int json, int stopped)
+{
+    if (json) {
+        cJSON *doc = cJSON_CreateObject();
+        cJSON *setup_json = cli_json_setup(&rows[0].model);
+        cJSON_DeleteItemFromObject(setup_json, "incline_deg"); /* per row */
+        cJSON_AddItemToObject(doc, "setup", setup_json);
+        cJSON *arr = cJSON_AddArrayToObject(doc, "rows");
+        for (int i = 0; i < n; ++i) cJSON_AddItemToArray(arr, json_row(&rows[i]));
+        if (stopped) cJSON_AddStringToObject(doc, "stopped_by", cli_signal_name(cli_stop_requested()));
+        return cli_json_print(doc);
+    }
+    print_text(rows, n);
+    return cli_stdout_finish();
+}
+
 int cmd_paper(int argc, char **argv)
 {
     static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
@@ -423,19 +447,13 @@ int cmd_paper(int argc, char **argv)
     }
     paper_row rows[ROWS_MAX];
     int n = 0;
-    if ((st = compute_rows(&setup, rows, &n, err, sizeof err)) != JC_OK) {
+    cli_signals_defer(); /* a signal stops between runs; the rows complete by then are printed */
+    if ((st = compute_rows(&setup, rows, &n, err, sizeof err)) != JC_OK && st != STOPPED) {
         cli_error("paper: %s", err);
         return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
     }
-    if (o.json) {
-        cJSON *doc = cJSON_CreateObject();
-        cJSON *setup_json = cli_json_setup(&rows[0].model);
-        cJSON_DeleteItemFromObject(setup_json, "incline_deg"); /* per row */
-        cJSON_AddItemToObject(doc, "setup", setup_json);
-        cJSON *arr = cJSON_AddArrayToObject(doc, "rows");
-        for (int i = 0; i < n; ++i) cJSON_AddItemToArray(arr, json_row(&rows[i]));
-        return cli_json_print(doc);
-    }
-    print_text(rows, n);
-    return fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+    const int rc = n > 0 ? print_rows(rows, n, o.json, st == STOPPED) : EXIT_OK;
+    if (st != STOPPED) return rc;
+    cli_error("paper: stopped by %s; %d complete row(s) printed", cli_signal_name(cli_stop_requested()), n);
+    return rc == EXIT_OK ? cli_stop_status() : rc;
 }

@@ -162,7 +162,7 @@ int cmd_predict(int argc, char **argv)
         rc = cli_json_print(json_doc(&model, &paper, &rolling, &run));
     } else {
         print_text(&model, &paper, &rolling, &run);
-        rc = fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+        rc = cli_stdout_finish();
     }
     jc_run_free(&run);
     return rc;

@@ -101,6 +101,10 @@ static void print_text(const jc_Model *m, const jc_SimOptions *o, const jc_Run *
            "            to the air %.6f, to rolling resistance %.6f; balance error %.2e J (%.1e relative)\n",
            e->kinetic_J, e->potential_J, e->friction_loss_J, e->impact_loss_J, e->air_loss_J,
            e->rolling_resistance_loss_J, e->balance_error_J, fabs(e->balance_error_J) / scale);
+    if (run->energy_gaining_impacts > 0)
+        printf("Note: %d impact(s) gained kinetic energy (largest %.3g J): Newton restitution with a\n"
+               "sticking friction impulse allows this for an off-centre body (docs/physics.md, section 4).\n",
+               run->energy_gaining_impacts, run->largest_impact_gain_J);
     jc_RunSummary sum;
     jc_run_summarize(run, &sum);
     if (sum.first_liftoff >= 0) {
@@ -124,6 +128,7 @@ static cJSON *json_doc(const jc_Model *m, const jc_Run *run)
     cJSON_AddStringToObject(doc, "termination_detail", run->termination_detail);
     cJSON_AddNumberToObject(doc, "t_end", run->final_state.t_s);
     cJSON_AddItemToObject(doc, "energy", cli_json_energy(&run->energy));
+    cJSON_AddNumberToObject(doc, "energy_gaining_impacts", run->energy_gaining_impacts);
     jc_RunSummary sum;
     jc_run_summarize(run, &sum);
     cJSON *s = cJSON_AddObjectToObject(doc, "summary");
@@ -174,7 +179,7 @@ int cmd_simulate(int argc, char **argv)
         else {
             print_text(&model, &opts, &run);
             if (o.csv) printf("Trajectory: %d samples written to %s\n", run.sample_count, o.csv);
-            rc = fflush(stdout) == 0 ? EXIT_OK : EXIT_FAIL;
+            rc = cli_stdout_finish();
         }
     }
     jc_run_free(&run);

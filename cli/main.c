@@ -26,6 +26,8 @@ static void usage(FILE *out)
           "             measurement (the default when no command is given)\n"
           "  predict    the paper's model and the exact rolling model for one setup\n"
           "  simulate   the full motion: slip, lift-off, flight, landing, further hops\n"
+          "  plot       a figure (gnuplot): the paper's criterion, forces, path, energy, overview\n"
+          "  animate    a film of the motion (cairo; ffmpeg for .gif and .mp4)\n"
           "  presets    list the built-in setups\n"
           "\n"
           "  jumpcyl COMMAND --help   options of a command\n"
@@ -37,6 +39,7 @@ int main(int argc, char **argv)
 {
     /* GSL's default handler aborts; the library checks its own preconditions. */
     gsl_set_error_handler_off();
+    cli_signals_install(); /* SIGINT, SIGTERM: no half-written file stays behind */
     if (argc < 2) {
         char *args[] = {"paper", NULL};
         return cmd_paper(1, args);
@@ -54,11 +57,13 @@ int main(int argc, char **argv)
     if (strcmp(cmd, "predict") == 0) return cmd_predict(argc - 1, argv + 1);
     if (strcmp(cmd, "simulate") == 0) return cmd_simulate(argc - 1, argv + 1);
     if (strcmp(cmd, "presets") == 0) return cmd_presets(argc - 1, argv + 1);
+    if (strcmp(cmd, "plot") == 0) return cmd_plot(argc - 1, argv + 1);
+    if (strcmp(cmd, "animate") == 0) return cmd_animate(argc - 1, argv + 1);
     if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
         static char paper_name[] = "paper";
         argv[0] = paper_name;
         return cmd_paper(argc, argv);
     }
-    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets; see 'jumpcyl --help')", cmd);
+    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
 }

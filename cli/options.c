@@ -8,7 +8,8 @@
 enum {
     O_PRESET, O_RADIUS, O_DISC_MASS, O_ROD_MASS, O_ROD_OFFSET, O_ROD_RADIUS, O_PART,
     O_INCLINE, O_G, O_MU, O_MU_S, O_MU_K, O_RESTITUTION, O_THETA0, O_OMEGA0,
-    O_RAMP_LENGTH, O_PAPER_D, O_LENGTH, O_AIR_DENSITY, O_DRAG, O_LIFT, O_SPIN_DRAG, O_ROLLING_RES
+    O_RAMP_LENGTH, O_PAPER_D, O_LENGTH, O_AIR_DENSITY, O_DRAG, O_LIFT, O_SPIN_DRAG, O_ROLLING_RES,
+    O_CONFIG, O_DUMP_CONFIG
 };
 
 #define B CLI_SETUP_OPT_BASE
@@ -36,6 +37,8 @@ const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT] = {
     {"lift-coefficient", required_argument, 0, B + O_LIFT},
     {"spin-drag", required_argument, 0, B + O_SPIN_DRAG},
     {"rolling-resistance", required_argument, 0, B + O_ROLLING_RES},
+    {"config", required_argument, 0, B + O_CONFIG},
+    {"dump-config", no_argument, 0, B + O_DUMP_CONFIG},
 };
 
 void cli_setup_help(FILE *out)
@@ -45,6 +48,10 @@ void cli_setup_help(FILE *out)
         "10cm, 34.2g, 15deg, 0.3rad, 9.78m/s2, 120rpm). Without --preset or --part the setup\n"
         "is the 'paper' preset on a 30 deg incline.\n"
         "  --preset NAME        built-in setup: paper, hoop, disc (see 'jumpcyl presets')\n"
+        "  --config FILE        experiment file (docs/config.md): its values replace the\n"
+        "                       preset's; the other options replace the file's\n"
+        "  --dump-config        print the setup these options give, in the file format\n"
+        "                       (exact: it reads back to the same setup), and exit\n"
         "  --radius LEN         rim radius r (the disc of a disc+rod body fills the rim)\n"
         "  --disc-mass MASS     mass of the disc                 (disc+rod bodies)\n"
         "  --rod-mass MASS      mass of the rod                  (disc+rod bodies)\n"
@@ -96,6 +103,7 @@ int cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, si
         args->part_text[args->part_count++] = text;
         return 1;
     }
+    if (!text) text = ""; /* a flag (--dump-config): present, no value */
     if (args->value[i]) {
         snprintf(err, err_len, "--%s given twice ('%s' and '%s')", cli_setup_options[i].name,
                  args->value[i], text);
@@ -242,6 +250,8 @@ int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_l
         snprintf(err, err_len, "--preset: %s", msg);
         return -1;
     }
+    /* The file's values replace the preset's; the options below replace the file's. */
+    if (a->value[O_CONFIG] && cli_config_load(a->value[O_CONFIG], s, err, err_len) != 0) return -1;
     const double rim = a->value[O_RADIUS] ? 0.0 : s->body.radius_m;
     if (a->part_count > 0) {
         double r = rim;
@@ -267,17 +277,17 @@ int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_l
         {O_RAMP_LENGTH, Q_LENGTH, offsetof(jc_Setup, ramp_length_m)},
         {O_PAPER_D, Q_LENGTH, offsetof(jc_Setup, paper_cm_offset_m)},
         {O_LENGTH, Q_LENGTH, offsetof(jc_Setup, length_m)},
-        {O_AIR_DENSITY, Q_NUMBER, offsetof(jc_Setup, air_density_kgpm3)},
+        {O_AIR_DENSITY, Q_DENSITY, offsetof(jc_Setup, air_density_kgpm3)},
         {O_DRAG, Q_NUMBER, offsetof(jc_Setup, drag_coefficient)},
         {O_LIFT, Q_NUMBER, offsetof(jc_Setup, lift_coefficient)},
-        {O_SPIN_DRAG, Q_NUMBER, offsetof(jc_Setup, spin_drag_Nms2)},
+        {O_SPIN_DRAG, Q_SPIN_DRAG, offsetof(jc_Setup, spin_drag_Nms2)},
         {O_ROLLING_RES, Q_LENGTH, offsetof(jc_Setup, rolling_resistance_m)},
     };
     for (size_t k = 0; k < sizeof scalars / sizeof scalars[0]; ++k) {
         double v;
         if (!a->value[scalars[k].opt]) continue;
         if (parse_option(a, scalars[k].opt, scalars[k].q, &v, err, err_len)) return -1;
-        *(double *)((char *)s + scalars[k].field) = v;
+        memcpy((char *)s + scalars[k].field, &v, sizeof v); /* the double at that offset */
         if (scalars[k].opt == O_MU) s->mu_kinetic = v;
     }
     if (a->value[O_MU] && (a->value[O_MU_S] || a->value[O_MU_K])) {
@@ -291,6 +301,34 @@ int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_l
     return 0;
 }
 
+/* getopt's '?': an unknown option, or a value given to a flag ("--json=1"). */
+static void unknown_option(char **argv, int next)
+{
+    const char *arg = argv[next - 1];
+    if (optopt && strncmp(arg, "--", 2) == 0)
+        cli_error("%s: option '%s' takes no value (see 'jumpcyl %s --help')", argv[0], arg, argv[0]);
+    else if (optopt > 0 && optopt < 128)
+        cli_error("%s: unknown option '-%c' (see 'jumpcyl %s --help')", argv[0], optopt, argv[0]);
+    else
+        cli_error("%s: unknown option '%s' (see 'jumpcyl %s --help')", argv[0], arg, argv[0]);
+}
+
+/* --dump-config: the setup (and simulation options, when the command has
+ * them) is built and checked as for a run, then printed instead of run.
+ * Returns -1 (done, exit 0) or an exit status. */
+static int dump_config(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim)
+{
+    char err[512];
+    jc_Setup setup;
+    jc_SimOptions opts;
+    if (cli_setup_build(sa, &setup, err, sizeof err) != 0 || (sim && cli_sim_build(sim, &opts, err, sizeof err) != 0)) {
+        cli_error("%s: %s", cmd, err);
+        return EXIT_USAGE;
+    }
+    cli_config_write(stdout, &setup);
+    return cli_stdout_finish() == EXIT_OK ? -1 : EXIT_FAIL;
+}
+
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
                    cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args, cli_SimArgs *sim_args)
 {
@@ -301,14 +339,13 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
     cli_merge_options(all, 64, cmd, n);
     *setup_args = (cli_SetupArgs){0};
     if (sim_args) *sim_args = (cli_SimArgs){0};
-    optind = 1;
+    optind = 0; /* glibc: a full restart, also of a scan left inside "-hh" (tests, fuzzing) */
     opterr = 0;
     int c;
     while ((c = getopt_long(argc, argv, ":h", all, NULL)) != -1) {
         char msg[512];
         if (c == '?') {
-            if (optopt) cli_error("%s: unknown option '-%c' (see 'jumpcyl %s --help')", argv[0], optopt, argv[0]);
-            else cli_error("%s: unknown option '%s' (see 'jumpcyl %s --help')", argv[0], argv[optind - 1], argv[0]);
+            unknown_option(argv, optind);
             return EXIT_USAGE;
         }
         if (c == ':') {
@@ -333,6 +370,7 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
         cli_error("%s: unexpected argument '%s' (see 'jumpcyl %s --help')", argv[0], argv[optind], argv[0]);
         return EXIT_USAGE;
     }
+    if (setup_args->value[O_DUMP_CONFIG]) return dump_config(argv[0], setup_args, sim_args);
     return 0;
 }
 
@@ -377,29 +415,6 @@ int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t
     return 1;
 }
 
-/* Time values: seconds, or ms. */
-static int parse_time(const char *text, double *out, char *err, size_t err_len)
-{
-    size_t n = strlen(text);
-    if (n > 2 && strcmp(text + n - 2, "ms") == 0) {
-        char buf[64];
-        if (n - 2 >= sizeof buf) { snprintf(err, err_len, "'%s' is too long", text); return -1; }
-        memcpy(buf, text, n - 2);
-        buf[n - 2] = '\0';
-        if (cli_parse_quantity(buf, Q_NUMBER, out, err, err_len)) return -1;
-        *out *= 1e-3;
-        return 0;
-    }
-    if (n > 1 && text[n - 1] == 's') {
-        char buf[64];
-        if (n - 1 >= sizeof buf) { snprintf(err, err_len, "'%s' is too long", text); return -1; }
-        memcpy(buf, text, n - 1);
-        buf[n - 1] = '\0';
-        return cli_parse_quantity(buf, Q_NUMBER, out, err, err_len);
-    }
-    return cli_parse_quantity(text, Q_NUMBER, out, err, err_len);
-}
-
 int cli_sim_build(const cli_SimArgs *a, jc_SimOptions *o, char *err, size_t err_len)
 {
     *o = jc_default_sim_options();
@@ -409,7 +424,7 @@ int cli_sim_build(const cli_SimArgs *a, jc_SimOptions *o, char *err, size_t err_
         double v = 0.0;
         int bad;
         switch (i) {
-        case S_T_MAX: case S_SAMPLE_DT: case S_EVENT_TOL: bad = parse_time(a->value[i], &v, msg, sizeof msg); break;
+        case S_T_MAX: case S_SAMPLE_DT: case S_EVENT_TOL: bad = cli_parse_quantity(a->value[i], Q_TIME, &v, msg, sizeof msg); break;
         case S_CONTACT_HEIGHT: bad = cli_parse_quantity(a->value[i], Q_LENGTH, &v, msg, sizeof msg); break;
         default: bad = cli_parse_quantity(a->value[i], Q_NUMBER, &v, msg, sizeof msg); break;
         }

@@ -6,14 +6,19 @@
 
 double cli_deg(double rad) { return rad * 180.0 / CLI_PI; }
 
+/* One line, whatever the message quotes: a value with a line break or a
+ * control character (from a file or an argument) is shown with '?' in its
+ * place, so that the message stays one line and cannot drive the terminal. */
 void cli_error(const char *fmt, ...)
 {
+    char msg[1024];
     va_list ap;
     va_start(ap, fmt);
-    fputs("jumpcyl: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    for (char *c = msg; *c; ++c)
+        if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+    fprintf(stderr, "jumpcyl: %s\n", msg);
 }
 
 void cli_print_setup(FILE *out, const jc_Model *m, int show_incline)

@@ -2,6 +2,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,24 +22,65 @@ static const unit angular_speed_units[] = {{"rad/s", 0, 1.0}, {"deg/s", 0, CLI_P
                                            {"rpm", 0, 2.0 * CLI_PI / 60.0}, {"rev/s", 0, 2.0 * CLI_PI},
                                            {NULL, 0, 0}};
 static const unit acceleration_units[] = {{"m/s2", 0, 1.0}, {"m/s^2", 0, 1.0}, {"cm/s2", -2, 1.0}, {NULL, 0, 0}};
+static const unit time_units[] = {{"s", 0, 1.0}, {"ms", -3, 1.0}, {"us", -6, 1.0}, {NULL, 0, 0}};
+static const unit density_units[] = {{"kg/m3", 0, 1.0}, {"kg/m^3", 0, 1.0}, {"g/cm3", 3, 1.0}, {NULL, 0, 0}};
+static const unit spin_drag_units[] = {{"N m s2", 0, 1.0}, {"kg m2", 0, 1.0}, {NULL, 0, 0}};
 static const unit no_units[] = {{NULL, 0, 0}};
 
-/* Re-reads the number text[0, len) with its decimal exponent shifted by p. */
-static double shift_decimal(const char *text, size_t len, int p)
+/* Numbers longer than this are refused: far beyond the 17 significant digits
+ * a double holds, and it keeps the rewritten number in a stack buffer. */
+#define NUMBER_MAX_CHARS 256
+
+/* Length of the decimal number at the start of text: [+-]digits[.digits]
+ * [(e|E)[+-]digits], at least one mantissa digit; 0 if there is none. Our
+ * own scan, not strtod's end pointer, so that "inf", "nan", hexadecimal,
+ * leading blanks and locale forms can never slip through. *exp_at receives
+ * the offset of the 'e' (or the length when there is no exponent). */
+static size_t scan_decimal(const char *text, size_t *exp_at)
 {
-    char buf[128];
-    if (len >= 96) return NAN;
-    memcpy(buf, text, len);
-    buf[len] = '\0';
-    char *e = strpbrk(buf, "eE");
-    long exp10 = 0;
-    if (e) {
-        exp10 = strtol(e + 1, NULL, 10);
-        *e = '\0';
-    }
-    if (exp10 > 100000 || exp10 < -100000) return exp10 > 0 ? HUGE_VAL : 0.0;
-    snprintf(buf + strlen(buf), sizeof buf - strlen(buf), "e%ld", exp10 + p);
-    return strtod(buf, NULL);
+    size_t i = (text[0] == '+' || text[0] == '-') ? 1 : 0, digits = 0;
+    for (; text[i] >= '0' && text[i] <= '9'; ++i) ++digits;
+    if (text[i] == '.')
+        for (++i; text[i] >= '0' && text[i] <= '9'; ++i) ++digits;
+    if (digits == 0) return 0;
+    *exp_at = i;
+    if (text[i] != 'e' && text[i] != 'E') return i;
+    size_t j = i + 1;
+    if (text[j] == '+' || text[j] == '-') ++j;
+    if (!(text[j] >= '0' && text[j] <= '9')) return i; /* "1e" or "5em": the 'e' starts the unit */
+    while (text[j] >= '0' && text[j] <= '9') ++j;
+    return j;
+}
+
+/* The decimal exponent written at text[exp_at, len), saturated far outside
+ * the double range so that no digit string can overflow it. */
+static long read_exponent(const char *text, size_t exp_at, size_t len)
+{
+    if (exp_at >= len) return 0;
+    size_t i = exp_at + 1;
+    const int negative = text[i] == '-';
+    if (text[i] == '+' || text[i] == '-') ++i;
+    long e = 0;
+    for (; i < len; ++i)
+        if (e < 100000) e = 10 * e + (text[i] - '0');
+    return negative ? -e : e;
+}
+
+/* Reads the number text[0, len) with its decimal exponent shifted by p, so
+ * that a unit's power of ten is applied exactly ("32.1g" is 32.1e-3).
+ * Returns 0, or +1 on overflow, -1 on underflow (a nonzero number that
+ * rounds to zero or to a subnormal double). */
+static int read_decimal(const char *text, size_t len, size_t exp_at, int p, double *out)
+{
+    char buf[NUMBER_MAX_CHARS + 32];
+    const long e = read_exponent(text, exp_at, len) + p;
+    snprintf(buf, sizeof buf, "%.*se%ld", (int)exp_at, text, e);
+    errno = 0;
+    const double v = strtod(buf, NULL);
+    *out = v;
+    if (errno == ERANGE && fabs(v) > 1.0) return 1;
+    if (errno == ERANGE || (v != 0.0 && fabs(v) < DBL_MIN)) return -1;
+    return 0;
 }
 
 static const unit *units_for(cli_Quantity q)
@@ -50,6 +92,9 @@ static const unit *units_for(cli_Quantity q)
     case Q_ANGULAR_SPEED: return angular_speed_units;
     case Q_ACCELERATION: return acceleration_units;
     case Q_NUMBER: return no_units;
+    case Q_TIME: return time_units;
+    case Q_DENSITY: return density_units;
+    case Q_SPIN_DRAG: return spin_drag_units;
     }
     return no_units;
 }
@@ -63,8 +108,28 @@ const char *cli_units_allowed(cli_Quantity q)
     case Q_ANGULAR_SPEED: return "rad/s (default), deg/s, rpm, rev/s";
     case Q_ACCELERATION: return "m/s2 (default), m/s^2, cm/s2";
     case Q_NUMBER: return "none (a plain number)";
+    case Q_TIME: return "s (default), ms, us";
+    case Q_DENSITY: return "kg/m3 (default), kg/m^3, g/cm3";
+    case Q_SPIN_DRAG: return "N m s2 (default), kg m2";
     }
     return "";
+}
+
+/* The unit after the number: "" (none), or one blank and then the unit
+ * ("10 cm", as one quoted argument). Returns it, or NULL for blanks that do
+ * not lead to a unit. */
+static const char *unit_text(const char *after_number)
+{
+    if (after_number[0] != ' ') return after_number;
+    if (after_number[1] == '\0' || after_number[1] == ' ') return NULL;
+    return after_number + 1;
+}
+
+static const unit *find_unit(cli_Quantity q, const char *name)
+{
+    for (const unit *u = units_for(q); u->name; ++u)
+        if (strcmp(name, u->name) == 0) return u;
+    return NULL;
 }
 
 int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err, size_t err_len)
@@ -73,54 +138,44 @@ int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err,
         snprintf(err, err_len, "empty value (expected a number)");
         return -1;
     }
-    /* strtod would skip leading blanks and accept "nan", "inf" and hex; the
-     * token must start like a decimal number. */
-    const char c0 = text[0];
-    const char c1 = (c0 == '+' || c0 == '-') ? text[1] : c0;
-    if (!((c1 >= '0' && c1 <= '9') || c1 == '.')) {
+    size_t exp_at = 0;
+    const size_t len = scan_decimal(text, &exp_at);
+    if (len == 0) {
         snprintf(err, err_len, "'%s' is not a number", text);
         return -1;
     }
-    const char *digits = (c0 == '+' || c0 == '-') ? text + 1 : text;
-    if (digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) {
-        snprintf(err, err_len, "'%s' is not a decimal number", text);
+    if (len > NUMBER_MAX_CHARS) {
+        snprintf(err, err_len, "'%.40s...' is too long for a number (allowed: at most %d characters)", text,
+                 NUMBER_MAX_CHARS);
         return -1;
     }
-    errno = 0;
-    char *end = NULL;
-    double v = strtod(text, &end);
-    if (end == text) {
-        snprintf(err, err_len, "'%s' is not a number", text);
+    const char *suffix = unit_text(text + len);
+    if (!suffix) {
+        snprintf(err, err_len, "'%s' has stray blanks (allowed: one blank between number and unit)", text);
         return -1;
     }
-    if (errno == ERANGE && fabs(v) > 1.0) {
-        snprintf(err, err_len, "'%s' is too large", text);
-        return -1;
-    }
-    if (!isfinite(v)) {
-        snprintf(err, err_len, "'%s' is not a finite number", text);
-        return -1;
-    }
-    const char *suffix = end;
-    if (*suffix == ' ') suffix++; /* "10 cm" as one quoted argument */
-    double factor = 1.0;
-    if (q == Q_ANGLE) factor = CLI_PI / 180.0; /* plain angles are degrees */
+    int pow10 = 0;
+    double factor = q == Q_ANGLE ? CLI_PI / 180.0 : 1.0; /* plain angles are degrees */
     if (*suffix) {
-        const unit *u = units_for(q);
-        for (; u->name; ++u)
-            if (strcmp(suffix, u->name) == 0) break;
-        if (!u->name) {
-            snprintf(err, err_len, "'%s' has an unknown unit '%s' (allowed: %s)", text, suffix,
-                     cli_units_allowed(q));
+        const unit *u = find_unit(q, suffix);
+        if (!u) {
+            snprintf(err, err_len, "'%s' has an unknown unit '%s' (allowed: %s)", text, suffix, cli_units_allowed(q));
             return -1;
         }
+        pow10 = u->pow10;
         factor = u->factor;
-        if (u->pow10 != 0) v = shift_decimal(text, (size_t)(end - text), u->pow10);
     }
-    *out = factor == 1.0 ? v : v * factor;
-    if (!isfinite(*out)) {
-        snprintf(err, err_len, "'%s' is too large", text);
+    double v;
+    const int range = read_decimal(text, len, exp_at, pow10, &v);
+    if (range == 0 && factor != 1.0) v *= factor;
+    if (range > 0 || !isfinite(v)) {
+        snprintf(err, err_len, "'%s' is too large (allowed: magnitudes up to %.3g in SI units)", text, DBL_MAX);
         return -1;
     }
+    if (range < 0 || (v != 0.0 && fabs(v) < DBL_MIN)) {
+        snprintf(err, err_len, "'%s' is too small (allowed: 0, or magnitudes from %.3g in SI units)", text, DBL_MIN);
+        return -1;
+    }
+    *out = v;
     return 0;
 }

@@ -5,6 +5,11 @@
 
 /* Parts may touch the rim: allow for rounding in offset + radius. */
 #define RIM_SLACK 1e-12
+/* Upper bounds far beyond any cylinder that rolls down a ramp, low enough
+ * that every product the models form (M^2 r d^2 g I_P^2 ...) stays finite:
+ * a 1e308 kg part overflowed the rolling model to NaN (found by fuzzing). */
+#define MAX_PART_MASS_KG 1e6
+#define MAX_RADIUS_M 1e3
 
 const char *jc_part_kind_name(jc_PartKind kind)
 {
@@ -34,8 +39,9 @@ static int check_part(const jc_Part *p, int i, double rim_m, char *err, size_t e
     const char *kind = jc_part_kind_name(p->kind);
     if (p->kind < JC_PART_DISC || p->kind > JC_PART_POINT)
         return jc_fail(err, err_len, JC_EINVAL, "part %d: unknown kind %d (allowed: disc, hoop, rod, point)", i + 1, (int)p->kind);
-    if (!isfinite(p->mass_kg) || p->mass_kg < 0.0)
-        return jc_fail(err, err_len, JC_EINVAL, "part %d (%s): mass %g kg is out of range (allowed: finite, >= 0)", i + 1, kind, p->mass_kg);
+    if (!(p->mass_kg >= 0.0 && p->mass_kg <= MAX_PART_MASS_KG))
+        return jc_fail(err, err_len, JC_EINVAL, "part %d (%s): mass %g kg is out of range (allowed: [0, %g] kg)", i + 1, kind,
+                       p->mass_kg, MAX_PART_MASS_KG);
     if (!isfinite(p->offset_m) || p->offset_m < 0.0)
         return jc_fail(err, err_len, JC_EINVAL, "part %d (%s): offset %g m is out of range (allowed: finite, >= 0)", i + 1, kind, p->offset_m);
     if (!isfinite(p->angle_rad))
@@ -66,8 +72,8 @@ static int check_part(const jc_Part *p, int i, double rim_m, char *err, size_t e
 
 int jc_body_compute(const jc_BodyDef *def, jc_Body *out, char *err, size_t err_len)
 {
-    if (!isfinite(def->radius_m) || def->radius_m <= 0.0)
-        return jc_fail(err, err_len, JC_EINVAL, "radius %g m is out of range (allowed: finite, > 0)", def->radius_m);
+    if (!(def->radius_m > 0.0 && def->radius_m <= MAX_RADIUS_M))
+        return jc_fail(err, err_len, JC_EINVAL, "radius %g m is out of range (allowed: (0, %g] m)", def->radius_m, MAX_RADIUS_M);
     if (def->part_count < 1 || def->part_count > JC_MAX_PARTS)
         return jc_fail(err, err_len, JC_EINVAL, "body has %d parts (allowed: 1 to %d)", def->part_count, JC_MAX_PARTS);
 

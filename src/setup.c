@@ -92,8 +92,11 @@ static int check_range(const char *what, const char *unit, double v, double lo, 
 {
     int ok = isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
     if (ok) return JC_OK;
-    return jc_fail(err, err_len, JC_EINVAL, "%s %g %s is out of range (allowed: %s%g, %g%s)",
-                   what, v, unit, lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+    /* "restitution 2 is ..." and "gravity 0 m/s2 is ... (0, 1000] m/s2)": a
+     * blank before the unit only when there is one. */
+    const char *blank = *unit ? " " : "";
+    return jc_fail(err, err_len, JC_EINVAL, "%s %g%s%s is out of range (allowed: %s%g, %g%s%s%s)",
+                   what, v, blank, unit, lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]", blank, unit);
 }
 
 int jc_setup_has_resistance(const jc_Setup *s)

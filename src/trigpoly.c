@@ -56,12 +56,16 @@ static int degree(const jc_TrigLin *p)
     return d0 > d1 ? d0 : d1;
 }
 
-/* Adds (xc, xs) * (yc, ys) into (oc, os), by product-to-sum. */
-static void mul_into(double *oc, double *os, const double *xc, const double *xs,
-                     const double *yc, const double *ys)
+/* Adds (xc, xs) * (yc, ys) into (oc, os), by product-to-sum, for the terms
+ * up to degrees dx and dy, dx + dy <= JC_TRIG_DEGREE. The loops stop at the
+ * degrees rather than skipping zero products: with an infinite or NaN
+ * coefficient a "zero" product is NaN, and i + j would index past the
+ * arrays (found by fuzzing: a 1e308 kg part overflowed the model). */
+static void mul_into(double *oc, double *os, const double *xc, const double *xs, int dx,
+                     const double *yc, const double *ys, int dy)
 {
-    for (int i = 0; i <= JC_TRIG_DEGREE; ++i) {
-        for (int j = 0; j <= JC_TRIG_DEGREE; ++j) {
+    for (int i = 0; i <= dx; ++i) {
+        for (int j = 0; j <= dy; ++j) {
             double cc = xc[i] * yc[j], ss = xs[i] * ys[j];
             double sc = xs[i] * yc[j], cs = xc[i] * ys[j];
             if (cc == 0.0 && ss == 0.0 && sc == 0.0 && cs == 0.0) continue;
@@ -79,13 +83,14 @@ static void mul_into(double *oc, double *os, const double *xc, const double *xs,
 
 int jc_tl_mul(jc_TrigLin *out, const jc_TrigLin *x, const jc_TrigLin *y)
 {
-    if ((has_lin(x) && has_lin(y)) || degree(x) + degree(y) > JC_TRIG_DEGREE)
+    const int dx = degree(x), dy = degree(y);
+    if ((has_lin(x) && has_lin(y)) || dx + dy > JC_TRIG_DEGREE)
         return JC_EINVAL;
     jc_TrigLin r;
     jc_tl_zero(&r);
-    mul_into(r.c0, r.s0, x->c0, x->s0, y->c0, y->s0);
-    mul_into(r.c1, r.s1, x->c1, x->s1, y->c0, y->s0);
-    mul_into(r.c1, r.s1, x->c0, x->s0, y->c1, y->s1);
+    mul_into(r.c0, r.s0, x->c0, x->s0, dx, y->c0, y->s0, dy);
+    mul_into(r.c1, r.s1, x->c1, x->s1, dx, y->c0, y->s0, dy);
+    mul_into(r.c1, r.s1, x->c0, x->s0, dx, y->c1, y->s1, dy);
     *out = r;
     return JC_OK;
 }

@@ -266,8 +266,9 @@ static int test_invalid_body(void)
     c.def.parts[0].mass_kg = 0.0;
     c.def.parts[1].mass_kg = 0.0;
     if (check_bad(&c)) return 1;
-    /* Two finite masses whose sum overflows. */
-    c = (bad_case){"total mass overflows", paper_body(), "total mass", "inf"};
+    /* Finite masses whose sum (and the model's products) would overflow:
+     * each part's mass is bounded, so the total cannot overflow. */
+    c = (bad_case){"huge masses", paper_body(), "part 1 (disc): mass", "1.5e+308 kg is out of range (allowed: [0, 1e+06] kg)"};
     c.def.parts[0].mass_kg = 1.5e308;
     c.def.parts[1].mass_kg = 1.5e308;
     if (check_bad(&c)) return 1;

@@ -1,0 +1,345 @@
+/* jumpcyl animate: the full model's motion as a film. Frames are samples of
+ * jc_simulate at dt = 1 / (fps * slowmo), drawn with cairo (draw.c) and
+ * assembled with ffmpeg (video.c), or kept as numbered PNG files. */
+#include "draw.h"
+#include "video.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEFAULT_SIZE "960x540"
+#define DEFAULT_FPS 30.0
+#define DEFAULT_SLOWMO 8.0 /* a 240 fps high-speed camera played back at 30 fps */
+#define MIN_SIDE 64
+#define MAX_W 7680
+#define MAX_H 4320
+#define MAX_FPS 240.0
+#define MAX_SLOWMO 10000.0
+/* The trace of the centre fades over this much playback time. */
+#define TRACE_FADE_PLAYBACK_S 2.0
+
+typedef struct {
+    const char *output, *size, *fps, *slowmo;
+} animate_args;
+
+typedef struct {
+    int width, height;
+    double fps, slowmo;
+    vid_Format format;
+    const char *output;
+} animate_opts;
+
+static void help(void)
+{
+    printf("Usage: jumpcyl animate --output FILE [--size WxH] [--fps F] [--slowmo K] [SETUP OPTIONS]\n"
+           "                       [SIMULATION OPTIONS]\n"
+           "The full motion as a film: the cylinder to scale with every body part, its centre of\n"
+           "mass, the contact point and forces, a fading trace of the centre, a clock and the mode.\n"
+           "\n"
+           "  --output FILE  .gif or .mp4 (made with ffmpeg), or a directory (a name ending in '/'\n"
+           "                 or without extension) for numbered PNG frames frame-00000.png, ...\n"
+           "  --size WxH     frame size in pixels (default %s; %d to %d by %d to %d)\n"
+           "  --fps F        frames per second of playback (default %g; 0 < F <= %g)\n"
+           "  --slowmo K     slow motion: K seconds of film per simulated second (default %g, a\n"
+           "                 240 fps camera played at 30 fps; 0 < K <= %g). Frames are %s\n"
+           "                 apart in simulated time: dt = 1/(F K).\n"
+           "  -h, --help     this help\n"
+           "\n"
+           "Without ffmpeg (Debian: ffmpeg), a .gif or .mp4 is left as PNG frames in a directory\n"
+           "beside it, and the message gives the ffmpeg command that assembles them.\n"
+           "--sample-dt is set by --fps and --slowmo; --t-max limits the film.\n\n",
+           DEFAULT_SIZE, MIN_SIDE, MAX_W, MIN_SIDE, MAX_H, DEFAULT_FPS, MAX_FPS, DEFAULT_SLOWMO, MAX_SLOWMO,
+           "1/(F K)");
+    cli_sim_help(stdout);
+    putchar('\n');
+    cli_setup_help(stdout);
+}
+
+static int take_once(const char **slot, const char *name, const char *arg)
+{
+    if (*slot) {
+        cli_error("animate: --%s given twice ('%s' and '%s')", name, *slot, arg);
+        return EXIT_USAGE;
+    }
+    *slot = arg;
+    return 0;
+}
+
+static int take(int opt, const char *arg, void *ctx)
+{
+    animate_args *a = ctx;
+    if (opt == 'o') return take_once(&a->output, "output", arg);
+    if (opt == 's') return take_once(&a->size, "size", arg);
+    if (opt == 'f') return take_once(&a->fps, "fps", arg);
+    if (opt == 'k') return take_once(&a->slowmo, "slowmo", arg);
+    if (opt == 'h') { help(); return -1; }
+    return EXIT_USAGE;
+}
+
+/* "960x540" within the allowed sizes. */
+static int parse_size(const char *text, int *w, int *h)
+{
+    char *end;
+    const long lw = strtol(text, &end, 10);
+    if (end == text || (*end != 'x' && *end != 'X')) return -1;
+    const char *rest = end + 1;
+    const long lh = strtol(rest, &end, 10);
+    if (end == rest || *end || text[0] == '-' || text[0] == '+' || *rest == '-' || *rest == '+') return -1;
+    if (lw < MIN_SIDE || lw > MAX_W || lh < MIN_SIDE || lh > MAX_H) return -1;
+    *w = (int)lw;
+    *h = (int)lh;
+    return 0;
+}
+
+/* A number in (0, max]. */
+static int parse_positive(const char *name, const char *text, double max, double *out)
+{
+    char msg[256];
+    if (cli_parse_quantity(text, Q_NUMBER, out, msg, sizeof msg) != 0 || !(*out > 0) || *out > max) {
+        cli_error("animate: --%s '%s' is out of range (allowed: a number > 0 and <= %g)", name, text, max);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+static int check_args(const animate_args *a, animate_opts *o)
+{
+    if (!a->output || !*a->output) {
+        cli_error("animate: --output FILE is required (.gif, .mp4, or a directory for PNG frames)");
+        return EXIT_USAGE;
+    }
+    o->output = a->output;
+    if (vid_format_from_path(a->output, &o->format) != 0) {
+        cli_error("animate: --output '%s': unknown format '.%s' (allowed: .gif, .mp4, or a directory: a name "
+                  "ending in '/' or without extension)", a->output, cli_path_ext(a->output));
+        return EXIT_USAGE;
+    }
+    if (parse_size(a->size ? a->size : DEFAULT_SIZE, &o->width, &o->height) != 0) {
+        cli_error("animate: --size '%s' is out of range (allowed: WxH, W from %d to %d, H from %d to %d pixels)",
+                  a->size, MIN_SIDE, MAX_W, MIN_SIDE, MAX_H);
+        return EXIT_USAGE;
+    }
+    o->fps = DEFAULT_FPS;
+    o->slowmo = DEFAULT_SLOWMO;
+    if (a->fps && parse_positive("fps", a->fps, MAX_FPS, &o->fps)) return EXIT_USAGE;
+    if (a->slowmo && parse_positive("slowmo", a->slowmo, MAX_SLOWMO, &o->slowmo)) return EXIT_USAGE;
+    return 0;
+}
+
+static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, const animate_opts *o,
+                        jc_Model *model, jc_SimOptions *sim)
+{
+    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
+        if (sim_args->value[i] && strcmp(cli_sim_options[i].name, "sample-dt") == 0) {
+            cli_error("animate: --sample-dt is set by --fps and --slowmo (dt = 1/(fps slowmo)); leave it out");
+            return EXIT_USAGE;
+        }
+    char err[512];
+    jc_Setup setup;
+    if (cli_setup_build(sa, &setup, err, sizeof err) != 0 || cli_sim_build(sim_args, sim, err, sizeof err) != 0) {
+        cli_error("animate: %s", err);
+        return EXIT_USAGE;
+    }
+    sim->sample_dt_s = 1.0 / (o->fps * o->slowmo);
+    const int st = jc_model_init(model, &setup, err, sizeof err);
+    if (st != JC_OK) {
+        cli_error("animate: %s", err);
+        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
+    }
+    return 0;
+}
+
+/* Frame k shows the last sample at or before k dt: the regular samples, not
+ * the extra ones the run records at events (those still feed the trace). */
+static int select_frames(const jc_Run *run, double dt, int **idx)
+{
+    const double t_end = run->final_state.t_s;
+    const double n_real = floor(t_end / dt * (1 + 1e-12)) + 1;
+    if (n_real > VID_MAX_FRAMES) return -(int)fmin(n_real, 2e9);
+    const int n = (int)n_real;
+    *idx = malloc(sizeof **idx * (size_t)n);
+    if (!*idx) return 0;
+    int j = 0;
+    for (int k = 0; k < n; ++k) {
+        const double t = k * dt * (1 + 1e-12);
+        while (j + 1 < run->sample_count && run->samples[j + 1].state.t_s <= t) ++j;
+        (*idx)[k] = j;
+    }
+    return n;
+}
+
+static draw_TracePoint *make_trace(const jc_Run *run)
+{
+    draw_TracePoint *tr = malloc(sizeof *tr * (size_t)(run->sample_count ? run->sample_count : 1));
+    for (int i = 0; tr && i < run->sample_count; ++i)
+        tr[i] = (draw_TracePoint){run->samples[i].state.x_m, run->samples[i].state.y_m, run->samples[i].state.t_s};
+    return tr;
+}
+
+typedef struct {
+    const jc_Model *model;
+    const jc_Run *run;
+    const animate_opts *opts;
+    const int *frames;
+    int frame_count;
+} animate_job;
+
+static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *job, const draw_TracePoint *trace,
+                      int k, const char *dir)
+{
+    const int i = job->frames[k];
+    const jc_Sample *p = &job->run->samples[i];
+    const double fade = TRACE_FADE_PLAYBACK_S / job->opts->slowmo;
+    int first = i;
+    while (first > 0 && trace[first - 1].t_s >= p->state.t_s - fade) --first;
+    const draw_Frame f = {job->model, draw_view_follow(job->model, job->opts->width, job->opts->height, &p->state),
+                          p, trace + first, i - first + 1, fade, job->opts->slowmo};
+    draw_frame(cr, &f);
+    cairo_surface_flush(surface);
+    char path[CLI_PATH_MAX];
+    if (vid_frame_path(path, sizeof path, dir, k) != 0) return -1;
+    return cairo_surface_write_to_png(surface, path) == CAIRO_STATUS_SUCCESS ? 0 : -1;
+}
+
+static int render_frames(const animate_job *job, const char *dir)
+{
+    cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, job->opts->width, job->opts->height);
+    cairo_t *cr = cairo_create(surface);
+    draw_TracePoint *trace = make_trace(job->run);
+    int rc = cairo_status(cr) == CAIRO_STATUS_SUCCESS && trace ? EXIT_OK : EXIT_FAIL;
+    if (rc != EXIT_OK) cli_error("animate: out of memory for %dx%d frames", job->opts->width, job->opts->height);
+    cli_Progress progress;
+    cli_progress_begin(&progress, "animate: frame");
+    for (int k = 0; rc == EXIT_OK && k < job->frame_count; ++k) {
+        if (cli_stop_requested()) rc = cli_stop_status();
+        else if (render_one(cr, surface, job, trace, k, dir) != 0) {
+            cli_error("cannot write frame %d in %s", k, dir);
+            rc = EXIT_FAIL;
+        }
+        cli_progress_update(&progress, k + 1, job->frame_count);
+    }
+    cli_progress_end(&progress);
+    free(trace);
+    cairo_destroy(cr);
+    cairo_surface_destroy(surface);
+    cairo_debug_reset_static_data(); /* font caches: leak checkers see a clean exit */
+    return rc;
+}
+
+/* Frames into a new directory beside target, then moved to target. */
+static int frames_to_dir(const animate_job *job, const char *target)
+{
+    char tmp[CLI_PATH_MAX];
+    if (vid_frames_tmpdir(target, tmp, sizeof tmp) != 0) return EXIT_FAIL;
+    int rc = render_frames(job, tmp);
+    if (rc == EXIT_OK) rc = vid_publish_frames(tmp, target, job->frame_count);
+    if (rc != EXIT_OK) cli_remove_flat_dir(tmp);
+    return rc;
+}
+
+/* No ffmpeg: keep the frames beside the video and say how to finish it. */
+static int frames_without_ffmpeg(const animate_job *job)
+{
+    char dir[CLI_PATH_MAX], stem[256], frames[CLI_PATH_MAX], name[300];
+    const char *out = job->opts->output;
+    if (cli_path_split(out, dir, sizeof dir, stem, sizeof stem) != 0 ||
+        snprintf(name, sizeof name, "%s-frames", stem) >= (int)sizeof name ||
+        cli_path_join(frames, sizeof frames, dir, name) != 0) {
+        cli_error("cannot write %s: path too long", out);
+        return EXIT_FAIL;
+    }
+    const int rc = frames_to_dir(job, frames);
+    if (rc != EXIT_OK) return rc;
+    cli_error("animate: ffmpeg was not found in PATH, so %s was not made (Debian: sudo apt-get install ffmpeg)", out);
+    fprintf(stderr, "The %d frames are in %s/; assemble them with:\n", job->frame_count, frames);
+    vid_print_command(stderr, frames, job->opts->fps, out, job->opts->format);
+    return EXIT_FAIL;
+}
+
+static int frames_to_video(const animate_job *job)
+{
+    cli_WorkDir work;
+    if (cli_workdir_make(&work, "animate") != 0) return EXIT_FAIL;
+    char log_path[CLI_PATH_MAX];
+    int rc = cli_path_join(log_path, sizeof log_path, work.path, "ffmpeg.log") == 0 ? EXIT_OK : EXIT_FAIL;
+    if (rc == EXIT_OK) rc = render_frames(job, work.path);
+    if (rc == EXIT_OK) rc = vid_assemble(work.path, job->opts->fps, job->opts->output, job->opts->format, log_path);
+    cli_workdir_remove(&work);
+    return rc;
+}
+
+static int make_film(const animate_job *job)
+{
+    char ffmpeg[CLI_PATH_MAX];
+    if (job->opts->format == VID_FRAMES) return frames_to_dir(job, job->opts->output);
+    if (cli_find_program("ffmpeg", ffmpeg, sizeof ffmpeg) != 0) return frames_without_ffmpeg(job);
+    return frames_to_video(job);
+}
+
+/* A run without samples first gives the film's length, so that a film of
+ * too many frames is refused before millions of samples are stored. */
+static int check_length(const jc_Model *model, const jc_SimOptions *sim, const animate_opts *o)
+{
+    jc_SimOptions probe_opts = *sim;
+    probe_opts.sample_dt_s = 0.0;
+    jc_Run probe;
+    const int st = cli_simulate(model, &probe_opts, &probe, "animate");
+    const double frames = floor(probe.final_state.t_s * o->fps * o->slowmo) + 1;
+    jc_run_free(&probe);
+    if (st != JC_OK) return EXIT_FAIL;
+    if (frames > VID_MAX_FRAMES) {
+        cli_error("animate: %.0f frames is too many (allowed: at most %d); shorten the film with --t-max, "
+                  "--slowmo or --fps", frames, VID_MAX_FRAMES);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+static int animate_run(const jc_Model *model, const jc_Run *run, const animate_opts *o)
+{
+    int *frames = NULL;
+    const int n = select_frames(run, 1.0 / (o->fps * o->slowmo), &frames);
+    if (n <= 0) {
+        if (n < 0)
+            cli_error("animate: %d frames is too many (allowed: at most %d); shorten the film with --t-max, "
+                      "--slowmo or --fps", -n, VID_MAX_FRAMES);
+        else cli_error("animate: out of memory");
+        return n < 0 ? EXIT_USAGE : EXIT_FAIL;
+    }
+    const animate_job job = {model, run, o, frames, n};
+    const int rc = make_film(&job);
+    free(frames);
+    if (rc == EXIT_OK)
+        printf("Animation: %s (%d frames, %dx%d, %g fps, slow motion x%g, %.4g s simulated)\n", o->output, n,
+               o->width, o->height, o->fps, o->slowmo, run->final_state.t_s);
+    return rc;
+}
+
+int cmd_animate(int argc, char **argv)
+{
+    static const struct option own[] = {{"output", required_argument, 0, 'o'}, {"size", required_argument, 0, 's'},
+                                        {"fps", required_argument, 0, 'f'},    {"slowmo", required_argument, 0, 'k'},
+                                        {"help", no_argument, 0, 'h'}};
+    animate_args a = {0};
+    cli_SetupArgs sa;
+    cli_SimArgs sim_args;
+    int st = cli_parse_args(argc, argv, own, 5, take, &a, &sa, &sim_args);
+    if (st) return st < 0 ? EXIT_OK : st;
+    animate_opts o;
+    jc_Model model;
+    jc_SimOptions sim;
+    if ((st = check_args(&a, &o)) != 0 || (st = build_inputs(&sa, &sim_args, &o, &model, &sim)) != 0) return st;
+    if (cli_check_output_dir(o.output) != 0) return EXIT_FAIL;
+    /* Between frames a first Ctrl-C stops cleanly: scratch files are removed. */
+    cli_signals_defer();
+    jc_Run run;
+    if ((st = check_length(&model, &sim, &o)) != 0) return st;
+    if (cli_simulate(&model, &sim, &run, "animate") != JC_OK) {
+        jc_run_free(&run);
+        return EXIT_FAIL;
+    }
+    st = animate_run(&model, &run, &o);
+    jc_run_free(&run);
+    return cli_stop_requested() ? cli_stop_status() : st;
+}

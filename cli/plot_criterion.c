@@ -1,0 +1,207 @@
+/* paper-criterion: the paper's Figures 2-4 for any setup. Both sides of its
+ * Eq. 9 against the rotation angle, every intersection, the jump angle its
+ * Table 1 prints, and the exact rolling model's N = 0 condition written in
+ * the same form, w^2/g = (cos a - d sin th th''/g) / (d cos th), so that the
+ * two criteria can be compared curve by curve. */
+#include "plot.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Enough points that the steep branches of the threshold near cos th = 0 are
+ * drawn smoothly over the whole ramp (about 100 per turn on the paper's). */
+#define CRIT_POINTS 4001
+
+/* The paper's table is for the paper's cylinder: its body, its printed d and
+ * its g. Friction, restitution and the start do not enter the paper's model. */
+static int is_paper_cylinder(const jc_Setup *s)
+{
+    const jc_Setup p = jc_paper_setup();
+    if (s->body.radius_m != p.body.radius_m || s->body.part_count != p.body.part_count ||
+        s->paper_cm_offset_m != p.paper_cm_offset_m || s->gravity_mps2 != p.gravity_mps2)
+        return 0;
+    for (int i = 0; i < p.body.part_count; ++i) {
+        const jc_Part *a = &s->body.parts[i], *b = &p.body.parts[i];
+        if (a->kind != b->kind || a->mass_kg != b->mass_kg || a->offset_m != b->offset_m ||
+            a->angle_rad != b->angle_rad || a->radius_m != b->radius_m)
+            return 0;
+    }
+    return 1;
+}
+
+static void find_printed(fig_Data *d)
+{
+    d->printed_theta_rad = d->printed_x_m = NAN;
+    if (!is_paper_cylinder(&d->model->setup)) return;
+    const jc_PaperTableRow *rows;
+    const int n = jc_paper_table(&rows);
+    for (int i = 0; i < n; ++i)
+        if (fabs(cli_deg(d->model->setup.incline_rad) - rows[i].incline_deg) < 1e-9) {
+            d->printed_theta_rad = rows[i].printed_theta_rad;
+            d->printed_x_m = rows[i].printed_x_m;
+        }
+}
+
+/* Both sides of the exact N = 0 condition at th, NaN where the rolling path
+ * from the setup's start does not go or the threshold is undefined. */
+static void exact_sides(const fig_Data *d, double th, double *lhs, double *rhs)
+{
+    const jc_Model *m = d->model;
+    *lhs = *rhs = NAN;
+    const double lo = fmin(m->setup.theta0_rad, d->rolling.end_theta_rad);
+    const double hi = fmax(m->setup.theta0_rad, d->rolling.end_theta_rad);
+    jc_RollState rs;
+    char err[256];
+    if (th < lo || th > hi || jc_rolling_state(m, th, &rs, err, sizeof err) != JC_OK) return;
+    const double g = m->setup.gravity_mps2, dd = m->body.cm_offset_m;
+    *lhs = rs.omega_radps * rs.omega_radps / g;
+    const double den = dd * cos(th);
+    if (den != 0.0) *rhs = (m->cos_incline - dd * sin(th) * rs.alpha_radps2 / g) / den;
+}
+
+/* Data files hold "NaN" for undefined values: gnuplot breaks lines there. */
+static void put(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, " %.10g", v);
+    else fputs(" NaN", f);
+}
+
+static double theta_of(const fig_Data *d, int i) { return d->theta_max_rad * i / (CRIT_POINTS - 1); }
+
+static int write_curves(fig_Data *d)
+{
+    char path[CLI_PATH_MAX];
+    cli_AtomicFile af;
+    if (fig_data_path(d, "criterion", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
+    const jc_Model *m = d->model;
+    fprintf(af.f, "# jumpcyl plot --what paper-criterion: the paper's Eq. 9 and the exact N = 0 condition.\n"
+                  "# paper_lhs, paper_rhs: jc_paper_lhs, jc_paper_rhs (the paper's model: d = %.6g m, from rest at theta = 0).\n"
+                  "# exact_lhs = w^2/g, exact_rhs = (cos a - d sin(theta) theta''/g)/(d cos(theta)), from jc_rolling_state\n"
+                  "#   (exact rolling model, d = %.6g m); N = 0 where they are equal. NaN: undefined or not reached.\n"
+                  "# columns: theta_rad x_cm(r*theta) paper_lhs_per_m paper_rhs_per_m exact_lhs_per_m exact_rhs_per_m\n",
+            m->paper_d_m, m->body.cm_offset_m);
+    double ymax = 0.0;
+    for (int i = 0; i < CRIT_POINTS; ++i) {
+        const double th = theta_of(d, i), pl = jc_paper_lhs(m, th);
+        double el, er;
+        exact_sides(d, th, &el, &er);
+        fprintf(af.f, "%.17g", th); /* exact: a reader can recompute at the same angle */
+        put(af.f, m->body.radius_m * th * 100);
+        put(af.f, pl);
+        put(af.f, jc_paper_rhs(m, th));
+        put(af.f, el);
+        put(af.f, er);
+        fputc('\n', af.f);
+        if (isfinite(pl)) ymax = fmax(ymax, pl);
+        if (isfinite(el)) ymax = fmax(ymax, el);
+    }
+    /* Room above the kinetic side, and the threshold's minimum cos a / d well inside. */
+    const double floor_y = m->cos_incline / m->paper_d_m;
+    d->crit_ymax = fmax(1.15 * ymax, isfinite(floor_y) ? 2.5 * floor_y : 0.0);
+    if (!(d->crit_ymax > 0)) d->crit_ymax = 1.0;
+    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+}
+
+static int write_roots(const fig_Data *d)
+{
+    char path[CLI_PATH_MAX];
+    cli_AtomicFile af;
+    if (fig_data_path(d, "roots", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
+    fprintf(af.f, "# jumpcyl plot --what paper-criterion: every intersection of the two sides of the paper's\n"
+                  "# Eq. 9 with cos(theta) > 0 (jc_paper_solve)%s; first = 1 marks the paper's prediction.\n"
+                  "# columns: theta_rad x_cm paper_lhs_per_m first\n",
+            d->paper.truncated ? ", the first ones only (more exist)" : "");
+    for (int i = 0; i < d->paper.root_count; ++i)
+        fprintf(af.f, "%.17g %.10g %.10g %d\n", d->paper.theta_rad[i], d->paper.x_m[i] * 100,
+                jc_paper_lhs(d->model, d->paper.theta_rad[i]), i == d->paper.first);
+    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+}
+
+int fig_criterion_prepare(fig_Data *d)
+{
+    char err[512];
+    if (jc_paper_solve(d->model, &d->paper, err, sizeof err) != JC_OK ||
+        jc_rolling_predict(d->model, &d->rolling, err, sizeof err) != JC_OK) {
+        cli_error("plot: %s", err);
+        return EXIT_FAIL;
+    }
+    find_printed(d);
+    /* The paper's model measures x = r th from th = 0: the ramp end is at L / r. */
+    d->theta_max_rad = d->model->setup.ramp_length_m / d->model->body.radius_m;
+    int rc = write_curves(d);
+    if (rc == EXIT_OK) rc = write_roots(d);
+    return rc;
+}
+
+/* The single markers: the printed angle (a vertical line) and the exact
+ * model's first N = 0 (a diamond), with their key entries in panel_plot. */
+static void panel_markers(FILE *gp, const fig_Data *d)
+{
+    if (isfinite(d->printed_theta_rad)) {
+        fprintf(gp, "# The jump angle printed in the paper's Table 1 for this incline (delete to hide)\n"
+                    "PRINTED_THETA = %.10g\n"
+                    "set arrow 1 from PRINTED_THETA, graph 0 to PRINTED_THETA, graph 1 nohead lc rgb C_GREY dt 4 lw 2 back\n",
+                d->printed_theta_rad);
+    }
+    if (d->rolling.liftoff.found) {
+        const jc_RollState *s = &d->rolling.liftoff.state;
+        fprintf(gp, "# First N = 0 of the exact rolling model (jc_rolling_predict): a diagnostic, the body slips first\n"
+                    "EXACT_THETA = %.10g\nEXACT_Y = %.10g\n"
+                    "set label 1 '' at EXACT_THETA, EXACT_Y point pt 13 ps 1.8*PS lc rgb C_GREEN front\n",
+                s->theta_rad, s->omega_radps * s->omega_radps / d->model->setup.gravity_mps2);
+    }
+}
+
+/* Key entries are kept short: two columns of them must fit below the graph. */
+static void panel_plot(FILE *gp, const fig_Data *d)
+{
+    fputs("plot CRIT using 1:3 with lines lc rgb C_BLUE lw LW title \"paper: θ'^2/g (Eqs. 1, 5, 6)\", \\\n"
+          "     CRIT using 1:($4 > 0 ? $4 : NaN) with lines lc rgb C_RED lw LW title \"paper: cos α/(d cos θ) (Eq. 9)\", \\\n"
+          "     CRIT using 1:5 with lines lc rgb C_BLUE lw LW dt (8,5) title \"exact rolling: θ'^2/g\", \\\n"
+          "     CRIT using 1:($6 > 0 ? $6 : NaN) with lines lc rgb C_RED lw LW dt (8,5) \\\n"
+          "          title \"exact N = 0: (cos α − d sin θ θ''/g)/(d cos θ)\", \\\n"
+          "     ROOTS using 1:3 with points pt 6 ps 1.4*PS lw 2 lc rgb C_INK title \"intersections, paper's model\"",
+          gp);
+    if (d->paper.first >= 0)
+        fprintf(gp, ", \\\n     ROOTS using 1:($4 == 1 ? $3 : NaN) with points pt 6 ps 3*PS lw 3 lc rgb C_INK \\\n"
+                    "          title \"paper's jump: θ = %.2f rad (%.1f cm)\"",
+                d->paper.theta_rad[d->paper.first], d->paper.x_m[d->paper.first] * 100);
+    if (isfinite(d->printed_theta_rad))
+        fprintf(gp, ", \\\n     keyentry with lines lc rgb C_GREY dt 4 lw 2 title \"printed (Table 1): θ = %.2f rad\"",
+                d->printed_theta_rad);
+    if (d->rolling.liftoff.found)
+        fprintf(gp, ", \\\n     keyentry with points pt 13 ps 1.8*PS lc rgb C_GREEN title \"exact N = 0: θ = %.2f rad (%.1f cm)\"",
+                d->rolling.liftoff.state.theta_rad, d->rolling.liftoff.state.x_m * 100);
+    fputc('\n', gp);
+}
+
+void fig_criterion_panel(FILE *gp, const fig_Data *d)
+{
+    const jc_Model *m = d->model;
+    char crit[CLI_PATH_MAX], roots[CLI_PATH_MAX];
+    snprintf(crit, sizeof crit, "%s-criterion.dat", d->stem);
+    snprintf(roots, sizeof roots, "%s-roots.dat", d->stem);
+    fig_panel_begin(gp, "paper-criterion (the paper's Eq. 9 and the exact N = 0 condition)");
+    fputs("CRIT = ", gp);
+    fig_quote(gp, crit);
+    fputs("\nROOTS = ", gp);
+    fig_quote(gp, roots);
+    fprintf(gp, "\nR_CM = %.10g   # rim radius (cm): the top axis shows the distance rolled, r θ\n", m->body.radius_m * 100);
+    fputs("set title \"Paper's Eq. 9 vs exact N = 0", gp);
+    if (d->caption[0])
+        fprintf(gp, " — %.4g° incline, d = %.3g cm, g = %.4g m/s^2", cli_deg(m->setup.incline_rad), m->paper_d_m * 100,
+                m->setup.gravity_mps2);
+    fputs("\"\n", gp);
+    fprintf(gp, "set xlabel 'rotation angle θ (rad)'\n"
+                "set ylabel \"θ'^2/g and lift-off threshold (m^{-1})\"\n"
+                "set x2label 'distance rolled r θ (cm)'\n"
+                "set border 7 lw 1.2 lc rgb C_INK\n"
+                "set link x2 via x*R_CM inverse x/R_CM\n"
+                "set x2tics out nomirror\n"
+                "set xrange [0:%.10g]\nset yrange [0:%.10g]\n"
+                "# For a logarithmic axis instead: set logscale y; set yrange [1:*]\n"
+                "set key width -10   # gnuplot overestimates text widths: two columns of the key fit\n",
+            d->theta_max_rad, d->crit_ymax);
+    panel_markers(gp, d);
+    panel_plot(gp, d);
+}

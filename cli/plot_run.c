@@ -1,0 +1,346 @@
+/* The full model's run as data for the forces, path and energy panels: the
+ * trajectory samples, the events (with labels grouped so that they do not
+ * overprint each other) and the hops (with their heights). */
+#include "plot.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* About this many samples over the run: smooth curves, files of ~1 MB. */
+#define RUN_TARGET_SAMPLES 5000.0
+#define RUN_MIN_DT_S 2e-5
+/* Labels closer than this fraction of the x range share one label. */
+#define EVENT_CLUSTER_FRACTION 0.03
+#define HOP_CLUSTER_FRACTION 0.04
+/* Longest label (bytes): a rotated label must fit in the panel's height. */
+#define LABEL_MAX 34
+/* Going back more than this fraction of the distance covered puts the
+ * panels against time. */
+#define BACKTRACK_FRACTION 0.02
+
+const char *fig_event_label(jc_EventKind k)
+{
+    switch (k) {
+    case JC_EVENT_SLIP: return "slip";
+    case JC_EVENT_STICK: return "stick";
+    case JC_EVENT_SLIP_REVERSAL: return "slip reversal";
+    case JC_EVENT_LIFTOFF: return "lift-off";
+    case JC_EVENT_TOUCHDOWN: return "touchdown";
+    case JC_EVENT_BOUNCE: return "bounce";
+    case JC_EVENT_RAMP_END: return "ramp end";
+    case JC_EVENT_RAMP_TOP: return "ramp top";
+    case JC_EVENT_PAINLEVE: return "Painlevé";
+    case JC_EVENT_COUNT: break;
+    }
+    return "event";
+}
+
+/* Runs the full model. Without a given --sample-dt, a first run without
+ * samples finds the duration, so that every run gets about the same number
+ * of samples whatever its length. */
+static int simulate(fig_Data *d, const jc_SimOptions *o, int dt_given)
+{
+    jc_SimOptions opts = *o;
+    if (!dt_given) {
+        jc_Run probe;
+        opts.sample_dt_s = 0.0;
+        const int st = cli_simulate(d->model, &opts, &probe, "plot");
+        const double t_end = probe.final_state.t_s;
+        jc_run_free(&probe);
+        if (st != JC_OK) return EXIT_FAIL;
+        opts.sample_dt_s = fmax(t_end / RUN_TARGET_SAMPLES, RUN_MIN_DT_S);
+    }
+    d->sample_dt_s = opts.sample_dt_s;
+    if (cli_simulate(d->model, &opts, &d->run, "plot") != JC_OK) {
+        jc_run_free(&d->run);
+        return EXIT_FAIL;
+    }
+    d->have_run = 1;
+    return EXIT_OK;
+}
+
+static void put(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, " %.10g", v);
+    else fputs(" NaN", f);
+}
+
+/* |F|/N is undefined without a normal force (in flight, and at N = 0). */
+static double friction_ratio(const fig_Data *d, const jc_Sample *p)
+{
+    const double tiny = 1e-9 * d->model->body.mass_kg * d->model->setup.gravity_mps2;
+    return p->mode != JC_MODE_FLIGHT && p->normal_N > tiny ? fabs(p->friction_N) / p->normal_N : NAN;
+}
+
+static void track_ranges(fig_Data *d, const jc_Sample *p, double n_norm, double ratio, double sum)
+{
+    const double x = p->state.x_m * 100, speed = hypot(p->state.vx_mps, p->state.vy_mps);
+    d->x_min_cm = fmin(d->x_min_cm, x);
+    d->x_max_cm = fmax(d->x_max_cm, x);
+    d->t_max_s = fmax(d->t_max_s, p->state.t_s);
+    d->n_min = fmin(d->n_min, n_norm);
+    d->n_max = fmax(d->n_max, n_norm);
+    if (isfinite(ratio)) d->ratio_max = fmax(d->ratio_max, ratio);
+    d->gap_max_mm = fmax(d->gap_max_mm, p->gap_m * 1e3);
+    d->speed_max_mps = fmax(d->speed_max_mps, speed);
+    const double e[5] = {p->kinetic_J, p->potential_J, p->friction_loss_J, p->impact_loss_J, sum};
+    for (int k = 0; k < 5; ++k) {
+        d->energy_min_J = fmin(d->energy_min_J, e[k]);
+        d->energy_max_J = fmax(d->energy_max_J, e[k]);
+    }
+}
+
+static int write_samples(fig_Data *d)
+{
+    char path[CLI_PATH_MAX];
+    cli_AtomicFile af;
+    if (fig_data_path(d, "run", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
+    const jc_Model *m = d->model;
+    const double weight_n = m->body.mass_kg * m->setup.gravity_mps2 * m->cos_incline;
+    fprintf(af.f, "# jumpcyl plot: samples of the full model (jc_simulate, sample_dt_s = %.17g, and at every event).\n"
+                  "# M g cos(a) = %.10g N. mode: 0 rolling, 1 sliding, 2 flight. F/N: NaN without contact.\n"
+                  "# columns: t_s x_cm mode N_over_Mgcosa absF_over_N gap_mm speed_mps kinetic_J potential_J\n"
+                  "#          friction_loss_J impact_loss_J sum_J normal_N friction_N air_and_rolling_resistance_loss_J\n"
+                  "# sum_J = kinetic + potential + all losses: constant up to the integration error.\n",
+            d->sample_dt_s, weight_n);
+    d->x_min_cm = d->x_max_cm = 0.0;
+    d->n_min = d->n_max = d->ratio_max = d->gap_max_mm = d->speed_max_mps = d->t_max_s = 0.0;
+    d->energy_min_J = d->energy_max_J = d->resistance_loss_max_J = 0.0;
+    for (int i = 0; i < d->run.sample_count; ++i) {
+        const jc_Sample *p = &d->run.samples[i];
+        const double n_norm = p->normal_N / weight_n, ratio = friction_ratio(d, p);
+        const double resist = p->air_loss_J + p->rolling_resistance_loss_J;
+        const double sum = p->kinetic_J + p->potential_J + p->friction_loss_J + p->impact_loss_J + resist;
+        fprintf(af.f, "%.12g", p->state.t_s);
+        put(af.f, p->state.x_m * 100);
+        fprintf(af.f, " %d", (int)p->mode);
+        const double v[] = {n_norm, ratio, p->gap_m * 1e3, hypot(p->state.vx_mps, p->state.vy_mps), p->kinetic_J,
+                            p->potential_J, p->friction_loss_J, p->impact_loss_J, sum, p->normal_N, p->friction_N,
+                            resist};
+        for (size_t k = 0; k < sizeof v / sizeof v[0]; ++k) put(af.f, v[k]);
+        fputc('\n', af.f);
+        track_ranges(d, p, n_norm, ratio, sum);
+        d->resistance_loss_max_J = fmax(d->resistance_loss_max_J, resist);
+    }
+    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+}
+
+static void append(char *out, size_t len, const char *part)
+{
+    const size_t used = strlen(out);
+    if (used + strlen(part) + 2 >= len) {
+        if (used + 4 < len && !strstr(out, "…")) strcat(out, "…");
+        return;
+    }
+    if (used) strcat(out, ", ");
+    strcat(out, part);
+}
+
+/* Per-kind totals in order of first appearance: "slip ×12, stick ×11", for
+ * clusters whose sequence is too long to spell out. */
+static void kind_totals(const jc_Run *run, int first, int last, char *out, size_t len)
+{
+    int count[JC_EVENT_COUNT] = {0}, order[JC_EVENT_COUNT], kinds = 0;
+    for (int i = first; i <= last; ++i) {
+        const int k = (int)run->events[i].kind;
+        if (k < 0 || k >= JC_EVENT_COUNT) continue;
+        if (count[k]++ == 0) order[kinds++] = k;
+    }
+    out[0] = '\0';
+    for (int i = 0; i < kinds; ++i) {
+        char part[64];
+        if (count[order[i]] > 1) snprintf(part, sizeof part, "%s ×%d", fig_event_label((jc_EventKind)order[i]), count[order[i]]);
+        else snprintf(part, sizeof part, "%s", fig_event_label((jc_EventKind)order[i]));
+        append(out, len, part);
+    }
+}
+
+/* "bounce ×4, touchdown": the kinds of events first..last in order, repeats
+ * counted; per-kind totals when that is longer than a label can be. */
+static void cluster_label(const jc_Run *run, int first, int last, char *out, size_t len)
+{
+    char seq[512];
+    seq[0] = '\0';
+    for (int i = first; i <= last;) {
+        int j = i;
+        while (j < last && run->events[j + 1].kind == run->events[i].kind) ++j;
+        char part[64];
+        if (j > i) snprintf(part, sizeof part, "%s ×%d", fig_event_label(run->events[i].kind), j - i + 1);
+        else snprintf(part, sizeof part, "%s", fig_event_label(run->events[i].kind));
+        append(seq, sizeof seq, part);
+        i = j + 1;
+    }
+    if (strlen(seq) < len) snprintf(out, len, "%s", seq);
+    else kind_totals(run, first, last, out, len);
+}
+
+/* Where something at (x, t) sits on the panels' horizontal axis. */
+static double axis_of(const fig_Data *d, double x_m, double t_s) { return d->time_axis ? t_s : x_m * 100; }
+
+static int write_events(const fig_Data *d)
+{
+    char path[CLI_PATH_MAX];
+    cli_AtomicFile af;
+    if (fig_data_path(d, "events", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
+    fputs("# jumpcyl plot: the events of the run (jc_simulate), in time order. Events close together on\n"
+          "# the panels' axis share the label written on the first of them.\n"
+          "# columns: x_cm t_s kind label\n",
+          af.f);
+    const jc_Run *run = &d->run;
+    const double tol = EVENT_CLUSTER_FRACTION * fmax(d->axis_max - d->axis_min, 1e-12);
+    for (int lead = 0; lead < run->event_count;) {
+        const double at = axis_of(d, run->events[lead].state.x_m, run->events[lead].state.t_s);
+        int last = lead;
+        while (last + 1 < run->event_count &&
+               fabs(axis_of(d, run->events[last + 1].state.x_m, run->events[last + 1].state.t_s) - at) <= tol)
+            ++last;
+        char label[LABEL_MAX];
+        cluster_label(run, lead, last, label, sizeof label);
+        for (int i = lead; i <= last; ++i) {
+            const jc_Event *e = &run->events[i];
+            fprintf(af.f, "%.10g %.12g %s \"%s\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind),
+                    i == lead ? label : "");
+        }
+        lead = last + 1;
+    }
+    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+}
+
+typedef struct {
+    double x_cm, t_s;            /* the centre at the flight's highest point */
+    double start_t_s, height_mm, flight_s;
+} fig_Hop;
+
+/* The highest sample of a flight, or its middle when the flight is too short
+ * to hold samples (a hop of a few micrometres still gets a mark). */
+static fig_Hop hop_of(const fig_Data *d, const jc_Event *e, int *cursor)
+{
+    const jc_Run *run = &d->run;
+    const double t1 = e->state.t_s + e->flight_time_s;
+    fig_Hop h = {NAN, NAN, e->state.t_s, e->hop_height_m * 1e3, e->flight_time_s};
+    double best_gap = -1.0;
+    while (*cursor < run->sample_count && run->samples[*cursor].state.t_s < e->state.t_s) ++*cursor;
+    for (int i = *cursor; i < run->sample_count && run->samples[i].state.t_s <= t1; ++i)
+        if (run->samples[i].gap_m > best_gap) {
+            best_gap = run->samples[i].gap_m;
+            h.x_cm = run->samples[i].state.x_m * 100;
+            h.t_s = run->samples[i].state.t_s;
+        }
+    if (best_gap < 0.5 * e->hop_height_m) {
+        const double end = isnan(e->landing_x_m) ? run->final_state.x_m : e->landing_x_m;
+        h.x_cm = 50 * (e->state.x_m + end);
+        h.t_s = e->state.t_s + 0.5 * e->flight_time_s;
+    }
+    return h;
+}
+
+static int collect_hops(const fig_Data *d, fig_Hop *hops)
+{
+    int n = 0, cursor = 0;
+    for (int i = 0; i < d->run.event_count; ++i) {
+        const jc_Event *e = &d->run.events[i];
+        const int flies = e->kind == JC_EVENT_LIFTOFF || (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT);
+        if (flies) hops[n++] = hop_of(d, e, &cursor);
+    }
+    return n;
+}
+
+/* "19.5 mm"; "0.822, 0.0657 mm"; "5 hops, 0.0013–0.822 mm". */
+static void hop_label(const fig_Hop *h, int first, int last, char *out, size_t len)
+{
+    double lo = h[first].height_mm, hi = lo;
+    for (int i = first; i <= last; ++i) {
+        lo = fmin(lo, h[i].height_mm);
+        hi = fmax(hi, h[i].height_mm);
+    }
+    const int n = last - first + 1;
+    if (n > 3) {
+        snprintf(out, len, "%d hops, %.2g–%.3g mm", n, lo, hi);
+        return;
+    }
+    out[0] = '\0';
+    for (int i = first; i <= last; ++i) {
+        char part[32];
+        snprintf(part, sizeof part, "%.3g%s", h[i].height_mm, i == last ? " mm" : "");
+        append(out, len, part);
+    }
+}
+
+/* Where a hop's label goes on the panels' axis: at its apex, but clear of
+ * the graph's sides. */
+static double label_at(const fig_Data *d, const fig_Hop *h)
+{
+    const double margin = 0.06 * (d->axis_max - d->axis_min);
+    return fmin(fmax(axis_of(d, h->x_cm / 100, h->t_s), d->axis_min + margin), d->axis_max - margin);
+}
+
+static void write_hop_rows(FILE *f, const fig_Data *d, const fig_Hop *h, int n)
+{
+    const double tol = HOP_CLUSTER_FRACTION * fmax(d->axis_max - d->axis_min, 1e-12);
+    for (int lead = 0; lead < n;) {
+        /* Grouped by where the labels go, so that two never overprint. */
+        const double at = label_at(d, &h[lead]);
+        int last = lead, top = lead;
+        while (last + 1 < n && fabs(label_at(d, &h[last + 1]) - at) <= tol) ++last;
+        for (int i = lead; i <= last; ++i)
+            if (h[i].height_mm > h[top].height_mm) top = i;
+        char label[64];
+        hop_label(h, lead, last, label, sizeof label);
+        for (int i = lead; i <= last; ++i)
+            fprintf(f, "%.10g %.12g %.12g %.10g %.10g \"%s\" %.10g\n", h[i].x_cm, h[i].t_s, h[i].start_t_s,
+                    h[i].height_mm, h[i].flight_s, i == top ? label : "", label_at(d, &h[top]));
+        lead = last + 1;
+    }
+}
+
+static int write_hops(fig_Data *d)
+{
+    char path[CLI_PATH_MAX];
+    cli_AtomicFile af;
+    if (fig_data_path(d, "hops", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
+    fputs("# jumpcyl plot: every flight (a lift-off, or a bounce into flight) of the run. height: the largest\n"
+          "# gap between rim and incline (jc_Event hop_height_m); x, t: the centre at the flight's highest\n"
+          "# sample (its middle when too short to sample). Hops close together share the label, placed\n"
+          "# at label_at on the panels' axis (cm, or s when the panels are against time).\n"
+          "# columns: x_apex_cm t_apex_s t_start_s height_mm flight_time_s label label_at\n",
+          af.f);
+    fig_Hop *hops = d->run.event_count ? malloc(sizeof *hops * (size_t)d->run.event_count) : NULL;
+    if (d->run.event_count && !hops) {
+        cli_atomic_abort(&af);
+        cli_error("plot: out of memory");
+        return EXIT_FAIL;
+    }
+    d->hop_count = hops ? collect_hops(d, hops) : 0;
+    for (int i = 0; i < d->hop_count; ++i) d->gap_max_mm = fmax(d->gap_max_mm, hops[i].height_mm);
+    write_hop_rows(af.f, d, hops, d->hop_count);
+    free(hops);
+    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+}
+
+/* Distance down the incline is the natural axis, unless the body goes back
+ * and forth (it rocks, or rolls back): then curves would overprint, and the
+ * panels are drawn against time. */
+static void choose_axis(fig_Data *d)
+{
+    double furthest = -INFINITY, back = 0.0;
+    for (int i = 0; i < d->run.sample_count; ++i) {
+        const double x = d->run.samples[i].state.x_m * 100;
+        furthest = fmax(furthest, x);
+        back = fmax(back, furthest - x);
+    }
+    d->time_axis = back > BACKTRACK_FRACTION * fmax(d->x_max_cm - d->x_min_cm, 1e-9);
+    d->axis_min = d->time_axis ? 0.0 : d->x_min_cm;
+    d->axis_max = d->time_axis ? d->t_max_s : d->x_max_cm;
+    if (!(d->axis_max > d->axis_min)) d->axis_max = d->axis_min + 1;
+}
+
+int fig_run_prepare(fig_Data *d, const jc_SimOptions *o, int dt_given)
+{
+    int rc = simulate(d, o, dt_given);
+    if (rc == EXIT_OK) rc = write_samples(d);
+    if (rc == EXIT_OK) choose_axis(d);
+    if (rc == EXIT_OK) rc = write_events(d);
+    if (rc == EXIT_OK) rc = write_hops(d);
+    return rc;
+}

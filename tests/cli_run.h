@@ -1,0 +1,136 @@
+/*
+ * Runs the command-line tool as a child process, without a shell: an exact
+ * argv, standard output captured or sent to a chosen file (/dev/full),
+ * standard error captured, SIGINT and SIGTERM at their default actions.
+ *
+ * The test executables take the tool's path, optionally followed by a
+ * wrapper command that every run goes through, e.g.
+ *     test_bad_input build/jumpcyl valgrind -q --error-exitcode=1 --leak-check=full
+ * (the valgrind tests in tests/CMakeLists.txt).
+ */
+#ifndef JC_CLI_RUN_H
+#define JC_CLI_RUN_H
+
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define CLI_RUN_MAX_ARGS 64
+
+typedef struct {
+    int status; /* exit status; -1 if it ended by a signal */
+    int signal; /* the signal that ended it, 0 if it exited */
+    char *out;  /* captured standard output ("" when sent to a file) */
+    char *err;  /* captured standard error */
+} cli_result;
+
+static const char *cli_run_tool;
+static char **cli_run_wrapper; /* NULL-terminated, may be empty */
+
+/* main's arguments: argv[1] the tool, argv[2..] the wrapper. */
+static inline int cli_run_init(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s PATH_TO_JUMPCYL [WRAPPER COMMAND...]\n", argv[0]);
+        return -1;
+    }
+    cli_run_tool = argv[1];
+    cli_run_wrapper = argv + 2;
+    return 0;
+}
+
+static inline char *cli_run_slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    size_t cap = 4096, len = 0, n;
+    char *buf = malloc(cap);
+    while (buf && (n = fread(buf + len, 1, cap - len - 1, f)) > 0) {
+        len += n;
+        if (cap - len < 2) {
+            char *bigger = realloc(buf, cap *= 2);
+            if (!bigger) free(buf);
+            buf = bigger;
+        }
+    }
+    fclose(f);
+    if (buf) buf[len] = '\0';
+    return buf;
+}
+
+static inline void cli_run_child(const char *const *args, const char *out_path, const char *err_path)
+{
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    const int out = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int err = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (out < 0 || err < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0) _exit(126);
+    const char *argv[CLI_RUN_MAX_ARGS + 16];
+    int n = 0;
+    for (char **w = cli_run_wrapper; *w && n < 15; ++w) argv[n++] = *w;
+    argv[n++] = cli_run_tool;
+    for (int i = 0; args[i] && n < CLI_RUN_MAX_ARGS + 15; ++i) argv[n++] = args[i];
+    argv[n] = NULL;
+    execvp(argv[0], (char *const *)argv);
+    _exit(127);
+}
+
+/* Starts "jumpcyl ARGS" (args NULL-terminated). stdout_path NULL captures
+ * standard output. Returns the child's pid (for cli_run_wait), -1 on failure. */
+static inline pid_t cli_run_start(const char *const *args, const char *stdout_path, char *out_tmp, char *err_tmp)
+{
+    strcpy(out_tmp, "/tmp/jc_cli_out_XXXXXX");
+    strcpy(err_tmp, "/tmp/jc_cli_err_XXXXXX");
+    const int fo = mkstemp(out_tmp), fe = mkstemp(err_tmp);
+    if (fo >= 0) close(fo);
+    if (fe >= 0) close(fe);
+    if (fo < 0 || fe < 0) return -1;
+    fflush(NULL);
+    const pid_t pid = fork();
+    if (pid == 0) cli_run_child(args, stdout_path ? stdout_path : out_tmp, err_tmp);
+    return pid;
+}
+
+static inline cli_result cli_run_wait(pid_t pid, const char *out_tmp, const char *err_tmp, int captured)
+{
+    cli_result r = {-1, 0, NULL, NULL};
+    int ws = 0;
+    if (pid > 0 && waitpid(pid, &ws, 0) == pid) {
+        if (WIFEXITED(ws)) r.status = WEXITSTATUS(ws);
+        if (WIFSIGNALED(ws)) r.signal = WTERMSIG(ws);
+    }
+    r.out = captured ? cli_run_slurp(out_tmp) : calloc(1, 1);
+    r.err = cli_run_slurp(err_tmp);
+    unlink(out_tmp);
+    unlink(err_tmp);
+    return r;
+}
+
+static inline cli_result cli_run_to(const char *const *args, const char *stdout_path)
+{
+    char out_tmp[64], err_tmp[64];
+    const pid_t pid = cli_run_start(args, stdout_path, out_tmp, err_tmp);
+    return cli_run_wait(pid, out_tmp, err_tmp, stdout_path == NULL);
+}
+
+static inline cli_result cli_run(const char *const *args) { return cli_run_to(args, NULL); }
+
+static inline void cli_result_free(cli_result *r)
+{
+    free(r->out);
+    free(r->err);
+    r->out = r->err = NULL;
+}
+
+/* Exactly one line on standard error. */
+static inline int cli_one_line(const char *s)
+{
+    const char *nl = s ? strchr(s, '\n') : NULL;
+    return nl && nl[1] == '\0';
+}
+
+#endif

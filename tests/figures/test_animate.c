@@ -1,0 +1,140 @@
+/* jumpcyl animate end to end (argv[1] is the built tool), on small frames:
+ * one frame per 1/(fps slowmo) of simulated time, numbered PNG files of the
+ * asked size; GIF and MP4 files from ffmpeg; without ffmpeg the frames are
+ * kept and the message gives the ffmpeg command; bad input exits 2. */
+#include "fig_common.h"
+
+#include <gsl/gsl_errno.h>
+#include <jumpcyl/jumpcyl.h>
+
+#define PI 3.14159265358979323846
+
+static const char *cli;
+static char dir[1024];
+
+static int run_ok(const char *args)
+{
+    fig_run_result r = fig_run(cli, NULL, args);
+    const int ok = r.status == 0;
+    if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
+    fig_run_free(&r);
+    return ok;
+}
+
+/* The frames a run of the paper's cylinder on 45 degrees should give. */
+static int expected_frames(double fps, double slowmo)
+{
+    jc_Setup s = jc_paper_setup();
+    s.incline_rad = 45 * PI / 180;
+    jc_Model m;
+    char err[256];
+    if (jc_model_init(&m, &s, err, sizeof err) != JC_OK) return -1;
+    jc_SimOptions o = jc_default_sim_options();
+    jc_Run run;
+    const int st = jc_simulate(&m, &o, &run, err, sizeof err);
+    const double t_end = run.final_state.t_s;
+    jc_run_free(&run);
+    return st == JC_OK ? (int)floor(t_end * fps * slowmo * (1 + 1e-12)) + 1 : -1;
+}
+
+static int test_frames_directory(void)
+{
+    char out[1100], args[2048], frame[1200];
+    snprintf(out, sizeof out, "%s/frames/", dir);
+    snprintf(args, sizeof args, "animate --incline 45 --size 160x90 --fps 10 --slowmo 2 --output '%s'", out);
+    ENSURE(run_ok(args));
+    const int want = expected_frames(10, 2);
+    ENSURE_MSG(fig_count_entries(out) == want, "%d frames, want %d", fig_count_entries(out), want);
+    for (int i = 0; i < want; ++i) {
+        int w, h;
+        snprintf(frame, sizeof frame, "%sframe-%05d.png", out, i);
+        ENSURE_MSG(fig_png_size(frame, &w, &h) == 0 && w == 160 && h == 90, "%s", frame);
+    }
+    /* Again into the same directory: its frames are replaced, not added to. */
+    snprintf(args, sizeof args, "animate --incline 45 --size 160x90 --fps 5 --slowmo 2 --output '%s'", out);
+    ENSURE(run_ok(args));
+    ENSURE(fig_count_entries(out) == expected_frames(5, 2));
+    return 0;
+}
+
+static int test_gif_and_mp4(void)
+{
+    char out[1100], args[2048];
+    unsigned char head[8];
+    snprintf(out, sizeof out, "%s/film.gif", dir);
+    snprintf(args, sizeof args, "animate --incline 45 --size 160x90 --fps 10 --slowmo 2 --output '%s'", out);
+    ENSURE(run_ok(args));
+    ENSURE(fig_head(out, head, 6) == 0 && memcmp(head, "GIF89a", 6) == 0);
+    ENSURE(fig_file_size(out) > 2000);
+    snprintf(out, sizeof out, "%s/film.mp4", dir);
+    snprintf(args, sizeof args, "animate --incline 45 --size 161x91 --fps 10 --slowmo 2 --output '%s'", out);
+    ENSURE(run_ok(args));
+    ENSURE(fig_head(out, head, 8) == 0 && memcmp(head + 4, "ftyp", 4) == 0);
+    ENSURE(fig_file_size(out) > 2000);
+    return 0;
+}
+
+static int test_missing_ffmpeg(void)
+{
+    char empty[1100], out[1100], args[2048], frames[1200];
+    ENSURE(fig_empty_path(empty, sizeof empty, dir) == 0);
+    snprintf(out, sizeof out, "%s/noff.gif", dir);
+    snprintf(args, sizeof args, "animate --incline 45 --size 160x90 --fps 10 --slowmo 1 --output '%s'", out);
+    fig_run_result r = fig_run(cli, empty, args);
+    const int ok = r.status == 1 && r.err && strstr(r.err, "ffmpeg was not found") && strstr(r.err, "ffmpeg -y -framerate 10");
+    if (!ok) fprintf(stderr, "status %d, stderr: %s\n", r.status, r.err ? r.err : "?");
+    fig_run_free(&r);
+    ENSURE(ok);
+    ENSURE(!fig_exists(out));
+    snprintf(frames, sizeof frames, "%s/noff-frames", dir);
+    ENSURE_MSG(fig_count_entries(frames) == expected_frames(10, 1), "%d frames kept", fig_count_entries(frames));
+    return 0;
+}
+
+static int usage_error(const char *opts, const char *needle)
+{
+    char out[1100], args[2048];
+    snprintf(out, sizeof out, "%s/bad.gif", dir);
+    snprintf(args, sizeof args, "animate %s --output '%s'", opts, out);
+    fig_run_result r = fig_run(cli, NULL, args);
+    const int ok = r.status == 2 && r.err && strstr(r.err, needle) && strchr(r.err, '\n') == r.err + strlen(r.err) - 1;
+    if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
+    fig_run_free(&r);
+    ENSURE(ok);
+    ENSURE(!fig_exists(out));
+    return 0;
+}
+
+static int test_bad_input(void)
+{
+    if (usage_error("--fps 0", "'0'") || usage_error("--fps 1000", "'1000'") || usage_error("--slowmo 0", "'0'") ||
+        usage_error("--slowmo -2", "'-2'") || usage_error("--size 12x5", "'12x5'") ||
+        usage_error("--size wide", "'wide'") || usage_error("--sample-dt 0.1", "--sample-dt"))
+        return 1;
+    char args[2048], out[1100];
+    snprintf(out, sizeof out, "%s/film.avi", dir);
+    snprintf(args, sizeof args, "animate --output '%s'", out);
+    fig_run_result r = fig_run(cli, NULL, args);
+    const int ok = r.status == 2 && r.err && strstr(r.err, ".avi");
+    fig_run_free(&r);
+    ENSURE(ok && !fig_exists(out));
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s PATH-TO-jumpcyl\n", argv[0]);
+        return 2;
+    }
+    cli = argv[1];
+    gsl_set_error_handler_off(); /* docs/api.md: programs that run the full model */
+    if (fig_tmpdir(dir, sizeof dir, "animate") != 0) return 2;
+    RUN_TEST(test_frames_directory);
+    RUN_TEST(test_gif_and_mp4);
+    RUN_TEST(test_missing_ffmpeg);
+    RUN_TEST(test_bad_input);
+    if (jc_test_failed_count == 0) fig_rmtree(dir);
+    else fprintf(stderr, "files kept in %s\n", dir);
+    TEST_MAIN_END();
+}

@@ -1,0 +1,408 @@
+/* jumpcyl plot end to end (argv[1] is the built tool): every kind gives a
+ * valid file of its format; the data written for a figure is the library's
+ * numbers (read back and compared with the library called here); bad input
+ * and a missing gnuplot give a message and a non-zero exit, and no file. */
+#include "fig_common.h"
+
+#include <gsl/gsl_errno.h>
+#include <jumpcyl/jumpcyl.h>
+
+#define PI 3.14159265358979323846
+/* Data files hold 10 significant digits. */
+#define DATA_REL 2e-9
+
+static const char *cli;
+static char dir[1024];
+
+/* Reads the next data row of up to max numbers ("NaN" allowed); the count,
+ * 0 at the end. Comment lines are skipped. */
+static int read_row(FILE *f, double *v, int max)
+{
+    char line[4096];
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == '#' || line[0] == '\n') continue;
+        int n = 0;
+        char *s = line, *end;
+        while (n < max) {
+            const double x = strtod(s, &end);
+            if (end == s) break;
+            v[n++] = x;
+            s = end;
+        }
+        return n;
+    }
+    return 0;
+}
+
+/* rel or abs closeness, NaN matching NaN. */
+static int close_to(double a, double b, double rel, double abs_tol)
+{
+    if (isnan(a) || isnan(b)) return isnan(a) && isnan(b);
+    return fabs(a - b) <= fmax(abs_tol, rel * fmax(fabs(a), fabs(b)));
+}
+
+static int init_model(jc_Model *m, double incline_deg)
+{
+    char err[256];
+    jc_Setup s = jc_paper_setup();
+    s.incline_rad = incline_deg * PI / 180;
+    ENSURE_OK(jc_model_init(m, &s, err, sizeof err), err);
+    return 0;
+}
+
+static int plot_ok(const char *args)
+{
+    fig_run_result r = fig_run(cli, NULL, args);
+    const int ok = r.status == 0;
+    if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
+    fig_run_free(&r);
+    return ok;
+}
+
+static int test_every_kind_png(void)
+{
+    static const char *kinds[] = {"paper-criterion", "forces", "path", "energy", "overview"};
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i) {
+        char args[2048], out[1100];
+        snprintf(out, sizeof out, "%s/%s.png", dir, kinds[i]);
+        snprintf(args, sizeof args, "plot --incline 45 --what %s --output '%s'", kinds[i], out);
+        ENSURE(plot_ok(args));
+        int w, h;
+        ENSURE_MSG(fig_png_size(out, &w, &h) == 0, "%s is not a PNG", out);
+        const int pages = strcmp(kinds[i], "overview") == 0 ? 2 : 1;
+        ENSURE_MSG(w == 1200 * pages && h == 750 * pages, "%s: %dx%d", out, w, h);
+        const long size = fig_file_size(out);
+        ENSURE_MSG(size > 20000 && size < 5000000, "%s: %ld bytes", out, size);
+    }
+    return 0;
+}
+
+static int test_svg_and_pdf(void)
+{
+    char args[2048], out[1100];
+    snprintf(out, sizeof out, "%s/forces.svg", dir);
+    snprintf(args, sizeof args, "plot --incline 30 --what forces --output '%s'", out);
+    ENSURE(plot_ok(args));
+    unsigned char head[6];
+    ENSURE(fig_head(out, head, 5) == 0);
+    ENSURE(memcmp(head, "<?xml", 5) == 0 || memcmp(head, "<svg", 4) == 0);
+    long size = fig_file_size(out);
+    ENSURE_MSG(size > 10000 && size < 10000000, "%ld bytes", size);
+    FILE *f = fopen(out, "r");
+    ENSURE(f);
+    char *text = fig_slurp(f);
+    fclose(f);
+    const int complete = text && strstr(text, "</svg>") != NULL;
+    free(text);
+    ENSURE(complete);
+
+    snprintf(out, sizeof out, "%s/criterion.pdf", dir);
+    snprintf(args, sizeof args, "plot --incline 15 --what paper-criterion --output '%s'", out);
+    ENSURE(plot_ok(args));
+    ENSURE(fig_head(out, head, 5) == 0 && memcmp(head, "%PDF-", 5) == 0);
+    size = fig_file_size(out);
+    ENSURE_MSG(size > 5000 && size < 5000000, "%ld bytes", size);
+    return 0;
+}
+
+/* Both sides of Eq. 9 and the exact condition, row by row, against the library. */
+static int check_criterion_rows(const jc_Model *m, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    ENSURE_MSG(f, "%s missing", path);
+    double v[6];
+    int rows = 0, exact_rows = 0, n;
+    while ((n = read_row(f, v, 6)) > 0) {
+        ENSURE(n == 6);
+        const double th = v[0], g = m->setup.gravity_mps2, d = m->body.cm_offset_m;
+        ENSURE(close_to(v[1], m->body.radius_m * th * 100, DATA_REL, 1e-12));
+        ENSURE_MSG(close_to(v[2], jc_paper_lhs(m, th), DATA_REL, 1e-12), "lhs at %.17g", th);
+        ENSURE_MSG(close_to(v[3], jc_paper_rhs(m, th), DATA_REL, 1e-12), "rhs at %.17g", th);
+        ++rows;
+        if (isnan(v[4])) continue; /* past the rolling path's end */
+        jc_RollState rs;
+        char err[256];
+        ENSURE_OK(jc_rolling_state(m, th, &rs, err, sizeof err), err);
+        ENSURE(close_to(v[4], rs.omega_radps * rs.omega_radps / g, DATA_REL, 1e-12));
+        /* The plotted threshold is the exact N = 0 condition: the library's own
+         * N equals M d cos(th) g (rhs - lhs). */
+        const double n_from_curves = m->body.mass_kg * d * cos(th) * g * (v[5] - v[4]);
+        ENSURE_MSG(fabs(n_from_curves - rs.normal_N) <= 1e-6 * m->body.mass_kg * g * (1 + fabs(v[5]) * d),
+                   "N %.9g vs %.9g at %.6g", n_from_curves, rs.normal_N, th);
+        exact_rows += isfinite(v[5]);
+    }
+    fclose(f);
+    ENSURE_MSG(rows > 1000 && exact_rows > 1000, "%d rows, %d exact", rows, exact_rows);
+    return 0;
+}
+
+static int check_roots(const jc_Model *m, const char *path)
+{
+    jc_PaperResult pr;
+    char err[256];
+    ENSURE_OK(jc_paper_solve(m, &pr, err, sizeof err), err);
+    FILE *f = fopen(path, "r");
+    ENSURE_MSG(f, "%s missing", path);
+    double v[4];
+    int i = 0;
+    while (read_row(f, v, 4) == 4) {
+        ENSURE(i < pr.root_count);
+        ENSURE_NEAR(v[0], pr.theta_rad[i], 1e-10);
+        ENSURE(close_to(v[1], pr.x_m[i] * 100, DATA_REL, 1e-12));
+        ENSURE((int)v[3] == (i == pr.first));
+        ++i;
+    }
+    fclose(f);
+    ENSURE_MSG(i == pr.root_count, "%d roots written, %d found", i, pr.root_count);
+    return 0;
+}
+
+/* The printed angle the script marks is the one of the paper's table. */
+static int check_printed(const char *script, double incline_deg)
+{
+    FILE *f = fopen(script, "r");
+    ENSURE(f);
+    char *text = fig_slurp(f);
+    fclose(f);
+    ENSURE(text);
+    const char *p = strstr(text, "PRINTED_THETA = ");
+    const double printed = p ? strtod(p + 16, NULL) : NAN;
+    free(text);
+    const jc_PaperTableRow *rows;
+    const int n = jc_paper_table(&rows);
+    for (int i = 0; i < n; ++i)
+        if (rows[i].incline_deg == incline_deg) ENSURE_NEAR(printed, rows[i].printed_theta_rad, 1e-12);
+    return 0;
+}
+
+static int test_criterion_data(void)
+{
+    char args[2048], out[1100], path[1200];
+    snprintf(out, sizeof out, "%s/c30.png", dir);
+    snprintf(args, sizeof args, "plot --what paper-criterion --keep-script --output '%s'", out);
+    ENSURE(plot_ok(args));
+    jc_Model m;
+    if (init_model(&m, 30)) return 1;
+    snprintf(path, sizeof path, "%s/c30-criterion.dat", dir);
+    if (check_criterion_rows(&m, path)) return 1;
+    snprintf(path, sizeof path, "%s/c30-roots.dat", dir);
+    if (check_roots(&m, path)) return 1;
+    snprintf(path, sizeof path, "%s/c30.gp", dir);
+    return check_printed(path, 30);
+}
+
+/* The sample spacing the plot chose, from the run file's header. */
+static double header_dt(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return NAN;
+    char line[1024];
+    double dt = NAN;
+    while (fgets(line, sizeof line, f) && line[0] == '#') {
+        const char *p = strstr(line, "sample_dt_s = ");
+        if (p) dt = strtod(p + 14, NULL);
+    }
+    fclose(f);
+    return dt;
+}
+
+static int check_run_rows(const jc_Model *m, const jc_Run *run, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    ENSURE(f);
+    const double weight = m->body.mass_kg * m->setup.gravity_mps2 * m->cos_incline;
+    double v[16];
+    int i = 0, n;
+    while ((n = read_row(f, v, 16)) > 0) {
+        ENSURE(n == 15 && i < run->sample_count);
+        const jc_Sample *p = &run->samples[i++];
+        const double ratio = p->mode != JC_MODE_FLIGHT && p->normal_N > 1e-9 * m->body.mass_kg * m->setup.gravity_mps2
+                                 ? fabs(p->friction_N) / p->normal_N : NAN;
+        const double sum = p->kinetic_J + p->potential_J + p->friction_loss_J + p->impact_loss_J + p->air_loss_J +
+                           p->rolling_resistance_loss_J;
+        const double want[] = {p->state.t_s, p->state.x_m * 100, (double)p->mode, p->normal_N / weight, ratio,
+                               p->gap_m * 1e3, hypot(p->state.vx_mps, p->state.vy_mps), p->kinetic_J, p->potential_J,
+                               p->friction_loss_J, p->impact_loss_J, sum, p->normal_N, p->friction_N};
+        for (int k = 0; k < 14; ++k)
+            ENSURE_MSG(close_to(v[k], want[k], DATA_REL, 1e-12), "row %d column %d: %.12g vs %.12g", i, k + 1, v[k],
+                       want[k]);
+    }
+    fclose(f);
+    ENSURE_MSG(i == run->sample_count, "%d rows for %d samples", i, run->sample_count);
+    return 0;
+}
+
+static int check_events(const jc_Run *run, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    ENSURE(f);
+    char line[1024];
+    int i = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == '#') continue;
+        double x, t;
+        char kind[64];
+        ENSURE(sscanf(line, "%lf %lf %63s", &x, &t, kind) == 3 && i < run->event_count);
+        const jc_Event *e = &run->events[i++];
+        ENSURE_MSG(strcmp(kind, jc_event_name(e->kind)) == 0, "event %d: %s vs %s", i, kind, jc_event_name(e->kind));
+        ENSURE(close_to(x, e->state.x_m * 100, DATA_REL, 1e-12) && close_to(t, e->state.t_s, 1e-11, 1e-12));
+    }
+    fclose(f);
+    ENSURE_MSG(i == run->event_count, "%d events written, %d in the run", i, run->event_count);
+    return 0;
+}
+
+static int check_hops(const jc_Run *run, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    ENSURE(f);
+    double v[5];
+    int e = 0, hops = 0;
+    while (read_row(f, v, 5) == 5) {
+        while (e < run->event_count && !(run->events[e].kind == JC_EVENT_LIFTOFF ||
+                                         (run->events[e].kind == JC_EVENT_BOUNCE && run->events[e].mode_after == JC_MODE_FLIGHT)))
+            ++e;
+        ENSURE(e < run->event_count);
+        ENSURE(close_to(v[2], run->events[e].state.t_s, 1e-11, 1e-12));
+        ENSURE(close_to(v[3], run->events[e].hop_height_m * 1e3, DATA_REL, 1e-15));
+        ++e;
+        ++hops;
+    }
+    fclose(f);
+    int flights = 0;
+    for (int i = 0; i < run->event_count; ++i)
+        flights += run->events[i].kind == JC_EVENT_LIFTOFF ||
+                   (run->events[i].kind == JC_EVENT_BOUNCE && run->events[i].mode_after == JC_MODE_FLIGHT);
+    ENSURE_MSG(hops == flights && hops > 0, "%d hops written, %d flights", hops, flights);
+    return 0;
+}
+
+static int test_run_data(void)
+{
+    char args[2048], out[1100], path[1200];
+    snprintf(out, sizeof out, "%s/f45.png", dir);
+    snprintf(args, sizeof args, "plot --incline 45 --what overview --keep-script --output '%s'", out);
+    ENSURE(plot_ok(args));
+    jc_Model m;
+    if (init_model(&m, 45)) return 1;
+    snprintf(path, sizeof path, "%s/f45-run.dat", dir);
+    jc_SimOptions o = jc_default_sim_options();
+    o.sample_dt_s = header_dt(path);
+    ENSURE(o.sample_dt_s > 0 && o.sample_dt_s < 1e-3);
+    jc_Run run;
+    char err[256];
+    const int st = jc_simulate(&m, &o, &run, err, sizeof err);
+    int bad = st != JC_OK;
+    if (bad) fprintf(stderr, "jc_simulate: %s\n", err);
+    if (!bad) bad = check_run_rows(&m, &run, path);
+    snprintf(path, sizeof path, "%s/f45-events.dat", dir);
+    if (!bad) bad = check_events(&run, path);
+    snprintf(path, sizeof path, "%s/f45-hops.dat", dir);
+    if (!bad) bad = check_hops(&run, path);
+    jc_run_free(&run);
+    return bad;
+}
+
+/* The kept script renders the figure again by hand, from its directory. */
+static int test_kept_script_reruns(void)
+{
+    char out[1100], cmd[2400];
+    snprintf(out, sizeof out, "%s/c30.png", dir);
+    ENSURE(fig_exists(out));
+    remove(out);
+    snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot c30.gp 2>/dev/null", dir);
+    ENSURE(system(cmd) == 0);
+    int w, h;
+    ENSURE(fig_png_size(out, &w, &h) == 0 && w == 1200 && h == 750);
+    return 0;
+}
+
+/* Exit 2, a one-line message naming the value, and no file. */
+static int usage_error(const char *args, const char *out, const char *needle)
+{
+    fig_run_result r = fig_run(cli, NULL, args);
+    const int ok = r.status == 2 && r.err && strstr(r.err, needle) && strchr(r.err, '\n') == r.err + strlen(r.err) - 1;
+    if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
+    fig_run_free(&r);
+    ENSURE(ok);
+    ENSURE_MSG(!fig_exists(out), "%s was written", out);
+    return 0;
+}
+
+static int test_bad_input(void)
+{
+    char args[2048], out[1100];
+    snprintf(out, sizeof out, "%s/bad.png", dir);
+    snprintf(args, sizeof args, "plot --what sideways --output '%s'", out);
+    if (usage_error(args, out, "'sideways'")) return 1;
+    snprintf(out, sizeof out, "%s/bad.jpg", dir);
+    snprintf(args, sizeof args, "plot --what path --output '%s'", out);
+    if (usage_error(args, out, ".jpg")) return 1;
+    snprintf(out, sizeof out, "%s/bad", dir);
+    snprintf(args, sizeof args, "plot --what path --output '%s'", out);
+    if (usage_error(args, out, "no extension")) return 1;
+    snprintf(out, sizeof out, "%s/bad.png", dir);
+    snprintf(args, sizeof args, "plot --what path --incline 95 --output '%s'", out);
+    if (usage_error(args, out, "95")) return 1;
+    /* An output directory that does not exist: exit 1 naming the path. */
+    snprintf(out, sizeof out, "%s/no/such/dir/x.png", dir);
+    snprintf(args, sizeof args, "plot --what path --output '%s'", out);
+    fig_run_result r = fig_run(cli, NULL, args);
+    const int ok = r.status == 1 && r.err && strstr(r.err, out);
+    fig_run_free(&r);
+    ENSURE(ok);
+    return 0;
+}
+
+static int test_missing_gnuplot(void)
+{
+    char empty[1100], args[2048], out[1100];
+    ENSURE(fig_empty_path(empty, sizeof empty, dir) == 0);
+    snprintf(out, sizeof out, "%s/nognuplot.png", dir);
+    snprintf(args, sizeof args, "plot --what energy --output '%s'", out);
+    fig_run_result r = fig_run(cli, empty, args);
+    const int ok = r.status == 1 && r.err && strstr(r.err, "gnuplot") && strstr(r.err, "not found");
+    if (!ok) fprintf(stderr, "status %d, stderr: %s\n", r.status, r.err ? r.err : "?");
+    fig_run_free(&r);
+    ENSURE(ok);
+    ENSURE(!fig_exists(out));
+    return 0;
+}
+
+/* Nothing but the figure, the script and the data is left (no temporaries). */
+static int test_no_leftovers(void)
+{
+    char sub[1100], args[2048], out[1200];
+    snprintf(sub, sizeof sub, "%s/clean", dir);
+    ENSURE(mkdir(sub, 0755) == 0);
+    snprintf(out, sizeof out, "%s/p.png", sub);
+    snprintf(args, sizeof args, "plot --what path --output '%s'", out);
+    ENSURE(plot_ok(args));
+    ENSURE_MSG(fig_count_entries(sub) == 1, "%d files", fig_count_entries(sub));
+    snprintf(args, sizeof args, "plot --what path --keep-script --output '%s'", out);
+    ENSURE(plot_ok(args));
+    ENSURE_MSG(fig_count_entries(sub) == 5, "%d files (png, gp, run, events, hops)", fig_count_entries(sub));
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s PATH-TO-jumpcyl\n", argv[0]);
+        return 2;
+    }
+    cli = argv[1];
+    gsl_set_error_handler_off(); /* docs/api.md: programs that run the full model */
+    if (fig_tmpdir(dir, sizeof dir, "plot") != 0) return 2;
+    RUN_TEST(test_every_kind_png);
+    RUN_TEST(test_svg_and_pdf);
+    RUN_TEST(test_criterion_data);
+    RUN_TEST(test_run_data);
+    RUN_TEST(test_kept_script_reruns);
+    RUN_TEST(test_bad_input);
+    RUN_TEST(test_missing_gnuplot);
+    RUN_TEST(test_no_leftovers);
+    if (jc_test_failed_count == 0) fig_rmtree(dir);
+    else fprintf(stderr, "files kept in %s\n", dir);
+    TEST_MAIN_END();
+}

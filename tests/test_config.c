@@ -1,0 +1,323 @@
+/* Experiment files (cli/config.c, docs/config.md): the examples read as
+ * documented, --dump-config round-trips exactly (dump -> read -> dump is
+ * byte-identical, and the setup read back equals the original bit for bit),
+ * command-line options override the file's values. Parts run in-process
+ * (cli_config_parse, cli_config_write), parts through the built tool
+ * (argv[1], optionally under a wrapper such as valgrind). */
+#define _POSIX_C_SOURCE 200809L
+#include "test.h"
+
+#include "cli.h"
+#include "cli_run.h"
+
+#include <stdint.h>
+
+#define PI 3.14159265358979323846
+
+static int same_double(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+/* Bit for bit, field by field (the padding inside jc_Part is no part of the
+ * setup); *what names the first difference. */
+static int same_setup(const jc_Setup *a, const jc_Setup *b, const char **what)
+{
+    *what = "body";
+    if (!same_double(a->body.radius_m, b->body.radius_m) || a->body.part_count != b->body.part_count) return 0;
+    for (int i = 0; i < a->body.part_count; ++i) {
+        const jc_Part *p = &a->body.parts[i], *q = &b->body.parts[i];
+        *what = "a part";
+        if (p->kind != q->kind || !same_double(p->mass_kg, q->mass_kg) || !same_double(p->offset_m, q->offset_m) ||
+            !same_double(p->angle_rad, q->angle_rad) || !same_double(p->radius_m, q->radius_m))
+            return 0;
+    }
+    const struct { const char *name; double a, b; } f[] = {
+        {"incline", a->incline_rad, b->incline_rad}, {"gravity", a->gravity_mps2, b->gravity_mps2},
+        {"mu_s", a->mu_static, b->mu_static}, {"mu_k", a->mu_kinetic, b->mu_kinetic},
+        {"restitution", a->restitution, b->restitution}, {"theta0", a->theta0_rad, b->theta0_rad},
+        {"omega0", a->omega0_radps, b->omega0_radps}, {"ramp", a->ramp_length_m, b->ramp_length_m},
+        {"paper d", a->paper_cm_offset_m, b->paper_cm_offset_m}, {"length", a->length_m, b->length_m},
+        {"density", a->air_density_kgpm3, b->air_density_kgpm3}, {"C_d", a->drag_coefficient, b->drag_coefficient},
+        {"C_L", a->lift_coefficient, b->lift_coefficient}, {"spin drag", a->spin_drag_Nms2, b->spin_drag_Nms2},
+        {"rolling resistance", a->rolling_resistance_m, b->rolling_resistance_m},
+    };
+    for (size_t i = 0; i < sizeof f / sizeof f[0]; ++i) {
+        *what = f[i].name;
+        if (!same_double(f[i].a, f[i].b)) return 0;
+    }
+    return 1;
+}
+
+static char *dump(const jc_Setup *s, size_t *len)
+{
+    char *text = NULL;
+    FILE *f = open_memstream(&text, len);
+    if (!f) return NULL;
+    const int st = cli_config_write(f, s);
+    fclose(f);
+    if (st != 0) {
+        free(text);
+        return NULL;
+    }
+    return text;
+}
+
+/* dump -> read (over a different setup) -> equal bits -> dump: same bytes. */
+static int round_trip(const jc_Setup *s, const char *label)
+{
+    size_t len = 0, len2 = 0;
+    char *text = dump(s, &len);
+    ENSURE(text);
+    jc_Setup back;
+    char perr[256] = "";
+    ENSURE_OK(jc_preset_setup("hoop", &back, perr, sizeof perr), perr);
+    char err[512] = "";
+    const int st = cli_config_parse("dump.ini", text, len, &back, err, sizeof err);
+    const char *what = "";
+    const int same = st == 0 && same_setup(s, &back, &what);
+    char *again = st == 0 ? dump(&back, &len2) : NULL;
+    const int identical = again && len == len2 && memcmp(text, again, len) == 0;
+    if (!same || !identical) fprintf(stderr, "%s: %s; differs in %s; dump:\n%s", label, err, what, text);
+    free(text);
+    free(again);
+    ENSURE_MSG(st == 0, "%s: the dump does not read back", label);
+    ENSURE_MSG(same, "%s: read back, %s differs", label, what);
+    ENSURE_MSG(identical, "%s: the second dump differs from the first", label);
+    return 0;
+}
+
+static int test_round_trip_presets(void)
+{
+    for (int i = 0; jc_preset_name(i); ++i) {
+        jc_Setup s;
+        char err[256] = "";
+        ENSURE_OK(jc_preset_setup(jc_preset_name(i), &s, err, sizeof err), err);
+        if (round_trip(&s, jc_preset_name(i))) return 1;
+        /* Every field away from its default: air on, negative start, 16 parts. */
+        s.drag_coefficient = 0.6;
+        s.lift_coefficient = -0.25;
+        s.spin_drag_Nms2 = 1.5e-6;
+        s.rolling_resistance_m = 1e-3 / 3.0;
+        s.theta0_rad = -0.0;
+        s.omega0_radps = -2.0 * PI;
+        s.body.part_count = JC_MAX_PARTS;
+        for (int k = 2; k < JC_MAX_PARTS; ++k)
+            s.body.parts[k] = (jc_Part){(jc_PartKind)(k % 4), 1e-3 * k, 1e-3 * k, 0.1 * k, k % 4 == 3 ? 0.0 : 1e-3};
+        if (round_trip(&s, "every field set")) return 1;
+    }
+    return 0;
+}
+
+/* A normal double of any sign and magnitude: the shortest decimal form is
+ * where round trips usually fail (17 digits, exponents, powers of two). */
+static double random_double(uint64_t *state)
+{
+    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const uint64_t r = *state >> 11;
+    const double mantissa = 1.0 + (double)(r & ((1ULL << 40) - 1)) / (double)(1ULL << 40);
+    const int exponent = (int)((*state >> 52) % 600) - 300;
+    const double v = ldexp(mantissa, exponent);
+    return (*state >> 63) ? -v : v;
+}
+
+static int test_round_trip_random(void)
+{
+    uint64_t state = 20240601;
+    for (int n = 0; n < 2000; ++n) {
+        jc_Setup s = jc_paper_setup();
+        double *fields[] = {&s.body.radius_m, &s.body.parts[0].mass_kg, &s.body.parts[1].offset_m,
+                            &s.body.parts[1].angle_rad, &s.incline_rad, &s.gravity_mps2, &s.mu_static,
+                            &s.mu_kinetic, &s.restitution, &s.theta0_rad, &s.omega0_radps, &s.ramp_length_m,
+                            &s.paper_cm_offset_m, &s.length_m, &s.air_density_kgpm3, &s.drag_coefficient,
+                            &s.lift_coefficient, &s.spin_drag_Nms2, &s.rolling_resistance_m};
+        for (size_t i = 0; i < sizeof fields / sizeof fields[0]; ++i) *fields[i] = random_double(&state);
+        if (round_trip(&s, "random setup")) return 1;
+    }
+    return 0;
+}
+
+static int load_example(const char *name, jc_Setup *s)
+{
+    char path[512], err[512] = "";
+    snprintf(path, sizeof path, "%s/%s", JC_EXAMPLES_DIR, name);
+    *s = jc_paper_setup();
+    ENSURE_OK(cli_config_load(path, s, err, sizeof err), err);
+    ENSURE_OK(jc_setup_validate(s, err, sizeof err), err);
+    return 0;
+}
+
+/* The examples say what the presets say, in units a person writes. */
+static int test_examples(void)
+{
+    const char *what = "";
+    jc_Setup s, want = jc_paper_setup();
+    if (load_example("paper-30deg.ini", &s)) return 1;
+    ENSURE_MSG(same_setup(&s, &want, &what), "paper-30deg.ini: %s differs from the paper preset", what);
+    const double inclines[] = {15, 45};
+    const char *files[] = {"paper-15deg.ini", "paper-45deg.ini"};
+    for (int i = 0; i < 2; ++i) {
+        if (load_example(files[i], &s)) return 1;
+        want.incline_rad = inclines[i] * (PI / 180.0);
+        ENSURE_MSG(same_setup(&s, &want, &what), "%s: %s differs", files[i], what);
+    }
+    if (load_example("hopping-hoop.ini", &s)) return 1;
+    char err[256] = "";
+    ENSURE_OK(jc_preset_setup("hoop", &want, err, sizeof err), err);
+    want.omega0_radps = 8.0;
+    ENSURE_MSG(same_setup(&s, &want, &what), "hopping-hoop.ini: %s differs from the hoop preset at 8 rad/s", what);
+    if (load_example("heavy-wheel.ini", &s)) return 1;
+    ENSURE(s.body.part_count == 2 && s.body.parts[0].kind == JC_PART_DISC && s.body.parts[1].kind == JC_PART_POINT);
+    ENSURE(s.body.parts[0].radius_m == 0.25 && s.body.parts[1].offset_m == 0.2 && s.paper_cm_offset_m == 0.0);
+    return 0;
+}
+
+/* A file over a preset: what it leaves out comes from the preset; a new rim
+ * radius takes the parts that filled the old rim along. */
+static int test_partial_file(void)
+{
+    jc_Setup s;
+    char err[512] = "";
+    ENSURE_OK(jc_preset_setup("hoop", &s, err, sizeof err), err);
+    const char text[] = "[body]\nradius = 20 cm\n\n[contact]\nmu_s: 0.25 ; inline comment\n";
+    ENSURE_OK(cli_config_parse("partial.ini", text, sizeof text - 1, &s, err, sizeof err), err);
+    ENSURE(s.body.radius_m == 0.2 && s.body.parts[0].radius_m == 0.2); /* the hoop follows */
+    ENSURE(s.body.parts[1].offset_m == 0.1);                            /* the point mass stays */
+    ENSURE(s.mu_static == 0.25 && s.mu_kinetic == 0.5 && s.incline_rad == 0.0);
+    return 0;
+}
+
+/* ---- through the tool ---- */
+
+static char scratch[64];
+
+static char *tool_dump(const char *const *args)
+{
+    cli_result r = cli_run(args);
+    char *out = NULL;
+    if (r.status == 0 && r.err && !r.err[0]) {
+        out = r.out;
+        r.out = NULL;
+    } else {
+        fprintf(stderr, "status %d: %s", r.status, r.err ? r.err : "");
+    }
+    cli_result_free(&r);
+    return out;
+}
+
+static int write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) return -1;
+    fputs(text, f);
+    return fclose(f);
+}
+
+/* jumpcyl ... --dump-config > a.ini; jumpcyl --config a.ini --dump-config:
+ * the same bytes. */
+static int cli_round_trip(const char *const *args, const char *label)
+{
+    char *first = tool_dump(args);
+    ENSURE_MSG(first, "%s: --dump-config failed", label);
+    char path[128];
+    snprintf(path, sizeof path, "%s/dump.ini", scratch);
+    ENSURE(write_text(path, first) == 0);
+    const char *again_args[] = {"predict", "--config", path, "--dump-config", NULL};
+    char *second = tool_dump(again_args);
+    const int same = second && strcmp(first, second) == 0;
+    if (!same) fprintf(stderr, "first:\n%s\nsecond:\n%s\n", first, second ? second : "(failed)");
+    free(first);
+    free(second);
+    unlink(path);
+    ENSURE_MSG(same, "%s: dump -> read -> dump differs", label);
+    return 0;
+}
+
+static int test_cli_round_trip(void)
+{
+    const char *plain[] = {"predict", "--dump-config", NULL};
+    const char *hoop[] = {"simulate", "--preset", "hoop", "--dump-config", NULL};
+    const char *options[] = {"predict", "--incline", "17.3deg", "--mu-s", "0.3", "--mu-k", "0.2", "--omega0", "33rpm",
+                             "--part", "hoop:mass=12.5g", "--part", "rod:mass=3g,offset=4cm,radius=1mm,angle=90deg",
+                             "--drag-coefficient", "0.6", "--air-density", "1.2kg/m3", "--dump-config", NULL};
+    if (cli_round_trip(plain, "paper") || cli_round_trip(hoop, "hoop") || cli_round_trip(options, "options")) return 1;
+    const char *examples[] = {"paper-15deg.ini", "paper-30deg.ini", "paper-45deg.ini", "hopping-hoop.ini",
+                              "heavy-wheel.ini"};
+    for (size_t i = 0; i < sizeof examples / sizeof examples[0]; ++i) {
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", JC_EXAMPLES_DIR, examples[i]);
+        const char *args[] = {"paper", "--config", path, "--dump-config", NULL};
+        if (cli_round_trip(args, examples[i])) return 1;
+    }
+    return 0;
+}
+
+/* Options replace the file's values, whatever their order on the line. */
+static int test_cli_overrides(void)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/paper-15deg.ini", JC_EXAMPLES_DIR);
+    const char *with_file[] = {"predict", "--incline", "45", "--config", path, "--mu", "0.3", "--rod-mass", "40g",
+                               "--dump-config", NULL};
+    const char *without[] = {"predict", "--incline", "45", "--mu", "0.3", "--rod-mass", "40g", "--dump-config", NULL};
+    char *a = tool_dump(with_file), *b = tool_dump(without);
+    const int same = a && b && strcmp(a, b) == 0;
+    free(a);
+    free(b);
+    ENSURE_MSG(same, "--config FILE with options differs from the same options alone");
+    return 0;
+}
+
+/* Each example runs through every command that reads a setup. */
+static int test_cli_examples_run(void)
+{
+    const char *examples[] = {"paper-45deg.ini", "hopping-hoop.ini", "heavy-wheel.ini"};
+    const char *commands[] = {"predict", "simulate", "paper"};
+    for (size_t i = 0; i < sizeof examples / sizeof examples[0]; ++i) {
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", JC_EXAMPLES_DIR, examples[i]);
+        for (size_t k = 0; k < sizeof commands / sizeof commands[0]; ++k) {
+            const char *args[] = {commands[k], "--config", path, "--json", NULL};
+            cli_result r = cli_run(args);
+            const int ok = r.status == 0 && r.err && !r.err[0] && r.out && r.out[0] == '{';
+            if (!ok) fprintf(stderr, "%s --config %s: status %d, %s", commands[k], examples[i], r.status, r.err);
+            cli_result_free(&r);
+            ENSURE_MSG(ok, "%s with %s", commands[k], examples[i]);
+        }
+    }
+    return 0;
+}
+
+/* A CSV written whole, with the mode of a new file, and replacing an
+ * existing file (and no temporary file left beside it). */
+static int test_cli_csv_written(void)
+{
+    char path[128];
+    snprintf(path, sizeof path, "%s/run.csv", scratch);
+    ENSURE(write_text(path, "old\n") == 0);
+    const char *args[] = {"simulate", "--preset", "hoop", "--omega0", "8", "--csv", path, NULL};
+    cli_result r = cli_run(args);
+    const int ok = r.status == 0 && r.err && !r.err[0];
+    cli_result_free(&r);
+    ENSURE_MSG(ok, "simulate --csv failed");
+    char *csv = cli_run_slurp(path);
+    const int whole = csv && strncmp(csv, "t_s,mode,", 9) == 0 && csv[strlen(csv) - 1] == '\n';
+    free(csv);
+    unlink(path);
+    ENSURE_MSG(whole, "the CSV is not complete");
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (cli_run_init(argc, argv) != 0) return 2;
+    strcpy(scratch, "/tmp/jc_config_XXXXXX");
+    if (!mkdtemp(scratch)) return 2;
+    RUN_TEST(test_round_trip_presets);
+    RUN_TEST(test_round_trip_random);
+    RUN_TEST(test_examples);
+    RUN_TEST(test_partial_file);
+    RUN_TEST(test_cli_round_trip);
+    RUN_TEST(test_cli_overrides);
+    RUN_TEST(test_cli_examples_run);
+    RUN_TEST(test_cli_csv_written);
+    rmdir(scratch);
+    TEST_MAIN_END();
+}
