@@ -40,9 +40,11 @@ static int flight_rhs(double t, const double y[], double f[], void *p)
     /* velocity of the centre C = G - d (sin th, cos th) */
     const double vx = y[3] - d * cos(th) * w, vy = y[4] + d * sin(th) * w;
     const double v = hypot(vx, vy), q = 0.5 * s->air_density_kgpm3 * 2.0 * m->body.radius_m * s->length_m * v;
-    const double sw = (w > 0) - (w < 0);
-    const double fx = q * (-s->drag_coefficient * vx + s->lift_coefficient * sw * vy);
-    const double fy = q * (-s->drag_coefficient * vy - s->lift_coefficient * sw * vx);
+    /* Magnus: C_L at spin ratio r|w|/|v| >= 1, proportionally less below it. */
+    const double ratio = m->body.radius_m * w / v;
+    const double spin = fabs(ratio) >= 1.0 ? (ratio > 0) - (ratio < 0) : ratio;
+    const double fx = q * (-s->drag_coefficient * vx + s->lift_coefficient * spin * vy);
+    const double fy = q * (-s->drag_coefficient * vy - s->lift_coefficient * spin * vx);
     /* torque about G (clockwise-positive) of a force at C: r = C - G = -d (sin, cos);
      * clockwise torque = -(r_x f_y - r_y f_x) */
     const double rx = -d * sin(th), ry = -d * cos(th);
