@@ -46,11 +46,14 @@ static void help(void)
     puts("Usage: jumpcyl paper [SETUP OPTIONS] [--json]\n"
          "The seed paper's Table 1 (inclines 15, 30, 45 deg) side by side: the printed values,\n"
          "the paper's Eq. 9 recomputed (first intersection and later ones), the exact rolling\n"
-         "model (slip onset and the N = 0 diagnostic) and the measurement with its error bar.\n"
+         "model (slip onset and the N = 0 diagnostic), the full model (first lift-off, hops,\n"
+         "largest hop, and how the lift-off moves with friction from 0.3 to 1.0), the full\n"
+         "model with air drag (C_d 0.6), and the measurement with its error bar.\n"
          "Setup options change the paper's setup for every row; the incline is the table's.\n"
          "\n"
          "  --json      machine-readable output: rows[], each with incline_deg, printed,\n"
-         "              paper_model, rolling, measured; angles theta in rad, positions x in m\n"
+         "              paper_model, rolling, full, drag, measured; angles theta in rad,\n"
+         "              positions x in m\n"
          "  -h, --help  this help\n");
     cli_setup_help(stdout);
 }

@@ -220,7 +220,9 @@ static int apply_body_options(const cli_SetupArgs *a, jc_Setup *s, char *err, si
     double v;
     if (a->value[O_RADIUS]) {
         if (parse_option(a, O_RADIUS, Q_LENGTH, &v, err, err_len)) return -1;
-        jc_Part *disc = find_part(&s->body, JC_PART_DISC);
+        /* A preset's rim-filling disc grows with the rim; a disc given with
+         * --part keeps the radius given there (its default was already r). */
+        jc_Part *disc = a->part_count == 0 ? find_part(&s->body, JC_PART_DISC) : NULL;
         if (disc && disc->radius_m == s->body.radius_m) disc->radius_m = v;
         s->body.radius_m = v;
     }
@@ -252,9 +254,8 @@ int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_l
     }
     /* The file's values replace the preset's; the options below replace the file's. */
     if (a->value[O_CONFIG] && cli_config_load(a->value[O_CONFIG], s, err, err_len) != 0) return -1;
-    const double rim = a->value[O_RADIUS] ? 0.0 : s->body.radius_m;
     if (a->part_count > 0) {
-        double r = rim;
+        double r = s->body.radius_m;
         if (a->value[O_RADIUS] && parse_option(a, O_RADIUS, Q_LENGTH, &r, err, err_len)) return -1;
         s->body.part_count = a->part_count;
         for (int i = 0; i < a->part_count; ++i)
