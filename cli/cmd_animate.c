@@ -4,6 +4,7 @@
 #include "draw.h"
 #include "video.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -85,7 +86,8 @@ static int parse_size(const char *text, int *w, int *h)
     if (end == text || (*end != 'x' && *end != 'X')) return -1;
     const char *rest = end + 1;
     const long lh = strtol(rest, &end, 10);
-    if (end == rest || *end || text[0] == '-' || text[0] == '+' || *rest == '-' || *rest == '+') return -1;
+    /* Digits only on both sides: strtol would also take blanks and signs. */
+    if (end == rest || *end || !isdigit((unsigned char)text[0]) || !isdigit((unsigned char)*rest)) return -1;
     if (lw < MIN_SIDE || lw > MAX_W || lh < MIN_SIDE || lh > MAX_H) return -1;
     *w = (int)lw;
     *h = (int)lh;

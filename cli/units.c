@@ -132,39 +132,11 @@ static const unit *find_unit(cli_Quantity q, const char *name)
     return NULL;
 }
 
-int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err, size_t err_len)
+/* The number text[0, len) times its unit, into SI, or a message: overflow,
+ * and underflow to 0 or to a subnormal, are errors, not silent changes. */
+static int to_si(const char *text, size_t len, size_t exp_at, int pow10, double factor, double *out, char *err,
+                 size_t err_len)
 {
-    if (!text || !*text) {
-        snprintf(err, err_len, "empty value (expected a number)");
-        return -1;
-    }
-    size_t exp_at = 0;
-    const size_t len = scan_decimal(text, &exp_at);
-    if (len == 0) {
-        snprintf(err, err_len, "'%s' is not a number", text);
-        return -1;
-    }
-    if (len > NUMBER_MAX_CHARS) {
-        snprintf(err, err_len, "'%.40s...' is too long for a number (allowed: at most %d characters)", text,
-                 NUMBER_MAX_CHARS);
-        return -1;
-    }
-    const char *suffix = unit_text(text + len);
-    if (!suffix) {
-        snprintf(err, err_len, "'%s' has stray blanks (allowed: one blank between number and unit)", text);
-        return -1;
-    }
-    int pow10 = 0;
-    double factor = q == Q_ANGLE ? CLI_PI / 180.0 : 1.0; /* plain angles are degrees */
-    if (*suffix) {
-        const unit *u = find_unit(q, suffix);
-        if (!u) {
-            snprintf(err, err_len, "'%s' has an unknown unit '%s' (allowed: %s)", text, suffix, cli_units_allowed(q));
-            return -1;
-        }
-        pow10 = u->pow10;
-        factor = u->factor;
-    }
     double v;
     const int range = read_decimal(text, len, exp_at, pow10, &v);
     if (range == 0 && factor != 1.0) v *= factor;
@@ -178,4 +150,36 @@ int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err,
     }
     *out = v;
     return 0;
+}
+
+int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err, size_t err_len)
+{
+    if (!text || !*text) {
+        snprintf(err, err_len, "empty value (expected a number)");
+        return -1;
+    }
+    size_t exp_at = 0;
+    const size_t len = scan_decimal(text, &exp_at);
+    if (len == 0 || len > NUMBER_MAX_CHARS) {
+        if (len == 0) snprintf(err, err_len, "'%s' is not a number", text);
+        else snprintf(err, err_len, "'%.40s...' is too long for a number (allowed: at most %d characters)", text,
+                      NUMBER_MAX_CHARS);
+        return -1;
+    }
+    const char *suffix = unit_text(text + len);
+    if (!suffix) {
+        snprintf(err, err_len, "'%s' has stray blanks (allowed: one blank between number and unit)", text);
+        return -1;
+    }
+    double factor = q == Q_ANGLE ? CLI_PI / 180.0 : 1.0; /* plain angles are degrees */
+    if (!*suffix) return to_si(text, len, exp_at, 0, factor, out, err, err_len);
+    const unit *u = find_unit(q, suffix);
+    if (!u) {
+        const size_t sign = text[0] == '+' || text[0] == '-';
+        const int hex = (suffix[0] == 'x' || suffix[0] == 'X') && len == sign + 1 && text[sign] == '0';
+        if (hex) snprintf(err, err_len, "'%s' is not a decimal number (hexadecimal is not accepted)", text);
+        else snprintf(err, err_len, "'%s' has an unknown unit '%s' (allowed: %s)", text, suffix, cli_units_allowed(q));
+        return -1;
+    }
+    return to_si(text, len, exp_at, u->pow10, u->factor, out, err, err_len);
 }

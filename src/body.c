@@ -10,6 +10,11 @@
  * a 1e308 kg part overflowed the rolling model to NaN (found by fuzzing). */
 #define MAX_PART_MASS_KG 1e6
 #define MAX_RADIUS_M 1e3
+/* Lower bounds, a microgram and a micrometre, for the same reason: a
+ * subnormal total mass (5e-312 kg) made an impulse NaN (found by fuzzing),
+ * and r^2 d^2 of a smaller body underflows. */
+#define MIN_TOTAL_MASS_KG 1e-9
+#define MIN_RADIUS_M 1e-6
 
 const char *jc_part_kind_name(jc_PartKind kind)
 {
@@ -72,8 +77,9 @@ static int check_part(const jc_Part *p, int i, double rim_m, char *err, size_t e
 
 int jc_body_compute(const jc_BodyDef *def, jc_Body *out, char *err, size_t err_len)
 {
-    if (!(def->radius_m > 0.0 && def->radius_m <= MAX_RADIUS_M))
-        return jc_fail(err, err_len, JC_EINVAL, "radius %g m is out of range (allowed: (0, %g] m)", def->radius_m, MAX_RADIUS_M);
+    if (!(def->radius_m >= MIN_RADIUS_M && def->radius_m <= MAX_RADIUS_M))
+        return jc_fail(err, err_len, JC_EINVAL, "radius %g m is out of range (allowed: [%g, %g] m)", def->radius_m,
+                       MIN_RADIUS_M, MAX_RADIUS_M);
     if (def->part_count < 1 || def->part_count > JC_MAX_PARTS)
         return jc_fail(err, err_len, JC_EINVAL, "body has %d parts (allowed: 1 to %d)", def->part_count, JC_MAX_PARTS);
 
@@ -89,8 +95,9 @@ int jc_body_compute(const jc_BodyDef *def, jc_Body *out, char *err, size_t err_l
         inertia_c += own_inertia(p) + p->mass_kg * p->offset_m * p->offset_m;
         if (p->kind == JC_PART_DISC) disc_mass += p->mass_kg;
     }
-    if (!(mass > 0.0) || !isfinite(mass))
-        return jc_fail(err, err_len, JC_EINVAL, "total mass %g kg is out of range (allowed: finite, > 0)", mass);
+    if (!(mass >= MIN_TOTAL_MASS_KG))
+        return jc_fail(err, err_len, JC_EINVAL, "total mass %g kg is out of range (allowed: at least %g kg)", mass,
+                       MIN_TOTAL_MASS_KG);
 
     const double d = hypot(mx, my) / mass;
     out->radius_m = def->radius_m;

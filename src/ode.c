@@ -116,6 +116,11 @@ static double locate(event_at *ea, double hi, double f0, double d0)
     if (f_hi == 0.0) return hi;
     double tau = hi * f0 / (f0 - f_hi);
     if (d0 < 0.0 && -f0 / d0 < tau) tau = -f0 / d0;
+    /* An event at exactly 0 where the step starts (the apex event of a
+     * flight that starts at vy = 0) would be "found" there again and again
+     * without time advancing (found by fuzzing: 10^5 apexes at t = 0 and a
+     * step_limit). Its root at the start is not the crossing: search inside. */
+    if (!(tau > 0.0 && tau < hi)) tau = 0.5 * hi;
     const double tol = 0.5 * ea->sim->opt->event_tol_s;
     for (int it = 0; it < 60 && hi - lo > tol; ++it) {
         double f, df;

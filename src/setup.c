@@ -113,7 +113,9 @@ int jc_setup_validate(const jc_Setup *s, char *err, size_t err_len)
     if (st != JC_OK) return st;
     if (!isfinite(s->incline_rad) || s->incline_rad < 0.0 || s->incline_rad >= JC_MAX_INCLINE_RAD)
         return jc_fail(err, err_len, JC_EINVAL, "incline %g deg is out of range (allowed: [0, 90) deg)", s->incline_rad / DEG);
-    if ((st = check_range("gravity", "m/s2", s->gravity_mps2, 0.0, 1, 1e3, 0, err, err_len))) return st;
+    /* From a micro-g up: a subnormal g (2e-322) made a flight's time -inf
+     * and its state NaN (found by fuzzing). */
+    if ((st = check_range("gravity", "m/s2", s->gravity_mps2, 1e-6, 0, 1e3, 0, err, err_len))) return st;
     if ((st = check_range("static friction", "", s->mu_static, 0.0, 0, 1e6, 0, err, err_len))) return st;
     if ((st = check_range("kinetic friction", "", s->mu_kinetic, 0.0, 0, 1e6, 0, err, err_len))) return st;
     if ((st = check_range("restitution", "", s->restitution, 0.0, 0, 1.0, 0, err, err_len))) return st;

@@ -57,7 +57,7 @@ const char *jc_mode_name(jc_Mode mode)
 
 const char *jc_event_name(jc_EventKind kind)
 {
-    static const char *names[JC_EVENT_COUNT] = {"slip", "stick", "slip_reversal", "liftoff", "touchdown",
+    static const char *const names[JC_EVENT_COUNT] = {"slip", "stick", "slip_reversal", "liftoff", "touchdown",
                                                 "bounce", "ramp_end", "ramp_top", "painleve"};
     return kind >= 0 && kind < JC_EVENT_COUNT ? names[kind] : "unknown";
 }

@@ -73,6 +73,7 @@ static const bad_case cases[] = {
     {SIM("--incline", "90"), 2, "incline 90 deg", CSV, NULL, 0, NULL},
     {SIM("--incline", "-5"), 2, "incline -5 deg", CSV, NULL, 0, NULL},
     {SIM("--radius", "0"), 2, "radius 0 m is out of range", CSV, NULL, 0, NULL},
+    {SIM("--part", "rod:mass=1e-12,offset=1cm,radius=1mm"), 2, "total mass 1e-12 kg is out of range (allowed: at least 1e-09 kg)", CSV, NULL, 0, NULL},
     {SIM("--radius", "-10cm"), 2, "radius -0.1 m", CSV, NULL, 0, NULL},
     {SIM("--g", "0"), 2, "gravity 0 m/s2 is out of range", CSV, NULL, 0, NULL},
     {SIM("--g", "1e4"), 2, "gravity 10000", CSV, NULL, 0, NULL},
@@ -89,7 +90,7 @@ static const bad_case cases[] = {
     {SIM("--part", "disc:mass=0"), 2, "total mass 0 kg", CSV, NULL, 0, NULL},
     /* Fuzzing found that 1e308 kg overflowed the model and wrote past an array. */
     {SIM("--part", "disc:mass=1e308", "--part", "rod:mass=1g,offset=1cm"), 2, "mass 1e+308 kg is out of range (allowed: [0, 1e+06] kg)", CSV, NULL, 0, NULL},
-    {SIM("--radius", "2km"), 2, "radius 2000 m is out of range (allowed: (0, 1000] m)", CSV, NULL, 0, NULL},
+    {SIM("--radius", "2km"), 2, "radius 2000 m is out of range (allowed: [1e-06, 1000] m)", CSV, NULL, 0, NULL},
     {SIM("--part", "disc:mass=1g", "--part", "point:mass=1g,offset=20cm"), 2, "outside the rim", CSV, NULL, 0, NULL},
     {SIM("--part", "point:mass=1g,radius=1mm"), 2, "must be 0", CSV, NULL, 0, NULL},
     {SIM("--part", "cube:mass=1"), 2, "cube", CSV, NULL, 0, NULL},
@@ -143,6 +144,13 @@ static const bad_case cases[] = {
     {INI, "restitution 2 is out of range (allowed: [0, 1])", CSV, "[contact]\nrestitution = 2\n", 0, NULL},
     {INI, "reaches outside the rim", CSV, "[body]\nradius = 5 cm\n", 0, NULL},
     {INI, "air density 5000 kg/m3", CSV, "[air]\ndensity = 5 g/cm3\n", 0, NULL},
+    /* ---- the figure commands share the options and the checks ---- */
+    {A("plot", "--what", "nosuch", "--output", "@fig.png"), 2, "'nosuch'", NO_CSV, NULL, 0, NULL},
+    {A("plot", "--what", "overview", "--output", "@fig.png", "--mu", "nan"), 2, "'nan'", NO_CSV, NULL, 0, NULL},
+    {A("plot", "--what", "overview", "--output", "@fig.png", "--config", "@case.ini"), 2, "case.ini:1: unknown section",
+     NO_CSV, "[plot]\n", 0, NULL},
+    {A("animate", "--size", " 960x540", "--output", "@film.gif"), 2, "--size ' 960x540'", NO_CSV, NULL, 0, NULL},
+    {A("animate", "--fps", "0", "--output", "@film.gif"), 2, "--fps '0'", NO_CSV, NULL, 0, NULL},
     /* ---- outputs that cannot be written: exit 1, the path named ---- */
     {A("simulate", "--csv", "@nodir/out.csv"), 1, "nodir/out.csv: No such file or directory", NO_CSV, NULL, 0, NULL},
     {A("simulate", "--csv", "/dev/full"), 1, "cannot write /dev/full: No space left on device", NO_CSV, NULL, 0, NULL},
@@ -150,6 +158,7 @@ static const bad_case cases[] = {
     {A("predict", "--json"), 1, "standard output", NO_CSV, NULL, 0, "/dev/full"},
     {A("predict", "--dump-config"), 1, "standard output", NO_CSV, NULL, 0, "/dev/full"},
     {A("paper"), 1, "standard output", NO_CSV, NULL, 0, "/dev/full"},
+    {A("plot", "--what", "overview", "--output", "@nodir/fig.png"), 1, "nodir/fig.png", NO_CSV, NULL, 0, NULL},
 };
 #define CASE_COUNT ((int)(sizeof cases / sizeof cases[0]))
 

@@ -31,7 +31,7 @@ static int stop_paper(int sig, int json)
     char out_tmp[64], err_tmp[64];
     const pid_t pid = cli_run_start(args, NULL, out_tmp, err_tmp);
     ENSURE(pid > 0);
-    sleep_ms(400); /* past start-up: inside the runs */
+    sleep_ms(150); /* past start-up (a few ms), well inside the 2 s of runs */
     kill(pid, sig);
     cli_result r = cli_run_wait(pid, out_tmp, err_tmp, 1);
     const char *name = sig == SIGINT ? "SIGINT" : "SIGTERM";
