@@ -48,6 +48,20 @@ static void first_liftoff(const jc_Run *run, double *t, double *x)
 }
 
 #define SIM_REPS 400
+
+/* SIM_REPS runs of a setup: their times (us) and the last run, kept. */
+static void time_runs(const jc_Setup *s, double t_sim[SIM_REPS], jc_Model *m, jc_Run *last)
+{
+    char err[256];
+    if (jc_model_init(m, s, err, sizeof err)) die("model", err);
+    const jc_SimOptions o = jc_default_sim_options();
+    for (int i = 0; i < SIM_REPS; ++i) {
+        const double t0 = now_us();
+        if (jc_simulate(m, &o, last, err, sizeof err)) die("simulate", err);
+        t_sim[i] = now_us() - t0;
+        if (i < SIM_REPS - 1) jc_run_free(last);
+    }
+}
 #define BATCH 200
 #define BATCHES 200
 
@@ -65,20 +79,12 @@ int main(void)
         jc_Setup s = jc_paper_setup();
         s.incline_rad = inclines[c] * 3.14159265358979323846 / 180.0;
         jc_Model m;
-        if (jc_model_init(&m, &s, err, sizeof err)) die("model", err);
-        jc_SimOptions o = jc_default_sim_options();
         double t_sim[SIM_REPS];
         jc_Run run;
-        int events = 0;
-        long steps = 0;
-        for (int i = 0; i < SIM_REPS; ++i) {
-            const double t0 = now_us();
-            if (jc_simulate(&m, &o, &run, err, sizeof err)) die("simulate", err);
-            t_sim[i] = now_us() - t0;
-            events = run.event_count;
-            steps = run.ode_steps;
-            if (i < SIM_REPS - 1) jc_run_free(&run);
-        }
+        time_runs(&s, t_sim, &m, &run);
+        const jc_SimOptions o = jc_default_sim_options();
+        const int events = run.event_count;
+        const long steps = run.ode_steps;
         double t_def, x_def, t_tight, x_tight;
         first_liftoff(&run, &t_def, &x_def);
         jc_run_free(&run);
@@ -120,22 +126,12 @@ int main(void)
         s.incline_rad = inclines[c] * 3.14159265358979323846 / 180.0;
         s.drag_coefficient = 0.6;
         jc_Model m;
-        if (jc_model_init(&m, &s, err, sizeof err)) die("model", err);
-        jc_SimOptions o = jc_default_sim_options();
         double t_sim[SIM_REPS];
         jc_Run run;
-        int events = 0;
-        long steps = 0;
-        for (int i = 0; i < SIM_REPS; ++i) {
-            const double t0 = now_us();
-            if (jc_simulate(&m, &o, &run, err, sizeof err)) die("simulate", err);
-            t_sim[i] = now_us() - t0;
-            events = run.event_count;
-            steps = run.ode_steps;
-            jc_run_free(&run);
-        }
+        time_runs(&s, t_sim, &m, &run);
         for (int i = 0; i < SIM_REPS; ++i) drag_all[n_drag++] = t_sim[i];
-        printf("%5.0f deg %21.1f %7d %10ld\n", inclines[c], median(t_sim, SIM_REPS), events, steps);
+        printf("%5.0f deg %21.1f %7d %10ld\n", inclines[c], median(t_sim, SIM_REPS), run.event_count, run.ode_steps);
+        jc_run_free(&run);
     }
     const double md = median(drag_all, n_drag);
     const double ms = median(sim_all, n_sim), mr = median(roll_all, n_roll), mp = median(paper_all, n_paper);
