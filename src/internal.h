@@ -187,14 +187,40 @@ double jc_flight_gap(const jc_Model *m, const jc_State *s); /* rim's lowest poin
 int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len);
 
 /* impact.c */
+/* The contact point's velocity before an impact and the inverse effective
+ * mass K at it (docs/physics.md §4), with the law's parameters. */
+typedef struct {
+    double vt, vn;           /* contact point velocity, vn < 0 approaching */
+    double ktt, ktn, knn;    /* K, symmetric positive definite */
+    double mu_static, mu_kinetic, restitution;
+    jc_ImpactLaw law;        /* JC_IMPACT_STRONGE or JC_IMPACT_POISSON for jc_impact_solve */
+} jc_ImpactInput;
+typedef struct {
+    double pt, pn;           /* the impulse */
+    double vt, vn;           /* contact point velocity after */
+    double pn_compression;   /* pn at the end of compression (vn = 0) */
+    double work_compression, work_restitution; /* normal impulse's work in each phase */
+    int slip_stopped;        /* vt reached 0 during the impulse */
+    int sticks, reversed;    /* and then stuck, or slid the other way */
+    int inconsistent;        /* no piece ends: not possible for K positive definite */
+} jc_ImpulseOut;
+/* Darboux-Keller integration in pn, piece by piece in closed form. */
+int jc_impact_solve(const jc_ImpactInput *in, jc_ImpulseOut *out);
+/* The input at a state touching the incline (restitution left 0). */
+void jc_impact_input(const jc_Model *m, const jc_State *s, jc_ImpactInput *in);
+
 typedef struct {
     double impulse_normal_Ns, impulse_tangent_Ns;
     double approach_speed_mps;   /* normal speed of the contact point before, >= 0 */
     double rebound_speed_mps;    /* after */
-    int sticks;                  /* tangential slip stopped by the impulse */
-    int painleve;                /* sliding impulse with no consistent solution */
+    int sticks;                  /* tangential slip stopped by the impulse and stayed 0 */
+    int reversed;                /* tangential slip reversed during the impulse */
+    int painleve;                /* Newton's sliding impulse with no consistent solution */
 } jc_ImpactResult;
-/* Applies the impact law at a state touching the incline; e is the restitution used. */
+/* Applies an impact law at a state touching the incline, with restitution e.
+ * No impulse when the contact point does not approach (vn >= 0). */
+void jc_impact_apply_law(const jc_Model *m, jc_State *s, jc_ImpactLaw law, double e, jc_ImpactResult *out);
+/* The same with the setup's law. */
 void jc_impact_apply(const jc_Model *m, jc_State *s, double e, jc_ImpactResult *out);
 
 /* mode.c */

@@ -118,7 +118,18 @@ int jc_setup_validate(const jc_Setup *s, char *err, size_t err_len)
     if ((st = check_range("gravity", "m/s2", s->gravity_mps2, 1e-6, 0, 1e3, 0, err, err_len))) return st;
     if ((st = check_range("static friction", "", s->mu_static, 0.0, 0, 1e6, 0, err, err_len))) return st;
     if ((st = check_range("kinetic friction", "", s->mu_kinetic, 0.0, 0, 1e6, 0, err, err_len))) return st;
+    /* mu_k > mu_s has no consistent frictional impulse when an impact's slip
+     * stops with mu_s Ktt < |Ktn| <= mu_k Ktt (neither sticking nor sliding
+     * either way fits), nor a consistent contact mode at the same edge in
+     * sliding: refused rather than resolved by a choice (docs/physics.md §4). */
+    if (s->mu_kinetic > s->mu_static)
+        return jc_fail(err, err_len, JC_EINVAL,
+                       "kinetic friction %g is larger than static friction %g (allowed: mu_k <= mu_s)",
+                       s->mu_kinetic, s->mu_static);
     if ((st = check_range("restitution", "", s->restitution, 0.0, 0, 1.0, 0, err, err_len))) return st;
+    if (s->impact_law != JC_IMPACT_STRONGE && s->impact_law != JC_IMPACT_POISSON && s->impact_law != JC_IMPACT_NEWTON)
+        return jc_fail(err, err_len, JC_EINVAL, "impact law %d is unknown (allowed: stronge, poisson, newton)",
+                       (int)s->impact_law);
     if ((st = check_range("initial angle", "rad", s->theta0_rad, -1e4, 0, 1e4, 0, err, err_len))) return st;
     if ((st = check_range("initial angular velocity", "rad/s", s->omega0_radps, -1e4, 0, 1e4, 0, err, err_len))) return st;
     const double max_ramp = JC_MAX_RAMP_TURNS * 2.0 * 3.14159265358979323846 * s->body.radius_m;

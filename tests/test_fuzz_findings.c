@@ -92,7 +92,9 @@ static int test_air_flight_from_rest_advances(void)
     jc_Setup s = jc_paper_setup();
     s.incline_rad = 45.0 * DEG;
     s.gravity_mps2 = 61.76;
-    s.mu_static = 0.000122;
+    /* Found with mu_s 0.000122 < mu_k 0.00388, now refused (docs/physics.md
+     * §4); the same lift-off with both at the kinetic value. */
+    s.mu_static = 0.00388;
     s.mu_kinetic = 0.00388;
     s.restitution = 0.113;
     s.theta0_rad = 0.526;

@@ -103,13 +103,29 @@ int jc_body_compute(const jc_BodyDef *def, jc_Body *out, char *err, size_t err_l
 /* Setup: body + incline + contact + start (src/setup.c)                     */
 /* ------------------------------------------------------------------------ */
 
+/* The impact law (docs/physics.md §4). Stronge's law never creates kinetic
+ * energy; Poisson's and Newton's can, with sticking or slip reversal during
+ * the impulse, and are kept as named alternatives whose gains are counted. */
+typedef enum {
+    JC_IMPACT_STRONGE = 0, /* Darboux-Keller in the normal impulse, energetic restitution (default) */
+    JC_IMPACT_POISSON,     /* the same integration, restitution impulse = e times compression impulse */
+    JC_IMPACT_NEWTON       /* algebraic: v_n after = -e v_n before, sticking if the cone holds it */
+} jc_ImpactLaw;
+
+/* "stronge", "poisson", "newton". */
+const char *jc_impact_law_name(jc_ImpactLaw law);
+/* The law of a name; JC_EINVAL for an unknown name. */
+int jc_impact_law_parse(const char *name, jc_ImpactLaw *out);
+
 typedef struct {
     jc_BodyDef body;
     double incline_rad;        /* [0, pi/2); 0 is a horizontal floor */
     double gravity_mps2;       /* > 0 */
     double mu_static;          /* >= 0, friction coefficient for sticking */
-    double mu_kinetic;         /* >= 0, friction coefficient while sliding */
+    double mu_kinetic;         /* [0, mu_static], friction coefficient while sliding
+                                * (mu_k > mu_s is refused: docs/physics.md §4) */
     double restitution;        /* [0, 1], normal restitution at impacts */
+    jc_ImpactLaw impact_law;   /* default (0): JC_IMPACT_STRONGE */
     double theta0_rad;         /* initial CM angle from the outward normal */
     double omega0_radps;       /* initial angular velocity, > 0 rolls downhill */
     double ramp_length_m;      /* > 0: from the start contact point to the lower end */
@@ -295,7 +311,7 @@ typedef enum {
     JC_EVENT_BOUNCE,        /* impact that ends in flight again */
     JC_EVENT_RAMP_END,      /* the centre passed the ramp's lower end */
     JC_EVENT_RAMP_TOP,      /* the centre went uphill past the start */
-    JC_EVENT_PAINLEVE,      /* sliding with no consistent contact force (stops the run) */
+    JC_EVENT_PAINLEVE,      /* no consistent contact mode (stops the run, docs/physics.md §4a) */
     JC_EVENT_COUNT
 } jc_EventKind;
 
@@ -304,10 +320,11 @@ typedef enum {
     JC_END_RAMP_TOP,   /* went uphill past the start */
     JC_END_TIME_LIMIT, /* simulated time reached t_max_s */
     JC_END_EVENT_LIMIT,/* max_events events recorded */
-    JC_END_PAINLEVE,   /* Painleve condition while sliding */
-    JC_END_AT_REST,    /* at rest in equilibrium */
+    JC_END_PAINLEVE,   /* no consistent contact mode (Painleve): a physical end, not a failure */
+    JC_END_REST,       /* at rest: in equilibrium, or stopped by rolling resistance */
     JC_END_STEP_LIMIT  /* a phase hit its bound on integration steps */
 } jc_Termination;
+#define JC_END_AT_REST JC_END_REST /* the former name */
 
 /* The body's state. C is the geometric centre, G the centre of mass. */
 typedef struct {
@@ -379,9 +396,10 @@ typedef struct {
     jc_Mode final_mode;
     jc_EnergyReport energy;
     long ode_steps;          /* integrator steps taken (phases without a closed form) */
-    /* Newton restitution with a sticking friction impulse can add kinetic
-     * energy at an impact of an off-centre body (docs/physics.md §4): such
-     * impacts are counted, not hidden; impact_loss_J includes their gains. */
+    /* Newton's and Poisson's laws can add kinetic energy at an impact of an
+     * off-centre body when the contact sticks or its slip reverses during the
+     * impulse (docs/physics.md §4); Stronge's law (the default) never does.
+     * Such impacts are counted, not hidden; impact_loss_J includes their gains. */
     int energy_gaining_impacts;
     double largest_impact_gain_J;
 } jc_Run;

@@ -126,7 +126,7 @@ static int random_model(jc_Model *m)
     s.body.parts[2] = (jc_Part){JC_PART_POINT, uniform(0.0, 0.05), uniform(0.0, 1.0) * r, uniform(-0.5, 0.5), 0.0};
     s.incline_rad = uniform(0.0, 70.0) * DEG;
     s.mu_static = uniform(0.0, 1.5);
-    s.mu_kinetic = uniform(0.0, 1.5);
+    s.mu_kinetic = uniform(0.0, s.mu_static); /* mu_k <= mu_s (setup rule) */
     s.ramp_length_m = 3.0;
     s.paper_cm_offset_m = 0.0;
     return sim_model(m, &s);
