@@ -92,6 +92,9 @@ int jc_impact_solve(const jc_ImpactInput *in, jc_ImpulseOut *out)
         out->vn = vn;
         return JC_OK; /* no approach, no impulse */
     }
+    /* A slip within rounding of zero is none: the direction of a rounding
+     * residue must not decide between sticking and sliding. */
+    if (fabs(vt) <= in->slip_tol) vt = 0.0;
     piece pc = vt != 0.0 ? slide_piece(in, vt > 0.0 ? 1.0 : -1.0) : zero_slip_piece(in);
     double work_c = 0.0, work_r = 0.0, pn_c = 0.0;
     int compressing = 1;
@@ -143,7 +146,7 @@ int jc_impact_solve(const jc_ImpactInput *in, jc_ImpulseOut *out)
     out->pt = pt;
     out->pn_compression = pn_c;
     out->work_restitution = work_r;
-    out->vt = in->vt + in->ktt * pt + in->ktn * pn;
+    out->vt = (vt == 0.0 && fabs(in->vt) <= in->slip_tol ? 0.0 : in->vt) + in->ktt * pt + in->ktn * pn;
     out->vn = in->vn + in->ktn * pt + in->knn * pn;
     return JC_OK;
 }
@@ -164,6 +167,8 @@ void jc_impact_input(const jc_Model *m, const jc_State *s, jc_ImpactInput *in)
     in->mu_static = m->setup.mu_static;
     in->mu_kinetic = m->setup.mu_kinetic;
     in->law = m->setup.impact_law;
+    in->restitution = 0.0;
+    in->slip_tol = JC_NO_SLIP_MPS;
 }
 
 /* Newton's law: the sticking impulse if the cone holds it, else a slide in the

@@ -194,6 +194,7 @@ typedef struct {
     double ktt, ktn, knn;    /* K, symmetric positive definite */
     double mu_static, mu_kinetic, restitution;
     jc_ImpactLaw law;        /* JC_IMPACT_STRONGE or JC_IMPACT_POISSON for jc_impact_solve */
+    double slip_tol;         /* |vt| <= slip_tol before the impact counts as no slip */
 } jc_ImpactInput;
 typedef struct {
     double pt, pn;           /* the impulse */
@@ -222,6 +223,11 @@ typedef struct {
 void jc_impact_apply_law(const jc_Model *m, jc_State *s, jc_ImpactLaw law, double e, jc_ImpactResult *out);
 /* The same with the setup's law. */
 void jc_impact_apply(const jc_Model *m, jc_State *s, double e, jc_ImpactResult *out);
+
+/* Slip speeds below this are no slip (mode.c, impact.c): 1 nm/s, far below
+ * anything a ramp experiment resolves, far above the rounding of a located
+ * stick event or of a state's velocities. */
+#define JC_NO_SLIP_MPS 1e-9
 
 /* mode.c */
 typedef enum { CHOICE_ROLL, CHOICE_SLIDE, CHOICE_FLY, CHOICE_PAINLEVE, CHOICE_REST } jc_ModeChoice;

@@ -8,9 +8,6 @@
 
 #include <math.h>
 
-/* Slip speeds below this are no slip: 1 nm/s, far below anything a ramp
- * experiment resolves, and far above the rounding of a located stick event. */
-#define NO_SLIP_MPS 1e-9
 
 /* Free flight needs the rim's lowest point to accelerate away:
  * y_C'' = -g cos a + Fy/M + d sin th T/I_G + d cos th w^2 >= 0, which without
@@ -54,7 +51,7 @@ jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_rol
 {
     const double r = m->body.radius_m;
     const double slip = s->vx_mps - r * s->omega_radps;
-    if (fabs(slip) > NO_SLIP_MPS) {
+    if (fabs(slip) > JC_NO_SLIP_MPS) {
         const int dir = slip > 0.0 ? 1 : -1;
         jc_SlideForces f;
         jc_slide_at(m, s, dir, &f, NULL);
