@@ -273,9 +273,21 @@ static int flight_ode_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, cha
 
 enum { FW_GAP, FW_END, FW_TOP };
 
+/* How many times a flight's search may resume past a place where the gap
+ * only came within the event tolerance of zero while opening (each resume
+ * at least doubles the searched time or advances it by the tolerance). */
+#define FLIGHT_MAX_RESUMES 2000
+
 int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len)
 {
-    if (jc_model_has_resistance(sim->m)) return flight_ode_phase(sim, from_liftoff, end, err, err_len);
+    /* from_liftoff 2: the same flight goes on after a touch without approach;
+     * its largest gap so far is kept. */
+    const double hop_before = from_liftoff == 2 ? sim->hop_height_m : 0.0;
+    if (jc_model_has_resistance(sim->m)) {
+        const int st = flight_ode_phase(sim, from_liftoff, end, err, err_len);
+        sim->hop_height_m = fmax(sim->hop_height_m, hop_before);
+        return st;
+    }
     flight f;
     flight_init(sim->m, &sim->s, &f);
     const double t0 = sim->s.t_s;
@@ -283,7 +295,8 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
     if (from_liftoff) {
         /* At a lift-off the gap, its rate and its acceleration vanish (the
          * N = 0 condition); drop their rounding residues and let the t^3 term
-         * open the gap, which starts the search a picosecond in. */
+         * open the gap, which starts the search a picosecond in. After a
+         * touch without approach the same holds for the gap and its rate. */
         f.y0 = 0.0;
         f.vy0 = fmax(f.vy0, 0.0);
         f.ay0 = fmax(f.ay0, 0.0);
@@ -291,6 +304,7 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
     }
     const double horizon = fmin(fall_bound(&f), sim->opt->t_max_s - t0);
     const double d = sim->m->body.cm_offset_m, w3 = fabs(f.w * f.w * f.w);
+    const double tol = sim->opt->event_tol_s;
     jc_ScanFn fns[3] = {
         {gap_eval, &f, d * w3, 0.0, 1.0},
         {to_end_eval, &f, d * w3, 0.0, 1.0},
@@ -298,13 +312,27 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
     };
     jc_ScanHit hit = {.index = -1};
     double T = horizon;
-    if (horizon > t_start) {
-        int st = jc_scan_fns(fns, 3, t_start, horizon, sim->opt->event_tol_s, &hit, err, err_len);
+    for (int resume = 0; horizon > t_start && resume < FLIGHT_MAX_RESUMES; ++resume) {
+        int st = jc_scan_fns(fns, 3, t_start, horizon, tol, &hit, err, err_len);
         if (st != JC_OK) return st;
         T = hit.index >= 0 ? hit.theta : horizon;
+        /* A "grazing" gap root is only a place where the search's safe step
+         * fell below the tolerance. If the gap there is still positive and
+         * not closing (the t^3 opening just after a lift-off, whose bound on
+         * the third derivative, d w^3, can be far above its true value), the
+         * rim has not touched: search on from further in. A touch needs an
+         * approach. */
+        if (hit.index != FW_GAP || !hit.grazing) break;
+        double g[3];
+        gap_eval(&f, T, g);
+        if (!(g[0] > 0.0 && g[1] >= 0.0)) break;
+        t_start = fmax(2.0 * T, T + tol);
+        hit.index = -1;
+        T = horizon;
     }
     int st = largest_gap(&f, T, &sim->hop_height_m, err, err_len);
     if (st != JC_OK) return st;
+    sim->hop_height_m = fmax(sim->hop_height_m, hop_before);
     if ((st = emit_samples(sim, &f, t0, t0 + T)) != JC_OK)
         return jc_fail(err, err_len, st, "out of memory for samples");
     sim->s = flight_state(&f, T, t0);

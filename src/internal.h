@@ -229,7 +229,15 @@ void jc_impact_apply(const jc_Model *m, jc_State *s, double e, jc_ImpactResult *
  * stick event or of a state's velocities. */
 #define JC_NO_SLIP_MPS 1e-9
 
+/* A touchdown whose contact point approaches slower than this is not an
+ * impact (no impulse): 1 nm/s, far above the normal velocity's error at a
+ * touchdown located to the event tolerance, far below any measurable speed. */
+#define JC_APPROACH_MPS 1e-9
+
 /* mode.c */
+/* The free (contact-force-free) normal acceleration of the rim's lowest
+ * point: -g cos a + d w^2 cos th, plus the air's share. */
+double jc_free_gap_accel(const jc_Model *m, const jc_State *s);
 typedef enum { CHOICE_ROLL, CHOICE_SLIDE, CHOICE_FLY, CHOICE_PAINLEVE, CHOICE_REST } jc_ModeChoice;
 /* The contact mode consistent with the forces at a state on the incline
  * (y = r, vy = 0); *slip_dir for CHOICE_SLIDE. allow_roll = 0 where the

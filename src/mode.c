@@ -12,7 +12,7 @@
 /* Free flight needs the rim's lowest point to accelerate away:
  * y_C'' = -g cos a + Fy/M + d sin th T/I_G + d cos th w^2 >= 0, which without
  * air is the paper's d w^2 cos th >= g cos a. */
-static int flight_consistent(const jc_Model *m, const jc_State *s)
+double jc_free_gap_accel(const jc_Model *m, const jc_State *s)
 {
     const double d = m->body.cm_offset_m, th = s->theta_rad, w = s->omega_radps;
     double acc = d * w * w * cos(th) - m->setup.gravity_mps2 * m->cos_incline;
@@ -21,7 +21,12 @@ static int flight_consistent(const jc_Model *m, const jc_State *s)
         jc_loads_at(m, th, s->vx_mps, s->vy_mps, w, &l);
         acc += l.fy_N / m->body.mass_kg + d * sin(th) * l.torque_Nm / m->body.inertia_g_kgm2;
     }
-    return acc >= 0.0;
+    return acc;
+}
+
+static int flight_consistent(const jc_Model *m, const jc_State *s)
+{
+    return jc_free_gap_accel(m, s) >= 0.0;
 }
 
 /* Sliding from zero slip in direction dir: N > 0, no Painleve, and the slip

@@ -70,7 +70,7 @@ const char *jc_termination_name(jc_Termination t)
     case JC_END_TIME_LIMIT: return "time_limit";
     case JC_END_EVENT_LIMIT: return "event_limit";
     case JC_END_PAINLEVE: return "painleve";
-    case JC_END_AT_REST: return "at_rest";
+    case JC_END_REST: return "rest";
     case JC_END_STEP_LIMIT: return "step_limit";
     }
     return "unknown";
@@ -307,24 +307,43 @@ static void finish(machine *mc, jc_Termination why, const char *detail)
                          e->rolling_resistance_loss_J - sim->energy0_J;
 }
 
-/* One impact at a touchdown: bounce or contact. */
-static int do_impact(machine *mc, char *err, size_t err_len, int *stop)
+/* One touchdown (docs/physics.md §4): an impact only if the contact point
+ * approaches; then a bounce if it leaves fast enough to open the gap, or
+ * contact in the mode consistent with the forces. */
+static int do_impact(machine *mc, int *from_liftoff, char *err, size_t err_len, int *stop)
 {
     jc_Sim *sim = &mc->sim;
     const jc_Model *m = sim->m;
     const jc_State before = sim->s;
     const double k0 = jc_kinetic_energy(m, &before);
     const double slip = before.vx_mps - m->body.radius_m * before.omega_radps;
-    jc_ImpactResult res;
-    jc_impact_apply(m, &sim->s, m->setup.restitution, &res);
-    const double rise = res.rebound_speed_mps * res.rebound_speed_mps /
-                        (2.0 * m->setup.gravity_mps2 * m->cos_incline);
-    const int bounce = !res.painleve && rise > sim->opt->contact_height_m;
-    if (!bounce && !res.painleve) {
-        /* Too small a rebound to leave the incline: a plastic impact, then contact. */
-        sim->s = before;
-        jc_impact_apply(m, &sim->s, 0.0, &res);
-        sim->s.vy_mps = 0.0;
+    jc_ImpactInput in;
+    jc_impact_input(m, &before, &in);
+    jc_ImpactResult res = {0};
+    int bounce = 0;
+    if (in.vn >= -JC_APPROACH_MPS) {
+        /* No approach, no impulse. If the gap opens again (rate or free
+         * acceleration >= 0), the rim only touched: the same flight goes on,
+         * without an event. Otherwise it stays in contact. */
+        if (in.vn > 0.0 || jc_free_gap_accel(m, &before) >= 0.0) {
+            *from_liftoff = 2;
+            return JC_OK;
+        }
+        sim->s.vy_mps = in.vn == 0.0 ? sim->s.vy_mps : sim->s.vy_mps - in.vn;
+    } else {
+        jc_impact_apply(m, &sim->s, m->setup.restitution, &res);
+        /* A bounce needs the gap to open by more than the contact height:
+         * the rebound rises against the contact point's free normal
+         * acceleration -g cos a + d w^2 cos th (+ air), after the impulse. */
+        const double acc = jc_free_gap_accel(m, &sim->s);
+        const double rebound = res.rebound_speed_mps;
+        bounce = !res.painleve && rebound > 0.0 &&
+                 (acc >= 0.0 || rebound * rebound / (-2.0 * acc) > sim->opt->contact_height_m);
+        if (!bounce && !res.painleve) {
+            /* Too small a rebound to leave the incline: a plastic impact, then contact. */
+            sim->s = before;
+            jc_impact_apply_law(m, &sim->s, m->setup.impact_law, 0.0, &res);
+        }
     }
     close_flight(mc, 1);
     jc_Event *e;
@@ -336,6 +355,7 @@ static int do_impact(machine *mc, char *err, size_t err_len, int *stop)
         *stop = 1;
         return JC_OK;
     }
+    if (!bounce) sim->s.vy_mps = 0.0; /* on the incline: the normal velocity of C is 0 */
     const double gain = jc_kinetic_energy(m, &sim->s) - k0;
     sim->impact_loss_J -= gain;
     if (gain > 1e-12 * k0) {
@@ -346,7 +366,12 @@ static int do_impact(machine *mc, char *err, size_t err_len, int *stop)
     if (!bounce) {
         sim->mode = JC_MODE_FLIGHT;
         enter_contact_mode(mc, 1, &choice);
-        if (choice == CHOICE_FLY) sim->mode = JC_MODE_FLIGHT;
+        if (choice == CHOICE_FLY) {
+            /* No rebound, but the free gap acceleration opens the gap: it
+             * leaves as from a lift-off (the gap grows from zero). */
+            sim->mode = JC_MODE_FLIGHT;
+            *from_liftoff = 1;
+        }
     }
     const int st = add_event(mc, bounce || choice == CHOICE_FLY ? JC_EVENT_BOUNCE : JC_EVENT_TOUCHDOWN,
                              JC_MODE_FLIGHT, 0.0, 0.0, slip, &e);
@@ -357,6 +382,9 @@ static int do_impact(machine *mc, char *err, size_t err_len, int *stop)
     if (sim->mode == JC_MODE_FLIGHT) mc->flight_event = sim->run->event_count - 1;
     if (choice == CHOICE_PAINLEVE) {
         finish(mc, JC_END_PAINLEVE, "after an impact, no contact mode is consistent (Painleve)");
+        *stop = 1;
+    } else if (choice == CHOICE_REST) {
+        finish(mc, JC_END_REST, "came to rest at an impact");
         *stop = 1;
     }
     return JC_OK;
@@ -403,7 +431,7 @@ static int step_machine(machine *mc, int *from_liftoff, char *err, size_t err_le
     const double slip = before == JC_MODE_FLIGHT ? 0.0 : sim->s.vx_mps - sim->m->body.radius_m * sim->s.omega_radps;
     jc_Event *e;
     switch (end) {
-    case PHASE_TOUCHDOWN: return do_impact(mc, err, err_len, stop);
+    case PHASE_TOUCHDOWN: return do_impact(mc, from_liftoff, err, err_len, stop);
     case PHASE_LIFTOFF:
         sim->mode = JC_MODE_FLIGHT;
         if ((st = add_event(mc, JC_EVENT_LIFTOFF, before, n0, f0, slip, &e))) break;
@@ -426,7 +454,7 @@ static int step_machine(machine *mc, int *from_liftoff, char *err, size_t err_le
             *from_liftoff = 1;
         }
         if (choice == CHOICE_REST) {
-            finish(mc, JC_END_AT_REST, "at rest in equilibrium");
+            finish(mc, JC_END_REST, "at rest in equilibrium");
             *stop = 1;
         }
         return JC_OK;
@@ -447,7 +475,7 @@ static int step_machine(machine *mc, int *from_liftoff, char *err, size_t err_le
         *stop = 1;
         return JC_OK;
     case PHASE_TIME_LIMIT: finish(mc, JC_END_TIME_LIMIT, "simulated time reached the limit"); *stop = 1; return JC_OK;
-    case PHASE_AT_REST: finish(mc, JC_END_AT_REST, "at rest in equilibrium"); *stop = 1; return JC_OK;
+    case PHASE_AT_REST: finish(mc, JC_END_REST, "at rest in equilibrium"); *stop = 1; return JC_OK;
     case PHASE_STEP_LIMIT: finish(mc, JC_END_STEP_LIMIT, "a phase reached its step bound"); *stop = 1; return JC_OK;
     }
     return st ? jc_fail(err, err_len, st, "out of memory for events") : JC_OK;
@@ -495,7 +523,7 @@ int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out
             from_liftoff = 1;
         }
         if (choice == CHOICE_REST) {
-            finish(&mc, JC_END_AT_REST, "at rest in equilibrium at the start");
+            finish(&mc, JC_END_REST, "at rest in equilibrium at the start");
             stop = 1;
         }
     }
