@@ -43,7 +43,7 @@ int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *s
 int cli_config_write(FILE *out, const jc_Setup *setup);
 
 /* ---- options.c ---- */
-#define CLI_SETUP_OPTION_COUNT 25
+#define CLI_SETUP_OPTION_COUNT 26
 #define CLI_SETUP_OPT_BASE 1000
 extern const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT];
 

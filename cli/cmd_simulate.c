@@ -71,21 +71,44 @@ static void print_event(const jc_Model *m, int i, const jc_Event *e)
     putchar('\n');
 }
 
+static const char *law_title(jc_ImpactLaw law)
+{
+    switch (law) {
+    case JC_IMPACT_STRONGE: return "Stronge";
+    case JC_IMPACT_POISSON: return "Poisson";
+    case JC_IMPACT_NEWTON: return "Newton";
+    }
+    return "unknown";
+}
+
+/* Poisson's and Newton's laws can create energy at an impact (docs/physics.md
+ * §4): said on standard error, with the energy, whatever the output format. */
+static void warn_energy_gain(const jc_Model *m, const jc_Run *run)
+{
+    if (run->energy_gaining_impacts <= 0) return;
+    fprintf(stderr,
+            "jumpcyl: simulate: warning: %d impact(s) gained kinetic energy under %s's law (largest gain\n"
+            "  %+.6g J); Stronge's law (--impact-law stronge) never creates energy (docs/physics.md, section 4)\n",
+            run->energy_gaining_impacts, law_title(m->setup.impact_law), run->largest_impact_gain_J);
+}
+
 static void print_text(const jc_Model *m, const jc_SimOptions *o, const jc_Run *run)
 {
     cli_print_setup(stdout, m, 1);
     if (jc_setup_has_resistance(&m->setup))
         printf("Full model with air and rolling resistance (C_d %g, C_L %g, spin drag %g N m s2, lever %g m;\n"
-               "rho %g kg/m3, length %g m): every phase integrated (rk8pd, rtol %g), impacts (restitution %g,\n"
-               "Coulomb friction); events located to %g s; bounces rising less than %g m end in contact.\n\n",
+               "rho %g kg/m3, length %g m): every phase integrated (rk8pd, rtol %g), impacts (%s's law,\n"
+               "restitution %g, Coulomb friction); events located to %g s; bounces rising less than %g m end\n"
+               "in contact.\n\n",
                m->setup.drag_coefficient, m->setup.lift_coefficient, m->setup.spin_drag_Nms2,
                m->setup.rolling_resistance_m, m->setup.air_density_kgpm3, m->setup.length_m, o->ode_rtol,
-               m->setup.restitution, o->event_tol_s, o->contact_height_m);
+               law_title(m->setup.impact_law), m->setup.restitution, o->event_tol_s, o->contact_height_m);
     else
         printf("Full model: rolling (closed form), sliding (rk8pd, rtol %g), flight (ballistic), impacts\n"
-               "(restitution %g, Coulomb friction); events located to %g s; bounces rising less than\n"
-               "%g m end in contact.\n\n",
-               o->ode_rtol, m->setup.restitution, o->event_tol_s, o->contact_height_m);
+               "(%s's law, restitution %g, Coulomb friction); events located to %g s; bounces rising\n"
+               "less than %g m end in contact.\n\n",
+               o->ode_rtol, law_title(m->setup.impact_law), m->setup.restitution, o->event_tol_s,
+               o->contact_height_m);
     printf("  # event         mode change           t (s)   x (cm) gap (mm) theta(rad) w (rad/s) slip(m/s)    N (N)    F (N)\n");
     for (int i = 0; i < run->event_count; ++i) print_event(m, i, &run->events[i]);
     if (run->event_count == 0) printf("  (no events)\n");
@@ -101,10 +124,6 @@ static void print_text(const jc_Model *m, const jc_SimOptions *o, const jc_Run *
            "            to the air %.6f, to rolling resistance %.6f; balance error %.2e J (%.1e relative)\n",
            e->kinetic_J, e->potential_J, e->friction_loss_J, e->impact_loss_J, e->air_loss_J,
            e->rolling_resistance_loss_J, e->balance_error_J, fabs(e->balance_error_J) / scale);
-    if (run->energy_gaining_impacts > 0)
-        printf("Note: %d impact(s) gained kinetic energy (largest %.3g J): Newton restitution with a\n"
-               "sticking friction impulse allows this for an off-centre body (docs/physics.md, section 4).\n",
-               run->energy_gaining_impacts, run->largest_impact_gain_J);
     jc_RunSummary sum;
     jc_run_summarize(run, &sum);
     if (sum.first_liftoff >= 0) {
@@ -128,7 +147,9 @@ static cJSON *json_doc(const jc_Model *m, const jc_Run *run)
     cJSON_AddStringToObject(doc, "termination_detail", run->termination_detail);
     cJSON_AddNumberToObject(doc, "t_end", run->final_state.t_s);
     cJSON_AddItemToObject(doc, "energy", cli_json_energy(&run->energy));
+    cJSON_AddStringToObject(doc, "impact_law", jc_impact_law_name(m->setup.impact_law));
     cJSON_AddNumberToObject(doc, "energy_gaining_impacts", run->energy_gaining_impacts);
+    cJSON_AddNumberToObject(doc, "largest_impact_gain_J", run->largest_impact_gain_J);
     jc_RunSummary sum;
     jc_run_summarize(run, &sum);
     cJSON *s = cJSON_AddObjectToObject(doc, "summary");
@@ -173,6 +194,7 @@ int cmd_simulate(int argc, char **argv)
         return EXIT_FAIL;
     }
     int rc = EXIT_OK;
+    warn_energy_gain(&model, &run);
     if (o.csv) rc = write_csv(&run, o.csv);
     if (rc == EXIT_OK) {
         if (o.json) rc = cli_json_print(json_doc(&model, &run));

@@ -81,6 +81,8 @@ typedef struct {
     jc_Part part[JC_MAX_PARTS];
     int part_line[JC_MAX_PARTS][PART_KEY_COUNT];
     int section_line[SECTION_COUNT];
+    jc_ImpactLaw impact_law; /* [contact] impact_law, a name */
+    int impact_law_line;
 } staged;
 
 typedef struct {
@@ -270,6 +272,10 @@ static void allowed_keys(int sec, char *buf, size_t n)
         const size_t used = strlen(buf);
         snprintf(buf + used, n - used, "%s%s", used ? ", " : "", scalar_keys[i].key);
     }
+    if (sec == SEC_CONTACT) {
+        const size_t used = strlen(buf);
+        snprintf(buf + used, n - used, "%simpact_law", used ? ", " : "");
+    }
     for (int k = 0; sec >= SEC_PART_FIRST && k < PART_KEY_COUNT; ++k) {
         const size_t used = strlen(buf);
         snprintf(buf + used, n - used, "%s%s", used ? ", " : "", part_keys[k]);
@@ -317,6 +323,11 @@ static int on_pair(void *user, const char *section, const char *key, const char 
     }
     if (p->section >= SEC_PART_FIRST) {
         part_key(p, key, value);
+        return 1;
+    }
+    if (p->section == SEC_CONTACT && strcmp(key, "impact_law") == 0) {
+        if (first_time(p, &p->st.impact_law_line, key) == 0 && jc_impact_law_parse(value, &p->st.impact_law) != JC_OK)
+            fail(p, p->line, "impact_law: unknown impact law '%s' (allowed: stronge, poisson, newton)", value);
         return 1;
     }
     for (int i = 0; i < SCALAR_COUNT; ++i) {
@@ -387,6 +398,7 @@ static void apply(const staged *st, int parts, jc_Setup *s)
     apply_body(st, parts, s);
     for (int i = 0; i < SCALAR_COUNT; ++i)
         if (st->value_line[i]) memcpy((char *)s + scalar_keys[i].offset, &st->value[i], sizeof(double));
+    if (st->impact_law_line) s->impact_law = st->impact_law;
     /* The printed d belongs to the paper's body: a file that changes the body
      * without naming the paper model's d gets the body's exact d. */
     const int radius_given = st->value_line[scalar_index(offsetof(jc_Setup, body.radius_m))];
@@ -480,6 +492,7 @@ static void write_section_scalars(FILE *out, const jc_Setup *s, int sec)
         fprintf(out, "%s = ", scalar_keys[i].key);
         write_number(out, v, scalar_keys[i].unit);
     }
+    if (sec == SEC_CONTACT) fprintf(out, "impact_law = %s\n", jc_impact_law_name(s->impact_law));
 }
 
 int cli_config_write(FILE *out, const jc_Setup *s)

@@ -9,7 +9,7 @@ enum {
     O_PRESET, O_RADIUS, O_DISC_MASS, O_ROD_MASS, O_ROD_OFFSET, O_ROD_RADIUS, O_PART,
     O_INCLINE, O_G, O_MU, O_MU_S, O_MU_K, O_RESTITUTION, O_THETA0, O_OMEGA0,
     O_RAMP_LENGTH, O_PAPER_D, O_LENGTH, O_AIR_DENSITY, O_DRAG, O_LIFT, O_SPIN_DRAG, O_ROLLING_RES,
-    O_CONFIG, O_DUMP_CONFIG
+    O_CONFIG, O_DUMP_CONFIG, O_IMPACT_LAW
 };
 
 #define B CLI_SETUP_OPT_BASE
@@ -39,6 +39,7 @@ const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT] = {
     {"rolling-resistance", required_argument, 0, B + O_ROLLING_RES},
     {"config", required_argument, 0, B + O_CONFIG},
     {"dump-config", no_argument, 0, B + O_DUMP_CONFIG},
+    {"impact-law", required_argument, 0, B + O_IMPACT_LAW},
 };
 
 void cli_setup_help(FILE *out)
@@ -67,6 +68,8 @@ void cli_setup_help(FILE *out)
         "  --mu X               static and kinetic friction coefficient\n"
         "  --mu-s X, --mu-k X   static, kinetic friction coefficient separately\n"
         "  --restitution X      normal restitution at impacts, [0, 1]\n"
+        "  --impact-law LAW     stronge (default: never creates energy), poisson or newton\n"
+        "                       (these two can gain energy at sticking impacts; a warning says so)\n"
         "  --theta0 ANGLE       initial angle of the CM from the outward normal\n"
         "  --omega0 W           initial angular velocity (> 0 rolls downhill), rad/s\n"
         "  --ramp-length LEN    from the start contact point to the ramp's lower end\n"
@@ -290,6 +293,11 @@ int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_l
         if (parse_option(a, scalars[k].opt, scalars[k].q, &v, err, err_len)) return -1;
         memcpy((char *)s + scalars[k].field, &v, sizeof v); /* the double at that offset */
         if (scalars[k].opt == O_MU) s->mu_kinetic = v;
+    }
+    if (a->value[O_IMPACT_LAW] && jc_impact_law_parse(a->value[O_IMPACT_LAW], &s->impact_law) != JC_OK) {
+        snprintf(err, err_len, "--impact-law: unknown law '%s' (allowed: stronge, poisson, newton)",
+                 a->value[O_IMPACT_LAW]);
+        return -1;
     }
     if (a->value[O_MU] && (a->value[O_MU_S] || a->value[O_MU_K])) {
         snprintf(err, err_len, "--mu sets both coefficients; give either --mu or --mu-s/--mu-k");

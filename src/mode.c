@@ -29,16 +29,18 @@ static int flight_consistent(const jc_Model *m, const jc_State *s)
     return jc_free_gap_accel(m, s) >= 0.0;
 }
 
-/* Sliding from zero slip in direction dir: N > 0, no Painleve, and the slip
- * accelerates along dir. */
+/* Sliding from zero slip, trying dir first: N > 0 with D > 0 (else the
+ * direction has no consistent contact force) and a slip acceleration along
+ * dir. A direction that fails is not yet a Painleve case: the other
+ * direction, and then flight, may be consistent (found at mu = 1000: D < 0
+ * for the first direction while the free gap acceleration was > 0). */
 static jc_ModeChoice start_slide(const jc_Model *m, const jc_State *s, int dir, int *slip_dir)
 {
     const double r = m->body.radius_m;
     for (int attempt = 0; attempt < 2; ++attempt, dir = -dir) {
         jc_SlideForces f;
         jc_slide_at(m, s, dir, &f, NULL);
-        if (f.denominator <= 0.0) return CHOICE_PAINLEVE;
-        if (f.normal_N <= 0.0) return flight_consistent(m, s) ? CHOICE_FLY : CHOICE_PAINLEVE;
+        if (!(f.denominator > 0.0 && f.normal_N > 0.0)) continue;
         /* At a slip onset friction is already at the cone's edge, so the
          * slip acceleration starts from zero: only a clear opposition (beyond
          * rounding of the terms) rules a direction out. */
@@ -49,7 +51,7 @@ static jc_ModeChoice start_slide(const jc_Model *m, const jc_State *s, int dir, 
             return CHOICE_SLIDE;
         }
     }
-    return CHOICE_PAINLEVE; /* neither direction is consistent */
+    return flight_consistent(m, s) ? CHOICE_FLY : CHOICE_PAINLEVE;
 }
 
 jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_roll, int *slip_dir)

@@ -19,6 +19,12 @@
  * exactly at x = 0 is not an event. */
 #define RAMP_TOP_SLACK_M 1e-9
 
+/* D -> 0+ with N's numerator > 0 makes N ~ 1/D grow without bound (the
+ * dynamic jam of Painleve's paradox): no step of the integrator reaches
+ * D = 0 itself (found: GSL failed with D = 4e-12, N ~ 1e9 N). Where D falls
+ * to 1e-6, N is a million times its scale: the run ends there as Painleve. */
+#define PAINLEVE_D_MIN 1e-6
+
 void jc_slide_accel(const jc_Model *m, double th, double w, int dir, const jc_Loads *l, jc_SlideForces *f)
 {
     const double M = m->body.mass_kg, ig = m->body.inertia_g_kgm2;
@@ -88,7 +94,7 @@ static void slide_events(void *params, const double y[], double ev[])
     forces_y(c, y, &f, NULL);
     ev[EV_SLIP] = c->dir * (y[JC_Y_VX] - c->m->body.radius_m * y[JC_Y_W]);
     ev[EV_LIFT] = f.normal_N * f.denominator; /* N's numerator: N > 0 while D > 0 */
-    ev[EV_PAINLEVE] = f.denominator;
+    ev[EV_PAINLEVE] = f.denominator - PAINLEVE_D_MIN;
     ev[EV_END] = c->m->setup.ramp_length_m - y[JC_Y_X];
     ev[EV_TOP] = y[JC_Y_X] + RAMP_TOP_SLACK_M;
 }
