@@ -203,6 +203,8 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
 /* ---- the rolling phase of the simulator ---- */
 
 #define ROLL_MAX_SWINGS 1000000L
+/* m: a rolling swing shorter than this (contact point travel) is rest. */
+#define ROLL_REST_SWING_M 1e-9
 #define QUAD_LIMIT 200
 
 /* The rolling path from a state: its polynomials for the state's energy. */
@@ -384,8 +386,15 @@ enum { RW_NORMAL, RW_SLIP_POS, RW_SLIP_NEG, RW_ENERGY };
 
 typedef struct {
     const jc_Model *m;
-    int dir; /* sign of w during the phase */
+    int dir;   /* sign of w during the phase */
+    int armed; /* 1: watch for w falling into the rolling-resistance band */
 } roll_ode;
+
+/* rad/s: rolling resistance ramps to 0 below 1 mrad/s (air.c), which lets a
+ * body creep toward equilibrium for ever instead of stopping. Where the spin
+ * falls below this and the resistance can hold the body at rest (rest
+ * direction 0), it has come to rest: the run ends with termination rest. */
+#define ROLL_REST_BAND_RADPS 1e-3
 
 static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f, jc_Loads *l)
 {
@@ -412,7 +421,7 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     return 0;
 }
 
-enum { RE_NORMAL, RE_SLIP_POS, RE_SLIP_NEG, RE_TURN, RE_END, RE_TOP, RE_COUNT };
+enum { RE_NORMAL, RE_SLIP_POS, RE_SLIP_NEG, RE_TURN, RE_END, RE_TOP, RE_SLOW, RE_COUNT };
 
 static void roll_ode_events(void *params, const double y[], double ev[])
 {
@@ -426,6 +435,8 @@ static void roll_ode_events(void *params, const double y[], double ev[])
     ev[RE_TURN] = c->dir * y[JC_Y_W];
     ev[RE_END] = c->m->setup.ramp_length_m - y[JC_Y_X];
     ev[RE_TOP] = y[JC_Y_X] + 1e-9; /* the same 1 nm slack as elsewhere */
+    /* Armed: w falls into the band. Not armed: w leaves twice the band (then armed). */
+    ev[RE_SLOW] = c->armed ? c->dir * y[JC_Y_W] - ROLL_REST_BAND_RADPS : 2.0 * ROLL_REST_BAND_RADPS - c->dir * y[JC_Y_W];
 }
 
 static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[])
@@ -454,7 +465,8 @@ static int rest_direction(const jc_Model *m, double th)
 static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     const double w0 = sim->s.omega_radps;
-    roll_ode ctx = {sim->m, w0 > 0.0 ? 1 : (w0 < 0.0 ? -1 : rest_direction(sim->m, sim->s.theta_rad))};
+    roll_ode ctx = {sim->m, w0 > 0.0 ? 1 : (w0 < 0.0 ? -1 : rest_direction(sim->m, sim->s.theta_rad)),
+                    fabs(w0) > ROLL_REST_BAND_RADPS};
     for (long turn = 0; turn < ROLL_ODE_MAX_TURNS; ++turn) {
         if (ctx.dir == 0) {
             *end = PHASE_AT_REST;
@@ -474,6 +486,18 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
         case RE_TURN:
             sim->s.omega_radps = sim->s.vx_mps = 0.0;
             ctx.dir = rest_direction(sim->m, sim->s.theta_rad);
+            ctx.armed = 0;
+            continue;
+        case RE_SLOW:
+            if (ctx.armed && rest_direction(sim->m, sim->s.theta_rad) == 0) {
+                /* The last crawl's kinetic energy (w <= 1 mrad/s) goes to
+                 * rolling resistance, so the balance still closes. */
+                sim->rr_loss_J += jc_kinetic_energy(sim->m, &sim->s);
+                sim->s.omega_radps = sim->s.vx_mps = 0.0;
+                *end = PHASE_AT_REST;
+                return JC_OK;
+            }
+            ctx.armed = !ctx.armed;
             continue;
         case RE_END: *end = PHASE_RAMP_END; return JC_OK;
         case RE_TOP: *end = PHASE_RAMP_TOP; return JC_OK;
@@ -509,6 +533,14 @@ int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
         jc_ScanHit hit;
         int st = jc_scan_first(&set, start.theta_rad, th_lim, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
         if (st != JC_OK) return st;
+        if (hit.index == RW_ENERGY && r * fabs(hit.theta - start.theta_rad) < ROLL_REST_SWING_M) {
+            /* A swing to a turning point less than 1 nm away: the body rocks
+             * about a stable equilibrium by less than any ramp's roughness
+             * (and the time quadrature of so short a swing is all rounding):
+             * it is at rest here, now. */
+            *end = PHASE_AT_REST;
+            return JC_OK;
+        }
         double dt;
         const double p_start = start_p(m, &start);
         if ((st = roll_time(sim, &path, start.theta_rad, p_start, hit.theta, &dt, err, err_len)) != JC_OK) return st;

@@ -471,11 +471,16 @@ static int step_machine(machine *mc, int *from_liftoff, char *err, size_t err_le
         return JC_OK;
     case PHASE_PAINLEVE:
         if ((st = add_event(mc, JC_EVENT_PAINLEVE, before, n0, f0, slip, &e))) break;
-        finish(mc, JC_END_PAINLEVE, "sliding reached D = 1 + M d sin(th) k / I_G = 0 (Painleve)");
+        finish(mc, JC_END_PAINLEVE,
+               "Painleve: sliding with D = 1 + M d sin(th) k / I_G -> 0, the normal force grows without bound");
         *stop = 1;
         return JC_OK;
     case PHASE_TIME_LIMIT: finish(mc, JC_END_TIME_LIMIT, "simulated time reached the limit"); *stop = 1; return JC_OK;
-    case PHASE_AT_REST: finish(mc, JC_END_REST, "at rest in equilibrium"); *stop = 1; return JC_OK;
+    case PHASE_AT_REST:
+        finish(mc, JC_END_REST, jc_model_has_resistance(sim->m) ? "came to rest: rolling resistance holds it"
+                                                                  : "at rest: rocking by less than 1 nm");
+        *stop = 1;
+        return JC_OK;
     case PHASE_STEP_LIMIT: finish(mc, JC_END_STEP_LIMIT, "a phase reached its step bound"); *stop = 1; return JC_OK;
     }
     return st ? jc_fail(err, err_len, st, "out of memory for events") : JC_OK;
