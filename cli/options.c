@@ -48,7 +48,7 @@ void cli_setup_help(FILE *out)
         "Setup options (a plain number is SI, angles are degrees; a number may carry a unit:\n"
         "10cm, 34.2g, 15deg, 0.3rad, 9.78m/s2, 120rpm). Without --preset or --part the setup\n"
         "is the 'paper' preset on a 30 deg incline.\n"
-        "  --preset NAME        built-in setup: paper, hoop, disc (see 'jumpcyl presets')\n"
+        "  --preset NAME        built-in setup: paper, hoop, rocking-hoop, disc ('jumpcyl presets')\n"
         "  --config FILE        experiment file (docs/config.md): its values replace the\n"
         "                       preset's; the other options replace the file's\n"
         "  --dump-config        print the setup these options give, in the file format\n"

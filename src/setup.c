@@ -34,9 +34,14 @@ jc_Setup jc_paper_setup(void)
     return s;
 }
 
-/* The classic hopping hoop: a light hoop with a point mass on its rim, on a
- * floor, started with the mass on top and a small spin. */
-static jc_Setup hoop_setup(void)
+/* A light hoop with a heavy point mass on its rim, on a floor, started with
+ * the mass on top and a small spin: it never hops. It rocks about the mass's
+ * lowest position, slipping near each turn while the turning point lies
+ * beyond the angle where friction can hold it at rest, so its swing tends to
+ * that angle (about 32 deg past the bottom for mu 0.5): a pure-rolling
+ * oscillation that goes on for ever without rolling resistance
+ * (docs/physics.md §4a). */
+static jc_Setup rocking_hoop_setup(void)
 {
     jc_Setup s = jc_paper_setup();
     s.body = (jc_BodyDef){0};
@@ -49,6 +54,24 @@ static jc_Setup hoop_setup(void)
     s.omega0_radps = 0.1;
     s.ramp_length_m = 3.0;
     s.paper_cm_offset_m = 0.0;
+    return s;
+}
+
+/* The classic hopping hoop (Littlewood's problem; Tokieda, Am. Math. Monthly
+ * 104 (1997) 152; Theron and Maritz, Am. J. Phys. 76 (2008) 1058 for the
+ * loaded hoop with friction): the same light hoop and heavy mass, rolled at
+ * 8 rad/s with the mass on top. Why 8 rad/s: the rim's lowest point leaves
+ * the floor where d w^2 cos th >= g (docs/physics.md §4a). With the mass on
+ * top that needs w >= sqrt(g/d) = 10.4 rad/s (d = 9.09 cm), which rolling from
+ * 8 rad/s never reaches on top; but as the mass comes up again behind the
+ * centre the spin is larger (the mass's fall has fed it) and cos th is still
+ * large: d w^2 cos th reaches g about 55 deg before the top, after a slip,
+ * and the hoop hops (about 8 cm), then bounces. From 6.5 rad/s the criterion
+ * is never met and the hoop only rolls and rocks (measured: 7 rad/s hops). */
+static jc_Setup hoop_setup(void)
+{
+    jc_Setup s = rocking_hoop_setup();
+    s.omega0_radps = 8.0;
     return s;
 }
 
@@ -68,7 +91,9 @@ static const struct {
     jc_Setup (*make)(void);
 } presets[] = {
     {"paper", "the seed paper's Styrofoam disc with a brass rod, 30 deg incline, 3.20 m ramp", jc_paper_setup},
-    {"hoop", "light hoop (10 g) with a 100 g point mass on its rim, on a floor, mass on top, 0.1 rad/s", hoop_setup},
+    {"hoop", "hopping hoop: light hoop (10 g), 100 g point mass on its rim, on a floor, mass on top, 8 rad/s", hoop_setup},
+    {"rocking-hoop", "the same hoop at 0.1 rad/s: it never hops, it rocks (slipping near each turn) for ever",
+     rocking_hoop_setup},
     {"disc", "uniform disc of the paper's size and mass (d = 0), 30 deg incline", disc_setup},
 };
 #define PRESET_COUNT ((int)(sizeof presets / sizeof presets[0]))
@@ -84,7 +109,7 @@ int jc_preset_setup(const char *name, jc_Setup *out, char *err, size_t err_len)
             return JC_OK;
         }
     }
-    return jc_fail(err, err_len, JC_EINVAL, "unknown preset '%s' (allowed: paper, hoop, disc)", name ? name : "(null)");
+    return jc_fail(err, err_len, JC_EINVAL, "unknown preset '%s' (allowed: paper, hoop, rocking-hoop, disc)", name ? name : "(null)");
 }
 
 static int check_range(const char *what, const char *unit, double v, double lo, int lo_open,

@@ -194,7 +194,7 @@ static int test_uniform_disc(void)
 
 static int test_energy_identity(void)
 {
-    const jc_Setup setups[] = {paper_at(30, 0.5), spinning(), preset("hoop"), lopsided(), rocking()};
+    const jc_Setup setups[] = {paper_at(30, 0.5), spinning(), preset("rocking-hoop"), lopsided(), rocking()};
     for (size_t k = 0; k < sizeof setups / sizeof setups[0]; ++k) {
         jc_Model m;
         if (init(&m, &setups[k])) return 1;
@@ -227,7 +227,7 @@ static int test_energy_identity(void)
 
 static int test_newton_euler_pointwise(void)
 {
-    const jc_Setup setups[] = {paper_at(30, 0.5), spinning(), preset("hoop"), lopsided(), rocking()};
+    const jc_Setup setups[] = {paper_at(30, 0.5), spinning(), preset("rocking-hoop"), lopsided(), rocking()};
     for (size_t k = 0; k < sizeof setups / sizeof setups[0]; ++k) {
         jc_Model m;
         if (init(&m, &setups[k])) return 1;
@@ -323,7 +323,7 @@ static int check_trajectory(const jc_Setup *s, double *worst_rel, double *worst_
 
 static int test_forces_from_trajectory(void)
 {
-    const jc_Setup setups[] = {paper_at(30, 0.5), spinning(), preset("hoop"), lopsided()};
+    const jc_Setup setups[] = {paper_at(30, 0.5), spinning(), preset("rocking-hoop"), lopsided()};
     for (size_t k = 0; k < sizeof setups / sizeof setups[0]; ++k) {
         double worst = 0, worst_w = 0;
         if (check_trajectory(&setups[k], &worst, &worst_w)) return 1;
@@ -397,7 +397,7 @@ static int check_crossings(const jc_Setup *s, jc_RollingResult *res)
 static int test_crossings_are_first(void)
 {
     const jc_Setup setups[] = {paper_at(15, 0.5), paper_at(30, 0.5), paper_at(45, 0.5), paper_at(30, 0.2),
-                               paper_at(30, 1e6), spinning(), preset("hoop"), lopsided(), rocking()};
+                               paper_at(30, 1e6), spinning(), preset("rocking-hoop"), lopsided(), rocking()};
     int slips = 0, liftoffs = 0;
     for (size_t k = 0; k < sizeof setups / sizeof setups[0]; ++k) {
         jc_RollingResult res;
@@ -457,7 +457,7 @@ static int test_starts_sliding(void)
 static int test_starts_flying(void)
 {
     /* The hoop spun fast with its mass on top: d w0^2 > g, N < 0 at once. */
-    jc_Setup s = preset("hoop");
+    jc_Setup s = preset("rocking-hoop");
     s.omega0_radps = 20.0;
     jc_Model m;
     if (init(&m, &s)) return 1;
@@ -474,7 +474,7 @@ static int test_starts_flying(void)
 static int test_at_rest(void)
 {
     /* The hoop on a floor, mass on top, not spinning: equilibrium. */
-    jc_Setup s = preset("hoop");
+    jc_Setup s = preset("rocking-hoop");
     s.omega0_radps = 0.0;
     jc_Model m;
     if (init(&m, &s)) return 1;

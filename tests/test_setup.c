@@ -73,7 +73,7 @@ static int test_presets(void)
     ENSURE_REL(m.body.radius_m, 0.100, 0.0);
 
     /* hoop: on a floor, a point mass on the rim on top, a small spin. */
-    ENSURE_OK(jc_preset_setup("hoop", &s, err, sizeof err), err);
+    ENSURE_OK(jc_preset_setup("rocking-hoop", &s, err, sizeof err), err);
     ENSURE_OK(jc_model_init(&m, &s, err, sizeof err), err);
     ENSURE(s.incline_rad == 0.0 && s.theta0_rad == 0.0 && s.omega0_radps > 0.0);
     ENSURE_REL(m.body.cm_offset_m, 0.100 * 0.10 / 0.110, 1e-14); /* m a / M, two ops */

@@ -280,7 +280,7 @@ static int test_sweep_hoop_preset(void)
             for (int k = 0; k < 2; ++k) {
                 jc_Setup s;
                 char err[256] = "";
-                ENSURE_OK(jc_preset_setup("hoop", &s, err, sizeof err), err);
+                ENSURE_OK(jc_preset_setup("rocking-hoop", &s, err, sizeof err), err);
                 s.omega0_radps = w0s[i];
                 s.mu_static = s.mu_kinetic = mus[j];
                 s.restitution = es[k];
