@@ -23,7 +23,7 @@
  * dynamic jam of Painleve's paradox): no step of the integrator reaches
  * D = 0 itself (found: GSL failed with D = 4e-12, N ~ 1e9 N). Where D falls
  * to 1e-6, N is a million times its scale: the run ends there as Painleve. */
-#define PAINLEVE_D_MIN 1e-6
+#define PAINLEVE_D_MIN 1e-3
 
 void jc_slide_accel(const jc_Model *m, double th, double w, int dir, const jc_Loads *l, jc_SlideForces *f)
 {
