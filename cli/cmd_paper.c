@@ -28,6 +28,8 @@ typedef struct {
     double first_hop_m;  /* largest gap of the first flight */
     jc_RunSummary summary;
     jc_Termination termination;
+    int energy_gaining_impacts;
+    double later_hop_m;  /* largest gap of the flights after the first landing */
 } full_result;
 
 typedef struct {
@@ -38,6 +40,7 @@ typedef struct {
     int nearest;  /* index of the intersection nearest the printed angle */
     full_result full;
     full_result drag; /* the full model with air drag at PAPER_DRAG_CD */
+    full_result newton; /* the full model with Newton's impact law instead of Stronge's */
     full_result sweep[SWEEP_COUNT];
 } paper_row;
 
@@ -102,12 +105,18 @@ static int run_full(const jc_Setup *s, full_result *out, char *err, size_t err_l
     if (st == JC_OK) {
         jc_run_summarize(&run, &out->summary);
         out->termination = run.termination;
+        out->energy_gaining_impacts = run.energy_gaining_impacts;
         out->found = out->summary.first_liftoff >= 0;
         if (out->found) {
             const jc_Event *e = &run.events[out->summary.first_liftoff];
             out->theta_rad = e->state.theta_rad;
             out->x_m = e->state.x_m;
             out->first_hop_m = e->hop_height_m;
+            for (int i = out->summary.first_liftoff + 1; i < run.event_count; ++i) {
+                const jc_Event *f = &run.events[i];
+                if (f->kind == JC_EVENT_LIFTOFF || (f->kind == JC_EVENT_BOUNCE && f->mode_after == JC_MODE_FLIGHT))
+                    out->later_hop_m = fmax(out->later_hop_m, f->hop_height_m);
+            }
         }
     }
     jc_run_free(&run);
@@ -136,6 +145,9 @@ static int compute_rows(const jc_Setup *base, paper_row *rows, int *count, char 
         jc_Setup with_drag = s;
         with_drag.drag_coefficient = PAPER_DRAG_CD;
         if ((st = run_full(&with_drag, &r->drag, err, err_len)) != JC_OK) return st;
+        jc_Setup newton = s;
+        newton.impact_law = JC_IMPACT_NEWTON;
+        if ((st = run_full(&newton, &r->newton, err, err_len)) != JC_OK) return st;
         for (int k = 0; k < SWEEP_COUNT; ++k) {
             jc_Setup sw = s;
             sw.mu_static = sw.mu_kinetic = sweep_mu[k];
@@ -186,8 +198,9 @@ static void print_flags(const paper_row *rows, int n)
 static void print_full(const paper_row *rows, int n)
 {
     const jc_Setup *s0 = &rows[0].model.setup;
-    printf("\n\nFull model: roll, slip, fly, land (mu_s = %.2f, mu_k = %.2f, e = %.2f)\n", s0->mu_static,
-           s0->mu_kinetic, s0->restitution);
+    printf("\n\nFull model: roll, slip, fly, land (mu_s = %.2f, mu_k = %.2f, e = %.2f; impacts by Stronge's law:\n"
+           "Darboux-Keller in the normal impulse with energetic restitution, docs/physics.md section 4)\n",
+           s0->mu_static, s0->mu_kinetic, s0->restitution);
     printf("%-40s", "  first lift-off angle (rad)");
     for (int i = 0; i < n; ++i) {
         if (rows[i].full.found) printf(" %14.4f", rows[i].full.theta_rad);
@@ -212,6 +225,24 @@ static void print_full(const paper_row *rows, int n)
     for (int i = 0; i < n; ++i) printf(" %14d", rows[i].full.summary.bounces);
     printf("\n%-40s", "  largest hop, gap under the rim (mm)");
     for (int i = 0; i < n; ++i) printf(" %14.2f", rows[i].full.summary.largest_hop_m * 1e3);
+    printf("\nAfter the first lift-off: Stronge's law against Newton's (v_n after = -e v_n before);\n"
+           "a later hop is a flight after the first landing, the first flight is the same under both\n");
+    printf("%-40s", "  hops / bounces, Stronge");
+    for (int i = 0; i < n; ++i) printf(" %9d / %2d", rows[i].full.summary.liftoffs, rows[i].full.summary.bounces);
+    printf("\n%-40s", "  hops / bounces, Newton");
+    for (int i = 0; i < n; ++i) printf(" %9d / %2d", rows[i].newton.summary.liftoffs, rows[i].newton.summary.bounces);
+    printf("\n%-40s", "  largest later hop (mm), Stronge");
+    for (int i = 0; i < n; ++i) printf(" %14.2f", rows[i].full.later_hop_m * 1e3);
+    printf("\n%-40s", "  largest later hop (mm), Newton");
+    for (int i = 0; i < n; ++i) printf(" %14.2f", rows[i].newton.later_hop_m * 1e3);
+    printf("\n%-40s", "  later hop, Newton against Stronge");
+    for (int i = 0; i < n; ++i) {
+        const double a = rows[i].full.later_hop_m, b = rows[i].newton.later_hop_m;
+        if (a > 0.0) printf(" %+13.1f%%", 100.0 * (b - a) / a);
+        else printf(" %14s", "-");
+    }
+    printf("\n%-40s", "  impacts that gained energy, Newton");
+    for (int i = 0; i < n; ++i) printf(" %14d", rows[i].newton.energy_gaining_impacts);
     printf("\nFull model with air drag, C_d = %.2f (rho = %.3f kg/m3, A = 2 r L = %.0f cm2; docs/physics.md)\n",
            PAPER_DRAG_CD, s0->air_density_kgpm3, 2e4 * rows[0].model.body.radius_m * s0->length_m);
     printf("%-40s", "  first lift-off position (cm)");
@@ -385,6 +416,14 @@ static cJSON *json_row(const paper_row *r)
     cJSON_AddNumberToObject(fu, "mu_s", r->model.setup.mu_static);
     cJSON_AddNumberToObject(fu, "mu_k", r->model.setup.mu_kinetic);
     cJSON_AddNumberToObject(fu, "restitution", r->model.setup.restitution);
+    cJSON_AddStringToObject(fu, "impact_law", jc_impact_law_name(r->model.setup.impact_law));
+    cJSON *nw = cJSON_AddObjectToObject(fu, "newton");
+    cJSON_AddNumberToObject(nw, "hops", r->newton.summary.liftoffs);
+    cJSON_AddNumberToObject(nw, "bounces", r->newton.summary.bounces);
+    cJSON_AddNumberToObject(nw, "largest_hop", r->newton.summary.largest_hop_m);
+    cJSON_AddNumberToObject(nw, "largest_later_hop", r->newton.later_hop_m);
+    cJSON_AddNumberToObject(fu, "largest_later_hop", r->full.later_hop_m);
+    cJSON_AddNumberToObject(nw, "energy_gaining_impacts", r->newton.energy_gaining_impacts);
     cJSON *sw = cJSON_AddArrayToObject(fu, "friction_sweep");
     for (int k = 0; k < SWEEP_COUNT; ++k) {
         cJSON *point = cJSON_CreateObject();
