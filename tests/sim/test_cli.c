@@ -399,6 +399,47 @@ static int test_csv_unwritable(void)
     return 0;
 }
 
+/* --impact-law: Newton's law on the issue's repro gains energy and says so on
+ * standard error, with the gain, which the JSON reports too; Stronge's law
+ * (the default) gains nothing and warns nothing. Unknown laws and
+ * mu_k > mu_s are usage errors (exit 2) with a message naming them. */
+static int test_impact_law_option(void)
+{
+    proc r = run_cli("simulate --incline 45 --restitution 1 --impact-law newton --json");
+    const int ok_newton = r.status == 0 && r.err && strstr(r.err, "gained kinetic energy under Newton's law") != NULL;
+    cJSON *doc = r.out ? cJSON_Parse(r.out) : NULL;
+    const cJSON *gains = cJSON_GetObjectItemCaseSensitive(doc, "energy_gaining_impacts");
+    const cJSON *gain = cJSON_GetObjectItemCaseSensitive(doc, "largest_impact_gain_J");
+    const int json_ok = cJSON_IsNumber(gains) && gains->valuedouble >= 1 && cJSON_IsNumber(gain) &&
+                        gain->valuedouble > 0 && string_is(doc, "impact_law", "newton") == 0;
+    char want[64] = "";
+    if (cJSON_IsNumber(gain)) snprintf(want, sizeof want, "%+.6g J", gain->valuedouble);
+    const int names_gain = r.err && want[0] && strstr(r.err, want) != NULL;
+    cJSON_Delete(doc);
+    proc_free(&r);
+    ENSURE_MSG(ok_newton && json_ok && names_gain, "newton: warning %d, json %d, gain in the warning %d", ok_newton,
+               json_ok, names_gain);
+
+    r = run_cli("simulate --incline 45 --restitution 1 --json");
+    doc = r.out ? cJSON_Parse(r.out) : NULL;
+    gains = cJSON_GetObjectItemCaseSensitive(doc, "energy_gaining_impacts");
+    const int quiet = r.status == 0 && r.err && r.err[0] == '\0' && cJSON_IsNumber(gains) && gains->valuedouble == 0 &&
+                      string_is(doc, "impact_law", "stronge") == 0;
+    cJSON_Delete(doc);
+    proc_free(&r);
+    ENSURE_MSG(quiet, "stronge: a warning or a gain");
+
+    r = run_cli("simulate --impact-law elastic");
+    const int bad_law = r.status == 2 && r.err && strstr(r.err, "elastic") && strstr(r.err, "stronge, poisson, newton");
+    proc_free(&r);
+    ENSURE(bad_law);
+    r = run_cli("simulate --mu-s 0.3 --mu-k 0.5");
+    const int bad_mu = r.status == 2 && r.err && strstr(r.err, "larger than static friction");
+    proc_free(&r);
+    ENSURE(bad_mu);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -410,5 +451,6 @@ int main(int argc, char **argv)
     RUN_TEST(test_json_matches_library);
     RUN_TEST(test_csv);
     RUN_TEST(test_csv_unwritable);
+    RUN_TEST(test_impact_law_option);
     TEST_MAIN_END();
 }
