@@ -96,6 +96,7 @@ static int inside(double x, const jc_PaperTableRow *t)
 static int run_full(const jc_Setup *s, full_result *out, char *err, size_t err_len)
 {
     if (cli_stop_requested()) return STOPPED;
+    *out = (full_result){0};
     jc_Model m;
     int st = jc_model_init(&m, s, err, err_len);
     if (st != JC_OK) return st;
