@@ -13,11 +13,45 @@
 
 #include <jumpcyl/jumpcyl.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
+
+/* Deterministic pseudo-random numbers (xorshift64*), uniform in [lo, hi),
+ * from the caller's state: each test seeds its own. */
+static inline double sim_uniform(uint64_t *state, double lo, double hi)
+{
+    *state ^= *state >> 12;
+    *state ^= *state << 25;
+    *state ^= *state >> 27;
+    const uint64_t x = *state * 2685821657736338717ull;
+    return lo + (hi - lo) * (double)(x >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* The seed of a random test: JC_TEST_SEED if set, else the test's own;
+ * seeds *state and returns the seed (printed on a failure). */
+static inline uint64_t sim_seed(uint64_t fallback, uint64_t *state)
+{
+    const char *env = getenv("JC_TEST_SEED");
+    const uint64_t seed = env ? strtoull(env, NULL, 10) : fallback;
+    *state = seed * 0x9E3779B97F4A7C15ull + 1;
+    return seed;
+}
+
+/* |energy balance error| relative to the energy that changed hands, or to
+ * M g r for a body that hardly moved (as `jumpcyl simulate` reports it). */
+static inline double sim_balance_rel(const jc_Model *m, const jc_Run *run)
+{
+    const jc_EnergyReport *e = &run->energy;
+    const double losses = e->friction_loss_J + e->impact_loss_J + e->air_loss_J + e->rolling_resistance_loss_J;
+    const double scale = fmax(e->kinetic_J + fabs(e->potential_J) + fabs(losses),
+                              m->body.mass_kg * m->setup.gravity_mps2 * m->body.radius_m);
+    return fabs(e->balance_error_J) / scale;
+}
 
 /* Validates and builds a model; prints the library's message on failure. */
 static inline int sim_model(jc_Model *m, const jc_Setup *s)

@@ -179,14 +179,7 @@ static int test_disc_stick_and_slide(void)
 
 /* Deterministic pseudo-random numbers (xorshift64*), uniform in [lo, hi). */
 static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
-static double uniform(double lo, double hi)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    const uint64_t x = rng_state * 2685821657736338717ull;
-    return lo + (hi - lo) * (double)(x >> 11) * (1.0 / 9007199254740992.0);
-}
+static double uniform(double lo, double hi) { return sim_uniform(&rng_state, lo, hi); }
 
 /* A random approaching state: v_Pn < 0. */
 static jc_State random_approach(const jc_Model *m)
@@ -307,6 +300,20 @@ static int test_sticking_energy_gain_is_the_law(void)
     ENSURE_REL(dk, predicted, 1e-9);
     printf("  paper body, th = 90 deg, e = 1, u_t = %.4f m/s, u_n = -1 m/s: sticking impact changes K by %+.6g J "
            "(predicted %+.6g J, K before %.6g J)\n", ut, dk, predicted, my_kinetic(&m, &s));
+    /* The same approach under the Darboux-Keller laws: Stronge's loses
+     * energy, as it must (physics.md §4); Poisson's, here, too. */
+    const double k0 = my_kinetic(&m, &s);
+    const jc_ImpactLaw laws[2] = {JC_IMPACT_STRONGE, JC_IMPACT_POISSON};
+    double other[2];
+    for (int i = 0; i < 2; ++i) {
+        jc_State t = s;
+        jc_ImpactResult res;
+        jc_impact_apply_law(&m, &t, laws[i], e, &res);
+        other[i] = my_kinetic(&m, &t) - k0;
+    }
+    printf("  the same impact: dK/K newton %+.4f, stronge %+.4f, poisson %+.4f\n", dk / k0, other[0] / k0,
+           other[1] / k0);
+    ENSURE(dk > 0.01 * k0 && other[0] <= 1e-12 * k0);
     return 0;
 }
 

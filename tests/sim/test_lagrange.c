@@ -35,14 +35,7 @@
 #define REL_TOL 1e-10
 
 static uint64_t rng_state = 0xD1B54A32D192ED03ull;
-static double uniform(double lo, double hi)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    const uint64_t x = rng_state * 2685821657736338717ull;
-    return lo + (hi - lo) * (double)(x >> 11) * (1.0 / 9007199254740992.0);
-}
+static double uniform(double lo, double hi) { return sim_uniform(&rng_state, lo, hi); }
 
 #include "lagrange.h"
 

@@ -71,15 +71,6 @@ static int run_setup(const jc_Setup *s, jc_Model *m, jc_Run *run)
     return 0;
 }
 
-static double balance_rel(const jc_Model *m, const jc_Run *run)
-{
-    const jc_EnergyReport *e = &run->energy;
-    const double losses = e->friction_loss_J + e->impact_loss_J + e->air_loss_J + e->rolling_resistance_loss_J;
-    const double scale = fmax(e->kinetic_J + fabs(e->potential_J) + fabs(losses),
-                              m->body.mass_kg * m->setup.gravity_mps2 * m->body.radius_m);
-    return fabs(e->balance_error_J) / scale;
-}
-
 /* 1. `simulate --preset paper --incline 45 --restitution 1`: impacts gained
  * energy (up to 15 %). Now none does, and the balance closes. */
 static int test_paper_45_elastic_gains_nothing(void)
@@ -91,7 +82,7 @@ static int test_paper_45_elastic_gains_nothing(void)
     if (run_setup(&s, &m, &run)) return 1;
     const int gains = run.energy_gaining_impacts, impacts = count_events(&run, JC_EVENT_BOUNCE) +
                                                            count_events(&run, JC_EVENT_TOUCHDOWN);
-    const double loss = run.energy.impact_loss_J, bal = balance_rel(&m, &run);
+    const double loss = run.energy.impact_loss_J, bal = sim_balance_rel(&m, &run);
     jc_run_free(&run);
     ENSURE(impacts > 0);
     ENSURE_MSG(gains == 0, "%d impacts gained energy", gains);
@@ -170,7 +161,7 @@ static int test_no_zero_length_bounces(void)
         const int bad = check_real_flights(&m, &run, &o);
         const jc_Termination t = run.termination;
         const int n = run.event_count;
-        const double bal = balance_rel(&m, &run);
+        const double bal = sim_balance_rel(&m, &run);
         jc_run_free(&run);
         if (bad) return 1;
         ENSURE_MSG(t == JC_END_RAMP_END, "setup %d ended %s after %d events", k, jc_termination_name(t), n);
@@ -282,7 +273,7 @@ static int test_rest_under_rolling_resistance(void)
     const double dec = s.rolling_resistance_m * s.gravity_mps2 / (1.5 * s.body.radius_m * s.body.radius_m);
     const double want = s.omega0_radps / dec;
     const jc_Termination t = run.termination;
-    const double tf = run.final_state.t_s, bal = balance_rel(&m, &run);
+    const double tf = run.final_state.t_s, bal = sim_balance_rel(&m, &run);
     jc_run_free(&run);
     printf("  disc stops at %.6f s (computed here %.6f s)\n", tf, want);
     ENSURE_MSG(t == JC_END_REST, "ended %s", jc_termination_name(t));
@@ -294,7 +285,7 @@ static int test_rest_under_rolling_resistance(void)
     p.rolling_resistance_m = 1e-3;
     if (run_setup(&p, &m, &run)) return 1;
     const jc_Termination tp = run.termination;
-    const double tpf = run.final_state.t_s, balp = balance_rel(&m, &run);
+    const double tpf = run.final_state.t_s, balp = sim_balance_rel(&m, &run);
     jc_run_free(&run);
     printf("  paper body from 1 rad on a floor, rolling resistance 1 mm: rest at %.3f s\n", tpf);
     ENSURE_MSG(tp == JC_END_REST, "ended %s", jc_termination_name(tp));
@@ -334,7 +325,7 @@ static int test_rocking_hoop_goes_on(void)
         if (run.events[i].kind == JC_EVENT_SLIP) last = fabs(remainder(run.events[i].state.theta_rad - PI, 2 * PI));
     const jc_Termination t = run.termination;
     const int n = run.event_count;
-    const double bal = balance_rel(&m, &run);
+    const double bal = sim_balance_rel(&m, &run);
     jc_run_free(&run);
     printf("  %d events in %g s; last slip %.4f rad past the bottom, friction angle %.4f rad\n", n, 60.0, last, th_c);
     ENSURE_MSG(t == JC_END_TIME_LIMIT, "ended %s", jc_termination_name(t));
