@@ -57,8 +57,8 @@ static jc_Setup rocking_hoop_setup(void)
     return s;
 }
 
-/* The classic hopping hoop (Littlewood's problem; Tokieda, Am. Math. Monthly
- * 104 (1997) 152; Theron and Maritz, Am. J. Phys. 76 (2008) 1058 for the
+/* The classic hopping hoop (Littlewood's problem; Tokieda, "The hopping
+ * hoop", Am. Math. Monthly 104 (1997); Theron and Maritz's analysis of the
  * loaded hoop with friction): the same light hoop and heavy mass, rolled at
  * 8 rad/s with the mass on top. Why 8 rad/s: the rim's lowest point leaves
  * the floor where d w^2 cos th >= g (docs/physics.md §4a). With the mass on
@@ -66,7 +66,7 @@ static jc_Setup rocking_hoop_setup(void)
  * 8 rad/s never reaches on top; but as the mass comes up again behind the
  * centre the spin is larger (the mass's fall has fed it) and cos th is still
  * large: d w^2 cos th reaches g about 55 deg before the top, after a slip,
- * and the hoop hops (about 8 cm), then bounces. From 6.5 rad/s the criterion
+ * and the hoop hops (about 8 cm), then bounces. At 6.5 rad/s the criterion
  * is never met and the hoop only rolls and rocks (measured: 7 rad/s hops). */
 static jc_Setup hoop_setup(void)
 {
