@@ -92,6 +92,7 @@ static int test_random_setups(uint64_t seed, jc_ImpactLaw law, int runs)
     int ends[JC_END_STEP_LIMIT + 1] = {0};
     double worst_balance = 0.0, slowest = 0.0;
     int slowest_i = -1, hops = 0, gaining = 0;
+    double shortest_flight = INFINITY;
     for (int i = 0; i < runs; ++i) {
         jc_Setup s = random_setup();
         s.impact_law = law;
@@ -115,9 +116,19 @@ static int test_random_setups(uint64_t seed, jc_ImpactLaw law, int runs)
         const int n = run.event_count, gains = run.energy_gaining_impacts;
         jc_RunSummary sum;
         jc_run_summarize(&run, &sum);
-        const int inv = check_run_invariants(&o, &run);
+        int inv = check_run_invariants(&o, &run);
+        /* no flight or bounce shorter than the event tolerance */
+        double shortest = INFINITY;
+        for (int k = 0; k < run.event_count; ++k) {
+            const jc_Event *ev = &run.events[k];
+            if ((ev->kind == JC_EVENT_LIFTOFF || (ev->kind == JC_EVENT_BOUNCE && ev->mode_after == JC_MODE_FLIGHT)) &&
+                !isnan(ev->landing_x_m))
+                shortest = fmin(shortest, ev->flight_time_s);
+        }
+        shortest_flight = fmin(shortest_flight, shortest);
         jc_run_free(&run);
         ENSURE_MSG(inv == 0, "invariants; " SETUP_FMT, SETUP_ARGS);
+        ENSURE_MSG(shortest > o.event_tol_s, "a flight of %g s; " SETUP_FMT, shortest, SETUP_ARGS);
         ENSURE_MSG(physical(t), "ended with %s after %d events; " SETUP_FMT, jc_termination_name(t), n, SETUP_ARGS);
         ENSURE_MSG(bal <= BALANCE_TOL, "energy balance %.3g; " SETUP_FMT, bal, SETUP_ARGS);
         ENSURE_MSG(gains == 0 || law != JC_IMPACT_STRONGE, "%d impacts gained energy under Stronge's law; " SETUP_FMT,
@@ -144,6 +155,7 @@ static int test_random_setups(uint64_t seed, jc_ImpactLaw law, int runs)
     for (int i = 0; i < runs; ++i) total += times_ms[i];
     printf("  run time (ms): median %.3f, 90%% %.3f, 99%% %.3f, max %.3f (run %d); total %.2f s\n", times_ms[runs / 2],
            times_ms[runs * 9 / 10], times_ms[runs * 99 / 100], slowest, slowest_i, total / 1e3);
+    printf("  shortest flight that landed: %.3g s\n", shortest_flight);
     printf("  terminations:");
     for (int t = 0; t <= JC_END_STEP_LIMIT; ++t)
         if (ends[t]) printf(" %s %d", jc_termination_name((jc_Termination)t), ends[t]);
