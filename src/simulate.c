@@ -329,7 +329,6 @@ static int do_impact(machine *mc, int *from_liftoff, char *err, size_t err_len, 
             *from_liftoff = 2;
             return JC_OK;
         }
-        sim->s.vy_mps = in.vn == 0.0 ? sim->s.vy_mps : sim->s.vy_mps - in.vn;
     } else {
         jc_impact_apply(m, &sim->s, m->setup.restitution, &res);
         /* A bounce needs the gap to open by more than the contact height:
