@@ -12,7 +12,7 @@ static int cmd_presets(int argc, char **argv)
         cli_error("presets: takes no arguments");
         return EXIT_USAGE;
     }
-    for (int i = 0; jc_preset_name(i); ++i) printf("%-8s %s\n", jc_preset_name(i), jc_preset_description(i));
+    for (int i = 0; jc_preset_name(i); ++i) printf("%-12s %s\n", jc_preset_name(i), jc_preset_description(i));
     return EXIT_OK;
 }
 
