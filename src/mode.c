@@ -8,7 +8,6 @@
 
 #include <math.h>
 
-
 /* Free flight needs the rim's lowest point to accelerate away:
  * y_C'' = -g cos a + Fy/M + d sin th T/I_G + d cos th w^2 >= 0, which without
  * air is the paper's d w^2 cos th >= g cos a. */
