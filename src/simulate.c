@@ -6,6 +6,7 @@
  */
 #include "internal.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -143,38 +144,36 @@ void jc_run_free(jc_Run *run)
 
 /* ---- the in-memory recorder behind jc_simulate ---- */
 
-typedef struct {
-    jc_Event *events;
-    jc_Sample *samples;
-    int event_count, sample_count, event_cap, sample_cap;
-} run_arrays;
-
-static int grow(void **arr, int count, int *cap, size_t size)
+/* Room for one more element: the capacity is implicit (64, then doubling),
+ * so that a jc_Run needs no capacity fields. */
+static int grow(void **arr, int count, size_t size)
 {
-    if (count < *cap) return JC_OK;
-    int n = *cap ? 2 * *cap : 64;
-    void *p = realloc(*arr, (size_t)n * size);
+    if (count > 0 && (count < 64 || (count & (count - 1)) != 0)) return JC_OK;
+    if (count == INT_MAX / 2 + 1) return JC_ENOMEM;
+    const size_t n = count ? 2 * (size_t)count : 64;
+    void *p = realloc(*arr, n * size);
     if (!p) return JC_ENOMEM;
     *arr = p;
-    *cap = n;
     return JC_OK;
 }
 
 static int arrays_event(void *ctx, const jc_Event *e)
 {
-    run_arrays *a = ctx;
-    if (grow((void **)&a->events, a->event_count, &a->event_cap, sizeof *e)) return JC_ENOMEM;
+    jc_Run *a = ctx;
+    if (grow((void **)&a->events, a->event_count, sizeof *e)) return JC_ENOMEM;
     a->events[a->event_count++] = *e;
     return JC_OK;
 }
 
 static int arrays_sample(void *ctx, const jc_Sample *p)
 {
-    run_arrays *a = ctx;
-    if (grow((void **)&a->samples, a->sample_count, &a->sample_cap, sizeof *p)) return JC_ENOMEM;
+    jc_Run *a = ctx;
+    if (grow((void **)&a->samples, a->sample_count, sizeof *p)) return JC_ENOMEM;
     a->samples[a->sample_count++] = *p;
     return JC_OK;
 }
+
+jc_Recorder jc_run_recorder(jc_Run *arrays) { return (jc_Recorder){arrays, arrays_event, arrays_sample}; }
 
 /* ---- recording: samples on a fixed grid and at events, events when complete ---- */
 
@@ -641,8 +640,8 @@ int jc_simulate_stream(const jc_Model *model, const jc_SimOptions *options, cons
 
 int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out, char *err, size_t err_len)
 {
-    run_arrays arrays = {0};
-    const jc_Recorder rec = {&arrays, arrays_event, arrays_sample};
+    jc_Run arrays = {0};
+    const jc_Recorder rec = jc_run_recorder(&arrays);
     const int st = jc_simulate_stream(model, options, &rec, out, err, err_len);
     /* Handed over also after an error: the caller frees them with jc_run_free. */
     out->events = arrays.events;

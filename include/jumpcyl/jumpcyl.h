@@ -431,6 +431,10 @@ typedef struct {
  * set as by jc_simulate (identical results). */
 int jc_simulate_stream(const jc_Model *model, const jc_SimOptions *options, const jc_Recorder *rec,
                        jc_Run *out, char *err, size_t err_len);
+/* The recorder jc_simulate uses: it appends to arrays->events and
+ * arrays->samples (and their counts), which start zeroed and are freed with
+ * jc_run_free. Wrap it to add checks of your own (a stop request). */
+jc_Recorder jc_run_recorder(jc_Run *arrays);
 
 /* What a run amounts to: its hops. A hop starts at a lift-off; bounces
  * continue it. */
