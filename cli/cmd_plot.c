@@ -179,7 +179,7 @@ static int write_script(fig_Data *d, const plot_kind *kind, fig_Format format, c
     if (fclose(gp) != 0 && !err) err = errno;
     d->gp = NULL;
     if (rc == EXIT_OK && err) {
-        cli_error("cannot write %s (the figure's script, in the scratch directory): %s", script, strerror(err));
+        cli_error("cannot write %s: %s (writing its script %s)", o->output, strerror(err), script);
         rc = EXIT_FAIL;
     }
     return rc;

@@ -48,7 +48,18 @@ typedef struct {
     int events;
     int write_failed;    /* standard output or the CSV refused a write */
     int csv_errno;       /* why the CSV did */
+    int out_errno;       /* why standard output did */
 } sim_stream;
+
+/* Notes the first failed write to standard output, with its reason, which
+ * is gone once the buffer is dropped. */
+static void check_stdout(sim_stream *st)
+{
+    if (ferror(stdout) && !st->out_errno) {
+        st->out_errno = errno ? errno : EIO;
+        st->write_failed = 1;
+    }
+}
 
 static void csv_header(FILE *f)
 {
@@ -142,11 +153,11 @@ static void print_tail(const jc_Model *m, const jc_Run *run, const jc_RunSummary
 static int on_event(void *ctx, const jc_Event *e)
 {
     sim_stream *st = ctx;
-    if (st->json && cli_sim_json_event(stdout, e, st->events) != 0) st->write_failed = 1;
+    if (st->json) cli_sim_json_event(stdout, e, st->events);
     if (st->text) print_event(st->model, st->events, e);
     jc_summary_add(&st->sum, e, st->events);
     st->events++;
-    if (ferror(stdout)) st->write_failed = 1;
+    check_stdout(st);
     return st->write_failed ? JC_ESTOPPED : JC_OK;
 }
 
@@ -177,7 +188,7 @@ int cmd_simulate(int argc, char **argv)
         return EXIT_USAGE;
     }
     cli_Output csv;
-    sim_stream out = {&model, o.json, !o.json, o.csv ? &csv : NULL, {0}, 0, 0, 0};
+    sim_stream out = {&model, o.json, !o.json, o.csv ? &csv : NULL, {0}, 0, 0, 0, 0};
     jc_summary_init(&out.sum);
     if (o.csv) {
         if (cli_output_begin(&csv, o.csv, 1) != 0) return EXIT_FAIL;
@@ -193,6 +204,7 @@ int cmd_simulate(int argc, char **argv)
     }
     if (out.json && cli_sim_json_begin(stdout, &model) != 0) out.write_failed = 1;
     if (out.text) print_head(&model, &opts);
+    check_stdout(&out);
     const jc_Recorder rec = {&out, on_event, o.csv ? on_sample : NULL};
     jc_Run run;
     st = out.write_failed ? JC_ESTOPPED : cli_simulate_stream(&model, &opts, &rec, &run, "simulate");
@@ -202,14 +214,20 @@ int cmd_simulate(int argc, char **argv)
             cli_error("cannot write %s: %s", csv.is_stdout ? "standard output" : o.csv, strerror(out.csv_errno));
         if (o.csv) cli_output_abort(&csv);
         if (cli_stop_requested()) return cli_stop_status();
-        if (out.write_failed && ferror(stdout)) return cli_stdout_finish();
+        if (out.out_errno) cli_error("cannot write standard output: %s", strerror(out.out_errno));
+        else if (out.write_failed && !out.csv_errno) cli_error("simulate: out of memory for the JSON document");
         return EXIT_FAIL;
     }
     if (out.json) {
-        if (cli_sim_json_end(stdout, &run, &out.sum) != 0) cli_error("simulate: could not write the JSON document");
+        cli_sim_json_end(stdout, &run, &out.sum);
     } else if (out.text) {
         print_tail(&model, &run, &out.sum);
         if (o.csv) printf("Trajectory: %d samples written to %s\n", run.sample_count, o.csv);
+    }
+    check_stdout(&out);
+    if (out.out_errno) {
+        cli_error("cannot write standard output: %s", strerror(out.out_errno));
+        return EXIT_FAIL;
     }
     if (run.termination == JC_END_SAMPLE_LIMIT)
         cli_error("simulate: the run stopped at the sample limit (%d samples); raise --sample-dt or lower --t-max",
