@@ -188,6 +188,7 @@ int cmd_simulate(int argc, char **argv)
         return EXIT_USAGE;
     }
     cli_Output csv;
+    memset(&csv, 0, sizeof csv);
     sim_stream out = {&model, o.json, !o.json, o.csv ? &csv : NULL, {0}, 0, 0, 0, 0};
     jc_summary_init(&out.sum);
     if (o.csv) {
