@@ -40,15 +40,23 @@ static void check_safe_name(const char *name)
     FUZZ_CHECK(strcmp(safe, again) == 0);
 }
 
+/* What a quoting function writes for name, in memory (free it). */
+static char *quoted(void (*quote)(FILE *, const char *), const char *name, size_t *len)
+{
+    char *buf = NULL;
+    FILE *m = open_memstream(&buf, len);
+    FUZZ_CHECK(m != NULL);
+    quote(m, name);
+    fclose(m);
+    FUZZ_CHECK(buf != NULL);
+    return buf;
+}
+
 /* 'text' with '' for a quote: what gnuplot reads in single quotes. */
 static void check_gnuplot_quote(const char *name)
 {
-    char *buf = NULL;
     size_t len = 0;
-    FILE *m = open_memstream(&buf, &len);
-    FUZZ_CHECK(m != NULL);
-    fig_quote(m, name);
-    fclose(m);
+    char *buf = quoted(fig_quote, name, &len);
     FUZZ_CHECK(len >= 2 && buf[0] == '\'' && buf[len - 1] == '\'');
     size_t k = 0;
     for (size_t i = 1; i + 1 < len; ++i, ++k) {
@@ -67,12 +75,8 @@ static void check_gnuplot_quote(const char *name)
 /* A word of the shell: bare, or '...' pieces joined by \' . */
 static void check_shell_word(const char *name)
 {
-    char *buf = NULL;
     size_t len = 0;
-    FILE *m = open_memstream(&buf, &len);
-    FUZZ_CHECK(m != NULL);
-    cli_shell_word(m, name);
-    fclose(m);
+    char *buf = quoted(cli_shell_word, name, &len);
     char *read = malloc(len + 1);
     FUZZ_CHECK(read != NULL);
     size_t n = 0;

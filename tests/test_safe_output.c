@@ -194,20 +194,36 @@ static cli_result run_limited(const char *const *args, const char *tmpdir, rlim_
 
 /* ---- names ---- */
 
+/* A command in a name would create the file $JC_MARKER (an absolute path set
+ * in the environment, which a shell started by gnuplot inherits), wherever
+ * it ran: in the figure's directory or in the scratch directory. */
 static const char *const hostile[] = {
-    "<touch marker #.png", "|touch marker.png", "a'b\"c.png", "back\\slash.png", "new\nline.png",
-    "sp ace.png",          "-dash.png",         "\xc3\xbcn\xc3\xaf.png", "$(touch marker).png", "`touch marker`.png",
-    "x;touch marker;.svg", "'; system('touch marker') #.pdf",
+    "<touch $JC_MARKER #.png", "|touch $JC_MARKER #.png", "a'b\"c.png", "back\\slash.png", "new\nline.png",
+    "sp ace.png", "-dash.png", "\xc3\xbcn\xc3\xaf.png", "$(touch $JC_MARKER).png", "`touch $JC_MARKER`.png",
+    "x;touch $JC_MARKER;.svg", "'; system('touch $JC_MARKER') #.pdf",
 };
+
+static char marker[600];
+
+static int marker_exists(void)
+{
+    struct stat st;
+    return stat(marker, &st) == 0;
+}
+
+/* A new directory under base, made the working directory; *cwd keeps the old. */
+static int enter_new_dir(const char *name, char *cwd, size_t len)
+{
+    char dir[512];
+    return getcwd(cwd, len) != NULL && new_dir(dir, sizeof dir, name) == 0 && chdir(dir) == 0 ? 0 : -1;
+}
 
 /* Each name: exit 0, exactly that one file in the directory, no marker. */
 static int test_injection_names(void)
 {
-    char dir[512], cwd[1024];
-    ENSURE(getcwd(cwd, sizeof cwd) != NULL);
+    char cwd[1024];
     for (size_t i = 0; i < sizeof hostile / sizeof hostile[0]; ++i) {
-        ENSURE(new_dir(dir, sizeof dir, "names") == 0);
-        ENSURE(chdir(dir) == 0);
+        ENSURE(enter_new_dir("names", cwd, sizeof cwd) == 0);
         const char *args[] = {"plot", "--what", "paper-criterion", "--output", hostile[i], NULL};
         cli_result r = cli_run(args);
         char first[512];
@@ -218,6 +234,7 @@ static int test_injection_names(void)
         cli_result_free(&r);
         ENSURE(chdir(cwd) == 0);
         ENSURE_MSG(ok, "name %zu did not make exactly itself", i);
+        ENSURE_MSG(!marker_exists(), "name %zu ran a command: the marker exists", i);
     }
     return 0;
 }
@@ -226,27 +243,25 @@ static int test_injection_names(void)
  * and reads no file: its data are inside it. */
 static int test_injection_kept_script(void)
 {
-    char dir[512], cwd[1024];
-    ENSURE(getcwd(cwd, sizeof cwd) != NULL);
-    ENSURE(new_dir(dir, sizeof dir, "kept") == 0);
-    ENSURE(chdir(dir) == 0);
-    const char *args[] = {"plot", "--what", "energy", "--keep-script", "--output", "<touch marker #.png", NULL};
+    char cwd[1024];
+    ENSURE(enter_new_dir("kept", cwd, sizeof cwd) == 0);
+    const char *args[] = {"plot", "--what", "energy", "--keep-script", "--output", "<touch $JC_MARKER #.png", NULL};
     cli_result r = cli_run(args);
     const int status = r.status;
     cli_result_free(&r);
     const int two = entries(".", NULL, 0) == 2;
     struct stat st;
-    const int has_script = stat("<touch marker #.gp", &st) == 0;
+    const int has_script = stat("<touch $JC_MARKER #.gp", &st) == 0;
     /* By hand, as a researcher would: the script under a plain name. */
-    const int renamed = rename("<touch marker #.gp", "kept.gp") == 0;
+    const int renamed = rename("<touch $JC_MARKER #.gp", "kept.gp") == 0;
     const int ran = renamed && system("gnuplot kept.gp >/dev/null 2>&1") == 0;
-    const int marker = stat("marker", &st) == 0;
-    const int figure = stat("f_touch_marker__.png", &st) == 0 && st.st_size > 1000;
+    const int ran_command = marker_exists();
+    const int figure = stat("f_touch__JC_MARKER__.png", &st) == 0 && st.st_size > 1000;
     ENSURE(chdir(cwd) == 0);
     ENSURE_MSG(status == 0, "status %d", status);
     ENSURE_MSG(two && has_script, "the figure and its script are not exactly what was made");
     ENSURE_MSG(ran, "gnuplot failed on the kept script");
-    ENSURE_MSG(!marker, "a command ran: the marker exists");
+    ENSURE_MSG(!ran_command, "a command ran: the marker exists");
     ENSURE_MSG(figure, "the kept script did not write its figure under the safe name");
     return 0;
 }
@@ -254,10 +269,8 @@ static int test_injection_kept_script(void)
 /* ffmpeg reads names only as files: a URL-like name and a leading '-'. */
 static int test_ffmpeg_names(void)
 {
-    char dir[512], cwd[1024];
-    ENSURE(getcwd(cwd, sizeof cwd) != NULL);
-    ENSURE(new_dir(dir, sizeof dir, "films") == 0);
-    ENSURE(chdir(dir) == 0);
+    char cwd[1024];
+    ENSURE(enter_new_dir("films", cwd, sizeof cwd) == 0);
     ENSURE(mkdir("tcp:", 0755) == 0 && mkdir("tcp:/127.0.0.1:9", 0755) == 0);
     const char *names[] = {"tcp://127.0.0.1:9/x.gif", "-y.gif", "pipe:1.gif"};
     int ok = 1;
@@ -543,10 +556,8 @@ static int test_repeated_options(void)
 
 static int test_csv_to_stdout(void)
 {
-    char dir[512], cwd[1024];
-    ENSURE(getcwd(cwd, sizeof cwd) != NULL);
-    ENSURE(new_dir(dir, sizeof dir, "csv-stdout") == 0);
-    ENSURE(chdir(dir) == 0);
+    char cwd[1024];
+    ENSURE(enter_new_dir("csv-stdout", cwd, sizeof cwd) == 0);
     const char *args[] = {"simulate", "--sample-dt", "0.01", "--csv", "-", NULL};
     cli_result r = cli_run(args);
     int rows = 0;
@@ -690,6 +701,8 @@ int main(int argc, char **argv)
     const int wrapped = argc > 2;
     snprintf(base, sizeof base, "/tmp/jc_safe_output_XXXXXX");
     if (!mkdtemp(base)) return 2;
+    snprintf(marker, sizeof marker, "%s/marker", base);
+    setenv("JC_MARKER", marker, 1);
     RUN_TEST(test_injection_names);
     RUN_TEST(test_injection_kept_script);
     RUN_TEST(test_dev_full);

@@ -6,6 +6,7 @@
 #include "test.h"
 
 #include "cli.h"
+#include "hoop_parts.h"
 
 #include <cjson/cJSON.h>
 #include <gsl/gsl_errno.h>
@@ -82,20 +83,7 @@ static int test_bouncing(void)
 
 static int test_many_events(void)
 {
-    jc_Setup s;
-    char err[256];
-    ENSURE_OK(jc_preset_setup("paper", &s, err, sizeof err), err);
-    s.body = (jc_BodyDef){0};
-    s.body.radius_m = 0.10;
-    s.body.part_count = 2;
-    s.body.parts[0] = (jc_Part){JC_PART_HOOP, 0.010, 0.0, 0.0, 0.10};
-    s.body.parts[1] = (jc_Part){JC_PART_POINT, 0.100, 0.10, 0.0, 0.0};
-    s.incline_rad = 0.0;
-    s.mu_static = s.mu_kinetic = 0.5;
-    s.restitution = 1.0;
-    s.omega0_radps = 0.1;
-    s.ramp_length_m = 3.0;
-    s.paper_cm_offset_m = 0.0;
+    const jc_Setup s = hoop_parts_setup();
     return compare(&s, 3000, 500);
 }
 

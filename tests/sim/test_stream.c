@@ -7,6 +7,8 @@
  */
 #include "sim_common.h"
 
+#include "../hoop_parts.h"
+
 #include <gsl/gsl_errno.h>
 #include <stdlib.h>
 
@@ -58,26 +60,6 @@ static void collector_free(collector *c)
     free(c->samples);
 }
 
-static jc_Setup hoop(void)
-{
-    jc_Setup s;
-    char err[256];
-    jc_preset_setup("paper", &s, err, sizeof err);
-    s.body = (jc_BodyDef){0};
-    s.body.radius_m = 0.10;
-    s.body.part_count = 2;
-    s.body.parts[0] = (jc_Part){JC_PART_HOOP, 0.010, 0.0, 0.0, 0.10};
-    s.body.parts[1] = (jc_Part){JC_PART_POINT, 0.100, 0.10, 0.0, 0.0};
-    s.incline_rad = 0.0;
-    s.mu_static = s.mu_kinetic = 0.5;
-    s.restitution = 1.0;
-    s.omega0_radps = 0.1;
-    s.theta0_rad = 0.0;
-    s.ramp_length_m = 3.0;
-    s.paper_cm_offset_m = 0.0;
-    return s;
-}
-
 /* Stream and array agree to the bit on a run with many flights. */
 static int same_as_array(const jc_Setup *s, double dt, int max_events, int min_flights)
 {
@@ -122,7 +104,7 @@ static int same_as_array(const jc_Setup *s, double dt, int max_events, int min_f
 /* Slip and stick chatter: hundreds of events. */
 static int test_hoop_same_as_array(void)
 {
-    const jc_Setup s = hoop();
+    const jc_Setup s = hoop_parts_setup();
     return same_as_array(&s, 0.0, 400, 0) || same_as_array(&s, 0.01, 400, 0);
 }
 
@@ -188,7 +170,7 @@ static int test_sample_grid_strictly_increases(void)
  * the events it accepted. */
 static int test_recorder_stops_run(void)
 {
-    const jc_Setup s = hoop();
+    const jc_Setup s = hoop_parts_setup();
     jc_Model m;
     if (sim_model(&m, &s)) return 1;
     jc_SimOptions o = jc_default_sim_options();
