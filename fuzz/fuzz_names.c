@@ -80,22 +80,22 @@ static void check_shell_word(const char *name)
     char *read = malloc(len + 1);
     FUZZ_CHECK(read != NULL);
     size_t n = 0;
-    int quoted = 0;
+    int in_quotes = 0;
     for (size_t i = 0; i < len; ++i) {
         const unsigned char c = (unsigned char)buf[i];
         FUZZ_CHECK(c >= 0x20 && c != 0x7f);
-        if (!quoted && c == '\\') {
+        if (!in_quotes && c == '\\') {
             FUZZ_CHECK(i + 1 < len && buf[i + 1] == '\'');
             read[n++] = buf[++i];
         } else if (c == '\'') {
-            quoted = !quoted;
+            in_quotes = !in_quotes;
         } else {
             /* Outside quotes only characters the shell takes literally. */
-            FUZZ_CHECK(quoted || strchr(" \t\"$`\\|&;<>()*?[]#~{}!", c) == NULL);
+            FUZZ_CHECK(in_quotes || strchr(" \t\"$`\\|&;<>()*?[]#~{}!", c) == NULL);
             read[n++] = (char)c;
         }
     }
-    FUZZ_CHECK(!quoted);
+    FUZZ_CHECK(!in_quotes);
     read[n] = '\0';
     size_t k = 0;
     for (; name[k]; ++k) {
