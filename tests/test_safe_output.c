@@ -503,6 +503,12 @@ static int test_dev_full(void)
     const int ok = r.status == 1 && r.err && strstr(r.err, "/dev/full: No space left on device") && r.out[0] == '\0';
     cli_result_free(&r);
     ENSURE_MSG(ok, "--csv /dev/full");
+    /* A closed standard output is an error too, not a silent success. */
+    r = cli_run_to(help, CLI_RUN_CLOSED);
+    const int closed_ok = r.status == 1 && r.err && one_message(r.err) && strstr(r.err, "Bad file descriptor");
+    if (!closed_ok) fprintf(stderr, "closed stdout: status %d, stderr: %s", r.status, r.err ? r.err : "");
+    cli_result_free(&r);
+    ENSURE_MSG(closed_ok, "--help with standard output closed");
     return 0;
 }
 
