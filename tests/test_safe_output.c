@@ -428,34 +428,38 @@ static int stop_while(const char *const *args, const char *comm, int sig, int tw
     return 0;
 }
 
-static int test_signals_while_gnuplot_runs(void)
+/* Each stop signal, sent while the child comm runs "args --output DIR/file". */
+static int each_stop_signal(const char *comm, const char *file, const char *const *args)
 {
     static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE};
     for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; ++i) {
         char dir[512], target[600];
-        ENSURE(new_dir(dir, sizeof dir, "sig-gnuplot") == 0);
-        snprintf(target, sizeof target, "%s/fig.png", dir);
+        ENSURE(new_dir(dir, sizeof dir, comm) == 0);
+        snprintf(target, sizeof target, "%s/%s", dir, file);
         ENSURE(write_text(target, OLD_TEXT) == 0);
-        /* 130,000 samples on four panels: gnuplot renders for seconds. */
-        const char *args[] = {"plot", "--what", "overview", "--incline", "45", "--sample-dt", "1e-5",
-                              "--max-samples", "1000000", "--output", target, NULL};
-        if (stop_while(args, "gnuplot", sigs[i], 0, dir, target)) return 1;
+        const char *argv[32];
+        int n = 0;
+        for (; n < 28 && args[n]; ++n) argv[n] = args[n];
+        argv[n++] = "--output";
+        argv[n++] = target;
+        argv[n] = NULL;
+        if (stop_while(argv, comm, sigs[i], 0, dir, target)) return 1;
     }
     return 0;
 }
 
+static int test_signals_while_gnuplot_runs(void)
+{
+    /* 130,000 samples on four panels: gnuplot renders for seconds. */
+    const char *args[] = {"plot", "--what", "overview", "--incline", "45", "--sample-dt", "1e-5",
+                          "--max-samples", "1000000", NULL};
+    return each_stop_signal("gnuplot", "fig.png", args);
+}
+
 static int test_signals_while_ffmpeg_runs(void)
 {
-    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE};
-    for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; ++i) {
-        char dir[512], target[600];
-        ENSURE(new_dir(dir, sizeof dir, "sig-ffmpeg") == 0);
-        snprintf(target, sizeof target, "%s/film.mp4", dir);
-        ENSURE(write_text(target, OLD_TEXT) == 0);
-        const char *args[] = {"animate", "--incline", "45", "--size", "1280x720", "--output", target, NULL};
-        if (stop_while(args, "ffmpeg", sigs[i], 0, dir, target)) return 1;
-    }
-    return 0;
+    const char *args[] = {"animate", "--incline", "45", "--size", "1280x720", NULL};
+    return each_stop_signal("ffmpeg", "film.mp4", args);
 }
 
 /* A long simulation behind a plot (its first run, which keeps nothing). */
@@ -485,6 +489,22 @@ static int test_second_signal(void)
 
 /* ---- inputs, options, standard output ---- */
 
+/* "jumpcyl ARGS" (standard output to stdout_path, NULL: captured) ends with
+ * status and one message containing needle, and prints nothing. */
+static int expect_error(const char *const *args, const char *stdout_path, int status, const char *needle)
+{
+    cli_result r = cli_run_to(args, stdout_path);
+    const int ok = r.status == status && r.err && one_message(r.err) && strstr(r.err, needle) && r.out &&
+                   r.out[0] == '\0';
+    if (!ok) {
+        fprintf(stderr, "'%s %s ...': status %d, stdout %zu bytes, stderr: %s", args[0], args[1] ? args[1] : "",
+                r.status, r.out ? strlen(r.out) : 0, r.err ? r.err : "");
+    }
+    cli_result_free(&r);
+    ENSURE_MSG(ok, "expected status %d and '%s'", status, needle);
+    return 0;
+}
+
 static int test_dev_full(void)
 {
     const char *help[] = {"--help", NULL};
@@ -492,23 +512,11 @@ static int test_dev_full(void)
     const char *json[] = {"simulate", "--json", NULL};
     const char *csv[] = {"simulate", "--csv", "/dev/full", NULL};
     const char *const *cases[] = {help, sim_help, json};
-    for (int i = 0; i < 3; ++i) {
-        cli_result r = cli_run_to(cases[i], "/dev/full");
-        const int ok = r.status == 1 && r.err && one_message(r.err) && strstr(r.err, "No space left on device");
-        if (!ok) fprintf(stderr, "case %d: status %d, stderr: %s", i, r.status, r.err ? r.err : "");
-        cli_result_free(&r);
-        ENSURE_MSG(ok, "case %d to /dev/full", i);
-    }
-    cli_result r = cli_run(csv);
-    const int ok = r.status == 1 && r.err && strstr(r.err, "/dev/full: No space left on device") && r.out[0] == '\0';
-    cli_result_free(&r);
-    ENSURE_MSG(ok, "--csv /dev/full");
+    for (int i = 0; i < 3; ++i)
+        if (expect_error(cases[i], "/dev/full", 1, "standard output: No space left on device")) return 1;
+    if (expect_error(csv, NULL, 1, "/dev/full: No space left on device")) return 1;
     /* A closed standard output is an error too, not a silent success. */
-    r = cli_run_to(help, CLI_RUN_CLOSED);
-    const int closed_ok = r.status == 1 && r.err && one_message(r.err) && strstr(r.err, "Bad file descriptor");
-    if (!closed_ok) fprintf(stderr, "closed stdout: status %d, stderr: %s", r.status, r.err ? r.err : "");
-    cli_result_free(&r);
-    ENSURE_MSG(closed_ok, "--help with standard output closed");
+    if (expect_error(help, CLI_RUN_CLOSED, 1, "standard output: Bad file descriptor")) return 1;
     return 0;
 }
 
@@ -528,11 +536,7 @@ static int test_fifo_config(void)
     ENSURE(ok);
     ENSURE_MSG(took < 10.0, "took %.1f s", took);
     const char *dev[] = {"simulate", "--config", "/dev/zero", NULL};
-    r = cli_run(dev);
-    const int dev_ok = r.status == 2 && r.err && strstr(r.err, "not a regular file");
-    cli_result_free(&r);
-    ENSURE(dev_ok);
-    return 0;
+    return expect_error(dev, NULL, 2, "/dev/zero: not a regular file");
 }
 
 static int test_repeated_options(void)
@@ -549,13 +553,8 @@ static int test_repeated_options(void)
     const char *const *cases[] = {csv, json, keep, frames, incline};
     const char *names[] = {"--csv given twice", "--json given twice", "--keep-script given twice",
                            "--max-frames given twice", "--incline given twice"};
-    for (int i = 0; i < 5; ++i) {
-        cli_result r = cli_run(cases[i]);
-        const int ok = r.status == 2 && r.err && one_message(r.err) && strstr(r.err, names[i]);
-        if (!ok) fprintf(stderr, "case %d: status %d, stderr: %s", i, r.status, r.err ? r.err : "");
-        cli_result_free(&r);
-        ENSURE_MSG(ok, "expected '%s'", names[i]);
-    }
+    for (int i = 0; i < 5; ++i)
+        if (expect_error(cases[i], NULL, 2, names[i])) return 1;
     ENSURE_MSG(entries(dir, NULL, 0) == 0, "a file was written");
     return 0;
 }
@@ -595,14 +594,9 @@ static int test_read_only_target(void)
     ENSURE(chmod(fig, 0444) == 0 && chmod(csv, 0444) == 0);
     const char *plot[] = {"plot", "--what", "energy", "--output", fig, NULL};
     const char *sim[] = {"simulate", "--csv", csv, NULL};
-    const char *const *cases[] = {plot, sim};
-    for (int i = 0; i < 2; ++i) {
-        cli_result r = cli_run(cases[i]);
-        const int ok = r.status == 1 && r.err && one_message(r.err) && strstr(r.err, "read-only") && r.out[0] == '\0';
-        if (!ok) fprintf(stderr, "case %d: status %d, stderr: %s", i, r.status, r.err ? r.err : "");
-        cli_result_free(&r);
-        ENSURE_MSG(ok, "case %d: a read-only target must be refused", i);
-    }
+    if (expect_error(plot, NULL, 1, "fig.png: the file is read-only") ||
+        expect_error(sim, NULL, 1, "run.csv: the file is read-only"))
+        return 1;
     ENSURE(same_content(fig, OLD_TEXT) && same_content(csv, OLD_TEXT));
     ENSURE(entries(dir, NULL, 0) == 2);
     return 0;
@@ -618,17 +612,9 @@ static int test_budgets(void)
     snprintf(fig, sizeof fig, "%s/fine.png", dir);
     /* 60 s at 30 fps x 8: 14,400 frames. */
     const char *animate[] = {"animate", HOOP, "--output", film, NULL};
-    cli_result r = cli_run(animate);
-    int ok = r.status == 2 && r.err && one_message(r.err) && strstr(r.err, "--max-frames") && strstr(r.err, "5000");
-    if (!ok) fprintf(stderr, "animate: status %d, stderr: %s", r.status, r.err ? r.err : "");
-    cli_result_free(&r);
-    ENSURE_MSG(ok, "a long film must be refused naming --max-frames");
+    if (expect_error(animate, NULL, 2, "over the budget of 5000; raise it with --max-frames")) return 1;
     const char *plot[] = {"plot", "--what", "path", "--sample-dt", "1e-5", "--output", fig, NULL};
-    r = cli_run(plot);
-    ok = r.status == 2 && r.err && one_message(r.err) && strstr(r.err, "--max-samples");
-    if (!ok) fprintf(stderr, "plot: status %d, stderr: %s", r.status, r.err ? r.err : "");
-    cli_result_free(&r);
-    ENSURE_MSG(ok, "a figure of 130,000 samples must be refused naming --max-samples");
+    if (expect_error(plot, NULL, 2, "over the budget of 100000; raise it with --max-samples")) return 1;
     ENSURE(entries(dir, NULL, 0) == 0);
     return 0;
 }

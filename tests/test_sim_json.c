@@ -6,7 +6,7 @@
 #include "test.h"
 
 #include "cli.h"
-#include "hoop_parts.h"
+#include "stream_setups.h"
 
 #include <cjson/cJSON.h>
 #include <gsl/gsl_errno.h>
@@ -73,11 +73,7 @@ static int test_no_events(void)
 
 static int test_bouncing(void)
 {
-    jc_Setup s = jc_paper_setup();
-    s.gravity_mps2 = 1000.0;
-    s.mu_static = s.mu_kinetic = 0.05;
-    s.restitution = 0.9;
-    s.ramp_length_m = 30.0;
+    const jc_Setup s = bouncing_setup();
     return compare(&s, 10000, 10);
 }
 

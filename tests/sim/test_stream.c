@@ -7,7 +7,7 @@
  */
 #include "sim_common.h"
 
-#include "../hoop_parts.h"
+#include "../stream_setups.h"
 
 #include <gsl/gsl_errno.h>
 #include <stdlib.h>
@@ -23,15 +23,22 @@ typedef struct {
     jc_RunSummary summary;
 } collector;
 
+/* Room for one more element of *arr (count used, *cap allocated). */
+static int grow(void **arr, int count, int *cap, size_t size)
+{
+    if (count < *cap) return JC_OK;
+    const int n = *cap ? 2 * *cap : 64;
+    void *p = realloc(*arr, size * (size_t)n);
+    if (!p) return JC_ENOMEM;
+    *arr = p;
+    *cap = n;
+    return JC_OK;
+}
+
 static int on_event(void *ctx, const jc_Event *e)
 {
     collector *c = ctx;
-    if (c->n_events == c->cap_events) {
-        c->cap_events = c->cap_events ? 2 * c->cap_events : 64;
-        jc_Event *p = realloc(c->events, sizeof *p * (size_t)c->cap_events);
-        if (!p) return JC_ENOMEM;
-        c->events = p;
-    }
+    if (grow((void **)&c->events, c->n_events, &c->cap_events, sizeof *e)) return JC_ENOMEM;
     const int flies = e->kind == JC_EVENT_LIFTOFF || (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT);
     if (flies && !(e->flight_time_s > 0.0)) c->open_flights++;
     jc_summary_add(&c->summary, e, c->n_events);
@@ -42,12 +49,7 @@ static int on_event(void *ctx, const jc_Event *e)
 static int on_sample(void *ctx, const jc_Sample *s)
 {
     collector *c = ctx;
-    if (c->n_samples == c->cap_samples) {
-        c->cap_samples = c->cap_samples ? 2 * c->cap_samples : 64;
-        jc_Sample *p = realloc(c->samples, sizeof *p * (size_t)c->cap_samples);
-        if (!p) return JC_ENOMEM;
-        c->samples = p;
-    }
+    if (grow((void **)&c->samples, c->n_samples, &c->cap_samples, sizeof *s)) return JC_ENOMEM;
     if (c->n_samples && !(s->state.t_s >= c->last_t)) c->sample_order_broken = 1;
     c->last_t = s->state.t_s;
     c->samples[c->n_samples++] = *s;
@@ -108,15 +110,9 @@ static int test_hoop_same_as_array(void)
     return same_as_array(&s, 0.0, 400, 0) || same_as_array(&s, 0.01, 400, 0);
 }
 
-/* A lift-off, a dozen bounces, and the ramp's end reached in flight (the
- * event that waits behind the held bounce). */
 static int test_bouncing_same_as_array(void)
 {
-    jc_Setup s = jc_paper_setup();
-    s.gravity_mps2 = 1000.0;
-    s.mu_static = s.mu_kinetic = 0.05;
-    s.restitution = 0.9;
-    s.ramp_length_m = 30.0;
+    const jc_Setup s = bouncing_setup();
     return same_as_array(&s, 0.0, 10000, 10) || same_as_array(&s, 1e-4, 10000, 10);
 }
 
