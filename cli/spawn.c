@@ -71,7 +71,7 @@ static int wait_child(pid_t pid, int *status, cli_Progress *progress)
             } else if (now - stop_at > CHILD_GRACE_S) {
                 kill(pid, SIGKILL);
             }
-        } else {
+        } else if (progress) {
             cli_progress_update(progress, 0, 0);
         }
         const struct timespec ts = {0, 10 * 1000 * 1000};
