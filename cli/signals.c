@@ -7,8 +7,8 @@
  * pushes, each frame, when the child has exited, and just before an output
  * is renamed into place), removes what it made, leaves every target as it
  * was, and exits with 128 + the signal number. A second signal ends the
- * process at once, after removing the temporary files and scratch
- * directories recorded here and ending the child.
+ * process at once, after killing the child (SIGKILL) and removing the
+ * temporary files and scratch directories recorded here.
  *
  * SIGXFSZ (a file grew past `ulimit -f`): caught and otherwise ignored, so
  * that the write fails with EFBIG and is reported as "File too large".
@@ -81,6 +81,9 @@ static void on_signal(int sig)
         errno = saved;
         return;
     }
+    /* The process ends now and cannot wait for the child to finish: it is
+     * killed outright (it only ever writes into the scratch directory). */
+    if (child > 0) kill(child, SIGKILL);
     for (int i = 0; i < TRACK_SLOTS; ++i)
         if (tracked_used[i]) unlink(tracked_path[i]);
     for (int i = 0; i < DIR_SLOTS; ++i)
