@@ -6,7 +6,9 @@
 #include <jumpcyl/jumpcyl.h>
 
 #include <getopt.h>
+#include <signal.h>
 #include <stdio.h>
+#include <sys/types.h>
 
 /* Exit statuses. */
 enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2 };
@@ -90,49 +92,58 @@ int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t
 int cli_sim_build(const cli_SimArgs *args, jc_SimOptions *out, char *err, size_t err_len);
 void cli_sim_help(FILE *out);
 
-/* Runs the full model; prints the library's message on failure. Returns a
- * status (JC_OK, ...). The caller frees the run. */
+/* ---- record.c: the simulation, stopped by a signal ---- */
+/* Runs the full model into run's arrays; prints the library's message on
+ * failure (nothing for a stop by a signal). Returns a status (JC_OK, ...,
+ * JC_ESTOPPED after a signal). The caller frees the run. */
 int cli_simulate(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd);
+/* The same without keeping events or samples: for the run's end and counts. */
+int cli_simulate_probe(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd);
+/* Runs the full model into a caller's recorder; a signal stops it. No
+ * message for JC_ESTOPPED (a signal, or the recorder's own stop). */
+int cli_simulate_stream(const jc_Model *m, const jc_SimOptions *o, const jc_Recorder *rec, jc_Run *run,
+                        const char *cmd);
 
-/* ---- output.c: files written whole or not at all ---- */
+/* ---- safe_output.c: files written whole or not at all (safe_output.h) ---- */
 #define CLI_PATH_MAX 4096
-typedef struct {
-    FILE *f;
-    const char *final_path;
-    char tmp_path[CLI_PATH_MAX];
-    int direct;  /* 1: not a regular file (/dev/stdout, /dev/full, a FIFO): written in place */
-    int slot;    /* the temporary file's record in signals.c */
-} cli_AtomicFile;
-/* Opens a temporary file beside path (or path itself when it exists and is
- * not a regular file). 0, or -1 after a message naming path. */
-int cli_atomic_open(cli_AtomicFile *af, const char *path);
-int cli_atomic_commit(cli_AtomicFile *af); /* 0, or -1 after a message naming the path */
-void cli_atomic_abort(cli_AtomicFile *af);
+#include "safe_output.h"
 /* Flushes standard output: EXIT_OK, or EXIT_FAIL after a message. */
 int cli_stdout_finish(void);
 
-/* ---- signals.c: SIGINT and SIGTERM ---- */
-/* At start-up. Until a command calls cli_signals_defer, a signal ends the
- * process at once (after removing temporary output files). */
+/* ---- signals.c: SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ ---- */
+/* At start-up. The first signal sets a flag (and ends the running child);
+ * commands check cli_stop_requested where they can stop, keep targets as
+ * they were and return cli_stop_status(). A second signal ends the process
+ * at once, after removing the recorded temporary files and directories. */
 void cli_signals_install(void);
-/* For commands of many runs: the first signal only sets a flag; the command
- * checks cli_stop_requested between runs, keeps what is complete and returns
- * cli_stop_status(). A second signal ends the process at once. */
-void cli_signals_defer(void);
 int cli_stop_requested(void); /* the signal number, 0 if none */
 int cli_stop_status(void);    /* 128 + the signal number: 130 SIGINT, 143 SIGTERM */
 const char *cli_signal_name(int sig);
+/* Blocks the stop signals (while a record and the thing it records change
+ * together, or around starting a child); release restores the old mask. */
+void cli_signals_hold(sigset_t *old);
+void cli_signals_release(const sigset_t *old);
+/* The running child, ended by a signal; 0 when none. */
+void cli_child_set(pid_t pid);
 /* mkstemp, recorded so that a signal that ends the process removes the file.
  * Returns the descriptor or -1 (errno); *slot is the record. */
 int cli_tmpfile_create(char *template_path, int *slot);
 /* Renames the temporary file to final_path (removes it if final_path is
  * NULL, or if the rename fails) and drops the record. 0 or -1 (errno). */
 int cli_tmpfile_finish(int slot, const char *tmp_path, const char *final_path);
+/* A scratch directory, removed with its files by a signal that ends the
+ * process; returns the record (-1 if none is free) for cli_tmpdir_untrack. */
+int cli_tmpdir_track(const char *path);
+void cli_tmpdir_untrack(int slot);
 
 /* ---- report.c ---- */
 #define CLI_PI 3.14159265358979323846
 double cli_deg(double rad);
 void cli_print_setup(FILE *out, const jc_Model *m, int show_incline);
+/* A word as the shell reads it: single-quoted unless plainly safe; control
+ * characters shown as '?', so that it stays on one line (and a comment line
+ * of a script never ends in a backslash). */
+void cli_shell_word(FILE *out, const char *s);
 /* Prints "jumpcyl: <msg>" on stderr. */
 void cli_error(const char *fmt, ...)
 #if defined(__GNUC__)
@@ -149,6 +160,11 @@ struct cJSON *cli_json_event(const jc_Event *e);
 struct cJSON *cli_json_energy(const jc_EnergyReport *e);
 /* Prints the document on stdout and frees it; EXIT_FAIL if that fails. */
 int cli_json_print(struct cJSON *doc);
+/* sim_json.c: `simulate --json`, whole or streamed (the same text). */
+struct cJSON *cli_sim_json_doc(const jc_Model *m, const jc_Run *run);
+int cli_sim_json_begin(FILE *out, const jc_Model *m); /* 0, or -1 (a write or memory failed) */
+int cli_sim_json_event(FILE *out, const jc_Event *e, int index);
+int cli_sim_json_end(FILE *out, const jc_Model *m, const jc_Run *run, const jc_RunSummary *sum);
 
 /* ---- commands ---- */
 int cmd_paper(int argc, char **argv);

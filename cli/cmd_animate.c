@@ -17,15 +17,19 @@
 #define MAX_H 4320
 #define MAX_FPS 240.0
 #define MAX_SLOWMO 10000.0
+/* Frames a film may have unless --max-frames says otherwise (about three
+ * minutes at 30 fps); VID_MAX_FRAMES is the most the frame names allow. */
+#define DEFAULT_MAX_FRAMES 5000
 /* The trace of the centre fades over this much playback time. */
 #define TRACE_FADE_PLAYBACK_S 2.0
 
 typedef struct {
-    const char *output, *size, *fps, *slowmo;
+    const char *output, *size, *fps, *slowmo, *max_frames;
 } animate_args;
 
 typedef struct {
     int width, height;
+    int max_frames;
     double fps, slowmo;
     vid_Format format;
     const char *output;
@@ -45,13 +49,15 @@ static void help(void)
            "  --slowmo K     slow motion: K seconds of film per simulated second (default %g, a\n"
            "                 240 fps camera played at 30 fps; 0 < K <= %g). Frames are %s\n"
            "                 apart in simulated time: dt = 1/(F K).\n"
+           "  --max-frames N refuse a film of more than N frames (default %d; at most %d),\n"
+           "                 counted before any frame is drawn\n"
            "  -h, --help     this help\n"
            "\n"
            "Without ffmpeg (Debian: ffmpeg), a .gif or .mp4 is left as PNG frames in a directory\n"
            "beside it, and the message gives the ffmpeg command that assembles them.\n"
            "--sample-dt is set by --fps and --slowmo; --t-max limits the film.\n\n",
            DEFAULT_SIZE, MIN_SIDE, MAX_W, MIN_SIDE, MAX_H, DEFAULT_FPS, MAX_FPS, DEFAULT_SLOWMO, MAX_SLOWMO,
-           "1/(F K)");
+           "1/(F K)", DEFAULT_MAX_FRAMES, VID_MAX_FRAMES);
     cli_sim_help(stdout);
     putchar('\n');
     cli_setup_help(stdout);
@@ -74,6 +80,7 @@ static int take(int opt, const char *arg, void *ctx)
     if (opt == 's') return take_once(&a->size, "size", arg);
     if (opt == 'f') return take_once(&a->fps, "fps", arg);
     if (opt == 'k') return take_once(&a->slowmo, "slowmo", arg);
+    if (opt == 'm') return take_once(&a->max_frames, "max-frames", arg);
     if (opt == 'h') { help(); return -1; }
     return EXIT_USAGE;
 }
@@ -126,6 +133,14 @@ static int check_args(const animate_args *a, animate_opts *o)
     o->slowmo = DEFAULT_SLOWMO;
     if (a->fps && parse_positive("fps", a->fps, MAX_FPS, &o->fps)) return EXIT_USAGE;
     if (a->slowmo && parse_positive("slowmo", a->slowmo, MAX_SLOWMO, &o->slowmo)) return EXIT_USAGE;
+    double max_frames = DEFAULT_MAX_FRAMES;
+    if (a->max_frames && (parse_positive("max-frames", a->max_frames, VID_MAX_FRAMES, &max_frames) ||
+                          max_frames != floor(max_frames))) {
+        cli_error("animate: --max-frames '%s' is out of range (allowed: a whole number from 1 to %d)", a->max_frames,
+                  VID_MAX_FRAMES);
+        return EXIT_USAGE;
+    }
+    o->max_frames = (int)max_frames;
     return 0;
 }
 
@@ -233,10 +248,13 @@ static int render_frames(const animate_job *job, const char *dir)
 static int frames_to_dir(const animate_job *job, const char *target)
 {
     char tmp[CLI_PATH_MAX];
-    if (vid_frames_tmpdir(target, tmp, sizeof tmp) != 0) return EXIT_FAIL;
+    int slot;
+    if (vid_frames_tmpdir(target, tmp, sizeof tmp, &slot) != 0) return EXIT_FAIL;
     int rc = render_frames(job, tmp);
+    if (rc == EXIT_OK && cli_stop_requested()) rc = cli_stop_status();
     if (rc == EXIT_OK) rc = vid_publish_frames(tmp, target, job->frame_count);
     if (rc != EXIT_OK) cli_remove_flat_dir(tmp);
+    cli_tmpdir_untrack(slot);
     return rc;
 }
 
@@ -263,10 +281,8 @@ static int frames_to_video(const animate_job *job)
 {
     cli_WorkDir work;
     if (cli_workdir_make(&work, "animate") != 0) return EXIT_FAIL;
-    char log_path[CLI_PATH_MAX];
-    int rc = cli_path_join(log_path, sizeof log_path, work.path, "ffmpeg.log") == 0 ? EXIT_OK : EXIT_FAIL;
-    if (rc == EXIT_OK) rc = render_frames(job, work.path);
-    if (rc == EXIT_OK) rc = vid_assemble(work.path, job->opts->fps, job->opts->output, job->opts->format, log_path);
+    int rc = render_frames(job, work.path);
+    if (rc == EXIT_OK) rc = vid_assemble(work.path, job->opts->fps, job->opts->output, job->opts->format);
     cli_workdir_remove(&work);
     return rc;
 }
@@ -279,20 +295,21 @@ static int make_film(const animate_job *job)
     return frames_to_video(job);
 }
 
-/* A run without samples first gives the film's length, so that a film of
- * too many frames is refused before millions of samples are stored. */
+/* A run that keeps nothing first gives the film's length, so that a film
+ * past the frame budget is refused before samples are stored or a frame
+ * is drawn. */
 static int check_length(const jc_Model *model, const jc_SimOptions *sim, const animate_opts *o)
 {
     jc_SimOptions probe_opts = *sim;
     probe_opts.sample_dt_s = 0.0;
     jc_Run probe;
-    const int st = cli_simulate(model, &probe_opts, &probe, "animate");
+    const int st = cli_simulate_probe(model, &probe_opts, &probe, "animate");
     const double frames = floor(probe.final_state.t_s * o->fps * o->slowmo) + 1;
-    jc_run_free(&probe);
-    if (st != JC_OK) return EXIT_FAIL;
-    if (frames > VID_MAX_FRAMES) {
-        cli_error("animate: %.0f frames is too many (allowed: at most %d); shorten the film with --t-max, "
-                  "--slowmo or --fps", frames, VID_MAX_FRAMES);
+    if (st != JC_OK) return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
+    if (frames > o->max_frames) {
+        cli_error("animate: the film needs %.0f frames, over the budget of %d; raise it with --max-frames N "
+                  "(at most %d), or shorten the film with --t-max, --slowmo or --fps", frames, o->max_frames,
+                  VID_MAX_FRAMES);
         return EXIT_USAGE;
     }
     return 0;
@@ -322,26 +339,27 @@ int cmd_animate(int argc, char **argv)
 {
     static const struct option own[] = {{"output", required_argument, 0, 'o'}, {"size", required_argument, 0, 's'},
                                         {"fps", required_argument, 0, 'f'},    {"slowmo", required_argument, 0, 'k'},
-                                        {"help", no_argument, 0, 'h'}};
+                                        {"max-frames", required_argument, 0, 'm'}, {"help", no_argument, 0, 'h'}};
     animate_args a = {0};
     cli_SetupArgs sa;
     cli_SimArgs sim_args;
-    int st = cli_parse_args(argc, argv, own, 5, take, &a, &sa, &sim_args);
+    int st = cli_parse_args(argc, argv, own, 6, take, &a, &sa, &sim_args);
     if (st) return st < 0 ? EXIT_OK : st;
     animate_opts o;
     jc_Model model;
     jc_SimOptions sim;
     if ((st = check_args(&a, &o)) != 0 || (st = build_inputs(&sa, &sim_args, &o, &model, &sim)) != 0) return st;
-    if (cli_check_output_dir(o.output) != 0) return EXIT_FAIL;
-    /* Between frames a first Ctrl-C stops cleanly: scratch files are removed. */
-    cli_signals_defer();
+    /* The target is checked before the work: a read-only file is refused at once. */
+    if ((o.format == VID_FRAMES ? cli_check_output_dir(o.output) : cli_output_check_target(o.output)) != 0)
+        return EXIT_FAIL;
     jc_Run run;
     if ((st = check_length(&model, &sim, &o)) != 0) return st;
-    if (cli_simulate(&model, &sim, &run, "animate") != JC_OK) {
+    sim.max_samples = (int)fmin(1e8, (double)o.max_frames + sim.max_events + 16.0);
+    if ((st = cli_simulate(&model, &sim, &run, "animate")) != JC_OK) {
         jc_run_free(&run);
-        return EXIT_FAIL;
+        return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
     }
     st = animate_run(&model, &run, &o);
     jc_run_free(&run);
-    return cli_stop_requested() ? cli_stop_status() : st;
+    return st != EXIT_OK && cli_stop_requested() ? cli_stop_status() : st;
 }

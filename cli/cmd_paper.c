@@ -490,7 +490,7 @@ int cmd_paper(int argc, char **argv)
     }
     paper_row rows[ROWS_MAX];
     int n = 0;
-    cli_signals_defer(); /* a signal stops between runs; the rows complete by then are printed */
+    /* A signal stops between runs (signals.c); the rows complete by then are printed. */
     if ((st = compute_rows(&setup, rows, &n, err, sizeof err)) != JC_OK && st != STOPPED) {
         cli_error("paper: %s", err);
         return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;

@@ -4,6 +4,9 @@
  * figure), and gnuplot renders the figure file atomically. */
 #include "plot.h"
 
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 enum { NEED_CRITERION = 1, NEED_RUN = 2 };
@@ -30,8 +33,14 @@ static const plot_kind kinds[] = {
 typedef struct {
     const char *what;
     const char *output;
+    const char *max_samples;
     int keep_script;
 } plot_opts;
+
+/* Samples a figure may hold unless --max-samples says otherwise: a figure
+ * of every kind is made of about 5000 (plus one per event). */
+#define DEFAULT_MAX_SAMPLES 100000.0
+#define MAX_MAX_SAMPLES 1e8
 
 static void help(void)
 {
@@ -41,9 +50,11 @@ static void help(void)
          "  --what KIND     the figure:");
     for (int i = 0; i < KIND_COUNT; ++i) printf("    %-16s  %s\n", kinds[i].name, kinds[i].help);
     puts("  --output FILE   the figure file, written whole or not at all\n"
-         "  --keep-script   keep the gnuplot script STEM.gp and its data files STEM-*.dat beside the\n"
-         "                  figure (STEM: FILE without its extension), to restyle it: in that\n"
+         "  --keep-script   keep the gnuplot script STEM.gp beside the figure (STEM: FILE without\n"
+         "                  its extension; the data are inside it), to restyle it: in that\n"
          "                  directory, 'gnuplot STEM.gp' renders the figure again\n"
+         "  --max-samples N refuse a figure of more than N samples (default 100000), estimated\n"
+         "                  before the work starts\n"
          "  -h, --help      this help\n"
          "\n"
          "forces, path and energy sample the full model finely (about 5000 samples over the run)\n"
@@ -69,6 +80,7 @@ static int take(int opt, const char *arg, void *ctx)
     if (opt == 'w') return take_once(&o->what, "what", arg);
     if (opt == 'o') return take_once(&o->output, "output", arg);
     if (opt == 'k') { o->keep_script = 1; return 0; }
+    if (opt == 'm') return take_once(&o->max_samples, "max-samples", arg);
     if (opt == 'h') { help(); return -1; }
     return EXIT_USAGE;
 }
@@ -104,17 +116,25 @@ static int check_opts(const plot_opts *o, const plot_kind **kind, fig_Format *fo
     return 0;
 }
 
-/* The command line, for the script's header. */
+/* The command line, for the script's header: shell-quoted words on one
+ * comment line (control characters shown as '?'). */
 static void command_line(int argc, char **argv, char *out, size_t len)
 {
-    snprintf(out, len, "jumpcyl");
-    for (int i = 0; i < argc; ++i) {
-        const size_t used = strlen(out);
-        const int plain = argv[i][strcspn(argv[i], " '\"\\$\n")] == '\0';
-        snprintf(out + used, len - used, plain ? " %s" : " '%s'", argv[i]);
+    char *buf = NULL;
+    size_t n = 0;
+    FILE *m = open_memstream(&buf, &n);
+    if (!m) {
+        snprintf(out, len, "jumpcyl plot");
+        return;
     }
-    for (char *p = out; *p; ++p)
-        if (*p == '\n') *p = ' ';
+    fputs("jumpcyl", m);
+    for (int i = 0; i < argc; ++i) {
+        fputc(' ', m);
+        cli_shell_word(m, argv[i]);
+    }
+    fclose(m);
+    snprintf(out, len, "%s", buf ? buf : "jumpcyl plot");
+    free(buf);
 }
 
 static void write_overview(FILE *gp, const fig_Data *d)
@@ -130,51 +150,91 @@ static void write_overview(FILE *gp, const fig_Data *d)
     fputs("\nunset multiplot\n", gp);
 }
 
-static int write_script(const fig_Data *d, const plot_kind *kind, fig_Format format, const char *output,
-                        const char *cmdline, char *script, size_t script_len)
+/* The script in the scratch directory: header, data blocks, panels. */
+static int write_script(fig_Data *d, const plot_kind *kind, fig_Format format, const plot_opts *o,
+                        const jc_SimOptions *sim, int dt_given, double max_samples, const char *cmdline,
+                        const char *script)
 {
-    char name[300], out_dir[CLI_PATH_MAX], out_stem[256];
-    if (snprintf(name, sizeof name, "%s.gp", d->stem) >= (int)sizeof name ||
-        cli_path_join(script, script_len, d->dir, name) != 0 ||
-        cli_path_split(output, out_dir, sizeof out_dir, out_stem, sizeof out_stem) != 0) {
-        cli_error("plot: path too long: %s", output);
+    FILE *gp = fopen(script, "w");
+    if (!gp) {
+        cli_error("cannot write %s: %s", script, strerror(errno));
         return EXIT_FAIL;
     }
-    cli_AtomicFile af;
-    if (cli_atomic_open(&af, script) != 0) return EXIT_FAIL;
-    /* Run by hand from its directory, the script writes the figure beside itself. */
-    const char *base = strrchr(output, '/') ? strrchr(output, '/') + 1 : output;
+    d->gp = gp;
+    /* Run by hand, the kept script writes a figure beside itself, under a
+     * name no program can take for a command. */
+    const char *slash = strrchr(o->output, '/');
+    char base[256];
+    cli_safe_name(slash ? slash + 1 : o->output, base, sizeof base);
     const int overview = kind->panel == NULL;
-    fig_script_begin(af.f, format, overview ? 2 : 1, overview ? 2 : 1, base, cmdline);
-    if (overview) {
-        write_overview(af.f, d);
-    } else {
-        kind->panel(af.f, d);
+    fig_script_begin(gp, format, overview ? 2 : 1, overview ? 2 : 1, base, cmdline);
+    fputs("\n# ---- Data ----\n", gp);
+    int rc = EXIT_OK;
+    if (kind->needs & NEED_CRITERION) rc = fig_criterion_prepare(d);
+    if (rc == EXIT_OK && (kind->needs & NEED_RUN)) rc = fig_run_prepare(d, sim, dt_given, max_samples);
+    if (rc == EXIT_OK && overview) write_overview(gp, d);
+    else if (rc == EXIT_OK) kind->panel(gp, d);
+    int err = fflush(gp) != 0 ? errno : 0;
+    if (!err && ferror(gp)) err = EIO; /* an earlier write failed; its errno is gone */
+    if (fclose(gp) != 0 && !err) err = errno;
+    d->gp = NULL;
+    if (rc == EXIT_OK && err) {
+        cli_error("cannot write %s: %s (writing its script %s)", o->output, strerror(err), script);
+        rc = EXIT_FAIL;
     }
-    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+    return rc;
 }
 
-/* Data, script, gnuplot; the scratch directory holds gnuplot's messages and,
- * without --keep-script, the data and script too. */
+/* STEM.gp beside the figure; -1 if it does not fit. */
+static int kept_script_path(const char *output, char *out, size_t len)
+{
+    char dir[CLI_PATH_MAX], stem[CLI_PATH_MAX], name[CLI_PATH_MAX + 8];
+    if (cli_path_split(output, dir, sizeof dir, stem, sizeof stem) != 0) return -1;
+    if (snprintf(name, sizeof name, "%s.gp", stem) >= (int)sizeof name) return -1;
+    return strrchr(output, '/') ? cli_path_join(out, len, dir, name) : (snprintf(out, len, "%s", name) < (int)len ? 0 : -1);
+}
+
+/* The figure (and the kept script) from the scratch directory to their
+ * places: both are complete and checked before either is renamed. */
+static int publish(const plot_opts *o, fig_Format format, const char *figure, const char *script)
+{
+    cli_Output fig, kept;
+    char kept_path[CLI_PATH_MAX];
+    memset(&kept, 0, sizeof kept);
+    if (cli_output_begin(&fig, o->output, 0) != 0) return EXIT_FAIL;
+    int ok = cli_output_copy_from(&fig, figure) == 0 && cli_output_finish(&fig, fig_check(format)) == 0;
+    if (ok && o->keep_script) {
+        ok = kept_script_path(o->output, kept_path, sizeof kept_path) == 0 &&
+             cli_output_begin(&kept, kept_path, 0) == 0 && cli_output_copy_from(&kept, script) == 0 &&
+             cli_output_finish(&kept, CLI_CHECK_WRITES) == 0;
+    }
+    ok = ok && cli_output_publish(&fig) == 0 && (!o->keep_script || cli_output_publish(&kept) == 0);
+    cli_output_abort(&fig);
+    cli_output_abort(&kept);
+    if (!ok && cli_stop_requested()) return cli_stop_status();
+    if (ok && o->keep_script) printf("Script: %s (its data inside)\n", kept_path);
+    return ok ? EXIT_OK : EXIT_FAIL;
+}
+
+/* Script and gnuplot in a private scratch directory, then the results moved
+ * into place. */
 static int make_figure(fig_Data *d, const plot_opts *o, const plot_kind *kind, fig_Format format,
-                       const jc_SimOptions *sim, int dt_given, const char *cmdline)
+                       const jc_SimOptions *sim, int dt_given, double max_samples, const char *cmdline)
 {
     cli_WorkDir work;
     if (cli_workdir_make(&work, "plot") != 0) return EXIT_FAIL;
-    char out_dir[CLI_PATH_MAX], log_path[CLI_PATH_MAX], script[CLI_PATH_MAX];
+    char script[CLI_PATH_MAX], figure[CLI_PATH_MAX];
     int rc = EXIT_OK;
-    if (cli_path_split(o->output, out_dir, sizeof out_dir, d->stem, sizeof d->stem) != 0 ||
-        cli_path_join(log_path, sizeof log_path, work.path, "gnuplot.log") != 0) {
-        cli_error("plot: output path too long: %s", o->output);
+    if (cli_path_join(script, sizeof script, work.path, FIG_SCRIPT_NAME) != 0 ||
+        cli_path_join(figure, sizeof figure, work.path, fig_scratch_name(format)) != 0) {
+        cli_error("plot: scratch path too long: %s", work.path);
         rc = EXIT_FAIL;
     }
-    if (rc == EXIT_OK) snprintf(d->dir, sizeof d->dir, "%s", o->keep_script ? out_dir : work.path);
-    if (rc == EXIT_OK && (kind->needs & NEED_CRITERION)) rc = fig_criterion_prepare(d);
-    if (rc == EXIT_OK && (kind->needs & NEED_RUN)) rc = fig_run_prepare(d, sim, dt_given);
-    if (rc == EXIT_OK) rc = write_script(d, kind, format, o->output, cmdline, script, sizeof script);
-    if (rc == EXIT_OK) rc = fig_render(script, d->dir, o->output, format, log_path);
-    if (rc == EXIT_OK && o->keep_script) printf("Script: %s (data: %s/%s-*.dat)\n", script, d->dir, d->stem);
+    if (rc == EXIT_OK) rc = write_script(d, kind, format, o, sim, dt_given, max_samples, cmdline, script);
+    if (rc == EXIT_OK) rc = fig_render(work.path, format, o->output);
+    if (rc == EXIT_OK) rc = publish(o, format, figure, script);
     cli_workdir_remove(&work);
+    if (rc != EXIT_OK && cli_stop_requested()) rc = cli_stop_status();
     return rc;
 }
 
@@ -206,11 +266,12 @@ int cmd_plot(int argc, char **argv)
     static const struct option own[] = {{"what", required_argument, 0, 'w'},
                                         {"output", required_argument, 0, 'o'},
                                         {"keep-script", no_argument, 0, 'k'},
+                                        {"max-samples", required_argument, 0, 'm'},
                                         {"help", no_argument, 0, 'h'}};
     plot_opts o = {0};
     cli_SetupArgs sa;
     cli_SimArgs sim_args;
-    int st = cli_parse_args(argc, argv, own, 4, take, &o, &sa, &sim_args);
+    int st = cli_parse_args(argc, argv, own, 5, take, &o, &sa, &sim_args);
     if (st) return st < 0 ? EXIT_OK : st;
     const plot_kind *kind;
     fig_Format format;
@@ -220,21 +281,35 @@ int cmd_plot(int argc, char **argv)
     jc_Model model;
     jc_SimOptions sim;
     if ((st = build_inputs(&sa, &sim_args, &model, &sim)) != 0) return st;
-    if (cli_check_output_dir(o.output) != 0) return EXIT_FAIL;
+    double max_samples = DEFAULT_MAX_SAMPLES;
+    if (o.max_samples) {
+        char msg[256];
+        if (cli_parse_quantity(o.max_samples, Q_NUMBER, &max_samples, msg, sizeof msg) != 0 ||
+            !(max_samples >= 1 && max_samples <= MAX_MAX_SAMPLES) || max_samples != floor(max_samples)) {
+            cli_error("plot: --max-samples '%s' is out of range (allowed: a whole number from 1 to %.0f)",
+                      o.max_samples, MAX_MAX_SAMPLES);
+            return EXIT_USAGE;
+        }
+    }
+    /* Every target is checked before the work: a read-only or impossible
+     * one is refused at once. */
+    char kept_path[CLI_PATH_MAX];
+    if (cli_output_check_target(o.output) != 0) return EXIT_FAIL;
+    if (o.keep_script && (kept_script_path(o.output, kept_path, sizeof kept_path) != 0 ||
+                          cli_output_check_target(kept_path) != 0))
+        return EXIT_FAIL;
     char gnuplot[CLI_PATH_MAX];
     if (cli_find_program("gnuplot", gnuplot, sizeof gnuplot) != 0) {
         cli_error("plot: gnuplot was not found in PATH; install it (Debian: sudo apt-get install gnuplot-nox)");
         return EXIT_FAIL;
     }
-    /* A first Ctrl-C lets the scratch directory be removed before exiting. */
-    cli_signals_defer();
     d.model = &model;
     fig_caption(&model, d.caption, sizeof d.caption);
     if (kind->panel == NULL) d.caption[0] = '\0';
     char cmdline[2048];
     command_line(argc, argv, cmdline, sizeof cmdline);
-    st = make_figure(&d, &o, kind, format, &sim, sim_given(&sim_args, "sample-dt"), cmdline);
+    st = make_figure(&d, &o, kind, format, &sim, sim_given(&sim_args, "sample-dt"), max_samples, cmdline);
     if (d.have_run) jc_run_free(&d.run);
     if (st == EXIT_OK) printf("Figure: %s\n", o.output);
-    return cli_stop_requested() ? cli_stop_status() : st;
+    return st;
 }

@@ -1,7 +1,7 @@
 /* jumpcyl simulate: the full motion down the ramp, as an event table. */
 #include "cli.h"
 
-#include <cjson/cJSON.h>
+#include <errno.h>
 #include <math.h>
 #include <string.h>
 
@@ -37,21 +37,52 @@ static int take(int opt, const char *arg, void *ctx)
     return EXIT_USAGE;
 }
 
-static int write_csv(const jc_Run *run, const char *path)
+/* Everything simulate writes while the run goes on: events to the table
+ * or the JSON document on standard output, samples to the CSV. Nothing is
+ * kept, so memory does not grow with the run. */
+typedef struct {
+    const jc_Model *model;
+    int json, text;
+    cli_Output *csv;     /* NULL without --csv */
+    jc_RunSummary sum;
+    int events;
+    int write_failed;    /* standard output or the CSV refused a write */
+    int csv_errno;       /* why the CSV did */
+    int out_errno;       /* why standard output did */
+} sim_stream;
+
+/* Notes the first failed write to standard output, with its reason, which
+ * is gone once the buffer is dropped. */
+static void check_stdout(sim_stream *st)
 {
-    cli_AtomicFile af;
-    if (cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
-    fprintf(af.f, "t_s,mode,x_m,y_m,vx_mps,vy_mps,theta_rad,omega_radps,cm_x_m,cm_y_m,normal_N,friction_N,"
-                  "slip_mps,gap_m,kinetic_J,potential_J,friction_loss_J,impact_loss_J,air_loss_J,rolling_resistance_loss_J\n");
-    for (int i = 0; i < run->sample_count; ++i) {
-        const jc_Sample *p = &run->samples[i];
-        const jc_State *s = &p->state;
-        fprintf(af.f, "%.12g,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g\n",
-                s->t_s, jc_mode_name(p->mode), s->x_m, s->y_m, s->vx_mps, s->vy_mps, s->theta_rad, s->omega_radps,
-                p->cm_x_m, p->cm_y_m, p->normal_N, p->friction_N, p->slip_mps, p->gap_m, p->kinetic_J,
-                p->potential_J, p->friction_loss_J, p->impact_loss_J, p->air_loss_J, p->rolling_resistance_loss_J);
+    if (ferror(stdout) && !st->out_errno) {
+        st->out_errno = errno ? errno : EIO;
+        st->write_failed = 1;
     }
-    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+}
+
+static void csv_header(FILE *f)
+{
+    fputs("t_s,mode,x_m,y_m,vx_mps,vy_mps,theta_rad,omega_radps,cm_x_m,cm_y_m,normal_N,friction_N,"
+          "slip_mps,gap_m,kinetic_J,potential_J,friction_loss_J,impact_loss_J,air_loss_J,rolling_resistance_loss_J\n",
+          f);
+}
+
+static int on_sample(void *ctx, const jc_Sample *p)
+{
+    sim_stream *st = ctx;
+    const jc_State *s = &p->state;
+    FILE *f = st->csv->f;
+    fprintf(f, "%.12g,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g\n",
+            s->t_s, jc_mode_name(p->mode), s->x_m, s->y_m, s->vx_mps, s->vy_mps, s->theta_rad, s->omega_radps,
+            p->cm_x_m, p->cm_y_m, p->normal_N, p->friction_N, p->slip_mps, p->gap_m, p->kinetic_J,
+            p->potential_J, p->friction_loss_J, p->impact_loss_J, p->air_loss_J, p->rolling_resistance_loss_J);
+    /* A full disk stops the run at once instead of computing for nothing. */
+    if (ferror(f) && !st->csv_errno) {
+        st->csv_errno = errno ? errno : EIO; /* fprintf's reason: ENOSPC, EFBIG */
+        st->write_failed = 1;
+    }
+    return st->write_failed ? JC_ESTOPPED : JC_OK;
 }
 
 static void print_event(const jc_Model *m, int i, const jc_Event *e)
@@ -92,7 +123,7 @@ static void warn_energy_gain(const jc_Model *m, const jc_Run *run)
             run->energy_gaining_impacts, law_title(m->setup.impact_law), run->largest_impact_gain_J);
 }
 
-static void print_text(const jc_Model *m, const jc_SimOptions *o, const jc_Run *run)
+static void print_head(const jc_Model *m, const jc_SimOptions *o)
 {
     cli_print_setup(stdout, m, 1);
     if (jc_setup_has_resistance(&m->setup))
@@ -110,7 +141,10 @@ static void print_text(const jc_Model *m, const jc_SimOptions *o, const jc_Run *
                o->ode_rtol, law_title(m->setup.impact_law), m->setup.restitution, o->event_tol_s,
                o->contact_height_m);
     printf("  # event         mode change           t (s)   x (cm) gap (mm) theta(rad) w (rad/s) slip(m/s)    N (N)    F (N)\n");
-    for (int i = 0; i < run->event_count; ++i) print_event(m, i, &run->events[i]);
+}
+
+static void print_tail(const jc_Model *m, const jc_Run *run, const jc_RunSummary *sum)
+{
     if (run->event_count == 0) printf("  (no events)\n");
     const jc_State *f = &run->final_state;
     printf("\nRun ended: %s (%s) at t = %.6f s, x = %.2f cm, in %s.\n", jc_termination_name(run->termination),
@@ -124,46 +158,26 @@ static void print_text(const jc_Model *m, const jc_SimOptions *o, const jc_Run *
            "            to the air %.6f, to rolling resistance %.6f; balance error %.2e J (%.1e relative)\n",
            e->kinetic_J, e->potential_J, e->friction_loss_J, e->impact_loss_J, e->air_loss_J,
            e->rolling_resistance_loss_J, e->balance_error_J, fabs(e->balance_error_J) / scale);
-    jc_RunSummary sum;
-    jc_run_summarize(run, &sum);
-    if (sum.first_liftoff >= 0) {
-        const jc_Event *l = &run->events[sum.first_liftoff];
+    if (sum->first_liftoff >= 0) {
+        const jc_State *l = &sum->first_liftoff_state;
         printf("First lift-off at x = %.2f cm (theta = %.4f rad, t = %.4f s); %d lift-off(s), %d bounce(s);\n"
                "largest hop %.2f mm (event %d).\n",
-               l->state.x_m * 100, l->state.theta_rad, l->state.t_s, sum.liftoffs, sum.bounces,
-               sum.largest_hop_m * 1e3, sum.largest_hop + 1);
+               l->x_m * 100, l->theta_rad, l->t_s, sum->liftoffs, sum->bounces, sum->largest_hop_m * 1e3,
+               sum->largest_hop + 1);
     } else {
         printf("No lift-off.\n");
     }
 }
 
-static cJSON *json_doc(const jc_Model *m, const jc_Run *run)
+static int on_event(void *ctx, const jc_Event *e)
 {
-    cJSON *doc = cJSON_CreateObject();
-    cJSON_AddItemToObject(doc, "setup", cli_json_setup(m));
-    cJSON *ev = cJSON_AddArrayToObject(doc, "events");
-    for (int i = 0; i < run->event_count; ++i) cJSON_AddItemToArray(ev, cli_json_event(&run->events[i]));
-    cJSON_AddStringToObject(doc, "termination", jc_termination_name(run->termination));
-    cJSON_AddStringToObject(doc, "termination_detail", run->termination_detail);
-    cJSON_AddNumberToObject(doc, "t_end", run->final_state.t_s);
-    cJSON_AddItemToObject(doc, "energy", cli_json_energy(&run->energy));
-    cJSON_AddStringToObject(doc, "impact_law", jc_impact_law_name(m->setup.impact_law));
-    cJSON_AddNumberToObject(doc, "energy_gaining_impacts", run->energy_gaining_impacts);
-    cJSON_AddNumberToObject(doc, "largest_impact_gain_J", run->largest_impact_gain_J);
-    jc_RunSummary sum;
-    jc_run_summarize(run, &sum);
-    cJSON *s = cJSON_AddObjectToObject(doc, "summary");
-    cJSON_AddNumberToObject(s, "liftoffs", sum.liftoffs);
-    cJSON_AddNumberToObject(s, "bounces", sum.bounces);
-    cJSON_AddNumberToObject(s, "largest_hop", sum.largest_hop_m);
-    if (sum.first_liftoff >= 0) {
-        cJSON_AddNumberToObject(s, "first_liftoff_x", run->events[sum.first_liftoff].state.x_m);
-        cJSON_AddNumberToObject(s, "first_liftoff_theta", run->events[sum.first_liftoff].state.theta_rad);
-    } else {
-        cJSON_AddNullToObject(s, "first_liftoff_x");
-        cJSON_AddNullToObject(s, "first_liftoff_theta");
-    }
-    return doc;
+    sim_stream *st = ctx;
+    if (st->json) cli_sim_json_event(stdout, e, st->events);
+    if (st->text) print_event(st->model, st->events, e);
+    jc_summary_add(&st->sum, e, st->events);
+    st->events++;
+    check_stdout(st);
+    return st->write_failed ? JC_ESTOPPED : JC_OK;
 }
 
 int cmd_simulate(int argc, char **argv)
@@ -188,22 +202,56 @@ int cmd_simulate(int argc, char **argv)
         cli_error("simulate: %s", err);
         return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
     }
-    jc_Run run;
-    if (cli_simulate(&model, &opts, &run, "simulate") != JC_OK) {
-        jc_run_free(&run);
-        return EXIT_FAIL;
+    if (o.csv && o.json && strcmp(o.csv, "-") == 0) {
+        cli_error("simulate: --csv - and --json would both write to standard output; give --csv a file");
+        return EXIT_USAGE;
     }
-    int rc = EXIT_OK;
-    warn_energy_gain(&model, &run);
-    if (o.csv) rc = write_csv(&run, o.csv);
-    if (rc == EXIT_OK) {
-        if (o.json) rc = cli_json_print(json_doc(&model, &run));
-        else {
-            print_text(&model, &opts, &run);
-            if (o.csv) printf("Trajectory: %d samples written to %s\n", run.sample_count, o.csv);
-            rc = cli_stdout_finish();
+    cli_Output csv;
+    memset(&csv, 0, sizeof csv);
+    sim_stream out = {&model, o.json, !o.json, o.csv ? &csv : NULL, {0}, 0, 0, 0, 0};
+    jc_summary_init(&out.sum);
+    if (o.csv) {
+        if (cli_output_begin(&csv, o.csv, 1) != 0) return EXIT_FAIL;
+        if (csv.is_stdout) out.text = 0; /* standard output carries the CSV alone */
+        csv_header(csv.f);
+        /* A device that takes nothing (/dev/full) fails here, before the
+         * table starts on standard output. */
+        if (csv.in_place && fflush(csv.f) != 0) {
+            cli_error("cannot write %s: %s", csv.is_stdout ? "standard output" : o.csv, strerror(errno));
+            cli_output_abort(&csv);
+            return EXIT_FAIL;
         }
     }
-    jc_run_free(&run);
-    return rc;
+    if (out.json && cli_sim_json_begin(stdout, &model) != 0) out.write_failed = 1;
+    if (out.text) print_head(&model, &opts);
+    check_stdout(&out);
+    const jc_Recorder rec = {&out, on_event, o.csv ? on_sample : NULL};
+    jc_Run run;
+    st = out.write_failed ? JC_ESTOPPED : cli_simulate_stream(&model, &opts, &rec, &run, "simulate");
+    if (st == JC_OK && o.csv && cli_output_commit(&csv, CLI_CHECK_WRITES) != 0) return EXIT_FAIL;
+    if (st != JC_OK) {
+        if (out.csv_errno)
+            cli_error("cannot write %s: %s", csv.is_stdout ? "standard output" : o.csv, strerror(out.csv_errno));
+        if (o.csv) cli_output_abort(&csv);
+        if (cli_stop_requested()) return cli_stop_status();
+        if (out.out_errno) cli_error("cannot write standard output: %s", strerror(out.out_errno));
+        else if (out.write_failed && !out.csv_errno) cli_error("simulate: out of memory for the JSON document");
+        return EXIT_FAIL;
+    }
+    warn_energy_gain(&model, &run);
+    if (out.json) {
+        cli_sim_json_end(stdout, &model, &run, &out.sum);
+    } else if (out.text) {
+        print_tail(&model, &run, &out.sum);
+        if (o.csv) printf("Trajectory: %d samples written to %s\n", run.sample_count, o.csv);
+    }
+    check_stdout(&out);
+    if (out.out_errno) {
+        cli_error("cannot write standard output: %s", strerror(out.out_errno));
+        return EXIT_FAIL;
+    }
+    if (run.termination == JC_END_SAMPLE_LIMIT)
+        cli_error("simulate: the run stopped at the sample limit (%d samples); raise --sample-dt or lower --t-max",
+                  opts.max_samples);
+    return cli_stdout_finish();
 }

@@ -16,10 +16,13 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 /* Longest line, comment included. inih's own buffer holds 200 bytes with the
  * line end; this leaves room and keeps messages short. */
@@ -435,9 +438,31 @@ int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *s
  * /dev/zero cannot run the reader forever. */
 static char *read_file(const char *path, size_t *len, char *err, size_t err_len)
 {
-    FILE *f = fopen(path, "rb");
+    /* O_NONBLOCK: opening a FIFO without a writer would wait forever; fstat
+     * then refuses anything but a regular file before a byte is read. */
+    const int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) != 0) {
+        snprintf(err, err_len, "cannot read %s: %s", path, strerror(errno));
+        if (fd >= 0) close(fd);
+        return NULL;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        snprintf(err, err_len, "cannot read %s: %s", path,
+                 S_ISDIR(st.st_mode) ? strerror(EISDIR)
+                 : S_ISFIFO(st.st_mode) ? "not a regular file (a FIFO)" : "not a regular file (a device or socket)");
+        close(fd);
+        return NULL;
+    }
+    if (st.st_size > FILE_MAX_BYTES) {
+        snprintf(err, err_len, "%s: too large (allowed: at most %d bytes)", path, FILE_MAX_BYTES);
+        close(fd);
+        return NULL;
+    }
+    FILE *f = fdopen(fd, "rb");
     if (!f) {
         snprintf(err, err_len, "cannot read %s: %s", path, strerror(errno));
+        close(fd);
         return NULL;
     }
     char *buf = malloc(FILE_MAX_BYTES + 1);

@@ -34,11 +34,16 @@ void cli_progress_end(cli_Progress *p);
 
 /* Full path of an executable named name found in $PATH; 0, or -1 if none. */
 int cli_find_program(const char *name, char *path, size_t len);
-/* Runs argv (argv[0] looked up in $PATH) with stdin from /dev/null and
- * stdout and stderr appended to log_path (NULL: inherited), waits for it,
- * updating progress (may be NULL) meanwhile. Returns its exit status, or -1
- * after a message if it could not start or was killed by a signal. */
-int cli_run_program(char *const argv[], const char *log_path, cli_Progress *progress);
+/* Runs argv (argv[0] looked up in $PATH) in the directory cwd (NULL: ours)
+ * with stdin from /dev/null and stdout and stderr appended to log_path
+ * (NULL: inherited), waits for it, updating progress (may be NULL)
+ * meanwhile. Returns its exit status; -1 after a message if it could not
+ * start or was killed by a signal; CLI_RUN_STOPPED (no message) when a stop
+ * signal came (the child was ended and reaped); CLI_RUN_EFBIG when a write
+ * of the child crossed the file size limit (ulimit -f). */
+#define CLI_RUN_STOPPED (-2)
+#define CLI_RUN_EFBIG (-3)
+int cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_Progress *progress);
 /* Copies the last lines of a program's log to stderr, indented. */
 void cli_print_log_tail(const char *log_path);
 
@@ -46,6 +51,7 @@ void cli_print_log_tail(const char *log_path);
 
 typedef struct {
     char path[CLI_PATH_MAX];
+    int slot; /* its record in signals.c: a signal that ends the process removes it */
 } cli_WorkDir;
 
 /* A new private directory under $TMPDIR (or /tmp); 0, or -1 after a message. */

@@ -53,12 +53,9 @@ void fig_quote(FILE *gp, const char *s)
     fputc('\'', gp);
 }
 
-int fig_data_path(const fig_Data *d, const char *what, char *out, size_t len)
-{
-    char name[512];
-    if (snprintf(name, sizeof name, "%s-%s.dat", d->stem, what) >= (int)sizeof name) return -1;
-    return cli_path_join(out, len, d->dir, name);
-}
+void fig_block_begin(FILE *gp, const char *name) { fprintf(gp, "$%s << EOD\n", name); }
+
+void fig_block_end(FILE *gp) { fputs("EOD\n", gp); }
 
 static void write_terminal(FILE *gp, fig_Format f, int cols, int rows)
 {
@@ -110,7 +107,8 @@ void fig_script_begin(FILE *gp, fig_Format f, int cols, int rows, const char *de
     fputs("# To restyle, edit this file and run it again from its directory:\n"
           "#   gnuplot THIS.gp                             (writes the file named below)\n"
           "#   gnuplot -e \"outfile='other.png'\" THIS.gp    (another name, same format)\n"
-          "# The data files it reads sit beside it; their first lines say what each column is.\n\n",
+          "# It reads no file: the data are the data blocks ($run << EOD ... EOD) below, whose\n"
+          "# first lines say what each column is.\n\n",
           gp);
     fputs("if (!exists(\"outfile\")) outfile = ", gp);
     fig_quote(gp, default_output);
@@ -142,86 +140,51 @@ void fig_body_caption(const jc_Model *m, char *out, size_t len)
              m->body.cm_offset_m * 100, m->paper_d_m * 100, m->body.mass_kg * 1e3);
 }
 
-/* The file gnuplot wrote starts as the format says it must. */
-static int check_magic(const char *path, fig_Format f)
+const char *fig_scratch_name(fig_Format f)
 {
-    FILE *in = fopen(path, "rb");
-    if (!in) return -1;
-    char head[64] = {0};
-    const size_t n = fread(head, 1, sizeof head - 1, in);
-    fclose(in);
-    if (f == FIG_PNG) return n >= 8 && memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0 ? 0 : -1;
-    if (f == FIG_PDF) return n >= 5 && memcmp(head, "%PDF-", 5) == 0 ? 0 : -1;
-    return strstr(head, "<?xml") == head || strstr(head, "<svg") == head ? 0 : -1;
+    return f == FIG_PNG ? "figure.png" : f == FIG_SVG ? "figure.svg" : "figure.pdf";
 }
 
-/* "outfile='<tmp>'; cd '<dir>'" with gnuplot's quoting. */
-static int preamble(char *out, size_t len, const char *tmp_abs, const char *dir_abs)
+cli_Check fig_check(fig_Format f)
 {
-    char *buf = NULL;
-    size_t n = 0;
-    FILE *m = open_memstream(&buf, &n);
-    if (!m) return -1;
-    fputs("outfile = ", m);
-    fig_quote(m, tmp_abs);
-    fputs("; cd ", m);
-    fig_quote(m, dir_abs);
-    fclose(m);
-    const int w = snprintf(out, len, "%s", buf);
-    free(buf);
-    return w < 0 || (size_t)w >= len ? -1 : 0;
+    return f == FIG_PNG ? CLI_CHECK_PNG : f == FIG_SVG ? CLI_CHECK_SVG : CLI_CHECK_PDF;
 }
 
-static int run_gnuplot(const char *script, const char *dir, const char *tmp, const char *log_path)
+int fig_render(const char *work, fig_Format f, const char *output)
 {
-    char tmp_abs[CLI_PATH_MAX], dir_abs[CLI_PATH_MAX], script_abs[CLI_PATH_MAX], pre[3 * CLI_PATH_MAX];
-    if (cli_path_absolute(tmp, tmp_abs, sizeof tmp_abs) || cli_path_absolute(dir, dir_abs, sizeof dir_abs) ||
-        cli_path_absolute(script, script_abs, sizeof script_abs) || preamble(pre, sizeof pre, tmp_abs, dir_abs)) {
-        cli_error("plot: path too long: %s", tmp);
+    char log_path[CLI_PATH_MAX], figure[CLI_PATH_MAX], pre[64];
+    if (cli_path_join(log_path, sizeof log_path, work, FIG_LOG_NAME) != 0 ||
+        cli_path_join(figure, sizeof figure, work, fig_scratch_name(f)) != 0) {
+        cli_error("plot: scratch path too long: %s", work);
         return EXIT_FAIL;
     }
-    char *argv[] = {"gnuplot", "-e", pre, script_abs, NULL};
+    /* Run in the scratch directory on names made here: nothing the user
+     * typed is in gnuplot's arguments or in the script it reads. */
+    snprintf(pre, sizeof pre, "outfile = '%s'", fig_scratch_name(f));
+    char *argv[] = {"gnuplot", "-e", pre, FIG_SCRIPT_NAME, NULL};
     cli_Progress progress;
     cli_progress_begin(&progress, "plot: gnuplot is rendering");
-    const int st = cli_run_program(argv, log_path, &progress);
+    const int st = cli_run_program(argv, work, log_path, &progress);
     cli_progress_end(&progress);
-    if (st == 0) return EXIT_OK;
-    if (st > 0) {
-        cli_error("plot: gnuplot failed (exit status %d) on %s:", st, script_abs);
-        cli_print_log_tail(log_path);
-    }
-    return EXIT_FAIL;
-}
-
-int fig_render(const char *script, const char *dir, const char *output, fig_Format f, const char *log_path)
-{
-    char tmp[CLI_PATH_MAX];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp-XXXXXX", output) >= (int)sizeof tmp) {
-        cli_error("cannot write %s: path too long", output);
+    if (st == CLI_RUN_STOPPED) return cli_stop_status();
+    if (st == CLI_RUN_EFBIG) {
+        cli_error("cannot write %s: %s (gnuplot's scratch copy in %s)", output, strerror(EFBIG), work);
         return EXIT_FAIL;
     }
-    /* Recorded, so that an interrupt removes the temporary file too. */
-    int slot;
-    const int fd = cli_tmpfile_create(tmp, &slot);
-    if (fd < 0) {
-        cli_error("cannot write %s: %s", output, strerror(errno));
+    if (st != 0) {
+        if (st > 0) {
+            cli_error("plot: gnuplot failed (exit status %d) making %s:", st, output);
+            cli_print_log_tail(log_path);
+        }
         return EXIT_FAIL;
     }
-    /* mkstemp makes the file private; a figure gets the usual permissions. */
-    const mode_t mask = umask(0);
-    umask(mask);
-    fchmod(fd, 0666 & ~mask);
-    close(fd);
-    int rc = run_gnuplot(script, dir, tmp, log_path);
-    struct stat st;
-    if (rc == EXIT_OK && (stat(tmp, &st) != 0 || st.st_size == 0 || check_magic(tmp, f) != 0)) {
-        cli_error("plot: gnuplot did not write a valid %s file for %s", cli_path_ext(output), output);
+    /* gnuplot exits 0 after a failed write (a full disk): the file itself
+     * must be whole. */
+    char why[128];
+    if (cli_output_verify(figure, fig_check(f), why, sizeof why) != 0) {
+        cli_error("cannot write %s: gnuplot's figure is %s (is %s full?)", output, why, work);
         cli_print_log_tail(log_path);
-        rc = EXIT_FAIL;
+        return EXIT_FAIL;
     }
-    if (cli_tmpfile_finish(slot, tmp, rc == EXIT_OK ? output : NULL) != 0 && rc == EXIT_OK) {
-        cli_error("cannot write %s: %s", output, strerror(errno));
-        rc = EXIT_FAIL;
-    }
-    return rc;
+    return EXIT_OK;
 }

@@ -3,6 +3,7 @@
 #include "cli.h"
 
 #include <gsl/gsl_errno.h>
+#include <signal.h>
 #include <string.h>
 
 static int cmd_presets(int argc, char **argv)
@@ -36,11 +37,8 @@ static void usage(FILE *out)
           out);
 }
 
-int main(int argc, char **argv)
+static int dispatch(int argc, char **argv)
 {
-    /* GSL's default handler aborts; the library checks its own preconditions. */
-    gsl_set_error_handler_off();
-    cli_signals_install(); /* SIGINT, SIGTERM: no half-written file stays behind */
     if (argc < 2) {
         char *args[] = {"paper", NULL};
         return cmd_paper(1, args);
@@ -67,4 +65,27 @@ int main(int argc, char **argv)
     }
     cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
+}
+
+int main(int argc, char **argv)
+{
+    /* GSL's default handler aborts; the library checks its own preconditions. */
+    gsl_set_error_handler_off();
+    cli_signals_install(); /* no half-written file, temporary or child stays behind (signals.c) */
+    int rc = dispatch(argc, argv);
+    const int sig = cli_stop_requested();
+    if (sig) {
+        /* Whatever the command was doing, it left every target as it was.
+         * paper says itself what it kept; a closed pipe needs no words. */
+        const int is_paper = argc < 2 || strcmp(argv[1], "paper") == 0 || argv[1][0] == '-';
+        if (!is_paper && sig != SIGPIPE)
+            cli_error("stopped by %s; no output file was written or changed", cli_signal_name(sig));
+        fclose(stdout);
+        return cli_stop_status();
+    }
+    /* Help or results that did not reach standard output (a full disk, a
+     * closed descriptor) are a failure, not a success. */
+    if (rc != EXIT_OK) fclose(stdout); /* the command has said what went wrong */
+    else rc = cli_stdout_close();
+    return rc;
 }

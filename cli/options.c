@@ -351,6 +351,7 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
     optind = 0; /* glibc: a full restart, also of a scan left inside "-hh" (tests, fuzzing) */
     opterr = 0;
     int c;
+    unsigned own_seen = 0;
     while ((c = getopt_long(argc, argv, ":h", all, NULL)) != -1) {
         char msg[512];
         if (c == '?') {
@@ -371,6 +372,15 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
             if (took > 0) continue;
             cli_error("%s", msg);
             return EXIT_USAGE;
+        }
+        /* A command's own option counts once, as the setup options do. */
+        for (int i = 0; i < own_count && i < 32; ++i) {
+            if (own[i].val != c || c == 'h') continue;
+            if (own_seen & (1u << i)) {
+                cli_error("%s: --%s given twice", argv[0], own[i].name);
+                return EXIT_USAGE;
+            }
+            own_seen |= 1u << i;
         }
         int r = own_take(c, optarg, ctx);
         if (r != 0) return r;
@@ -460,12 +470,4 @@ int cli_sim_build(const cli_SimArgs *a, jc_SimOptions *o, char *err, size_t err_
         return -1;
     }
     return 0;
-}
-
-int cli_simulate(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd)
-{
-    char err[512];
-    int st = jc_simulate(m, o, run, err, sizeof err);
-    if (st != JC_OK) cli_error("%s: simulation failed: %s", cmd, err);
-    return st;
 }

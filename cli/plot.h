@@ -8,12 +8,13 @@
 
 typedef enum { FIG_PNG, FIG_SVG, FIG_PDF } fig_Format;
 
-/* Everything the panels need: the model, the computed numbers, and where
- * the data files live. Filled by the *_prepare functions. */
+/* Everything the panels need: the model, the computed numbers, and the
+ * script being written. Filled by the *_prepare functions, which write their
+ * data as data blocks ($run << EOD ... EOD) into the script itself: the
+ * script reads no file, so no name of the user's ever reaches gnuplot. */
 typedef struct {
     const jc_Model *model;
-    char dir[CLI_PATH_MAX];  /* data files and script */
-    char stem[256];          /* data files are <stem>-<what>.dat */
+    FILE *gp;                /* the script, in the scratch directory */
     char caption[256];       /* the setup in one line (enhanced text); "" in the overview,
                                 whose page title carries it */
 
@@ -43,21 +44,30 @@ typedef struct {
 
 /* From the output's extension; -1 if it is not png, svg or pdf. */
 int fig_format_from_path(const char *path, fig_Format *f);
-/* Writes s as a gnuplot single-quoted string. */
+/* Writes s as a gnuplot single-quoted string (newlines become spaces). */
 void fig_quote(FILE *gp, const char *s);
-/* dir/<stem>-<what>.dat; -1 if it does not fit. */
-int fig_data_path(const fig_Data *d, const char *what, char *out, size_t len);
+/* "$name << EOD" and "EOD": a data block of the script. */
+void fig_block_begin(FILE *gp, const char *name);
+void fig_block_end(FILE *gp);
 /* The script's head: comments, terminal for a cols x rows page of panels,
  * the colours and the style block every panel applies. */
 void fig_script_begin(FILE *gp, fig_Format f, int cols, int rows, const char *default_output,
                       const char *command_line);
 /* Starts a panel: forgets the previous panel's settings, applies the style. */
 void fig_panel_begin(FILE *gp, const char *what);
-/* Runs gnuplot on script (in dir) to render output atomically: gnuplot
- * writes a temporary file beside output, which is checked and renamed.
- * log_path collects gnuplot's messages. Returns EXIT_OK or EXIT_FAIL. */
-int fig_render(const char *script, const char *dir, const char *output, fig_Format f,
-               const char *log_path);
+/* The names the tool gives the script, the figure and gnuplot's log in the
+ * scratch directory: the only names gnuplot is ever given. */
+#define FIG_SCRIPT_NAME "figure.gp"
+#define FIG_LOG_NAME "gnuplot.log"
+/* "figure.png", "figure.svg", "figure.pdf". */
+const char *fig_scratch_name(fig_Format f);
+/* How a finished figure of the format is checked (safe_output.h). */
+cli_Check fig_check(fig_Format f);
+/* Runs gnuplot in the scratch directory work on FIG_SCRIPT_NAME, which
+ * writes fig_scratch_name(f) there; checks that it is complete. output is
+ * the user's name, for messages only. Returns EXIT_OK, EXIT_FAIL after a
+ * message, or cli_stop_status() after a stop signal. */
+int fig_render(const char *work, fig_Format f, const char *output);
 /* The incline and contact in one line, and the body in another, for titles. */
 void fig_caption(const jc_Model *m, char *out, size_t len);
 void fig_body_caption(const jc_Model *m, char *out, size_t len);
@@ -67,9 +77,10 @@ int fig_criterion_prepare(fig_Data *d);
 void fig_criterion_panel(FILE *gp, const fig_Data *d);
 
 /* ---- plot_run.c: the full model's trajectory, events and hops ---- */
-/* Simulates (with options o; a fine sample_dt is chosen unless dt_given)
- * and writes the run, events and hops data files. */
-int fig_run_prepare(fig_Data *d, const jc_SimOptions *o, int dt_given);
+/* Simulates (with options o; a fine sample_dt is chosen unless dt_given;
+ * refused past max_samples samples, estimated by a first run that keeps
+ * nothing) and writes the run, events and hops data blocks. */
+int fig_run_prepare(fig_Data *d, const jc_SimOptions *o, int dt_given, double max_samples);
 /* The readable name of an event ("lift-off", "ramp end"). */
 const char *fig_event_label(jc_EventKind k);
 

@@ -70,11 +70,10 @@ static double theta_of(const fig_Data *d, int i) { return d->theta_max_rad * i /
 
 static int write_curves(fig_Data *d)
 {
-    char path[CLI_PATH_MAX];
-    cli_AtomicFile af;
-    if (fig_data_path(d, "criterion", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
+    FILE *f = d->gp;
+    fig_block_begin(f, "criterion");
     const jc_Model *m = d->model;
-    fprintf(af.f, "# jumpcyl plot --what paper-criterion: the paper's Eq. 9 and the exact N = 0 condition.\n"
+    fprintf(f, "# jumpcyl plot --what paper-criterion: the paper's Eq. 9 and the exact N = 0 condition.\n"
                   "# paper_lhs, paper_rhs: jc_paper_lhs, jc_paper_rhs (the paper's model: d = %.6g m, from rest at theta = 0).\n"
                   "# exact_lhs = w^2/g, exact_rhs = (cos a - d sin(theta) theta''/g)/(d cos(theta)), from jc_rolling_state\n"
                   "#   (exact rolling model, d = %.6g m); N = 0 where they are equal. NaN: undefined or not reached.\n"
@@ -85,13 +84,13 @@ static int write_curves(fig_Data *d)
         const double th = theta_of(d, i), pl = jc_paper_lhs(m, th);
         double el, er;
         exact_sides(d, th, &el, &er);
-        fprintf(af.f, "%.17g", th); /* exact: a reader can recompute at the same angle */
-        put(af.f, m->body.radius_m * th * 100);
-        put(af.f, pl);
-        put(af.f, jc_paper_rhs(m, th));
-        put(af.f, el);
-        put(af.f, er);
-        fputc('\n', af.f);
+        fprintf(f, "%.17g", th); /* exact: a reader can recompute at the same angle */
+        put(f, m->body.radius_m * th * 100);
+        put(f, pl);
+        put(f, jc_paper_rhs(m, th));
+        put(f, el);
+        put(f, er);
+        fputc('\n', f);
         if (isfinite(pl)) ymax = fmax(ymax, pl);
         if (isfinite(el)) ymax = fmax(ymax, el);
     }
@@ -99,22 +98,23 @@ static int write_curves(fig_Data *d)
     const double floor_y = m->cos_incline / m->paper_d_m;
     d->crit_ymax = fmax(1.15 * ymax, isfinite(floor_y) ? 2.5 * floor_y : 0.0);
     if (!(d->crit_ymax > 0)) d->crit_ymax = 1.0;
-    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+    fig_block_end(f);
+    return EXIT_OK;
 }
 
 static int write_roots(const fig_Data *d)
 {
-    char path[CLI_PATH_MAX];
-    cli_AtomicFile af;
-    if (fig_data_path(d, "roots", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
-    fprintf(af.f, "# jumpcyl plot --what paper-criterion: every intersection of the two sides of the paper's\n"
+    FILE *f = d->gp;
+    fig_block_begin(f, "roots");
+    fprintf(f, "# jumpcyl plot --what paper-criterion: every intersection of the two sides of the paper's\n"
                   "# Eq. 9 with cos(theta) > 0 (jc_paper_solve)%s; first = 1 marks the paper's prediction.\n"
                   "# columns: theta_rad x_cm paper_lhs_per_m first\n",
             d->paper.truncated ? ", the first ones only (more exist)" : "");
     for (int i = 0; i < d->paper.root_count; ++i)
-        fprintf(af.f, "%.17g %.10g %.10g %d\n", d->paper.theta_rad[i], d->paper.x_m[i] * 100,
+        fprintf(f, "%.17g %.10g %.10g %d\n", d->paper.theta_rad[i], d->paper.x_m[i] * 100,
                 jc_paper_lhs(d->model, d->paper.theta_rad[i]), i == d->paper.first);
-    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+    fig_block_end(f);
+    return EXIT_OK;
 }
 
 int fig_criterion_prepare(fig_Data *d)
@@ -178,15 +178,9 @@ static void panel_plot(FILE *gp, const fig_Data *d)
 void fig_criterion_panel(FILE *gp, const fig_Data *d)
 {
     const jc_Model *m = d->model;
-    char crit[CLI_PATH_MAX], roots[CLI_PATH_MAX];
-    snprintf(crit, sizeof crit, "%s-criterion.dat", d->stem);
-    snprintf(roots, sizeof roots, "%s-roots.dat", d->stem);
     fig_panel_begin(gp, "paper-criterion (the paper's Eq. 9 and the exact N = 0 condition)");
-    fputs("CRIT = ", gp);
-    fig_quote(gp, crit);
-    fputs("\nROOTS = ", gp);
-    fig_quote(gp, roots);
-    fprintf(gp, "\nR_CM = %.10g   # rim radius (cm): the top axis shows the distance rolled, r θ\n", m->body.radius_m * 100);
+    fputs("CRIT = '$criterion'\nROOTS = '$roots'   # data blocks at the top of this script\n", gp);
+    fprintf(gp, "R_CM = %.10g   # rim radius (cm): the top axis shows the distance rolled, r θ\n", m->body.radius_m * 100);
     fputs("set title \"Paper's Eq. 9 vs exact N = 0", gp);
     if (d->caption[0])
         fprintf(gp, " — %.4g° incline, d = %.3g cm, g = %.4g m/s^2", cli_deg(m->setup.incline_rad), m->paper_d_m * 100,

@@ -10,14 +10,10 @@
 /* More events than this are marked by ticks at the top instead of lines. */
 #define DENSE_EVENTS 60
 
-/* NAME = '<stem>-<what>.dat' */
-static void data_var(FILE *gp, const fig_Data *d, const char *name, const char *what)
+/* NAME = '$what': the data block of that name at the top of the script. */
+static void data_var(FILE *gp, const char *name, const char *what)
 {
-    char file[CLI_PATH_MAX];
-    snprintf(file, sizeof file, "%s-%s.dat", d->stem, what);
-    fprintf(gp, "%s = ", name);
-    fig_quote(gp, file);
-    fputc('\n', gp);
+    fprintf(gp, "%s = '$%s'\n", name, what);
 }
 
 static void title(FILE *gp, const fig_Data *d, const char *what)
@@ -59,8 +55,8 @@ void fig_forces_panel(FILE *gp, const fig_Data *d)
 {
     const jc_Setup *s = &d->model->setup;
     fig_panel_begin(gp, "forces (normal force and friction ratio along the ramp)");
-    data_var(gp, d, "RUN", "run");
-    data_var(gp, d, "EVENTS", "events");
+    data_var(gp, "RUN", "run");
+    data_var(gp, "EVENTS", "events");
     const double ymin = fmin(0.0, d->n_min), ymax = fmax(d->n_max, 0.1) / LABEL_HEADROOM;
     const double mu = fmax(s->mu_static, s->mu_kinetic);
     /* A huge mu (the rolling limit) would flatten the curve: keep it in view. */
@@ -97,8 +93,8 @@ void fig_forces_panel(FILE *gp, const fig_Data *d)
 void fig_path_panel(FILE *gp, const fig_Data *d)
 {
     fig_panel_begin(gp, "path (gap under the rim and speed along the ramp)");
-    data_var(gp, d, "RUN", "run");
-    data_var(gp, d, "HOPS", "hops");
+    data_var(gp, "RUN", "run");
+    data_var(gp, "HOPS", "hops");
     const double gap_top = d->gap_max_mm > 0 ? d->gap_max_mm / LABEL_HEADROOM : 1.0;
     title(gp, d, "Hops");
     x_axis(gp, d);
@@ -116,7 +112,7 @@ void fig_path_panel(FILE *gp, const fig_Data *d)
 void fig_energy_panel(FILE *gp, const fig_Data *d)
 {
     fig_panel_begin(gp, "energy (kinetic, potential, losses, and their sum)");
-    data_var(gp, d, "RUN", "run");
+    data_var(gp, "RUN", "run");
     const double span = fmax(d->energy_max_J - d->energy_min_J, 1e-12);
     title(gp, d, "Energy");
     fprintf(gp, "set xlabel 'time t (s)'\nset ylabel 'energy (J)'\nset xrange [0:%.10g]\nset yrange [%.10g:%.10g]\n"

@@ -39,22 +39,31 @@ const char *fig_event_label(jc_EventKind k)
 /* Runs the full model. Without a given --sample-dt, a first run without
  * samples finds the duration, so that every run gets about the same number
  * of samples whatever its length. */
-static int simulate(fig_Data *d, const jc_SimOptions *o, int dt_given)
+static int simulate(fig_Data *d, const jc_SimOptions *o, int dt_given, double max_samples)
 {
     jc_SimOptions opts = *o;
-    if (!dt_given) {
-        jc_Run probe;
-        opts.sample_dt_s = 0.0;
-        const int st = cli_simulate(d->model, &opts, &probe, "plot");
-        const double t_end = probe.final_state.t_s;
-        jc_run_free(&probe);
-        if (st != JC_OK) return EXIT_FAIL;
-        opts.sample_dt_s = fmax(t_end / RUN_TARGET_SAMPLES, RUN_MIN_DT_S);
+    /* A first run that keeps nothing gives the duration and the event
+     * count: the figure's size is known, and refused past the budget,
+     * before anything is stored. */
+    jc_Run probe;
+    opts.sample_dt_s = 0.0;
+    const int st = cli_simulate_probe(d->model, &opts, &probe, "plot");
+    if (st != JC_OK) return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
+    const double t_end = probe.final_state.t_s;
+    opts.sample_dt_s = dt_given ? o->sample_dt_s : fmax(t_end / RUN_TARGET_SAMPLES, RUN_MIN_DT_S);
+    const double samples = floor(t_end / opts.sample_dt_s) + 2.0 + probe.event_count;
+    if (samples > max_samples) {
+        cli_error("plot: the run needs about %.0f samples (%.4g s at --sample-dt %g s, %d events), over the budget "
+                  "of %.0f; raise it with --max-samples N, or shorten the run (--t-max, --max-events, --sample-dt)",
+                  samples, t_end, opts.sample_dt_s, probe.event_count, max_samples);
+        return EXIT_USAGE;
     }
+    opts.max_samples = (int)fmin(samples + 16.0, 1e8);
     d->sample_dt_s = opts.sample_dt_s;
-    if (cli_simulate(d->model, &opts, &d->run, "plot") != JC_OK) {
+    const int run_st = cli_simulate(d->model, &opts, &d->run, "plot");
+    if (run_st != JC_OK) {
         jc_run_free(&d->run);
-        return EXIT_FAIL;
+        return run_st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
     }
     d->have_run = 1;
     return EXIT_OK;
@@ -93,12 +102,11 @@ static void track_ranges(fig_Data *d, const jc_Sample *p, double n_norm, double 
 
 static int write_samples(fig_Data *d)
 {
-    char path[CLI_PATH_MAX];
-    cli_AtomicFile af;
-    if (fig_data_path(d, "run", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
+    FILE *f = d->gp;
+    fig_block_begin(f, "run");
     const jc_Model *m = d->model;
     const double weight_n = m->body.mass_kg * m->setup.gravity_mps2 * m->cos_incline;
-    fprintf(af.f, "# jumpcyl plot: samples of the full model (jc_simulate, sample_dt_s = %.17g, and at every event).\n"
+    fprintf(f, "# jumpcyl plot: samples of the full model (jc_simulate, sample_dt_s = %.17g, and at every event).\n"
                   "# M g cos(a) = %.10g N. mode: 0 rolling, 1 sliding, 2 flight. F/N: NaN without contact.\n"
                   "# columns: t_s x_cm mode N_over_Mgcosa absF_over_N gap_mm speed_mps kinetic_J potential_J\n"
                   "#          friction_loss_J impact_loss_J sum_J normal_N friction_N air_and_rolling_resistance_loss_J\n"
@@ -112,18 +120,19 @@ static int write_samples(fig_Data *d)
         const double n_norm = p->normal_N / weight_n, ratio = friction_ratio(d, p);
         const double resist = p->air_loss_J + p->rolling_resistance_loss_J;
         const double sum = p->kinetic_J + p->potential_J + p->friction_loss_J + p->impact_loss_J + resist;
-        fprintf(af.f, "%.12g", p->state.t_s);
-        put(af.f, p->state.x_m * 100);
-        fprintf(af.f, " %d", (int)p->mode);
+        fprintf(f, "%.12g", p->state.t_s);
+        put(f, p->state.x_m * 100);
+        fprintf(f, " %d", (int)p->mode);
         const double v[] = {n_norm, ratio, p->gap_m * 1e3, hypot(p->state.vx_mps, p->state.vy_mps), p->kinetic_J,
                             p->potential_J, p->friction_loss_J, p->impact_loss_J, sum, p->normal_N, p->friction_N,
                             resist};
-        for (size_t k = 0; k < sizeof v / sizeof v[0]; ++k) put(af.f, v[k]);
-        fputc('\n', af.f);
+        for (size_t k = 0; k < sizeof v / sizeof v[0]; ++k) put(f, v[k]);
+        fputc('\n', f);
         track_ranges(d, p, n_norm, ratio, sum);
         d->resistance_loss_max_J = fmax(d->resistance_loss_max_J, resist);
     }
-    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+    fig_block_end(f);
+    return EXIT_OK;
 }
 
 static void append(char *out, size_t len, const char *part)
@@ -180,13 +189,12 @@ static double axis_of(const fig_Data *d, double x_m, double t_s) { return d->tim
 
 static int write_events(const fig_Data *d)
 {
-    char path[CLI_PATH_MAX];
-    cli_AtomicFile af;
-    if (fig_data_path(d, "events", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
+    FILE *f = d->gp;
+    fig_block_begin(f, "events");
     fputs("# jumpcyl plot: the events of the run (jc_simulate), in time order. Events close together on\n"
           "# the panels' axis share the label written on the first of them.\n"
           "# columns: x_cm t_s kind label\n",
-          af.f);
+          f);
     const jc_Run *run = &d->run;
     const double tol = EVENT_CLUSTER_FRACTION * fmax(d->axis_max - d->axis_min, 1e-12);
     for (int lead = 0; lead < run->event_count;) {
@@ -199,12 +207,13 @@ static int write_events(const fig_Data *d)
         cluster_label(run, lead, last, label, sizeof label);
         for (int i = lead; i <= last; ++i) {
             const jc_Event *e = &run->events[i];
-            fprintf(af.f, "%.10g %.12g %s \"%s\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind),
+            fprintf(f, "%.10g %.12g %s \"%s\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind),
                     i == lead ? label : "");
         }
         lead = last + 1;
     }
-    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+    fig_block_end(f);
+    return EXIT_OK;
 }
 
 typedef struct {
@@ -296,26 +305,25 @@ static void write_hop_rows(FILE *f, const fig_Data *d, const fig_Hop *h, int n)
 
 static int write_hops(fig_Data *d)
 {
-    char path[CLI_PATH_MAX];
-    cli_AtomicFile af;
-    if (fig_data_path(d, "hops", path, sizeof path) != 0 || cli_atomic_open(&af, path) != 0) return EXIT_FAIL;
+    FILE *f = d->gp;
+    fig_block_begin(f, "hops");
     fputs("# jumpcyl plot: every flight (a lift-off, or a bounce into flight) of the run. height: the largest\n"
           "# gap between rim and incline (jc_Event hop_height_m); x, t: the centre at the flight's highest\n"
           "# sample (its middle when too short to sample). Hops close together share the label, placed\n"
           "# at label_at on the panels' axis (cm, or s when the panels are against time).\n"
           "# columns: x_apex_cm t_apex_s t_start_s height_mm flight_time_s label label_at\n",
-          af.f);
+          f);
     fig_Hop *hops = d->run.event_count ? malloc(sizeof *hops * (size_t)d->run.event_count) : NULL;
     if (d->run.event_count && !hops) {
-        cli_atomic_abort(&af);
         cli_error("plot: out of memory");
         return EXIT_FAIL;
     }
     d->hop_count = hops ? collect_hops(d, hops) : 0;
     for (int i = 0; i < d->hop_count; ++i) d->gap_max_mm = fmax(d->gap_max_mm, hops[i].height_mm);
-    write_hop_rows(af.f, d, hops, d->hop_count);
+    write_hop_rows(f, d, hops, d->hop_count);
     free(hops);
-    return cli_atomic_commit(&af) == 0 ? EXIT_OK : EXIT_FAIL;
+    fig_block_end(f);
+    return EXIT_OK;
 }
 
 /* Distance down the incline is the natural axis, unless the body goes back
@@ -335,9 +343,9 @@ static void choose_axis(fig_Data *d)
     if (!(d->axis_max > d->axis_min)) d->axis_max = d->axis_min + 1;
 }
 
-int fig_run_prepare(fig_Data *d, const jc_SimOptions *o, int dt_given)
+int fig_run_prepare(fig_Data *d, const jc_SimOptions *o, int dt_given, double max_samples)
 {
-    int rc = simulate(d, o, dt_given);
+    int rc = simulate(d, o, dt_given, max_samples);
     if (rc == EXIT_OK) rc = write_samples(d);
     if (rc == EXIT_OK) choose_axis(d);
     if (rc == EXIT_OK) rc = write_events(d);

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdarg.h>
+#include <string.h>
 
 double cli_deg(double rad) { return rad * 180.0 / CLI_PI; }
 
@@ -19,6 +20,20 @@ void cli_error(const char *fmt, ...)
     for (char *c = msg; *c; ++c)
         if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
     fprintf(stderr, "jumpcyl: %s\n", msg);
+}
+
+void cli_shell_word(FILE *out, const char *s)
+{
+    if (*s && s[strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./:+=%,")] == '\0') {
+        fputs(s, out);
+        return;
+    }
+    fputc('\'', out);
+    for (; *s; ++s) {
+        if (*s == '\'') fputs("'\\''", out);
+        else fputc((unsigned char)*s < 0x20 || *s == 0x7f ? '?' : *s, out);
+    }
+    fputc('\'', out);
 }
 
 void cli_print_setup(FILE *out, const jc_Model *m, int show_incline)

@@ -1,7 +1,9 @@
 /* Running external programs (gnuplot, ffmpeg) without a shell: the
  * arguments are passed as they are, so file names with spaces or quotes
- * need no escaping, and a missing program is reported as such. */
-#define _POSIX_C_SOURCE 200809L
+ * need no escaping, and a missing program is reported as such. The child
+ * runs in the scratch directory (only names made there reach it) and is
+ * recorded, so that a signal ends it and no child outlives the tool. */
+#define _GNU_SOURCE /* posix_spawn_file_actions_addchdir_np (glibc 2.29) */
 #include "figures.h"
 
 #include <errno.h>
@@ -33,10 +35,11 @@ int cli_find_program(const char *name, char *path, size_t len)
     return -1;
 }
 
-static int setup_actions(posix_spawn_file_actions_t *fa, const char *log_path)
+static int setup_actions(posix_spawn_file_actions_t *fa, const char *cwd, const char *log_path)
 {
     if (posix_spawn_file_actions_init(fa) != 0) return -1;
     int bad = posix_spawn_file_actions_addopen(fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    if (cwd) bad |= posix_spawn_file_actions_addchdir_np(fa, cwd);
     if (log_path) {
         bad |= posix_spawn_file_actions_addopen(fa, STDOUT_FILENO, log_path, O_WRONLY | O_CREAT | O_APPEND, 0600);
         bad |= posix_spawn_file_actions_adddup2(fa, STDOUT_FILENO, STDERR_FILENO);
@@ -48,40 +51,73 @@ static int setup_actions(posix_spawn_file_actions_t *fa, const char *log_path)
     return 0;
 }
 
-/* Waits for pid; polls while a progress line may need redrawing. */
+/* Seconds a child may take to end after SIGTERM before it gets SIGKILL. */
+#define CHILD_GRACE_S 3.0
+
+/* Waits for pid, polling so that progress is redrawn and a stop request
+ * ends the child (SIGTERM, then SIGKILL after a grace period). */
 static int wait_child(pid_t pid, int *status, cli_Progress *progress)
 {
+    double stop_at = -1.0;
     for (;;) {
-        const pid_t r = waitpid(pid, status, progress && progress->enabled ? WNOHANG : 0);
+        const pid_t r = waitpid(pid, status, WNOHANG);
         if (r == pid) return 0;
         if (r < 0 && errno != EINTR) return -1;
-        if (r == 0) {
+        if (cli_stop_requested()) {
+            const double now = cli_now_s();
+            if (stop_at < 0) {
+                stop_at = now;
+                kill(pid, SIGTERM);
+            } else if (now - stop_at > CHILD_GRACE_S) {
+                kill(pid, SIGKILL);
+            }
+        } else if (progress) {
             cli_progress_update(progress, 0, 0);
-            const struct timespec ts = {0, 20 * 1000 * 1000};
-            nanosleep(&ts, NULL);
         }
+        const struct timespec ts = {0, 10 * 1000 * 1000};
+        nanosleep(&ts, NULL);
     }
 }
 
-int cli_run_program(char *const argv[], const char *log_path, cli_Progress *progress)
+int cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_Progress *progress)
 {
     posix_spawn_file_actions_t fa;
-    if (setup_actions(&fa, log_path) != 0) {
+    if (setup_actions(&fa, cwd, log_path) != 0) {
         cli_error("cannot start %s: out of memory", argv[0]);
         return -1;
     }
+    /* The child starts with no signal blocked; ours stay blocked until its
+     * pid is recorded, so that a signal cannot miss it. */
+    posix_spawnattr_t attr;
+    sigset_t none, old;
+    sigemptyset(&none);
+    if (posix_spawnattr_init(&attr) != 0 || posix_spawnattr_setsigmask(&attr, &none) != 0 ||
+        posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK) != 0) {
+        posix_spawn_file_actions_destroy(&fa);
+        cli_error("cannot start %s: out of memory", argv[0]);
+        return -1;
+    }
+    cli_signals_hold(&old);
     pid_t pid;
-    const int rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
+    const int rc = cli_stop_requested() ? ECANCELED : posix_spawnp(&pid, argv[0], &fa, &attr, argv, environ);
+    if (rc == 0) cli_child_set(pid);
+    cli_signals_release(&old);
     posix_spawn_file_actions_destroy(&fa);
+    posix_spawnattr_destroy(&attr);
+    if (rc == ECANCELED) return CLI_RUN_STOPPED;
     if (rc != 0) {
         cli_error("cannot start %s: %s", argv[0], strerror(rc));
         return -1;
     }
     int status = 0;
-    if (wait_child(pid, &status, progress) != 0) {
+    const int waited = wait_child(pid, &status, progress);
+    cli_child_set(0);
+    if (waited != 0) {
         cli_error("waiting for %s: %s", argv[0], strerror(errno));
         return -1;
     }
+    if (cli_stop_requested()) return CLI_RUN_STOPPED;
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ) return CLI_RUN_EFBIG;
     if (WIFSIGNALED(status)) {
         cli_error("%s was killed by signal %d", argv[0], WTERMSIG(status));
         return -1;

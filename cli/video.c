@@ -56,14 +56,27 @@ static int codec_args(char **argv, int n, vid_Format f)
     return n;
 }
 
+/* "file:" and the absolute path: ffmpeg then reads the name as a local
+ * file whatever it looks like ("tcp://...", "-x", "pipe:"). */
+static int file_url(const char *path, char *out, size_t len)
+{
+    char abs_path[CLI_PATH_MAX];
+    if (cli_path_absolute(path, abs_path, sizeof abs_path) != 0) return -1;
+    return snprintf(out, len, "file:%s", abs_path) < (int)len ? 0 : -1;
+}
+
 /* The arguments of the ffmpeg command; strings live in cmd. */
 static int build_command(vid_Command *cmd, const char *frames_dir, double fps, const char *output, vid_Format f,
                          int quiet)
 {
     int n = 0;
+    char pattern[CLI_PATH_MAX];
     snprintf(cmd->fps, sizeof cmd->fps, "%g", fps);
-    if (cli_path_join(cmd->input, sizeof cmd->input, frames_dir, VID_FRAME_PATTERN) != 0) return -1;
+    if (cli_path_join(pattern, sizeof pattern, frames_dir, VID_FRAME_PATTERN) != 0 ||
+        file_url(pattern, cmd->input, sizeof cmd->input) != 0 || file_url(output, cmd->output, sizeof cmd->output) != 0)
+        return -1;
     cmd->argv[n++] = "ffmpeg";
+    cmd->argv[n++] = "-nostdin";
     cmd->argv[n++] = "-y";
     if (quiet) {
         cmd->argv[n++] = "-loglevel";
@@ -74,24 +87,9 @@ static int build_command(vid_Command *cmd, const char *frames_dir, double fps, c
     cmd->argv[n++] = "-i";
     cmd->argv[n++] = cmd->input;
     n = codec_args(cmd->argv, n, f);
-    cmd->argv[n++] = (char *)output;
+    cmd->argv[n++] = cmd->output;
     cmd->argv[n] = NULL;
     return 0;
-}
-
-/* A word as the shell reads it: quoted unless it is plainly safe. */
-static void shell_word(FILE *out, const char *s)
-{
-    if (*s && s[strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./:+=%,")] == '\0') {
-        fputs(s, out);
-        return;
-    }
-    fputc('\'', out);
-    for (; *s; ++s) {
-        if (*s == '\'') fputs("'\\''", out);
-        else fputc(*s, out);
-    }
-    fputc('\'', out);
 }
 
 void vid_print_command(FILE *out, const char *frames_dir, double fps, const char *output, vid_Format f)
@@ -101,46 +99,46 @@ void vid_print_command(FILE *out, const char *frames_dir, double fps, const char
     fputs("  ", out);
     for (int i = 0; cmd.argv[i]; ++i) {
         if (i) fputc(' ', out);
-        shell_word(out, cmd.argv[i]);
+        cli_shell_word(out, cmd.argv[i]);
     }
     fputc('\n', out);
 }
 
-int vid_assemble(const char *frames_dir, double fps, const char *output, vid_Format f, const char *log_path)
+int vid_assemble(const char *work, double fps, const char *output, vid_Format f)
 {
-    char tmp[CLI_PATH_MAX];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp-XXXXXX", output) >= (int)sizeof tmp) {
-        cli_error("cannot write %s: path too long", output);
-        return EXIT_FAIL;
-    }
-    int slot;
-    const int fd = cli_tmpfile_create(tmp, &slot);
-    if (fd < 0) {
-        cli_error("cannot write %s: %s", output, strerror(errno));
-        return EXIT_FAIL;
-    }
-    const mode_t mask = umask(0); /* mkstemp's 0600 must not stay on the video */
-    umask(mask);
-    fchmod(fd, 0666 & ~mask);
-    close(fd);
+    char film[CLI_PATH_MAX], log_path[CLI_PATH_MAX];
     vid_Command cmd;
-    int rc = build_command(&cmd, frames_dir, fps, tmp, f, 1) == 0 ? EXIT_OK : EXIT_FAIL;
+    if (cli_path_join(film, sizeof film, work, f == VID_GIF ? "film.gif" : "film.mp4") != 0 ||
+        cli_path_join(log_path, sizeof log_path, work, "ffmpeg.log") != 0 ||
+        build_command(&cmd, work, fps, film, f, 1) != 0) {
+        cli_error("animate: scratch path too long: %s", work);
+        return EXIT_FAIL;
+    }
+    /* ffmpeg writes into the scratch directory; the film is moved into
+     * place only when ffmpeg succeeded and it is not empty. */
     cli_Progress progress;
     cli_progress_begin(&progress, "animate: ffmpeg is encoding");
-    const int st = rc == EXIT_OK ? cli_run_program(cmd.argv, log_path, &progress) : -1;
+    const int st = cli_run_program(cmd.argv, NULL, log_path, &progress);
     cli_progress_end(&progress);
-    struct stat sb;
-    if (st != 0 || stat(tmp, &sb) != 0 || sb.st_size == 0) {
+    if (st == CLI_RUN_STOPPED) return cli_stop_status();
+    if (st == CLI_RUN_EFBIG) {
+        cli_error("cannot write %s: %s (ffmpeg's scratch copy in %s)", output, strerror(EFBIG), work);
+        return EXIT_FAIL;
+    }
+    char why[128];
+    if (st != 0 || cli_output_verify(film, CLI_CHECK_NONEMPTY, why, sizeof why) != 0) {
         if (st > 0) cli_error("animate: ffmpeg failed (exit status %d) making %s:", st, output);
-        else if (st == 0) cli_error("animate: ffmpeg wrote nothing for %s:", output);
-        cli_print_log_tail(log_path);
-        rc = EXIT_FAIL;
+        else if (st == 0) cli_error("cannot write %s: ffmpeg's film is %s", output, why);
+        if (st >= 0) cli_print_log_tail(log_path);
+        return EXIT_FAIL;
     }
-    if (cli_tmpfile_finish(slot, tmp, rc == EXIT_OK ? output : NULL) != 0 && rc == EXIT_OK) {
-        cli_error("cannot write %s: %s", output, strerror(errno));
-        rc = EXIT_FAIL;
+    cli_Output o;
+    if (cli_output_begin(&o, output, 0) != 0) return EXIT_FAIL;
+    if (cli_output_copy_from(&o, film) != 0 || cli_output_commit(&o, CLI_CHECK_NONEMPTY) != 0) {
+        cli_output_abort(&o);
+        return cli_stop_requested() ? cli_stop_status() : EXIT_FAIL;
     }
-    return rc;
+    return EXIT_OK;
 }
 
 /* Removes the frames an earlier run left in dir (frame-NNNNN.png only). */
@@ -178,16 +176,23 @@ int vid_publish_frames(const char *tmp_dir, const char *dir, int count)
     return EXIT_OK;
 }
 
-int vid_frames_tmpdir(const char *dir, char *tmp, size_t len)
+int vid_frames_tmpdir(const char *dir, char *tmp, size_t len, int *slot)
 {
+    *slot = -1;
     size_t n = strlen(dir);
     while (n > 1 && dir[n - 1] == '/') --n;
     if (snprintf(tmp, len, "%.*s.tmp-XXXXXX", (int)n, dir) >= (int)len) {
         cli_error("cannot write %s: path too long", dir);
         return -1;
     }
-    if (!mkdtemp(tmp)) {
-        cli_error("cannot write %s: %s", dir, strerror(errno));
+    sigset_t old;
+    cli_signals_hold(&old); /* made and recorded together: a signal finds it */
+    const int made = mkdtemp(tmp) != NULL;
+    const int err = errno;
+    if (made) *slot = cli_tmpdir_track(tmp);
+    cli_signals_release(&old);
+    if (!made) {
+        cli_error("cannot write %s: %s", dir, strerror(err));
         return -1;
     }
     /* mkdtemp makes it private; the frames directory gets the usual permissions. */

@@ -19,17 +19,21 @@ int vid_frame_path(char *out, size_t len, const char *dir, int index);
 typedef struct {
     char *argv[32];
     char fps[32];
-    char input[CLI_PATH_MAX];
+    char input[CLI_PATH_MAX + 8];  /* file:/abs/frame-%05d.png */
+    char output[CLI_PATH_MAX + 8]; /* file:/abs/name */
 } vid_Command;
 
-/* Runs ffmpeg on frames_dir's frames to make output (written to a temporary
- * name and renamed when complete). EXIT_OK or EXIT_FAIL after a message. */
-int vid_assemble(const char *frames_dir, double fps, const char *output, vid_Format f, const char *log_path);
+/* Runs ffmpeg on the frames in the scratch directory work; ffmpeg writes
+ * the film there (given as "file:" and an absolute path), and it is moved
+ * to output (safe_output.h) when ffmpeg exited 0 and the film is not empty.
+ * EXIT_OK, EXIT_FAIL after a message, or cli_stop_status() after a signal. */
+int vid_assemble(const char *work, double fps, const char *output, vid_Format f);
 /* The ffmpeg command line that does the same by hand, shell-quoted. */
 void vid_print_command(FILE *out, const char *frames_dir, double fps, const char *output, vid_Format f);
 
-/* A new directory beside dir (dir.tmp-XXXXXX) to render frames into. */
-int vid_frames_tmpdir(const char *dir, char *tmp, size_t len);
+/* A new directory beside dir (dir.tmp-XXXXXX) to render frames into,
+ * recorded for signals (*slot: release with cli_tmpdir_untrack). */
+int vid_frames_tmpdir(const char *dir, char *tmp, size_t len, int *slot);
 /* Moves count frames rendered in tmp_dir to dir: a rename when dir does not
  * exist; into it, replacing its older frames, when it does. */
 int vid_publish_frames(const char *tmp_dir, const char *dir, int count);

@@ -18,8 +18,15 @@ int cli_workdir_make(cli_WorkDir *w, const char *cmd)
         cli_error("%s: TMPDIR is too long", cmd);
         return -1;
     }
-    if (!mkdtemp(w->path)) {
-        cli_error("%s: cannot create a scratch directory in %s: %s", cmd, tmp, strerror(errno));
+    /* Created with signals held, so that a signal always finds it recorded. */
+    sigset_t old;
+    cli_signals_hold(&old);
+    const int made = mkdtemp(w->path) != NULL;
+    const int err = errno;
+    w->slot = made ? cli_tmpdir_track(w->path) : -1;
+    cli_signals_release(&old);
+    if (!made) {
+        cli_error("%s: cannot create a scratch directory in %s: %s", cmd, tmp, strerror(err));
         w->path[0] = '\0';
         return -1;
     }
@@ -43,6 +50,8 @@ int cli_remove_flat_dir(const char *path)
 void cli_workdir_remove(cli_WorkDir *w)
 {
     if (w->path[0]) cli_remove_flat_dir(w->path);
+    cli_tmpdir_untrack(w->slot);
+    w->slot = -1;
     w->path[0] = '\0';
 }
 

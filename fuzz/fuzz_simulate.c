@@ -168,7 +168,7 @@ static int finite_state(const jc_State *s)
 static void check_run(const jc_Run *run, const jc_SimOptions *o)
 {
     /* Why it stopped: finish() always writes the reason. */
-    FUZZ_CHECK(run->termination >= JC_END_RAMP_END && run->termination <= JC_END_STEP_LIMIT);
+    FUZZ_CHECK(run->termination >= JC_END_RAMP_END && run->termination <= JC_END_SAMPLE_LIMIT);
     FUZZ_CHECK(run->termination_detail[0] != '\0');
     /* A step may record a few events past the check of the limit. */
     FUZZ_CHECK(run->event_count >= 0 && run->event_count <= o->max_events + 4);

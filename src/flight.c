@@ -176,6 +176,7 @@ static int emit_samples(jc_Sim *sim, const flight *f, double t0, double t_end)
     double ts;
     while (jc_sim_sample_due(sim, t_end, &ts)) {
         jc_State s = flight_state(f, ts - t0, t0);
+        s.t_s = ts; /* the grid time itself: t0 + (ts - t0) may round below it */
         int st = jc_sim_sample(sim, &s, JC_MODE_FLIGHT, 0.0, 0.0);
         if (st != JC_OK) return st;
     }

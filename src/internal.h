@@ -115,7 +115,11 @@ typedef struct jc_Sim {
     int slip_dir;                  /* sliding: sign of the slip velocity */
     double friction_loss_J, impact_loss_J, air_loss_J, rr_loss_J;
     double energy0_J;              /* K + U at the start */
-    double next_sample_t;          /* INFINITY when not sampling at fixed steps */
+    const jc_Recorder *rec;        /* where events and samples go */
+    long long sample_k;            /* the next fixed sample is at sample_k * sample_dt_s */
+    double last_sample_t;          /* time of the last sample pushed (-INFINITY before the first) */
+    int samples_made;              /* samples pushed */
+    int sample_limit_hit;          /* max_samples reached: no more samples, the run ends */
     double hop_height_m;           /* the last flight's largest gap */
     gsl_integration_workspace *quad;
     gsl_odeiv2_step *ode_step;
@@ -145,8 +149,10 @@ int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t 
 
 /* simulate.c: records a trajectory sample (derived fields computed here). */
 int jc_sim_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);
-/* Whether a fixed-step sample falls in (.., t_end]; its time in *t. */
-int jc_sim_sample_due(const jc_Sim *sim, double t_end, double *t);
+/* Whether a fixed-step sample falls in (.., t_end]; its time in *t. A 1
+ * takes that sample off the schedule (the counter advances): the caller
+ * records it with jc_sim_sample, so the loop always moves on. */
+int jc_sim_sample_due(jc_Sim *sim, double t_end, double *t);
 
 /* air.c: loads beyond gravity and the contact force. */
 typedef struct {

@@ -6,6 +6,7 @@
  */
 #include "internal.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,8 +31,10 @@ int jc_sim_options_validate(const jc_SimOptions *o, char *err, size_t err_len)
         return jc_fail(err, err_len, JC_EINVAL, "time limit %g s is out of range (allowed: (0, 1e6] s)", o->t_max_s);
     if (o->max_events < 1 || o->max_events > 10000000)
         return jc_fail(err, err_len, JC_EINVAL, "event limit %d is out of range (allowed: 1 to 10^7)", o->max_events);
-    if (!(o->sample_dt_s >= 0.0 && o->sample_dt_s <= 1e6))
-        return jc_fail(err, err_len, JC_EINVAL, "sample step %g s is out of range (allowed: 0 or up to 1e6 s)", o->sample_dt_s);
+    /* From 1e-9 s, sample k * dt for every k up to t_max / dt <= 1e15 is a
+     * distinct double: the grid's times strictly increase. */
+    if (!(o->sample_dt_s == 0.0 || (o->sample_dt_s >= 1e-9 && o->sample_dt_s <= 1e6)))
+        return jc_fail(err, err_len, JC_EINVAL, "sample step %g s is out of range (allowed: 0, or 1e-9 to 1e6 s)", o->sample_dt_s);
     if (o->max_samples < 1 || o->max_samples > 100000000)
         return jc_fail(err, err_len, JC_EINVAL, "sample limit %d is out of range (allowed: 1 to 10^8)", o->max_samples);
     if (!(o->ode_rtol >= 1e-15 && o->ode_rtol <= 1e-3))
@@ -72,6 +75,7 @@ const char *jc_termination_name(jc_Termination t)
     case JC_END_PAINLEVE: return "painleve";
     case JC_END_REST: return "rest";
     case JC_END_STEP_LIMIT: return "step_limit";
+    case JC_END_SAMPLE_LIMIT: return "sample_limit";
     }
     return "unknown";
 }
@@ -98,27 +102,34 @@ double jc_potential_energy(const jc_Model *m, const jc_State *s)
     return potential_abs(m, s) - potential_abs(m, &start);
 }
 
-/* ---- run storage and summary ---- */
+/* ---- summary ---- */
+
+void jc_summary_init(jc_RunSummary *out) { *out = (jc_RunSummary){.first_liftoff = -1, .largest_hop = -1}; }
+
+void jc_summary_add(jc_RunSummary *out, const jc_Event *e, int index)
+{
+    if (e->kind == JC_EVENT_LIFTOFF) {
+        if (out->first_liftoff < 0) {
+            out->first_liftoff = index;
+            out->first_liftoff_state = e->state;
+        }
+        out->liftoffs++;
+    } else if (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT) {
+        out->bounces++;
+    } else {
+        return;
+    }
+    out->flight_time_s += e->flight_time_s;
+    if (out->largest_hop < 0 || e->hop_height_m > out->largest_hop_m) {
+        out->largest_hop = index;
+        out->largest_hop_m = e->hop_height_m;
+    }
+}
 
 void jc_run_summarize(const jc_Run *run, jc_RunSummary *out)
 {
-    *out = (jc_RunSummary){.first_liftoff = -1, .largest_hop = -1};
-    for (int i = 0; i < run->event_count; ++i) {
-        const jc_Event *e = &run->events[i];
-        if (e->kind == JC_EVENT_LIFTOFF) {
-            if (out->first_liftoff < 0) out->first_liftoff = i;
-            out->liftoffs++;
-        } else if (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT) {
-            out->bounces++;
-        } else {
-            continue;
-        }
-        out->flight_time_s += e->flight_time_s;
-        if (out->largest_hop < 0 || e->hop_height_m > out->largest_hop_m) {
-            out->largest_hop = i;
-            out->largest_hop_m = e->hop_height_m;
-        }
-    }
+    jc_summary_init(out);
+    for (int i = 0; i < run->event_count; ++i) jc_summary_add(out, &run->events[i], i);
 }
 
 void jc_run_free(jc_Run *run)
@@ -131,48 +142,100 @@ void jc_run_free(jc_Run *run)
     run->event_count = run->sample_count = 0;
 }
 
-static int grow(void **arr, int count, int *cap, size_t size)
+/* ---- the in-memory recorder behind jc_simulate ---- */
+
+/* Room for one more element: the capacity is implicit (64, then doubling),
+ * so that a jc_Run needs no capacity fields. */
+static int grow(void **arr, int count, size_t size)
 {
-    if (count < *cap) return JC_OK;
-    int n = *cap ? 2 * *cap : 64;
-    void *p = realloc(*arr, (size_t)n * size);
+    if (count > 0 && (count < 64 || (count & (count - 1)) != 0)) return JC_OK;
+    if (count == INT_MAX / 2 + 1) return JC_ENOMEM;
+    const size_t n = count ? 2 * (size_t)count : 64;
+    void *p = realloc(*arr, n * size);
     if (!p) return JC_ENOMEM;
     *arr = p;
-    *cap = n;
     return JC_OK;
 }
 
+static int arrays_event(void *ctx, const jc_Event *e)
+{
+    jc_Run *a = ctx;
+    if (grow((void **)&a->events, a->event_count, sizeof *e)) return JC_ENOMEM;
+    a->events[a->event_count++] = *e;
+    return JC_OK;
+}
+
+static int arrays_sample(void *ctx, const jc_Sample *p)
+{
+    jc_Run *a = ctx;
+    if (grow((void **)&a->samples, a->sample_count, sizeof *p)) return JC_ENOMEM;
+    a->samples[a->sample_count++] = *p;
+    return JC_OK;
+}
+
+jc_Recorder jc_run_recorder(jc_Run *arrays) { return (jc_Recorder){arrays, arrays_event, arrays_sample}; }
+
+/* ---- recording: samples on a fixed grid and at events, events when complete ---- */
+
+/* Events made but not yet pushed: the open flight's lift-off (or bounce)
+ * and what follows it until the flight closes (a ramp end, a time limit). */
+#define HELD_MAX 4
+
 typedef struct {
     jc_Sim sim;
-    int event_cap, sample_cap;
-    int flight_event; /* the lift-off or bounce whose flight is under way, or -1 */
+    jc_Event held[HELD_MAX];
+    int held_count;
+    int flight_event; /* index in held of the lift-off or bounce whose flight is under way, or -1 */
+    int events_made;  /* events created (pushed or held): what max_events counts */
 } machine;
+
+/* A recorder's answer as a status: a value that is not one is a stop. */
+static int recorder_status(int r)
+{
+    return r == JC_OK ? JC_OK : r >= JC_EINVAL && r <= JC_ESTOPPED ? r : JC_ESTOPPED;
+}
+
+/* The next fixed sample index after a sample at t (the 1e-9 keeps a sample
+ * that lands a rounding error before a grid time from doubling it). */
+static long long grid_index_after(double t, double dt)
+{
+    const double k = floor(t / dt + 1e-9) + 1.0;
+    return k > 0.0 ? (long long)k : 0;
+}
 
 int jc_sim_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N)
 {
-    machine *mc = (machine *)sim;
-    jc_Run *run = sim->run;
-    if (run->sample_count >= sim->opt->max_samples) return JC_OK;
-    if (grow((void **)&run->samples, run->sample_count, &mc->sample_cap, sizeof(jc_Sample))) return JC_ENOMEM;
+    if (!sim->rec->sample || sim->sample_limit_hit) return JC_OK;
+    if (sim->samples_made >= sim->opt->max_samples) {
+        sim->sample_limit_hit = 1; /* the machine ends the run with JC_END_SAMPLE_LIMIT */
+        return JC_OK;
+    }
     const jc_Model *m = sim->m;
     const double d = m->body.cm_offset_m;
-    jc_Sample *p = &run->samples[run->sample_count++];
-    p->state = *s;
-    p->mode = mode;
-    p->cm_x_m = s->x_m + d * sin(s->theta_rad);
-    p->cm_y_m = s->y_m + d * cos(s->theta_rad);
-    p->normal_N = normal_N;
-    p->friction_N = friction_N;
-    p->slip_mps = mode == JC_MODE_FLIGHT ? 0.0 : s->vx_mps - m->body.radius_m * s->omega_radps;
-    p->gap_m = mode == JC_MODE_FLIGHT ? jc_flight_gap(m, s) : 0.0;
-    p->kinetic_J = jc_kinetic_energy(m, s);
-    p->potential_J = jc_potential_energy(m, s);
-    p->friction_loss_J = sim->friction_loss_J;
-    p->impact_loss_J = sim->impact_loss_J;
-    p->air_loss_J = sim->air_loss_J;
-    p->rolling_resistance_loss_J = sim->rr_loss_J;
-    if (sim->opt->sample_dt_s > 0.0 && s->t_s >= sim->next_sample_t)
-        sim->next_sample_t = (floor(s->t_s / sim->opt->sample_dt_s + 1e-9) + 1.0) * sim->opt->sample_dt_s;
+    jc_Sample p;
+    memset(&p, 0, sizeof p); /* padding too: a recorder may compare or hash samples bytewise */
+    p.state = *s;
+    p.mode = mode;
+    p.cm_x_m = s->x_m + d * sin(s->theta_rad);
+    p.cm_y_m = s->y_m + d * cos(s->theta_rad);
+    p.normal_N = normal_N;
+    p.friction_N = friction_N;
+    p.slip_mps = mode == JC_MODE_FLIGHT ? 0.0 : s->vx_mps - m->body.radius_m * s->omega_radps;
+    p.gap_m = mode == JC_MODE_FLIGHT ? jc_flight_gap(m, s) : 0.0;
+    p.kinetic_J = jc_kinetic_energy(m, s);
+    p.potential_J = jc_potential_energy(m, s);
+    p.friction_loss_J = sim->friction_loss_J;
+    p.impact_loss_J = sim->impact_loss_J;
+    p.air_loss_J = sim->air_loss_J;
+    p.rolling_resistance_loss_J = sim->rr_loss_J;
+    const int st = recorder_status(sim->rec->sample(sim->rec->ctx, &p));
+    if (st != JC_OK) return st;
+    sim->samples_made++;
+    sim->last_sample_t = fmax(sim->last_sample_t, s->t_s);
+    if (sim->opt->sample_dt_s > 0.0) {
+        const long long k = grid_index_after(s->t_s, sim->opt->sample_dt_s);
+        if (k > sim->sample_k) sim->sample_k = k;
+    }
     return JC_OK;
 }
 
@@ -190,10 +253,17 @@ int jc_sim_sample_y(jc_Sim *sim, const jc_State *s, const double y[], jc_Mode mo
     return st;
 }
 
-int jc_sim_sample_due(const jc_Sim *sim, double t_end, double *t)
+int jc_sim_sample_due(jc_Sim *sim, double t_end, double *t)
 {
-    if (sim->run->sample_count >= sim->opt->max_samples || !(sim->next_sample_t <= t_end)) return 0;
-    *t = sim->next_sample_t;
+    const double dt = sim->opt->sample_dt_s;
+    if (!(dt > 0.0) || !sim->rec->sample || sim->sample_limit_hit) return 0;
+    /* A grid time that an event sample already passed is skipped: fixed
+     * sample times strictly increase and never repeat an earlier sample's. */
+    while ((double)sim->sample_k * dt <= sim->last_sample_t) sim->sample_k++;
+    const double next = (double)sim->sample_k * dt;
+    if (!(next <= t_end)) return 0;
+    *t = next;
+    sim->sample_k++; /* taken: whatever time the caller's state rounds to, the next one is later */
     return 1;
 }
 
@@ -224,13 +294,39 @@ static int sample_now(jc_Sim *sim)
     return jc_sim_sample(sim, &sim->s, sim->mode, n, f);
 }
 
-/* Records an event at the current state; forces and slip are those just before. */
+/* Pushes the held events that are complete: all of them, unless a flight
+ * is open (its lift-off waits for close_flight, and later events wait
+ * behind it to keep time order). */
+static int push_held(machine *mc)
+{
+    if (mc->flight_event >= 0) return JC_OK;
+    jc_Sim *sim = &mc->sim;
+    for (int i = 0; i < mc->held_count; ++i) {
+        if (sim->rec->event) {
+            const int st = recorder_status(sim->rec->event(sim->rec->ctx, &mc->held[i]));
+            if (st != JC_OK) {
+                mc->held_count = 0;
+                return st;
+            }
+        }
+        sim->run->event_count++;
+    }
+    mc->held_count = 0;
+    return JC_OK;
+}
+
+/* Makes an event at the current state; forces and slip are those just
+ * before. It is held, not pushed, until the next event or the end of the
+ * run (or, for a flight's start, until the flight closes): the caller may
+ * still fill in its fields through *out until then. */
 static int add_event(machine *mc, jc_EventKind kind, jc_Mode before, double normal, double friction,
                      double slip, jc_Event **out)
 {
-    jc_Run *run = mc->sim.run;
-    if (grow((void **)&run->events, run->event_count, &mc->event_cap, sizeof(jc_Event))) return JC_ENOMEM;
-    jc_Event *e = &run->events[run->event_count++];
+    int st = push_held(mc);
+    if (st != JC_OK) return st;
+    if (mc->held_count >= HELD_MAX) return JC_ELIMIT; /* a flight cannot hold this many events */
+    jc_Event *e = &mc->held[mc->held_count++];
+    mc->events_made++;
     memset(e, 0, sizeof *e);
     e->kind = kind;
     e->mode_before = before;
@@ -244,11 +340,11 @@ static int add_event(machine *mc, jc_EventKind kind, jc_Mode before, double norm
     return JC_OK;
 }
 
-/* Closes the open flight's record at an impact or at the end of the run. */
+/* Completes the open flight's event at an impact or at the end of the run. */
 static void close_flight(machine *mc, int landed)
 {
     if (mc->flight_event < 0) return;
-    jc_Event *e = &mc->sim.run->events[mc->flight_event];
+    jc_Event *e = &mc->held[mc->flight_event];
     e->flight_time_s = mc->sim.s.t_s - e->state.t_s;
     e->hop_height_m = mc->sim.hop_height_m;
     e->landing_x_m = landed ? mc->sim.s.x_m : NAN;
@@ -378,7 +474,7 @@ static int do_impact(machine *mc, int *from_liftoff, char *err, size_t err_len, 
     e->impact_speed_mps = res.approach_speed_mps;
     e->impulse_normal_Ns = res.impulse_normal_Ns;
     e->impulse_tangent_Ns = res.impulse_tangent_Ns;
-    if (sim->mode == JC_MODE_FLIGHT) mc->flight_event = sim->run->event_count - 1;
+    if (sim->mode == JC_MODE_FLIGHT) mc->flight_event = mc->held_count - 1;
     if (choice == CHOICE_PAINLEVE) {
         finish(mc, JC_END_PAINLEVE, "after an impact, no contact mode is consistent (Painleve)");
         *stop = 1;
@@ -434,7 +530,7 @@ static int step_machine(machine *mc, int *from_liftoff, char *err, size_t err_le
     case PHASE_LIFTOFF:
         sim->mode = JC_MODE_FLIGHT;
         if ((st = add_event(mc, JC_EVENT_LIFTOFF, before, n0, f0, slip, &e))) break;
-        mc->flight_event = sim->run->event_count - 1;
+        mc->flight_event = mc->held_count - 1;
         *from_liftoff = 1;
         return JC_OK;
     case PHASE_SLIP:
@@ -449,7 +545,7 @@ static int step_machine(machine *mc, int *from_liftoff, char *err, size_t err_le
         }
         if (kind >= 0 && (st = add_event(mc, (jc_EventKind)kind, before, n0, f0, slip, &e))) break;
         if (kind == JC_EVENT_LIFTOFF) {
-            mc->flight_event = sim->run->event_count - 1;
+            mc->flight_event = mc->held_count - 1;
             *from_liftoff = 1;
         }
         if (choice == CHOICE_REST) {
@@ -485,11 +581,22 @@ static int step_machine(machine *mc, int *from_liftoff, char *err, size_t err_le
     return st ? jc_fail(err, err_len, st, "out of memory for events") : JC_OK;
 }
 
-int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out, char *err, size_t err_len)
+/* The message for a run stopped while recording; the phases' own say "out
+ * of memory", which is right only for JC_ENOMEM. */
+static int record_status(int st, char *err, size_t err_len)
+{
+    if (st == JC_ESTOPPED) return jc_fail(err, err_len, st, "stopped by the recorder");
+    if (st == JC_ENOMEM) return jc_fail(err, err_len, st, "out of memory");
+    return st;
+}
+
+int jc_simulate_stream(const jc_Model *model, const jc_SimOptions *options, const jc_Recorder *rec,
+                       jc_Run *out, char *err, size_t err_len)
 {
     memset(out, 0, sizeof *out);
     int st = jc_sim_options_validate(options, err, err_len);
     if (st != JC_OK) return st;
+    const jc_Recorder none = {NULL, NULL, NULL};
     machine mc;
     memset(&mc, 0, sizeof mc);
     mc.flight_event = -1;
@@ -497,7 +604,8 @@ int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out
     sim->m = model;
     sim->opt = options;
     sim->run = out;
-    sim->next_sample_t = options->sample_dt_s > 0.0 ? 0.0 : INFINITY;
+    sim->rec = rec ? rec : &none;
+    sim->last_sample_t = -INFINITY;
     const double r = model->body.radius_m;
     sim->s = (jc_State){0.0, 0.0, r, r * model->setup.omega0_radps, 0.0, model->setup.theta0_rad,
                         model->setup.omega0_radps};
@@ -523,7 +631,7 @@ int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out
                    &n_roll, &f_roll, NULL);
         if (kind >= 0) st = add_event(&mc, (jc_EventKind)kind, JC_MODE_ROLLING, n_roll, f_roll, 0.0, NULL);
         if (kind == JC_EVENT_LIFTOFF) {
-            mc.flight_event = 0;
+            mc.flight_event = mc.held_count - 1;
             from_liftoff = 1;
         }
         if (choice == CHOICE_REST) {
@@ -536,21 +644,41 @@ int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out
      * count far beyond the event limit means the machine is not advancing. */
     const long max_phases = 4L * options->max_events + 1000;
     for (long phase = 0; st == JC_OK && !stop; ++phase) {
-        if (out->event_count >= options->max_events) {
+        if (mc.events_made >= options->max_events) {
             finish(&mc, JC_END_EVENT_LIMIT, "the event limit was reached");
+            break;
+        }
+        if (sim->sample_limit_hit) {
+            finish(&mc, JC_END_SAMPLE_LIMIT, "the sample limit was reached");
             break;
         }
         if (phase >= max_phases) {
             finish(&mc, JC_END_STEP_LIMIT, "the mode machine stopped advancing (phase bound reached)");
             break;
         }
-        const int events_before = out->event_count;
+        const int events_before = mc.events_made;
         st = step_machine(&mc, &from_liftoff, err, err_len, &stop);
-        if (st == JC_OK && out->event_count > events_before) st = sample_now(sim);
+        if (st == JC_OK && mc.events_made > events_before) st = sample_now(sim);
     }
-    if (st == JC_OK && (out->sample_count == 0 || out->samples[out->sample_count - 1].state.t_s < sim->s.t_s))
-        st = sample_now(sim);
+    if (st == JC_OK && (sim->samples_made == 0 || sim->last_sample_t < sim->s.t_s)) st = sample_now(sim);
+    if (st == JC_OK) {
+        mc.flight_event = -1; /* finish closed it; an error exit leaves it unpushed */
+        st = push_held(&mc);
+    }
+    out->sample_count = sim->samples_made;
     free_workspaces(sim);
-    if (st == JC_ENOMEM) return jc_fail(err, err_len, st, "out of memory");
+    return record_status(st, err, err_len);
+}
+
+int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out, char *err, size_t err_len)
+{
+    jc_Run arrays = {0};
+    const jc_Recorder rec = jc_run_recorder(&arrays);
+    const int st = jc_simulate_stream(model, options, &rec, out, err, err_len);
+    /* Handed over also after an error: the caller frees them with jc_run_free. */
+    out->events = arrays.events;
+    out->event_count = arrays.event_count;
+    out->samples = arrays.samples;
+    out->sample_count = arrays.sample_count;
     return st;
 }

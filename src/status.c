@@ -13,6 +13,7 @@ const char *jc_status_text(int status)
     case JC_ELIMIT: return "iteration limit reached";
     case JC_ENUMERIC: return "numerical failure";
     case JC_ENOMEM: return "out of memory";
+    case JC_ESTOPPED: return "stopped by the recorder";
     default: return "unknown status";
     }
 }

@@ -41,7 +41,8 @@ enum {
     JC_EINVAL = 1,   /* an input is out of its allowed range; see the message */
     JC_ELIMIT = 2,   /* a bounded loop hit its bound before finishing */
     JC_ENUMERIC = 3, /* a numerical method failed (reported, never hidden) */
-    JC_ENOMEM = 4
+    JC_ENOMEM = 4,
+    JC_ESTOPPED = 5  /* a recorder (jc_simulate_stream) asked the run to stop */
 };
 
 /* The library's version string, for callers linked against a shared build. */
@@ -322,7 +323,8 @@ typedef enum {
     JC_END_EVENT_LIMIT,/* max_events events recorded */
     JC_END_PAINLEVE,   /* no consistent contact mode (Painleve): a physical end, not a failure */
     JC_END_REST,       /* at rest: in equilibrium, or stopped by rolling resistance */
-    JC_END_STEP_LIMIT  /* a phase hit its bound on integration steps */
+    JC_END_STEP_LIMIT, /* a phase hit its bound on integration steps */
+    JC_END_SAMPLE_LIMIT /* max_samples trajectory samples recorded */
 } jc_Termination;
 #define JC_END_AT_REST JC_END_REST /* the former name */
 
@@ -371,8 +373,13 @@ typedef struct {
 typedef struct {
     double t_max_s;         /* simulated time limit, > 0 (default 60 s) */
     int max_events;         /* > 0 (default 10000) */
-    double sample_dt_s;     /* trajectory sample spacing; 0: samples only at events */
-    int max_samples;        /* cap on samples (default 10^6) */
+    /* Trajectory sample spacing: 0 (samples only at events) or [1e-9, 1e6] s.
+     * The k-th fixed sample is at exactly k * sample_dt_s (an integer
+     * counter, never an accumulated time), so their times strictly increase. */
+    double sample_dt_s;
+    /* Samples recorded at most (default 10^6); reaching it ends the run
+     * with JC_END_SAMPLE_LIMIT, never silently. */
+    int max_samples;
     double ode_rtol;        /* sliding integrator tolerances (default 1e-11, 1e-13) */
     double ode_atol;
     double event_tol_s;     /* event location tolerance in time (default 1e-12 s) */
@@ -408,11 +415,44 @@ const char *jc_mode_name(jc_Mode mode);
 const char *jc_event_name(jc_EventKind kind);
 const char *jc_termination_name(jc_Termination t);
 
-/* Simulates the setup from its start until a termination condition.
- * *out is owned by the caller: free it with jc_run_free, also after errors. */
+/* Simulates the setup from its start until a termination condition, keeping
+ * every event and sample in memory (out->events, out->samples): for runs of
+ * moderate length. *out is owned by the caller: free it with jc_run_free,
+ * also after errors. The same as jc_simulate_stream with a recorder that
+ * appends to the two arrays. */
 int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out,
                 char *err, size_t err_len);
 void jc_run_free(jc_Run *run);
+
+/* Streaming: the simulation pushes each event and each trajectory sample to
+ * a recorder as soon as it is complete, so memory does not grow with the
+ * length of the run. Events arrive in time order and are never changed
+ * after they are pushed: a lift-off (or a bounce into flight) is held back
+ * until its flight has ended, so that its flight_time_s, hop_height_m and
+ * landing_x_m are final; events that happen during that flight (a ramp end)
+ * follow it. Samples arrive in time order, independently of events.
+ *
+ * Each callback returns JC_OK to go on; any other value stops the run, and
+ * jc_simulate_stream returns it (JC_ESTOPPED for "stopped for the caller's
+ * own reason", e.g. a failed write; values that are not status codes are
+ * returned as JC_ESTOPPED). A NULL callback means "not wanted": with
+ * sample == NULL no sample is even computed. */
+typedef struct {
+    void *ctx;
+    int (*event)(void *ctx, const jc_Event *e);
+    int (*sample)(void *ctx, const jc_Sample *s);
+} jc_Recorder;
+
+/* Like jc_simulate, but events and samples go to rec instead of arrays:
+ * out->events and out->samples stay NULL, out->event_count and
+ * out->sample_count count what was pushed, and every other field of *out is
+ * set as by jc_simulate (identical results). */
+int jc_simulate_stream(const jc_Model *model, const jc_SimOptions *options, const jc_Recorder *rec,
+                       jc_Run *out, char *err, size_t err_len);
+/* The recorder jc_simulate uses: it appends to arrays->events and
+ * arrays->samples (and their counts), which start zeroed and are freed with
+ * jc_run_free. Wrap it to add checks of your own (a stop request). */
+jc_Recorder jc_run_recorder(jc_Run *arrays);
 
 /* What a run amounts to: its hops. A hop starts at a lift-off; bounces
  * continue it. */
@@ -423,9 +463,14 @@ typedef struct {
     int largest_hop;         /* event index (lift-off or bounce) of the highest flight, -1 if none */
     double largest_hop_m;    /* its largest gap under the rim */
     double flight_time_s;    /* total time in flight */
+    jc_State first_liftoff_state; /* the state at the first lift-off (zero if none) */
 } jc_RunSummary;
 
 void jc_run_summarize(const jc_Run *run, jc_RunSummary *out);
+/* The same accumulated event by event, without the array (streaming):
+ * jc_summary_init, then jc_summary_add for each event with its index. */
+void jc_summary_init(jc_RunSummary *out);
+void jc_summary_add(jc_RunSummary *out, const jc_Event *e, int index);
 
 /* Energies of a state (potential relative to the setup's start). */
 double jc_kinetic_energy(const jc_Model *model, const jc_State *s);

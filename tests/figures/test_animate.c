@@ -81,7 +81,7 @@ static int test_missing_ffmpeg(void)
     snprintf(out, sizeof out, "%s/noff.gif", dir);
     snprintf(args, sizeof args, "animate --incline 45 --size 160x90 --fps 10 --slowmo 1 --output '%s'", out);
     fig_run_result r = fig_run(cli, empty, args);
-    const int ok = r.status == 1 && r.err && strstr(r.err, "ffmpeg was not found") && strstr(r.err, "ffmpeg -y -framerate 10");
+    const int ok = r.status == 1 && r.err && strstr(r.err, "ffmpeg was not found") && strstr(r.err, "ffmpeg -nostdin -y -framerate 10");
     if (!ok) fprintf(stderr, "status %d, stderr: %s\n", r.status, r.err ? r.err : "?");
     fig_run_free(&r);
     ENSURE(ok);

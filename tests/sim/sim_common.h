@@ -152,7 +152,8 @@ static inline int termination_is_known(jc_Termination t)
     case JC_END_EVENT_LIMIT:
     case JC_END_PAINLEVE:
     case JC_END_AT_REST:
-    case JC_END_STEP_LIMIT: return 1;
+    case JC_END_STEP_LIMIT:
+    case JC_END_SAMPLE_LIMIT: return 1;
     }
     return 0;
 }
