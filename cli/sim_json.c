@@ -20,6 +20,8 @@ static void add_tail(cJSON *doc, const jc_Model *m, const jc_Run *run, const jc_
     cJSON_AddStringToObject(doc, "impact_law", jc_impact_law_name(m->setup.impact_law));
     cJSON_AddNumberToObject(doc, "energy_gaining_impacts", run->energy_gaining_impacts);
     cJSON_AddNumberToObject(doc, "largest_impact_gain_J", run->largest_impact_gain_J);
+    cJSON_AddNumberToObject(doc, "micro_slips", (double)run->micro_slips);
+    cJSON_AddNumberToObject(doc, "rocking_period_s", run->rocking_period_s);
     cJSON *s = cJSON_AddObjectToObject(doc, "summary");
     cJSON_AddNumberToObject(s, "liftoffs", sum->liftoffs);
     cJSON_AddNumberToObject(s, "bounces", sum->bounces);

@@ -121,6 +121,9 @@ typedef struct jc_Sim {
     int samples_made;              /* samples pushed */
     int sample_limit_hit;          /* max_samples reached: no more samples, the run ends */
     double hop_height_m;           /* the last flight's largest gap */
+    long micro_slips;              /* cone excursions rolled through (rolling.c, physics.md §4a, micro-slips) */
+    double periodic_period_s;      /* > 0: rolling found periodic and whole periods were skipped */
+    double periodic_th_lo_rad, periodic_th_hi_rad; /* its turning points */
     gsl_integration_workspace *quad;
     gsl_odeiv2_step *ode_step;
     gsl_odeiv2_control *ode_control;

@@ -509,6 +509,65 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
     return JC_OK;
 }
 
+/* ---- micro-slips and periodic rocking (docs/physics.md §4a, "Micro-slips") ---- */
+
+/* The contact point's tangential inverse mass with the normal held: the
+ * slip acceleration per newton of friction the cone cannot supply,
+ * det K / K_nn with K of the impact law (physics.md §4). */
+static double tangential_compliance(const jc_Model *m, double th)
+{
+    const double M = m->body.mass_kg, ig = m->body.inertia_g_kgm2;
+    const double d = m->body.cm_offset_m, r = m->body.radius_m;
+    const double rt = -d * sin(th), rn = -(r + d * cos(th));
+    const double ktt = 1.0 / M + rn * rn / ig, knn = 1.0 / M + rt * rt / ig, ktn = -rt * rn / ig;
+    return (ktt * knn - ktn * ktn) / knn;
+}
+
+/* Samples of the excess over the cone along an excursion: enough to find
+ * its peak to a few per cent, which is all a scale estimate needs. */
+#define EXCURSION_SAMPLES 32
+
+/* Whether the excursion of the rolling path beyond the friction cone that
+ * starts at `at` on slip function k is a micro-slip: one whose slip scale,
+ * k_t dF_max tau^2 (the slip speed the missing friction dF_max builds over
+ * the excursion's duration tau, times tau), stays below the contact height
+ * (sim options, 1 um by default): the same scale below which a rebound
+ * counts as contact. A real contact takes such a tangential displacement
+ * elastically (its tangential compliance) instead of slipping. Sets *micro. */
+static int micro_excursion(jc_Sim *sim, const roll_path *path, const jc_State *at, int k, double th_lim,
+                           int *micro, char *err, size_t err_len)
+{
+    const jc_Model *m = sim->m;
+    *micro = 0;
+    if (!(sim->opt->contact_height_m > 0.0)) return JC_OK;
+    const jc_TrigLin *g = k == RW_SLIP_POS ? &path->slip_pos : &path->slip_neg;
+    /* Beyond the cone -g > 0: its next zero is where the path re-enters it. */
+    jc_ScanSet set = {2, {&path->energy, g}, {1, -1}};
+    jc_ScanHit hit;
+    int st = jc_scan_first(&set, at->theta_rad, th_lim, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
+    if (st != JC_OK) return st;
+    /* Off the ramp, or no excursion at all (a touch of the cone's edge). */
+    if (hit.index < 0 || fabs(hit.theta - at->theta_rad) <= ROLL_ROOT_TOL_RAD) return JC_OK;
+    double dt;
+    if ((st = roll_time(sim, path, at->theta_rad, start_p(m, at), hit.theta, &dt, err, err_len)) != JC_OK)
+        return st;
+    /* Through a turning point the path comes back the same way: twice the time. */
+    const double tau = hit.index == 0 ? 2.0 * dt : dt;
+    double peak = 0.0; /* k_t dF, m/s^2 */
+    for (int i = 0; i <= EXCURSION_SAMPLES; ++i) {
+        const double th = at->theta_rad + (hit.theta - at->theta_rad) * i / EXCURSION_SAMPLES;
+        const double w = sqrt(fmax(jc_tl_value(&path->energy, th), 0.0) / jc_tl_value(path->inertia, th));
+        double thdd, n, f;
+        jc_roll_forces(m, th, w, &thdd, &n, &f);
+        peak = fmax(peak, tangential_compliance(m, th) * (fabs(f) - m->setup.mu_static * n));
+    }
+    *micro = peak * tau * tau < sim->opt->contact_height_m;
+    return JC_OK;
+}
+
+/* s: two turning points this close in time are one (rounding of a turn). */
+#define PERIOD_MIN_S 1e-9
+
 int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     if (jc_model_has_resistance(sim->m)) return roll_ode_phase(sim, end, err, err_len);
@@ -523,13 +582,23 @@ int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
         *end = PHASE_AT_REST;
         return JC_OK;
     }
+    /* Slip functions the path is rolling through (a micro-slip excursion):
+     * watched with the opposite sign, so their next zero is the re-entry. */
+    int through[2] = {0, 0};
+    /* The last two turning points: a third at the same angle, with the same
+     * excursions, closes a period of a motion that repeats for ever. */
+    double turn_t[2] = {0.0, 0.0}, turn_th[2] = {0.0, 0.0};
+    int turn_through[2] = {0, 0};
+    long turns = 0;
+    const int may_skip = !(sim->opt->sample_dt_s > 0.0); /* fixed samples need every period */
     for (long swing = 0; swing < ROLL_MAX_SWINGS; ++swing) {
         const jc_State start = sim->s;
         /* Uphill, the start counts as passed 1 nm beyond it (as in sliding and
          * flight), so that a body rocking back to rest at its start turns there. */
         const double th_lim = dir > 0 ? start.theta_rad + (L - start.x_m) / r
                                       : start.theta_rad - (start.x_m + 1e-9) / r;
-        jc_ScanSet set = {4, {&path.normal, &path.slip_pos, &path.slip_neg, &path.energy}, {1, 1, 1, 1}};
+        jc_ScanSet set = {4, {&path.normal, &path.slip_pos, &path.slip_neg, &path.energy},
+                          {1, through[0] ? -1 : 1, through[1] ? -1 : 1, 1}};
         jc_ScanHit hit;
         int st = jc_scan_first(&set, start.theta_rad, th_lim, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
         if (st != JC_OK) return st;
@@ -562,13 +631,52 @@ int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
         switch (hit.index) {
         case RW_NORMAL: *end = PHASE_LIFTOFF; return JC_OK;
         case RW_SLIP_POS:
-        case RW_SLIP_NEG: *end = PHASE_SLIP; return JC_OK;
-        case RW_ENERGY:
+        case RW_SLIP_NEG: {
+            const int k = hit.index - RW_SLIP_POS;
+            if (through[k]) { /* back inside the cone */
+                through[k] = 0;
+                continue;
+            }
+            int micro = 0;
+            if ((st = micro_excursion(sim, &path, &sim->s, hit.index, th_lim, &micro, err, err_len)) != JC_OK)
+                return st;
+            if (micro) {
+                through[k] = 1;
+                sim->micro_slips++;
+                continue;
+            }
+            *end = PHASE_SLIP;
+            return JC_OK;
+        }
+        case RW_ENERGY: {
             /* A turning point: roll back the other way (not a mode change). */
             sim->s.omega_radps = 0.0;
             sim->s.vx_mps = 0.0;
             dir = -dir;
+            const int sig = through[0] | through[1] << 1;
+            const int older = (int)(turns % 2);
+            if (may_skip && turns >= 2 && turn_through[older] == sig &&
+                fabs(sim->s.theta_rad - turn_th[older]) <= 8.0 * ROLL_ROOT_TOL_RAD) {
+                /* Energy is conserved on the path and nothing happened over a
+                 * whole period: the motion repeats for ever. Skip whole periods
+                 * to within one of the time limit. */
+                const double period = sim->s.t_s - turn_t[older];
+                if (period > PERIOD_MIN_S) {
+                    const double skip = floor((t_max - sim->s.t_s) / period) - 1.0;
+                    if (skip > 0.0) {
+                        sim->s.t_s += skip * period;
+                        sim->periodic_period_s = period;
+                        sim->periodic_th_lo_rad = fmin(sim->s.theta_rad, turn_th[1 - older]);
+                        sim->periodic_th_hi_rad = fmax(sim->s.theta_rad, turn_th[1 - older]);
+                    }
+                }
+            }
+            turn_t[older] = sim->s.t_s;
+            turn_th[older] = sim->s.theta_rad;
+            turn_through[older] = sig;
+            turns++;
             continue;
+        }
         default:
             *end = dir > 0 ? PHASE_RAMP_END : PHASE_RAMP_TOP;
             return JC_OK;

@@ -392,6 +392,8 @@ static void finish(machine *mc, jc_Termination why, const char *detail)
     snprintf(run->termination_detail, sizeof run->termination_detail, "%s", detail);
     run->final_state = sim->s;
     run->final_mode = sim->mode;
+    run->micro_slips = sim->micro_slips;
+    run->rocking_period_s = sim->periodic_period_s;
     jc_EnergyReport *e = &run->energy;
     e->kinetic_J = jc_kinetic_energy(sim->m, &sim->s);
     e->potential_J = jc_potential_energy(sim->m, &sim->s);
@@ -570,7 +572,19 @@ static int step_machine(machine *mc, int *from_liftoff, char *err, size_t err_le
                "Painleve: sliding with D = 1 + M d sin(th) k / I_G -> 0, the normal force grows without bound");
         *stop = 1;
         return JC_OK;
-    case PHASE_TIME_LIMIT: finish(mc, JC_END_TIME_LIMIT, "simulated time reached the limit"); *stop = 1; return JC_OK;
+    case PHASE_TIME_LIMIT:
+        if (sim->periodic_period_s > 0.0) {
+            char detail[160];
+            snprintf(detail, sizeof detail,
+                     "simulated time reached the limit; rocks for ever: rolls between th = %.6f and %.6f rad, "
+                     "period %.6f s",
+                     sim->periodic_th_lo_rad, sim->periodic_th_hi_rad, sim->periodic_period_s);
+            finish(mc, JC_END_TIME_LIMIT, detail);
+        } else {
+            finish(mc, JC_END_TIME_LIMIT, "simulated time reached the limit");
+        }
+        *stop = 1;
+        return JC_OK;
     case PHASE_AT_REST:
         finish(mc, JC_END_REST, jc_model_has_resistance(sim->m) ? "came to rest: rolling resistance holds it"
                                                                   : "at rest: rocking by less than 1 nm");

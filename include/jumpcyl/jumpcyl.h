@@ -409,6 +409,12 @@ typedef struct {
      * Such impacts are counted, not hidden; impact_loss_J includes their gains. */
     int energy_gaining_impacts;
     double largest_impact_gain_J;
+    /* Excursions of the rolling path beyond the friction cone too small to
+     * slip (docs/physics.md §4a, "Micro-slips"): rolled through as sticking, not events. */
+    long micro_slips;
+    /* > 0: the run ended in rolling that repeats for ever (no event over a
+     * whole period); whole periods were skipped to the time limit. */
+    double rocking_period_s;
 } jc_Run;
 
 const char *jc_mode_name(jc_Mode mode);

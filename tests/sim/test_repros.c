@@ -334,6 +334,103 @@ static int test_rocking_hoop_goes_on(void)
     return 0;
 }
 
+/* ---- 5d. the rocking hoop's limit: periodic rolling, computed here ---- */
+
+/* Floor, rolling: U = M g d cos th (+ const), I_P = I_C + M r^2 + 2 M r d cos th;
+ * w^2 = 2 (E - U) / I_P. */
+typedef struct {
+    double M, g, d, r, ic, energy;
+} rocker;
+
+static double rocker_w2(const rocker *k, double th)
+{
+    return 2.0 * (k->energy - k->M * k->g * k->d * cos(th)) /
+           (k->ic + k->M * k->r * k->r + 2.0 * k->M * k->r * k->d * cos(th));
+}
+
+/* The period, 2 * integral dth / |w| between the turning points, with
+ * th = mid + half sin(phi), which takes the 1/sqrt singularities at the
+ * turns into a smooth integrand; the midpoint rule then converges fast. */
+static double rocker_period(const rocker *k, double th_lo, double th_hi)
+{
+    const double mid = 0.5 * (th_lo + th_hi), half = 0.5 * (th_hi - th_lo);
+    const int n = 200000;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double phi = -0.5 * PI + PI * (i + 0.5) / n;
+        const double w2 = rocker_w2(k, mid + half * sin(phi));
+        if (w2 > 0.0) sum += half * cos(phi) / sqrt(w2);
+    }
+    return 2.0 * sum * PI / n;
+}
+
+/* Run to t_max, skipping whole periods (no fixed samples) or not (samples
+ * every 100 s switch the skip off). */
+static int rocking_run(double t_max, double sample_dt, jc_Model *m, jc_Run *run)
+{
+    jc_Setup s;
+    char err[128] = "";
+    ENSURE_OK(jc_preset_setup("rocking-hoop", &s, err, sizeof err), err);
+    if (sim_model(m, &s)) return 1;
+    jc_SimOptions o = jc_default_sim_options();
+    o.t_max_s = t_max;
+    o.sample_dt_s = sample_dt;
+    return sim_run(m, &o, run);
+}
+
+/* Once the slips near the turns fall below the contact height (1 um of
+ * slip scale), the hoop rolls through them and the motion is periodic: the
+ * run ends at the time limit with a bounded number of events, its period
+ * equals the one computed here from the energy integral, and the state at
+ * t_max equals that of a run that steps through every period. */
+static int test_rocking_hoop_periodic(void)
+{
+    jc_Model m;
+    jc_Run run;
+    if (rocking_run(1e6, 0.0, &m, &run)) return 1;
+    const jc_Termination t = run.termination;
+    const int events = run.event_count;
+    const long micro = run.micro_slips;
+    const double period = run.rocking_period_s, t_end = run.final_state.t_s;
+    const double bal = sim_balance_rel(&m, &run);
+    const jc_State f = run.final_state;
+    jc_run_free(&run);
+    rocker k = {m.body.mass_kg, m.setup.gravity_mps2, m.body.cm_offset_m, m.body.radius_m, m.body.inertia_c_kgm2, 0};
+    k.energy = 0.5 * (k.ic + k.M * k.r * k.r + 2.0 * k.M * k.r * k.d * cos(f.theta_rad)) * f.omega_radps *
+                   f.omega_radps + k.M * k.g * k.d * cos(f.theta_rad);
+    /* Turning points: cos th = E / (M g d), about the bottom th = pi (mod 2 pi). */
+    const double c = k.energy / (k.M * k.g * k.d);
+    ENSURE_MSG(c > -1.0 && c < 1.0, "energy %g J has no turning points", k.energy);
+    const double bottom = PI + 2.0 * PI * floor(f.theta_rad / (2.0 * PI));
+    const double amp = PI - acos(c);
+    const double expect = rocker_period(&k, bottom - amp, bottom + amp);
+    printf("  to 1e6 s: %s, %d events, %ld micro-slips rolled through; amplitude %.5f rad about the bottom,\n"
+           "  period %.9f s (computed here %.9f s), balance %.2g\n",
+           jc_termination_name(t), events, micro, amp, period, expect, bal);
+    ENSURE_MSG(t == JC_END_TIME_LIMIT && t_end == 1e6, "ended %s at %g s", jc_termination_name(t), t_end);
+    ENSURE(events < 2000 && micro > 0 && bal <= 1e-9);
+    ENSURE_REL(period, expect, 1e-8);
+
+    /* The skip against stepping through all ~7,800 periods of 3000 s. */
+    jc_Run skip, step;
+    if (rocking_run(3000.0, 0.0, &m, &skip)) return 1;
+    if (rocking_run(3000.0, 100.0, &m, &step)) {
+        jc_run_free(&skip);
+        return 1;
+    }
+    const jc_State a = skip.final_state, b = step.final_state;
+    const double pa = skip.rocking_period_s, pb = step.rocking_period_s;
+    jc_run_free(&skip);
+    jc_run_free(&step);
+    printf("  3000 s skipped / stepped: th %.12f / %.12f rad, w %.9f / %.9f rad/s\n", a.theta_rad, b.theta_rad,
+           a.omega_radps, b.omega_radps);
+    ENSURE(pa > 0.0 && pb == 0.0);
+    ENSURE_NEAR(a.theta_rad, b.theta_rad, 1e-6);
+    ENSURE_NEAR(a.omega_radps, b.omega_radps, 1e-5);
+    ENSURE_NEAR(a.x_m, b.x_m, 1e-7);
+    return 0;
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -345,5 +442,6 @@ int main(void)
     RUN_TEST(test_rest_near_equilibrium);
     RUN_TEST(test_rest_under_rolling_resistance);
     RUN_TEST(test_rocking_hoop_goes_on);
+    RUN_TEST(test_rocking_hoop_periodic);
     TEST_MAIN_END();
 }
