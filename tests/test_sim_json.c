@@ -79,7 +79,7 @@ static int test_bouncing(void)
 
 static int test_many_events(void)
 {
-    const jc_Setup s = hoop_parts_setup();
+    const jc_Setup s = rocking_hoop_setup();
     return compare(&s, 3000, 500);
 }
 

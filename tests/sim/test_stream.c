@@ -106,7 +106,7 @@ static int same_as_array(const jc_Setup *s, double dt, int max_events, int min_f
 /* Slip and stick chatter: hundreds of events. */
 static int test_hoop_same_as_array(void)
 {
-    const jc_Setup s = hoop_parts_setup();
+    const jc_Setup s = rocking_hoop_setup();
     return same_as_array(&s, 0.0, 400, 0) || same_as_array(&s, 0.01, 400, 0);
 }
 
@@ -166,7 +166,7 @@ static int test_sample_grid_strictly_increases(void)
  * the events it accepted. */
 static int test_recorder_stops_run(void)
 {
-    const jc_Setup s = hoop_parts_setup();
+    const jc_Setup s = rocking_hoop_setup();
     jc_Model m;
     if (sim_model(&m, &s)) return 1;
     jc_SimOptions o = jc_default_sim_options();
