@@ -239,7 +239,8 @@ static void print_full(const paper_row *rows, int n)
     printf("\n%-40s", "  later hop, Newton against Stronge");
     for (int i = 0; i < n; ++i) {
         const double a = rows[i].full.later_hop_m, b = rows[i].newton.later_hop_m;
-        if (a > 0.0) printf(" %+13.1f%%", 100.0 * (b - a) / a);
+        /* Rounded to the printed 0.1 % first, so that a tiny negative is not "-0.0". */
+        if (a > 0.0) printf(" %+13.1f%%", round(1000.0 * (b - a) / a) / 10.0 + 0.0);
         else printf(" %14s", "-");
     }
     printf("\n%-40s", "  impacts that gained energy, Newton");
