@@ -35,6 +35,15 @@ extern "C" {
 #define JC_VERSION_PATCH 0
 #define JC_VERSION_STRING "0.1.0"
 
+/* Marks the documented API: the shared library is built with hidden
+ * visibility, so these are its only exported symbols (tests/test_exports.sh
+ * checks the list against this header). */
+#if defined(__GNUC__)
+#define JC_API __attribute__((visibility("default")))
+#else
+#define JC_API
+#endif
+
 /* Status codes returned by every fallible function. */
 enum {
     JC_OK = 0,
@@ -46,10 +55,10 @@ enum {
 };
 
 /* The library's version string, for callers linked against a shared build. */
-const char *jc_version(void);
+JC_API const char *jc_version(void);
 
 /* Short text for a status code ("ok", "invalid input", …). */
-const char *jc_status_text(int status);
+JC_API const char *jc_status_text(int status);
 
 /* ------------------------------------------------------------------------ */
 /* Body: a rigid cylinder built from parts (src/body.c)                      */
@@ -94,11 +103,11 @@ typedef struct {
 } jc_Body;
 
 /* Name of a part kind: "disc", "hoop", "rod", "point". */
-const char *jc_part_kind_name(jc_PartKind kind);
+JC_API const char *jc_part_kind_name(jc_PartKind kind);
 
 /* Mass properties of a body. Checks every part: finite numbers, masses >= 0,
  * total > 0, radii in range, every part inside the rim. */
-int jc_body_compute(const jc_BodyDef *def, jc_Body *out, char *err, size_t err_len);
+JC_API int jc_body_compute(const jc_BodyDef *def, jc_Body *out, char *err, size_t err_len);
 
 /* ------------------------------------------------------------------------ */
 /* Setup: body + incline + contact + start (src/setup.c)                     */
@@ -114,9 +123,9 @@ typedef enum {
 } jc_ImpactLaw;
 
 /* "stronge", "poisson", "newton". */
-const char *jc_impact_law_name(jc_ImpactLaw law);
+JC_API const char *jc_impact_law_name(jc_ImpactLaw law);
 /* The law of a name; JC_EINVAL for an unknown name. */
-int jc_impact_law_parse(const char *name, jc_ImpactLaw *out);
+JC_API int jc_impact_law_parse(const char *name, jc_ImpactLaw *out);
 
 typedef struct {
     jc_BodyDef body;
@@ -154,20 +163,20 @@ typedef struct {
 /* The paper's experiment: Styrofoam disc (r 10.0 cm, 34.2 g) with a brass rod
  * (32.1 g, diameter 9.50 mm) at 5.50 cm, g 9.78 m/s^2, ramp 3.20 m, at rest
  * with the CM on the outward normal, on a 30 degree incline. */
-jc_Setup jc_paper_setup(void);
+JC_API jc_Setup jc_paper_setup(void);
 
 /* A built-in setup by name. Names: see jc_preset_name(). */
-int jc_preset_setup(const char *name, jc_Setup *out, char *err, size_t err_len);
+JC_API int jc_preset_setup(const char *name, jc_Setup *out, char *err, size_t err_len);
 
 /* The i-th preset's name and one-line description; NULL past the end. */
-const char *jc_preset_name(int i);
-const char *jc_preset_description(int i);
+JC_API const char *jc_preset_name(int i);
+JC_API const char *jc_preset_description(int i);
 
 /* Whether a setup has any air or rolling resistance switched on. */
-int jc_setup_has_resistance(const jc_Setup *setup);
+JC_API int jc_setup_has_resistance(const jc_Setup *setup);
 
 /* Checks every field; the message names the field, its value and the range. */
-int jc_setup_validate(const jc_Setup *setup, char *err, size_t err_len);
+JC_API int jc_setup_validate(const jc_Setup *setup, char *err, size_t err_len);
 
 /* ------------------------------------------------------------------------ */
 /* Model: the immutable, validated, precomputed form of a setup (src/model.c) */
@@ -203,7 +212,7 @@ typedef struct {
 } jc_Model;
 
 /* Validates the setup and precomputes everything the models read. */
-int jc_model_init(jc_Model *model, const jc_Setup *setup, char *err, size_t err_len);
+JC_API int jc_model_init(jc_Model *model, const jc_Setup *setup, char *err, size_t err_len);
 
 /* ------------------------------------------------------------------------ */
 /* The paper's model: Eq. 9 as printed (src/paper_model.c)                   */
@@ -232,15 +241,15 @@ typedef struct {
 } jc_PaperTableRow;
 
 /* The rows of Table 1 (15, 30, 45 degrees); returns their count. */
-int jc_paper_table(const jc_PaperTableRow **rows);
+JC_API int jc_paper_table(const jc_PaperTableRow **rows);
 
 /* Both sides of Eq. 9: th'^2/g (Eqs. 1, 5, 6) and cos(alpha)/(d cos th).
  * The model always starts at th = 0 at rest, as the paper assumes. */
-double jc_paper_lhs(const jc_Model *model, double theta_rad);
-double jc_paper_rhs(const jc_Model *model, double theta_rad);
+JC_API double jc_paper_lhs(const jc_Model *model, double theta_rad);
+JC_API double jc_paper_rhs(const jc_Model *model, double theta_rad);
 
 /* Every intersection of the two sides with cos th > 0, th in (0, r-ramp end]. */
-int jc_paper_solve(const jc_Model *model, jc_PaperResult *out, char *err, size_t err_len);
+JC_API int jc_paper_solve(const jc_Model *model, jc_PaperResult *out, char *err, size_t err_len);
 
 /* ------------------------------------------------------------------------ */
 /* The exact rolling model: closed form while rolling (src/rolling.c)        */
@@ -259,7 +268,7 @@ typedef struct {
 /* State on the rolling solution at th (w from the energy integral, taken
  * with the sign of omega0, or of the initial th'' when omega0 = 0).
  * JC_EINVAL if th is out of reach (w^2 < 0 there). */
-int jc_rolling_state(const jc_Model *model, double theta_rad, jc_RollState *out,
+JC_API int jc_rolling_state(const jc_Model *model, double theta_rad, jc_RollState *out,
                      char *err, size_t err_len);
 
 typedef struct {
@@ -286,12 +295,12 @@ typedef struct {
     double end_x_m;
 } jc_RollingResult;
 
-const char *jc_roll_end_name(jc_RollEnd end);
+JC_API const char *jc_roll_end_name(jc_RollEnd end);
 
 /* Follows the rolling solution from the start; finds the first N = 0 and the
  * first slip onset, each to ~1e-12 rad, by a search that cannot step over a
  * root window. */
-int jc_rolling_predict(const jc_Model *model, jc_RollingResult *out, char *err, size_t err_len);
+JC_API int jc_rolling_predict(const jc_Model *model, jc_RollingResult *out, char *err, size_t err_len);
 
 /* ------------------------------------------------------------------------ */
 /* The full motion: rolling, sliding, flight, impacts (src/simulate.c)        */
@@ -389,8 +398,8 @@ typedef struct {
     double contact_height_m;
 } jc_SimOptions;
 
-jc_SimOptions jc_default_sim_options(void);
-int jc_sim_options_validate(const jc_SimOptions *o, char *err, size_t err_len);
+JC_API jc_SimOptions jc_default_sim_options(void);
+JC_API int jc_sim_options_validate(const jc_SimOptions *o, char *err, size_t err_len);
 
 typedef struct {
     jc_Event *events;
@@ -417,18 +426,18 @@ typedef struct {
     double rocking_period_s;
 } jc_Run;
 
-const char *jc_mode_name(jc_Mode mode);
-const char *jc_event_name(jc_EventKind kind);
-const char *jc_termination_name(jc_Termination t);
+JC_API const char *jc_mode_name(jc_Mode mode);
+JC_API const char *jc_event_name(jc_EventKind kind);
+JC_API const char *jc_termination_name(jc_Termination t);
 
 /* Simulates the setup from its start until a termination condition, keeping
  * every event and sample in memory (out->events, out->samples): for runs of
  * moderate length. *out is owned by the caller: free it with jc_run_free,
  * also after errors. The same as jc_simulate_stream with a recorder that
  * appends to the two arrays. */
-int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out,
+JC_API int jc_simulate(const jc_Model *model, const jc_SimOptions *options, jc_Run *out,
                 char *err, size_t err_len);
-void jc_run_free(jc_Run *run);
+JC_API void jc_run_free(jc_Run *run);
 
 /* Streaming: the simulation pushes each event and each trajectory sample to
  * a recorder as soon as it is complete, so memory does not grow with the
@@ -453,12 +462,12 @@ typedef struct {
  * out->events and out->samples stay NULL, out->event_count and
  * out->sample_count count what was pushed, and every other field of *out is
  * set as by jc_simulate (identical results). */
-int jc_simulate_stream(const jc_Model *model, const jc_SimOptions *options, const jc_Recorder *rec,
+JC_API int jc_simulate_stream(const jc_Model *model, const jc_SimOptions *options, const jc_Recorder *rec,
                        jc_Run *out, char *err, size_t err_len);
 /* The recorder jc_simulate uses: it appends to arrays->events and
  * arrays->samples (and their counts), which start zeroed and are freed with
  * jc_run_free. Wrap it to add checks of your own (a stop request). */
-jc_Recorder jc_run_recorder(jc_Run *arrays);
+JC_API jc_Recorder jc_run_recorder(jc_Run *arrays);
 
 /* What a run amounts to: its hops. A hop starts at a lift-off; bounces
  * continue it. */
@@ -472,15 +481,15 @@ typedef struct {
     jc_State first_liftoff_state; /* the state at the first lift-off (zero if none) */
 } jc_RunSummary;
 
-void jc_run_summarize(const jc_Run *run, jc_RunSummary *out);
+JC_API void jc_run_summarize(const jc_Run *run, jc_RunSummary *out);
 /* The same accumulated event by event, without the array (streaming):
  * jc_summary_init, then jc_summary_add for each event with its index. */
-void jc_summary_init(jc_RunSummary *out);
-void jc_summary_add(jc_RunSummary *out, const jc_Event *e, int index);
+JC_API void jc_summary_init(jc_RunSummary *out);
+JC_API void jc_summary_add(jc_RunSummary *out, const jc_Event *e, int index);
 
 /* Energies of a state (potential relative to the setup's start). */
-double jc_kinetic_energy(const jc_Model *model, const jc_State *s);
-double jc_potential_energy(const jc_Model *model, const jc_State *s);
+JC_API double jc_kinetic_energy(const jc_Model *model, const jc_State *s);
+JC_API double jc_potential_energy(const jc_Model *model, const jc_State *s);
 
 #ifdef __cplusplus
 }
