@@ -516,16 +516,19 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
  * det K / K_nn with K of the impact law (physics.md §4). */
 static double tangential_compliance(const jc_Model *m, double th)
 {
-    const double M = m->body.mass_kg, ig = m->body.inertia_g_kgm2;
-    const double d = m->body.cm_offset_m, r = m->body.radius_m;
-    const double rt = -d * sin(th), rn = -(r + d * cos(th));
-    const double ktt = 1.0 / M + rn * rn / ig, knn = 1.0 / M + rt * rt / ig, ktn = -rt * rn / ig;
-    return (ktt * knn - ktn * ktn) / knn;
+    const jc_State at = {.theta_rad = th, .y_m = m->body.radius_m};
+    jc_ImpactInput k;
+    jc_impact_input(m, &at, &k);
+    return (k.ktt * k.knn - k.ktn * k.ktn) / k.knn;
 }
 
 /* Samples of the excess over the cone along an excursion: enough to find
  * its peak to a few per cent, which is all a scale estimate needs. */
 #define EXCURSION_SAMPLES 32
+/* m of rolling (contact point travel): an excursion beyond the cone longer
+ * than this is not taken for a micro-slip (the rocking hoop's last ones
+ * span 0.2 mm). */
+#define MICRO_SPAN_M 1e-3
 
 /* Whether the excursion of the rolling path beyond the friction cone that
  * starts at `at` on slip function k is a micro-slip: one whose slip scale,
@@ -541,12 +544,19 @@ static int micro_excursion(jc_Sim *sim, const roll_path *path, const jc_State *a
     *micro = 0;
     if (!(sim->opt->contact_height_m > 0.0)) return JC_OK;
     const jc_TrigLin *g = k == RW_SLIP_POS ? &path->slip_pos : &path->slip_neg;
+    /* Only an excursion within MICRO_SPAN_M of rolling is a candidate: this
+     * keeps the look-ahead short on the common path (a real slip), and can
+     * only err toward the exact Coulomb model (a slip). */
+    const double span = MICRO_SPAN_M / m->body.radius_m;
+    const double th_to = th_lim > at->theta_rad ? fmin(th_lim, at->theta_rad + span)
+                                                : fmax(th_lim, at->theta_rad - span);
     /* Beyond the cone -g > 0: its next zero is where the path re-enters it. */
     jc_ScanSet set = {2, {&path->energy, g}, {1, -1}};
     jc_ScanHit hit;
-    int st = jc_scan_first(&set, at->theta_rad, th_lim, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
+    int st = jc_scan_first(&set, at->theta_rad, th_to, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
     if (st != JC_OK) return st;
-    /* Off the ramp, or no excursion at all (a touch of the cone's edge). */
+    /* Longer than the span, off the ramp, or no excursion at all (a touch of
+     * the cone's edge). */
     if (hit.index < 0 || fabs(hit.theta - at->theta_rad) <= ROLL_ROOT_TOL_RAD) return JC_OK;
     double dt;
     if ((st = roll_time(sim, path, at->theta_rad, start_p(m, at), hit.theta, &dt, err, err_len)) != JC_OK)
