@@ -14,11 +14,12 @@
 double jc_free_gap_accel(const jc_Model *m, const jc_State *s)
 {
     const double d = m->body.cm_offset_m, th = s->theta_rad, w = s->omega_radps;
-    double acc = d * w * w * cos(th) - m->setup.gravity_mps2 * m->cos_incline;
+    const double sn = sin(th), cs = cos(th);
+    double acc = d * w * w * cs - m->setup.gravity_mps2 * m->cos_incline;
     if (jc_model_has_resistance(m)) {
         jc_Loads l;
-        jc_loads_at(m, th, s->vx_mps, s->vy_mps, w, &l);
-        acc += l.fy_N / m->body.mass_kg + d * sin(th) * l.torque_Nm / m->body.inertia_g_kgm2;
+        jc_loads_at(m, sn, cs, s->vx_mps, s->vy_mps, w, &l);
+        acc += l.fy_N / m->body.mass_kg + d * sn * l.torque_Nm / m->body.inertia_g_kgm2;
     }
     return acc;
 }

@@ -1,19 +1,20 @@
 /*
- * A phase integrated with GSL's rk8pd, ended by the first of its events.
+ * A phase integrated with DOP853 (dop853.c), ended by the first of its events.
  *
  * Every phase that has no closed form (sliding; rolling and flight when air
  * or rolling resistance is on) supplies a right-hand side and event
- * functions, positive while the phase goes on. After each step an event is found by a sign change, or by a
- * dip below zero between two positive ends (the cubic Hermite interpolant of
- * the event function, checked against a real step); steps turn the body by
- * at most MAX_ROTATION_PER_STEP, the scale on which event functions vary.
- * The event is then located by a safeguarded Newton iteration on single
- * steps of the same method from the step's start, so the event state has
- * the integrator's accuracy.
+ * functions, positive while the phase goes on. After each accepted step an
+ * event is found by a sign change at the step's end, or by a dip below zero
+ * between two positive ends (the cubic Hermite interpolant of the event
+ * function, confirmed on the step's continuous extension); steps turn the
+ * body by at most MAX_ROTATION_PER_STEP, the scale on which event functions
+ * vary. The event is then located on the continuous extension (no
+ * re-stepping) and the state there is made by one real step of the method
+ * from the step's start, checked to be past the event: the event state has
+ * the integrator's own accuracy.
  */
 #include "internal.h"
 
-#include <gsl/gsl_errno.h>
 #include <math.h>
 
 /* rad: measured, results are the same to 12 digits for caps 0.1 to 1 rad. */
@@ -22,6 +23,8 @@
  * per-phase bound (a flight's apexes, rolling turns, many events) would
  * multiply it into hours. A run that reaches it ends with step_limit. */
 #define ODE_MAX_STEPS 10000000L
+/* s: the first step of a run; later phases start from the last accepted step. */
+#define ODE_FIRST_STEP_S 1e-4
 
 void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM])
 {
@@ -35,18 +38,13 @@ void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM])
     y[JC_Y_FRICTION] = sim->friction_loss_J;
     y[JC_Y_AIR] = sim->air_loss_J;
     y[JC_Y_RR] = sim->rr_loss_J;
+    y[JC_Y_COS] = cos(s->theta_rad);
+    y[JC_Y_SIN] = sin(s->theta_rad);
 }
 
 void jc_y_to_state(const double y[JC_Y_DIM], double t, jc_State *s)
 {
     *s = (jc_State){t, y[JC_Y_X], y[JC_Y_Y], y[JC_Y_VX], y[JC_Y_VY], y[JC_Y_TH], y[JC_Y_W]};
-}
-
-static int all_finite(const double y[JC_Y_DIM])
-{
-    for (int i = 0; i < JC_Y_DIM; ++i)
-        if (!isfinite(y[i])) return 0;
-    return 1;
 }
 
 static void y_to_sim(jc_Sim *sim, const double y[JC_Y_DIM], double t)
@@ -57,14 +55,14 @@ static void y_to_sim(jc_Sim *sim, const double y[JC_Y_DIM], double t)
     sim->rr_loss_J = y[JC_Y_RR];
 }
 
-/* Event values and their rates along the flow, d/dt ev(y(t)) = grad ev . f(y),
+/* Event values and their rates along the flow, d/dt ev(y(t)) = grad ev . f,
  * by a central difference over a time step far below the rotation period:
- * accurate to ~1e-9, ample for Newton's iteration and the dip check. */
-static void eval_events(const jc_OdePhase *p, const double y[JC_Y_DIM], double ev[], double dev[])
+ * accurate to ~1e-9, ample for the dip check. f = f(y) is given. */
+static void eval_events(const jc_OdePhase *p, const double y[JC_Y_DIM], const double f[JC_Y_DIM], double ev[],
+                        double dev[])
 {
     p->events(p->ctx, y, ev);
-    double f[JC_Y_DIM], yp[JC_Y_DIM], ym[JC_Y_DIM], evp[JC_ODE_MAX_EVENTS], evm[JC_ODE_MAX_EVENTS];
-    p->rhs(0.0, y, f, p->ctx);
+    double yp[JC_Y_DIM], ym[JC_Y_DIM], evp[JC_ODE_MAX_EVENTS], evm[JC_ODE_MAX_EVENTS];
     const double h = 1e-6 / fmax(fabs(y[JC_Y_W]), 1.0);
     for (int i = 0; i < JC_Y_DIM; ++i) {
         yp[i] = y[i] + h * f[i];
@@ -75,70 +73,41 @@ static void eval_events(const jc_OdePhase *p, const double y[JC_Y_DIM], double e
     for (int k = 0; k < p->event_count; ++k) dev[k] = (evp[k] - evm[k]) / (2.0 * h);
 }
 
-typedef struct {
-    jc_Sim *sim;
-    const jc_OdePhase *p;
-    const gsl_odeiv2_system *sys;
-    double t0;
-    const double *y0;
-    int which;
-} event_at;
-
-/* y at t0 + tau, by one step of the integrator from (t0, y0). */
-static void step_to(const event_at *ea, double tau, double y[JC_Y_DIM])
+/* Event k on the continuous extension at t0 + tau. */
+static double dense_event(const jc_Sim *sim, const jc_OdePhase *p, int k, double tau)
 {
-    double yerr[JC_Y_DIM];
-    for (int i = 0; i < JC_Y_DIM; ++i) y[i] = ea->y0[i];
-    if (tau > 0.0) gsl_odeiv2_step_apply(ea->sim->ode_step, ea->t0, tau, y, yerr, NULL, NULL, ea->sys);
+    double y[JC_Y_DIM], ev[JC_ODE_MAX_EVENTS];
+    jc_dop853_eval(&sim->dop, tau, y);
+    p->events(p->ctx, y, ev);
+    return ev[k];
 }
 
-static void event_at_tau(const event_at *ea, double tau, double *f, double *df)
+/* Root of event k on the continuous extension in (0, hi], where it is > 0
+ * (or 0) at 0 and <= 0 at hi: the Illinois variant of regula falsi, which
+ * keeps the bracket and converges superlinearly. Returns the bracket's
+ * right end, a time at which the event has happened on the interpolant
+ * (never 0: a phase always advances). */
+static double locate_dense(const jc_Sim *sim, const jc_OdePhase *p, int k, double f0, double hi, double tol)
 {
-    double y[JC_Y_DIM], ev[JC_ODE_MAX_EVENTS], dev[JC_ODE_MAX_EVENTS];
-    step_to(ea, tau, y);
-    if (df) {
-        eval_events(ea->p, y, ev, dev);
-        *df = dev[ea->which];
-    } else {
-        ea->p->events(ea->p->ctx, y, ev);
-    }
-    *f = ev[ea->which];
-}
-
-/* Root in (0, hi] of an event positive at 0 (value f0, rate d0) and <= 0 at
- * hi. Newton with the event's rate, kept inside the bracket (bisection
- * when it would leave it): measured, 3 to 4 integrator steps per event
- * against 10 to 14 for GSL's Brent solver, each step being 13 stages. */
-static double locate(event_at *ea, double hi, double f0, double d0)
-{
-    double lo = 0.0, f_hi;
-    event_at_tau(ea, hi, &f_hi, NULL);
-    if (f_hi == 0.0) return hi;
-    double tau = hi * f0 / (f0 - f_hi);
-    if (d0 < 0.0 && -f0 / d0 < tau) tau = -f0 / d0;
-    /* An event at exactly 0 where the step starts (the apex event of a
-     * flight that starts at vy = 0) would be "found" there again and again
-     * without time advancing (found by fuzzing: 10^5 apexes at t = 0 and a
-     * step_limit). Its root at the start is not the crossing: search inside. */
-    if (!(tau > 0.0 && tau < hi)) tau = 0.5 * hi;
-    const double tol = 0.5 * ea->sim->opt->event_tol_s;
-    for (int it = 0; it < 60 && hi - lo > tol; ++it) {
-        double f, df;
-        event_at_tau(ea, tau, &f, &df);
-        if (f == 0.0) return tau;
-        if (f > 0.0) lo = tau;
-        else hi = tau;
-        double next = df != 0.0 ? tau - f / df : 0.5 * (lo + hi);
-        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        if (fabs(next - tau) < tol) {
-            /* Converged: return a time at which the event has happened. */
-            const double t_hit = fmin(next + tol, hi);
-            event_at_tau(ea, t_hit, &f, NULL);
-            return f <= 0.0 ? t_hit : hi;
+    double a = 0.0, fa = fmax(f0, 0.0), b = hi, fb = dense_event(sim, p, k, hi);
+    int side = 0;
+    for (int it = 0; it < 200 && b - a > tol && fb < 0.0; ++it) {
+        double c = fa - fb != 0.0 ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
+        if (!(c > a && c < b)) c = 0.5 * (a + b);
+        const double fc = dense_event(sim, p, k, c);
+        if (fc > 0.0) {
+            a = c;
+            fa = fc;
+            if (side == 1) fb *= 0.5;
+            side = 1;
+        } else {
+            b = c;
+            fb = fc;
+            if (side == -1) fa *= 0.5;
+            side = -1;
         }
-        tau = next;
     }
-    return hi; /* the event has happened there: its function is <= 0 */
+    return b;
 }
 
 /* Where the cubic Hermite interpolant of a positive-ended event function dips
@@ -155,102 +124,132 @@ static double hermite_min_tau(double f0, double d0, double f1, double d1, double
     return best < 0.5 * fmin(f0, f1) ? best_tau : -1.0;
 }
 
-static int emit_samples(event_at *ea, double t_end)
+/* The earliest event inside the accepted step (continuous extension ready
+ * when needed), its time after the step's start in *tau_hit; -1 for none. */
+static int first_event_in_step(jc_Sim *sim, const jc_OdePhase *p, const double ev0[], const double dev0[],
+                               const double ev1[], const double dev1[], double *tau_hit, int *st)
 {
-    double ts;
-    while (jc_sim_sample_due(ea->sim, t_end, &ts)) {
-        double y[JC_Y_DIM];
-        step_to(ea, ts - ea->t0, y);
-        int st = ea->p->sample(ea->sim, ea->p->ctx, ts, y);
-        if (st != JC_OK) return st;
-    }
-    return JC_OK;
-}
-
-/* The earliest event inside the step just taken from (t0, y0) to t. */
-static int first_event_in_step(event_at *ea, double h, const double ev0[], const double dev0[],
-                               const double ev1[], const double dev1[], double *tau_hit)
-{
+    const double h = sim->dop.h, tol = 0.5 * sim->opt->event_tol_s;
     int which = -1;
     *tau_hit = INFINITY;
-    for (int k = 0; k < ea->p->event_count; ++k) {
-        ea->which = k;
+    for (int k = 0; k < p->event_count; ++k) {
         double hi = -1.0;
-        if (ev1[k] <= 0.0) {
-            hi = h;
-        } else if (dev0[k] < 0.0 && dev1[k] > 0.0) {
-            const double tau = hermite_min_tau(ev0[k], dev0[k], ev1[k], dev1[k], h);
-            double f;
-            if (tau > 0.0) {
-                event_at_tau(ea, tau, &f, NULL);
-                if (f <= 0.0) hi = tau;
-            }
-        }
+        const double dip = ev1[k] > 0.0 && dev0[k] < 0.0 && dev1[k] > 0.0
+                               ? hermite_min_tau(ev0[k], dev0[k], ev1[k], dev1[k], h) : -1.0;
+        if (ev1[k] > 0.0 && !(dip > 0.0)) continue;
+        if ((*st = jc_dop853_dense(&sim->dop, p->rhs, p->ctx)) != 0) return -1;
+        if (ev1[k] <= 0.0) hi = h;
+        else if (dense_event(sim, p, k, dip) <= 0.0) hi = dip;
         if (hi > 0.0) {
-            const double tau = locate(ea, hi, ev0[k], dev0[k]);
+            const double tau = locate_dense(sim, p, k, ev0[k], hi, tol);
             if (tau < *tau_hit) { *tau_hit = tau; which = k; }
         }
     }
     return which;
 }
 
+/* The state at the located event by a real step from the step's start, moved
+ * on by the event's rate until the event has happened on it (as it has on
+ * the interpolant): the event state carries the method's accuracy, not the
+ * interpolant's. Returns the step taken (no longer than the accepted one). */
+static double event_state(jc_Sim *sim, const jc_OdePhase *p, int k, double tau, double y[JC_Y_DIM])
+{
+    jc_Dop853 *d = &sim->dop;
+    const double h_acc = d->h, tol = sim->opt->event_tol_s;
+    double t_try = fmin(tau + 0.5 * tol, h_acc);
+    for (int attempt = 0;; ++attempt) {
+        double ev[JC_ODE_MAX_EVENTS], dev[JC_ODE_MAX_EVENTS];
+        if (jc_dop853_step(d, p->rhs, p->ctx, t_try) != 0) {
+            /* Not finite at a time the accepted step passed: keep the interpolant's. */
+            jc_dop853_eval(d, tau, y);
+            return tau;
+        }
+        for (int i = 0; i < JC_Y_DIM; ++i) y[i] = d->y1[i];
+        if (attempt == 3 || t_try >= h_acc) return t_try;
+        eval_events(p, y, d->f1, ev, dev);
+        if (ev[k] <= 0.0) return t_try;
+        const double push = dev[k] < 0.0 ? -ev[k] / dev[k] : tol;
+        t_try = fmin(t_try + fmax(push, 0.5 * tol), h_acc);
+    }
+}
+
+static int emit_samples(jc_Sim *sim, const jc_OdePhase *p, double t_end)
+{
+    double ts;
+    while (jc_sim_sample_due(sim, t_end, &ts)) {
+        if (jc_dop853_dense(&sim->dop, p->rhs, p->ctx) != 0) return JC_ENUMERIC;
+        double y[JC_Y_DIM];
+        jc_dop853_eval(&sim->dop, ts - sim->dop.t0, y);
+        const int st = p->sample(sim, p->ctx, ts, y);
+        if (st != JC_OK) return st;
+    }
+    return JC_OK;
+}
+
+static int sample_failure(int st, char *err, size_t err_len)
+{
+    return st == JC_ENUMERIC ? jc_fail(err, err_len, st, "the integrator's right-hand side failed")
+                             : jc_fail(err, err_len, st, "out of memory for samples");
+}
+
 int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t err_len)
 {
-    gsl_odeiv2_system sys = {p->rhs, NULL, JC_Y_DIM, p->ctx};
-    double y[JC_Y_DIM], t = sim->s.t_s, h = 1e-4;
+    jc_Dop853 *d = &sim->dop;
+    double y[JC_Y_DIM];
     jc_state_to_y(sim, y);
     const double t_max = sim->opt->t_max_s;
-    gsl_odeiv2_evolve_reset(sim->ode_evolve);
-    gsl_odeiv2_step_reset(sim->ode_step);
+    jc_dop853_init(d, JC_Y_DIM, sim->opt->ode_rtol, sim->opt->ode_atol);
+    if (jc_dop853_start(d, p->rhs, p->ctx, sim->s.t_s, y) != 0)
+        return jc_fail(err, err_len, JC_ENUMERIC, "integration failed at t = %.9g s", sim->s.t_s);
+    double h = sim->ode_h_s > 0.0 ? sim->ode_h_s : ODE_FIRST_STEP_S;
     double ev0[JC_ODE_MAX_EVENTS], dev0[JC_ODE_MAX_EVENTS];
-    eval_events(p, y, ev0, dev0);
+    eval_events(p, d->y0, d->f0, ev0, dev0);
     *which = JC_ODE_TIME_LIMIT;
     while (sim->run->ode_steps < ODE_MAX_STEPS) {
-        if (t >= t_max) {
-            y_to_sim(sim, y, t);
+        const double t0 = d->t0;
+        if (t0 >= t_max) {
+            y_to_sim(sim, d->y0, t0);
             return JC_OK;
         }
-        double y0[JC_Y_DIM];
-        for (int i = 0; i < JC_Y_DIM; ++i) y0[i] = y[i];
-        const double t0 = t;
-        const double h_rot = MAX_ROTATION_PER_STEP / fmax(fabs(y[JC_Y_W]), 1e-3);
-        if (h > h_rot) h = h_rot;
-        int st = gsl_odeiv2_evolve_apply(sim->ode_evolve, sim->ode_control, sim->ode_step, &sys, &t, t_max, &h, y);
+        const double h_rot = MAX_ROTATION_PER_STEP / fmax(fabs(d->y0[JC_Y_W]), 1e-3);
+        h = fmin(h, h_rot);
+        const int last = t0 + h >= t_max;
+        if (last) h = t_max - t0;
+        double h_next;
+        const double e = jc_dop853_try(d, p->rhs, p->ctx, h, &h_next);
         sim->run->ode_steps++;
-        if (st != GSL_SUCCESS)
-            return jc_fail(err, err_len, JC_ENUMERIC, "integration failed at t = %.9g s (%s)", t0, gsl_strerror(st));
-        if (!all_finite(y)) {
-            /* GSL accepts a step whose error estimate is NaN (a stage that
-             * overflowed: a stiff spin drag on a tiny inertia, found by
-             * fuzzing). Take it back and retry a tenth as long; a step
-             * that cannot be made finite is a reported failure. */
-            const double tried = t - t0;
-            for (int i = 0; i < JC_Y_DIM; ++i) y[i] = y0[i];
-            t = t0;
-            h = 0.1 * tried;
-            gsl_odeiv2_evolve_reset(sim->ode_evolve);
-            if (!(h > 1e-12 * fmax(fabs(t0), 1e-3)))
+        if (!(e <= 1.0)) {
+            /* Rejected, or a stage that overflowed (a stiff spin drag on a
+             * tiny inertia, found by fuzzing): retry shorter; a step that
+             * cannot be made finite is a reported failure. */
+            if (!(h_next > 1e-12 * fmax(fabs(t0), 1e-3)))
                 return jc_fail(err, err_len, JC_ENUMERIC,
                                "integration diverged at t = %.9g s (no finite step; the setup is too stiff)", t0);
+            h = h_next;
             continue;
         }
+        if (!last) sim->ode_h_s = h; /* a step cut by the time limit says nothing of the next phase */
         double ev1[JC_ODE_MAX_EVENTS], dev1[JC_ODE_MAX_EVENTS];
-        eval_events(p, y, ev1, dev1);
-        event_at ea = {sim, p, &sys, t0, y0, 0};
+        eval_events(p, d->y1, d->f1, ev1, dev1);
         double tau;
-        const int k = first_event_in_step(&ea, t - t0, ev0, dev0, ev1, dev1, &tau);
+        int st = 0;
+        const int k = first_event_in_step(sim, p, ev0, dev0, ev1, dev1, &tau, &st);
+        if (st != 0) return jc_fail(err, err_len, JC_ENUMERIC, "integration failed at t = %.9g s", t0);
         if (k >= 0) {
+            if ((st = emit_samples(sim, p, t0 + tau)) != JC_OK) return sample_failure(st, err, err_len);
             double yh[JC_Y_DIM];
-            step_to(&ea, tau, yh);
-            if ((st = emit_samples(&ea, t0 + tau)) != JC_OK) return jc_fail(err, err_len, st, "out of memory for samples");
-            y_to_sim(sim, yh, t0 + tau);
+            const double t_event = t0 + event_state(sim, p, k, tau, yh);
+            y_to_sim(sim, yh, t_event);
             *which = k;
             return JC_OK;
         }
-        if ((st = emit_samples(&ea, t)) != JC_OK) return jc_fail(err, err_len, st, "out of memory for samples");
+        if ((st = emit_samples(sim, p, t0 + d->h)) != JC_OK) return sample_failure(st, err, err_len);
+        jc_dop853_advance(d);
+        if (last) d->t0 = t_max;
         for (int i = 0; i < p->event_count; ++i) { ev0[i] = ev1[i]; dev0[i] = dev1[i]; }
+        h = h_next;
     }
-    y_to_sim(sim, y, t);
+    y_to_sim(sim, d->y0, d->t0);
     *which = JC_ODE_STEP_LIMIT;
     return JC_OK;
 }

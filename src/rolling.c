@@ -23,11 +23,14 @@ const char *jc_roll_end_name(jc_RollEnd end)
     return "unknown";
 }
 
-static double inertia_p(const jc_Model *m, double th)
+/* I_P at th given by its cosine. */
+static double inertia_p_c(const jc_Model *m, double c)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    return m->body.inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * cos(th);
+    return m->body.inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * c;
 }
+
+static double inertia_p(const jc_Model *m, double th) { return inertia_p_c(m, cos(th)); }
 
 static double potential(const jc_Model *m, double th)
 {
@@ -36,13 +39,13 @@ static double potential(const jc_Model *m, double th)
            ((r + d * cos(th)) * m->cos_incline - (r * th + d * sin(th)) * m->sin_incline);
 }
 
-/* th'' for a given w^2 (physics.md §2). */
-static double angular_accel(const jc_Model *m, double th, double w2)
+/* th'' for a given w^2 (physics.md §2), at th given by its sine and cosine. */
+static double angular_accel(const jc_Model *m, double s, double c, double w2)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2;
-    const double torque = M * g * ((r + d * cos(th)) * m->sin_incline + d * sin(th) * m->cos_incline);
-    return (torque + M * r * d * sin(th) * w2) / inertia_p(m, th);
+    const double torque = M * g * ((r + d * c) * m->sin_incline + d * s * m->cos_incline);
+    return (torque + M * r * d * s * w2) / inertia_p_c(m, c);
 }
 
 /* Direction of motion along th at the start; 0 if at rest in equilibrium. */
@@ -50,7 +53,7 @@ static int start_direction(const jc_Model *m)
 {
     const double w0 = m->setup.omega0_radps;
     if (w0 != 0.0) return w0 > 0.0 ? 1 : -1;
-    const double a0 = angular_accel(m, m->setup.theta0_rad, 0.0);
+    const double a0 = angular_accel(m, sin(m->setup.theta0_rad), cos(m->setup.theta0_rad), 0.0);
     return a0 > 0.0 ? 1 : (a0 < 0.0 ? -1 : 0);
 }
 
@@ -60,22 +63,21 @@ static int start_direction(const jc_Model *m)
  *                              + (r + d cos th)(M d sin th w^2 + M g sin a + Fx) + T,
  * which without loads is I_P th'' = M g Q + M r d sin th w^2 (physics.md §2).
  * Then F and N follow from Newton's law for G. */
-void jc_roll_accel(const jc_Model *m, double th, double w, const jc_Loads *l, double *thdd, double *normal,
+void jc_roll_accel(const jc_Model *m, double s, double c, double w, const jc_Loads *l, double *thdd, double *normal,
                    double *friction)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2, w2 = w * w;
-    const double s = sin(th), c = cos(th);
     if (!l) {
         /* The closed-form model's own expressions, kept exact for it. */
-        const double acc = angular_accel(m, th, w2);
+        const double acc = angular_accel(m, s, c, w2);
         *thdd = acc;
         *normal = M * (g * m->cos_incline - d * s * acc - d * c * w2);
         *friction = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline);
         return;
     }
     const double bs = -l->rr_torque_per_N, fx = l->fx_N, fy = l->fy_N;
-    const double ieff = inertia_p(m, th) - bs * M * d * s;
+    const double ieff = inertia_p_c(m, c) - bs * M * d * s;
     const double rhs = (d * s - bs) * (M * g * m->cos_incline - M * d * c * w2 - fy) +
                        (r + d * c) * (M * d * s * w2 + M * g * m->sin_incline + fx) + l->torque_Nm;
     const double acc = rhs / ieff;
@@ -86,22 +88,28 @@ void jc_roll_accel(const jc_Model *m, double th, double w, const jc_Loads *l, do
 
 void jc_roll_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction)
 {
-    jc_roll_accel(m, th, w, NULL, thdd, normal, friction);
+    jc_roll_accel(m, sin(th), cos(th), w, NULL, thdd, normal, friction);
 }
 
 void jc_roll_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
                 jc_Loads *loads)
 {
+    jc_roll_at_sc(m, sin(th), cos(th), w, dir, thdd, normal, friction, loads);
+}
+
+void jc_roll_at_sc(const jc_Model *m, double s, double c, double w, int dir, double *thdd, double *normal,
+                   double *friction, jc_Loads *loads)
+{
     if (!jc_model_has_resistance(m)) {
-        jc_roll_accel(m, th, w, NULL, thdd, normal, friction);
+        jc_roll_accel(m, s, c, w, NULL, thdd, normal, friction);
         if (loads) *loads = (jc_Loads){0};
         return;
     }
     jc_Loads l;
-    jc_loads_at(m, th, m->body.radius_m * w, 0.0, w, &l);
+    jc_loads_at(m, s, c, m->body.radius_m * w, 0.0, w, &l);
     /* At w = 0 rolling resistance opposes the direction about to be taken. */
     if (w == 0.0) l.rr_torque_per_N = -m->setup.rolling_resistance_m * dir;
-    jc_roll_accel(m, th, w, &l, thdd, normal, friction);
+    jc_roll_accel(m, s, c, w, &l, thdd, normal, friction);
     if (loads) *loads = l;
 }
 
@@ -227,35 +235,35 @@ static void roll_path_init(const jc_Model *m, double th, double w, roll_path *p)
     p->inertia = &m->inertia_p_poly;
 }
 
-/* U(a + delta) - U(a) without cancellation for small delta, which is passed
- * as itself (a + delta rounded back to delta would lose it near a):
- * cos(a+delta) - cos a = -2 sin(a + delta/2) sin(delta/2), likewise for sin. */
-static double potential_change(const jc_Model *m, double a, double delta)
-{
-    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    const double h = 0.5 * delta, c = a + h, sh = sin(h);
-    const double dcos = -2.0 * sin(c) * sh, dsin = 2.0 * cos(c) * sh;
-    return M * m->setup.gravity_mps2 * (d * m->cos_incline * dcos - m->sin_incline * (r * delta + d * dsin));
-}
-
 /* dt/du for th = anchor + sigma u^2: 2 u / |w(th)|, finite at a turning
  * point, with P = I_P w^2 taken from the anchor by the exact potential
- * change (near a turning point P itself is a small difference of large
- * numbers; this keeps the integrand accurate to rounding). */
+ * change U(anchor + delta) - U(anchor) (near a turning point P itself is a
+ * small difference of large numbers; this keeps the integrand accurate to
+ * rounding). The change is written without cancellation for small delta:
+ * cos(a + delta) - cos a = -2 sin(a + delta/2) sin(delta/2), likewise for
+ * sin; every angle is built from sin and cos of the anchor (kept) and of
+ * delta/2, one sincos per point (measured: the integrand with three sines
+ * and a trigonometric-polynomial I_P was 20 % of a run's time). */
 typedef struct {
     const jc_Model *m;
-    const roll_path *path;
     double anchor, sigma;
-    double p0, p1; /* P and sigma * P' at the anchor */
+    double sin_a, cos_a; /* of the anchor */
+    double p0, p1;       /* P and sigma * P' at the anchor */
 } time_integrand;
 
 static double dt_du(double u, void *params)
 {
     const time_integrand *ti = params;
-    const double delta = ti->sigma * u * u;
-    const double ip = jc_tl_value(ti->path->inertia, ti->anchor + delta);
+    const jc_Model *m = ti->m;
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    const double delta = ti->sigma * u * u, sh = sin(0.5 * delta), ch = cos(0.5 * delta);
+    const double s_mid = ti->sin_a * ch + ti->cos_a * sh, c_mid = ti->cos_a * ch - ti->sin_a * sh;
+    const double c_th = c_mid * ch - s_mid * sh; /* cos(anchor + delta) */
+    const double ip = inertia_p_c(m, c_th);
     if (u == 0.0) return ti->p0 > 0.0 || ti->p1 <= 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
-    const double p = ti->p0 - 2.0 * potential_change(ti->m, ti->anchor, delta);
+    const double dcos = -2.0 * s_mid * sh, dsin = 2.0 * c_mid * sh;
+    const double du = M * m->setup.gravity_mps2 * (d * m->cos_incline * dcos - m->sin_incline * (r * delta + d * dsin));
+    const double p = ti->p0 - 2.0 * du;
     return p > 0.0 ? 2.0 * u / sqrt(p / ip) : 0.0;
 }
 
@@ -279,7 +287,7 @@ static int roll_time(jc_Sim *sim, const roll_path *path, double th_a, double p_a
          * turning point up to rounding: take P = 0 there exactly. */
         double p0 = f[0];
         if (p0 <= 1e-12 * fabs(f[1]) * fabs(mid - ends[k])) p0 = 0.0;
-        time_integrand ti = {sim->m, path, ends[k], sigma, p0, sigma * f[1]};
+        time_integrand ti = {sim->m, ends[k], sigma, sin(ends[k]), cos(ends[k]), p0, sigma * f[1]};
         gsl_function fn = {dt_du, &ti};
         double part, abserr;
         int st = gsl_integration_qag(&fn, 0.0, sqrt(fabs(mid - ends[k])), 0.0, 1e-13, QUAD_LIMIT,
@@ -398,7 +406,7 @@ typedef struct {
 
 static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f, jc_Loads *l)
 {
-    jc_roll_at(c->m, y[JC_Y_TH], y[JC_Y_W], c->dir, thdd, n, f, l);
+    jc_roll_at_sc(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, thdd, n, f, l);
 }
 
 static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
@@ -418,6 +426,8 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     dydt[JC_Y_FRICTION] = 0.0;
     dydt[JC_Y_AIR] = l.air_power_W;
     dydt[JC_Y_RR] = -l.rr_torque_per_N * n * y[JC_Y_W];
+    dydt[JC_Y_COS] = -y[JC_Y_W] * y[JC_Y_SIN];
+    dydt[JC_Y_SIN] = y[JC_Y_W] * y[JC_Y_COS];
     return 0;
 }
 

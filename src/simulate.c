@@ -8,6 +8,7 @@
 
 #include <limits.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -500,18 +501,12 @@ static int run_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err,
 static int alloc_workspaces(jc_Sim *sim)
 {
     sim->quad = gsl_integration_workspace_alloc(200);
-    sim->ode_step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, JC_Y_DIM);
-    sim->ode_control = gsl_odeiv2_control_y_new(sim->opt->ode_atol, sim->opt->ode_rtol);
-    sim->ode_evolve = gsl_odeiv2_evolve_alloc(JC_Y_DIM);
-    return sim->quad && sim->ode_step && sim->ode_control && sim->ode_evolve ? JC_OK : JC_ENOMEM;
+    return sim->quad ? JC_OK : JC_ENOMEM;
 }
 
 static void free_workspaces(jc_Sim *sim)
 {
     if (sim->quad) gsl_integration_workspace_free(sim->quad);
-    if (sim->ode_step) gsl_odeiv2_step_free(sim->ode_step);
-    if (sim->ode_control) gsl_odeiv2_control_free(sim->ode_control);
-    if (sim->ode_evolve) gsl_odeiv2_evolve_free(sim->ode_evolve);
 }
 
 /* The mode machine proper. Returns a status; sets *stop when the run ended. */

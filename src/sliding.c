@@ -28,12 +28,11 @@
  * tests/sim/test_random_setups.c all close to 2e-10.) */
 #define PAINLEVE_D_MIN 1e-3
 
-void jc_slide_accel(const jc_Model *m, double th, double w, int dir, const jc_Loads *l, jc_SlideForces *f)
+void jc_slide_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l, jc_SlideForces *f)
 {
     const double M = m->body.mass_kg, ig = m->body.inertia_g_kgm2;
     const double r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2, mu = m->setup.mu_kinetic;
-    const double s = sin(th), c = cos(th);
     const double fx = l ? l->fx_N : 0.0, fy = l ? l->fy_N : 0.0, torque = l ? l->torque_Nm : 0.0;
     const double k = mu * dir * (r + d * c) + d * s + (l ? l->rr_torque_per_N : 0.0);
     f->denominator = 1.0 + M * d * s * k / ig;
@@ -45,27 +44,33 @@ void jc_slide_accel(const jc_Model *m, double th, double w, int dir, const jc_Lo
 
 void jc_slide_forces(const jc_Model *m, double th, double w, int dir, jc_SlideForces *f)
 {
-    jc_slide_accel(m, th, w, dir, NULL, f);
+    jc_slide_accel(m, sin(th), cos(th), w, dir, NULL, f);
 }
 
 /* Sliding at state (th, w, vx): the loads there (none when switched off). */
 void jc_slide_at(const jc_Model *m, const jc_State *s, int dir, jc_SlideForces *f, jc_Loads *loads)
 {
     jc_Loads l = {0};
-    if (jc_model_has_resistance(m)) jc_loads_at(m, s->theta_rad, s->vx_mps, 0.0, s->omega_radps, &l);
-    jc_slide_accel(m, s->theta_rad, s->omega_radps, dir, &l, f);
+    const double sn = sin(s->theta_rad), cs = cos(s->theta_rad);
+    if (jc_model_has_resistance(m)) jc_loads_at(m, sn, cs, s->vx_mps, 0.0, s->omega_radps, &l);
+    jc_slide_accel(m, sn, cs, s->omega_radps, dir, &l, f);
     if (loads) *loads = l;
 }
 
 typedef struct {
     const jc_Model *m;
     int dir;
+    int loaded; /* air or rolling resistance on */
 } slide_ctx;
 
+/* Forces at a state vector, with th's sine and cosine taken from it. */
 static void forces_y(const slide_ctx *c, const double y[], jc_SlideForces *f, jc_Loads *l)
 {
-    const jc_State s = {0.0, y[JC_Y_X], y[JC_Y_Y], y[JC_Y_VX], 0.0, y[JC_Y_TH], y[JC_Y_W]};
-    jc_slide_at(c->m, &s, c->dir, f, l);
+    jc_Loads none = {0};
+    if (!l) l = &none;
+    if (c->loaded) jc_loads_at(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_VX], 0.0, y[JC_Y_W], l);
+    else *l = none;
+    jc_slide_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, l, f);
 }
 
 static int slide_rhs(double t, const double y[], double dydt[], void *params)
@@ -82,9 +87,14 @@ static int slide_rhs(double t, const double y[], double dydt[], void *params)
     dydt[JC_Y_VX] = f.x_acc;
     dydt[JC_Y_VY] = 0.0;
     dydt[JC_Y_W] = f.theta_acc;
-    dydt[JC_Y_FRICTION] = c->m->setup.mu_kinetic * f.normal_N * fabs(slip);
+    /* dir * slip, not |slip|: the same while the phase lasts, and smooth where
+     * the integrator steps past the slip's zero (|slip| made the step
+     * control reject 10 steps in a row before each stick event). */
+    dydt[JC_Y_FRICTION] = c->m->setup.mu_kinetic * f.normal_N * c->dir * slip;
     dydt[JC_Y_AIR] = l.air_power_W;
     dydt[JC_Y_RR] = -l.rr_torque_per_N * f.normal_N * y[JC_Y_W];
+    dydt[JC_Y_COS] = -y[JC_Y_W] * y[JC_Y_SIN];
+    dydt[JC_Y_SIN] = y[JC_Y_W] * y[JC_Y_COS];
     return 0;
 }
 
@@ -114,7 +124,7 @@ static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
 
 int jc_slide_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
-    slide_ctx ctx = {sim->m, sim->slip_dir};
+    slide_ctx ctx = {sim->m, sim->slip_dir, jc_model_has_resistance(sim->m)};
     const jc_OdePhase phase = {slide_rhs, slide_events, EV_COUNT, slide_sample, &ctx};
     int which;
     int st = jc_ode_run(sim, &phase, &which, err, err_len);

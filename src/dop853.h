@@ -1,0 +1,60 @@
+/*
+ * DOP853: the explicit Runge-Kutta pair 8(5,3) of Dormand and Prince with
+ * its 7th-order continuous extension (Hairer, Norsett, Wanner, "Solving
+ * Ordinary Differential Equations I", 2nd ed., section II.10). Internal.
+ *
+ * Why not GSL's rk8pd (kept as the cross-check in tests/sim/test_dop853.c):
+ * rk8pd has no dense output, so every event search and every sample
+ * re-stepped the integrator from the step's start (3 to 6 extra 13-stage
+ * steps per event). With the continuous extension an event is found on a
+ * polynomial and the state there costs 3 extra stages per step, and the
+ * stepper keeps its workspace in fixed arrays (no allocation per run).
+ * Measured on the paper's three runs (make bench): sliding phases 52 us with
+ * rk8pd, see docs/architecture.md for the figure after.
+ */
+#ifndef JUMPCYL_DOP853_H
+#define JUMPCYL_DOP853_H
+
+/* Largest system: x, y, th, vx, vy, w, three losses, cos th, sin th. */
+#define JC_DOP_MAX_DIM 12
+
+/* The same signature as GSL's gsl_odeiv2_system function, so that one
+ * right-hand side drives both integrators (the cross-check test). */
+typedef int (*jc_DopRhs)(double t, const double y[], double dydt[], void *ctx);
+
+typedef struct {
+    int dim;
+    double rtol, atol;
+    /* The last accepted step, [t0, t0 + h]: y0 -> y1, f0 = f(y0), f1 = f(y1). */
+    double t0, h;
+    double y0[JC_DOP_MAX_DIM], y1[JC_DOP_MAX_DIM];
+    double f0[JC_DOP_MAX_DIM], f1[JC_DOP_MAX_DIM];
+    /* Stages 2..16 (k[0] is unused: stage 1 is f0). */
+    double k[17][JC_DOP_MAX_DIM];
+    /* Continuous extension of the last accepted step, once prepared. */
+    double cont[8][JC_DOP_MAX_DIM];
+    int dense_ready;
+    /* Step size control. */
+    int rejected_last;
+    long rhs_calls;
+} jc_Dop853;
+
+void jc_dop853_init(jc_Dop853 *d, int dim, double rtol, double atol);
+/* Starts at (t, y): evaluates f0. */
+int jc_dop853_start(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double t, const double y[]);
+/* One attempted step of size h from the current start. Returns the scaled
+ * error (<= 1: accepted, then y1/f1 hold the new point and the next start
+ * is y1) and the proposed next step in *h_next. A non-finite error is
+ * returned as INFINITY (rejected). */
+double jc_dop853_try(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h, double *h_next);
+/* One step of size h with no error control (y1, f1 at t0 + h): for a step
+ * no longer than an accepted one. 0, or -1 if it is not finite. */
+int jc_dop853_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h);
+/* Moves the start to the end of the accepted step. */
+void jc_dop853_advance(jc_Dop853 *d);
+/* Prepares the continuous extension of the last accepted step (3 stages). */
+int jc_dop853_dense(jc_Dop853 *d, jc_DopRhs rhs, void *ctx);
+/* The interpolated state at t0 + tau, 0 <= tau <= h (after jc_dop853_dense). */
+void jc_dop853_eval(const jc_Dop853 *d, double tau, double y[]);
+
+#endif
