@@ -26,7 +26,7 @@
 /* rad/s: below this spin rolling resistance ramps linearly to 0. */
 #define RR_BAND_RADPS 1e-3
 
-int jc_model_has_resistance(const jc_Model *m) { return jc_setup_has_resistance(&m->setup); }
+int jc_model_has_resistance(const jc_Model *m) { return jc_model_tables(m)->has_resistance; }
 
 void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, double vx, double vy, double w, jc_Loads *out)
 {

@@ -6,6 +6,35 @@
 
 #include <stdarg.h>
 
+/* ---- trigpoly.c: functions of th of the form T0(th) + th T1(th), T0 and T1
+ * trigonometric polynomials of degree <= JC_TRIG_DEGREE. Every quantity of
+ * the rolling and paper models, multiplied by a positive factor, has this
+ * form; that is what makes the first-crossing search provable (scan.c). ---- */
+#define JC_TRIG_DEGREE 4
+typedef struct {
+    double c0[JC_TRIG_DEGREE + 1], s0[JC_TRIG_DEGREE + 1]; /* T0: cos k th, sin k th */
+    double c1[JC_TRIG_DEGREE + 1], s1[JC_TRIG_DEGREE + 1]; /* T1 */
+} jc_TrigLin;
+
+/* ---- model.c: what jc_Model keeps in its private room ---- */
+typedef struct {
+    /* Rolling from any start, with e = I_P w^2 + 2 U at that start:
+     * N I_P^2 = roll_normal_a + e roll_normal_b, likewise F. */
+    jc_TrigLin roll_normal_a, roll_normal_b, roll_friction_a, roll_friction_b;
+    jc_TrigLin potential_poly; /* U(th), up to a constant */
+    jc_TrigLin inertia_p_poly; /* I_P(th) */
+    /* The paper's Eq. 9 as (LHS - RHS) * d cos th * den, > 0 on the jump side. */
+    jc_TrigLin paper_poly;
+    int has_resistance;        /* air or rolling resistance on */
+    double inv_mass_per_kg;    /* 1 / M */
+    double inv_inertia_g;      /* 1 / I_G, 1/(kg m^2) */
+} jc_ModelTables;
+
+static inline const jc_ModelTables *jc_model_tables(const jc_Model *m)
+{
+    return (const jc_ModelTables *)(const void *)m->internal.reserved;
+}
+
 /* Writes a formatted message into err (if any) and returns status. */
 int jc_fail(char *err, size_t err_len, int status, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -14,7 +43,7 @@ int jc_fail(char *err, size_t err_len, int status, const char *fmt, ...)
 #endif
     ;
 
-/* ---- trigpoly.c: f(th) = T0(th) + th T1(th) ---- */
+/* ---- trigpoly.c ---- */
 
 void jc_tl_zero(jc_TrigLin *p);
 /* a*cos(k th) or a*sin(k th) added to T0 (lin = 0) or T1 (lin = 1). */
@@ -184,6 +213,18 @@ void jc_roll_at(const jc_Model *m, double th, double w, int dir, double *thdd, d
                 jc_Loads *loads);
 void jc_roll_at_sc(const jc_Model *m, double sin_th, double cos_th, double w, int dir, double *thdd, double *normal,
                    double *friction, jc_Loads *loads);
+/* I_P at th given by its cosine. */
+double jc_rolling_inertia_p(const jc_Model *m, double cos_th);
+/* The rolling path from a state (th, w): its functions of th for the state's
+ * energy, cleared of positive factors: I_P w^2, N I_P^2, F I_P^2 and
+ * mu_s N -/+ F (times I_P^2). Rolling holds while normal, slip_pos and
+ * slip_neg are > 0; energy = 0 is a turning point. */
+typedef struct {
+    jc_TrigLin energy, normal, friction, slip_pos, slip_neg;
+    const jc_TrigLin *inertia;
+} jc_RollPath;
+void jc_rolling_path_init(const jc_Model *m, double th, double w, jc_RollPath *p);
+/* rolling_phase.c */
 int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
 
 /* sliding.c */

@@ -9,7 +9,8 @@
  *   N I_P^2    = M [ g cos(a) I_P^2 - d sin(th) Z - d cos(th) P I_P ]
  *   F I_P^2    = M [ (r + d cos th) Z - d sin(th) P I_P - g sin(a) I_P^2 ]
  * N I_P^2 and F I_P^2 are affine in the energy constant e; the model keeps
- * both parts so that rolling can restart from any state (the simulator).
+ * both parts, and no start: rolling is built from any state when it starts
+ * (rolling.c), so that one model serves runs from any state.
  * with I_P = I_C + M r^2 + 2 M r d cos th,
  *      U   = M g [ (r + d cos th) cos a - (r th + d sin th) sin a ],
  *      Q   = (r + d cos th) sin a + d sin th cos a.
@@ -33,13 +34,12 @@ static void tl_first_order(jc_TrigLin *p, double a, double b, double c)
     jc_tl_add_sin(p, 0, 1, c);
 }
 
-static int build_rolling(jc_Model *m)
+static int build_rolling(const jc_Model *m, jc_ModelTables *tb)
 {
     const double M = m->body.mass_kg, d = m->body.cm_offset_m, r = m->body.radius_m;
     const double g = m->setup.gravity_mps2, sa = m->sin_incline, ca = m->cos_incline;
-    const double th0 = m->setup.theta0_rad, w0 = m->setup.omega0_radps;
 
-    jc_TrigLin ip, u, q, sin1, cos1, rdc, one, t1, t2, t3;
+    jc_TrigLin ip, u, q, sin1, cos1, rdc, t1, t2, t3;
     tl_first_order(&ip, m->body.inertia_c_kgm2 + M * r * r, 2.0 * M * r * d, 0.0);
     tl_first_order(&u, M * g * r * ca, M * g * d * ca, -M * g * d * sa);
     jc_tl_add_cos(&u, 1, 0, -M * g * r * sa);
@@ -47,9 +47,8 @@ static int build_rolling(jc_Model *m)
     tl_first_order(&sin1, 0.0, 0.0, 1.0);
     tl_first_order(&cos1, 0.0, 1.0, 0.0);
     tl_first_order(&rdc, r, d, 0.0);
-    tl_const(&one, 1.0);
-    m->inertia_p_poly = ip;
-    m->potential_poly = u;
+    tb->inertia_p_poly = ip;
+    tb->potential_poly = u;
 
     /* With P = I_P w^2 = e - 2 U:  N I_P^2 = n0 + P n1,  F I_P^2 = f0 + P f1. */
     int st = 0;
@@ -69,17 +68,11 @@ static int build_rolling(jc_Model *m)
 
     /* Fold P = e - 2U in: part_a = x0 - 2 U x1, part_b = x1. */
     st |= jc_tl_mul(&t1, &u, &n1);
-    jc_tl_axpby(&m->roll_normal_a, 1.0, &n0, -2.0, &t1);
-    m->roll_normal_b = n1;
+    jc_tl_axpby(&tb->roll_normal_a, 1.0, &n0, -2.0, &t1);
+    tb->roll_normal_b = n1;
     st |= jc_tl_mul(&t1, &u, &f1);
-    jc_tl_axpby(&m->roll_friction_a, 1.0, &f0, -2.0, &t1);
-    m->roll_friction_b = f1;
-
-    /* The setup's own start. */
-    const double e0 = jc_tl_value(&ip, th0) * w0 * w0 + 2.0 * jc_tl_value(&u, th0);
-    jc_tl_axpby(&m->energy_poly, e0, &one, -2.0, &u);
-    jc_tl_axpby(&m->normal_poly, 1.0, &m->roll_normal_a, e0, &m->roll_normal_b);
-    jc_tl_axpby(&m->friction_poly, 1.0, &m->roll_friction_a, e0, &m->roll_friction_b);
+    jc_tl_axpby(&tb->roll_friction_a, 1.0, &f0, -2.0, &t1);
+    tb->roll_friction_b = f1;
     return st ? JC_ENUMERIC : JC_OK;
 }
 
@@ -88,7 +81,7 @@ static int build_rolling(jc_Model *m)
  *   num = d (1 - cos th) cos a + r th sin a,
  *   den = M1 r^2 / 2 + M (r^2 + d^2 + 2 r d cos th);
  * for cos th > 0, f > 0 exactly when th'^2/g > cos(a) / (d cos th). */
-static int build_paper(jc_Model *m)
+static int build_paper(const jc_Model *m, jc_ModelTables *tb)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, M1 = m->body.disc_mass_kg;
     const double d = m->paper_d_m, sa = m->sin_incline, ca = m->cos_incline;
@@ -98,7 +91,7 @@ static int build_paper(jc_Model *m)
     tl_first_order(&den, 0.5 * M1 * r * r + M * (r * r + d * d), 2.0 * M * r * d, 0.0);
     tl_first_order(&cos1, 0.0, 1.0, 0.0);
     if (jc_tl_mul(&t, &cos1, &num) != JC_OK) return JC_ENUMERIC;
-    jc_tl_axpby(&m->paper_poly, 2.0 * M * d, &t, -ca, &den);
+    jc_tl_axpby(&tb->paper_poly, 2.0 * M * d, &t, -ca, &den);
     return JC_OK;
 }
 
@@ -115,7 +108,12 @@ int jc_model_init(jc_Model *model, const jc_Setup *setup, char *err, size_t err_
     model->theta_end_rad = setup->theta0_rad + setup->ramp_length_m / model->body.radius_m;
     model->paper_d_m = setup->paper_cm_offset_m > 0.0 ? setup->paper_cm_offset_m
                                                       : model->body.cm_offset_m;
-    if (build_rolling(model) != JC_OK || build_paper(model) != JC_OK)
+    _Static_assert(sizeof(jc_ModelTables) <= sizeof model->internal.reserved, "jc_Model's private room is too small");
+    jc_ModelTables *tb = (jc_ModelTables *)(void *)model->internal.reserved;
+    tb->has_resistance = jc_setup_has_resistance(setup);
+    tb->inv_mass_per_kg = 1.0 / model->body.mass_kg;
+    tb->inv_inertia_g = 1.0 / model->body.inertia_g_kgm2;
+    if (build_rolling(model, tb) != JC_OK || build_paper(model, tb) != JC_OK)
         return jc_fail(err, err_len, JC_ENUMERIC, "internal error: polynomial degree exceeded");
     return JC_OK;
 }

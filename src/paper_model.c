@@ -46,11 +46,11 @@ int jc_paper_solve(const jc_Model *m, jc_PaperResult *out, char *err, size_t err
     if (!(m->paper_d_m > 0.0)) return JC_OK; /* d = 0: the right side is infinite */
 
     const double th_end = m->setup.ramp_length_m / m->body.radius_m; /* x = r th from 0 */
-    jc_ScanSet set = {.count = 1, .f = {&m->paper_poly}, .sign = {1.0}};
+    jc_ScanSet set = {.count = 1, .f = {&jc_model_tables(m)->paper_poly}, .sign = {1.0}};
     double th = 0.0, skip = PAPER_ROOT_TOL_RAD;
     /* Each pass finds one sign change; past it the sign flips (or not, after a touch). */
     for (int pass = 0; pass < 4 * JC_PAPER_MAX_ROOTS && th < th_end; ++pass) {
-        double f = jc_tl_value(&m->paper_poly, th);
+        double f = jc_tl_value(&jc_model_tables(m)->paper_poly, th);
         if (f == 0.0) { th += skip; skip *= 2.0; continue; }
         set.sign[0] = f > 0.0 ? 1.0 : -1.0;
         jc_ScanHit hit;

@@ -6,8 +6,6 @@
  */
 #include "internal.h"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
 #include <math.h>
 
 #define ROLL_ROOT_TOL_RAD 1e-12
@@ -24,13 +22,13 @@ const char *jc_roll_end_name(jc_RollEnd end)
 }
 
 /* I_P at th given by its cosine. */
-static double inertia_p_c(const jc_Model *m, double c)
+double jc_rolling_inertia_p(const jc_Model *m, double c)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     return m->body.inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * c;
 }
 
-static double inertia_p(const jc_Model *m, double th) { return inertia_p_c(m, cos(th)); }
+static double inertia_p(const jc_Model *m, double th) { return jc_rolling_inertia_p(m, cos(th)); }
 
 static double potential(const jc_Model *m, double th)
 {
@@ -45,7 +43,7 @@ static double angular_accel(const jc_Model *m, double s, double c, double w2)
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2;
     const double torque = M * g * ((r + d * c) * m->sin_incline + d * s * m->cos_incline);
-    return (torque + M * r * d * s * w2) / inertia_p_c(m, c);
+    return (torque + M * r * d * s * w2) / jc_rolling_inertia_p(m, c);
 }
 
 /* Direction of motion along th at the start; 0 if at rest in equilibrium. */
@@ -77,7 +75,7 @@ void jc_roll_accel(const jc_Model *m, double s, double c, double w, const jc_Loa
         return;
     }
     const double bs = -l->rr_torque_per_N, fx = l->fx_N, fy = l->fy_N;
-    const double ieff = inertia_p_c(m, c) - bs * M * d * s;
+    const double ieff = jc_rolling_inertia_p(m, c) - bs * M * d * s;
     const double rhs = (d * s - bs) * (M * g * m->cos_incline - M * d * c * w2 - fy) +
                        (r + d * c) * (M * d * s * w2 + M * g * m->sin_incline + fx) + l->torque_Nm;
     const double acc = rhs / ieff;
@@ -154,14 +152,13 @@ enum { WATCH_NORMAL, WATCH_SLIP_POS, WATCH_SLIP_NEG, WATCH_ENERGY, WATCH_COUNT }
 int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size_t err_len)
 {
     *out = (jc_RollingResult){0};
-    const double th0 = m->setup.theta0_rad, mu = m->setup.mu_static;
+    const double th0 = m->setup.theta0_rad;
     const int dir = start_direction(m);
 
-    /* mu_s N -/+ F, both cleared of I_P^2: rolling holds while both are > 0. */
-    jc_TrigLin slip_pos, slip_neg;
-    jc_tl_axpby(&slip_pos, mu, &m->normal_poly, -1.0, &m->friction_poly);
-    jc_tl_axpby(&slip_neg, mu, &m->normal_poly, 1.0, &m->friction_poly);
-    const jc_TrigLin *watch[WATCH_COUNT] = {&m->normal_poly, &slip_pos, &slip_neg, &m->energy_poly};
+    /* N, mu_s N -/+ F and I_P w^2, all cleared of I_P^2: rolling holds while all are > 0. */
+    jc_RollPath path;
+    jc_rolling_path_init(m, th0, m->setup.omega0_radps, &path);
+    const jc_TrigLin *watch[WATCH_COUNT] = {&path.normal, &path.slip_pos, &path.slip_neg, &path.energy};
     /* The turning point is watched only along a path that goes downhill. */
     int active[WATCH_COUNT] = {1, 1, 1, dir > 0};
 
@@ -208,500 +205,17 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
     return JC_OK;
 }
 
-/* ---- the rolling phase of the simulator ---- */
-
-#define ROLL_MAX_SWINGS 1000000L
-/* m: a rolling swing shorter than this (contact point travel) is rest. */
-#define ROLL_REST_SWING_M 1e-9
-#define QUAD_LIMIT 200
-
-/* The rolling path from a state: its polynomials for the state's energy. */
-typedef struct {
-    jc_TrigLin energy, normal, friction, slip_pos, slip_neg;
-    const jc_TrigLin *inertia;
-} roll_path;
-
-static void roll_path_init(const jc_Model *m, double th, double w, roll_path *p)
+void jc_rolling_path_init(const jc_Model *m, double th, double w, jc_RollPath *p)
 {
-    const double e = jc_tl_value(&m->inertia_p_poly, th) * w * w + 2.0 * jc_tl_value(&m->potential_poly, th);
+    const jc_ModelTables *tb = jc_model_tables(m);
+    const double e = jc_tl_value(&tb->inertia_p_poly, th) * w * w + 2.0 * jc_tl_value(&tb->potential_poly, th);
     jc_TrigLin one;
     jc_tl_zero(&one);
     jc_tl_add_cos(&one, 0, 0, 1.0);
-    jc_tl_axpby(&p->energy, e, &one, -2.0, &m->potential_poly);
-    jc_tl_axpby(&p->normal, 1.0, &m->roll_normal_a, e, &m->roll_normal_b);
-    jc_tl_axpby(&p->friction, 1.0, &m->roll_friction_a, e, &m->roll_friction_b);
+    jc_tl_axpby(&p->energy, e, &one, -2.0, &tb->potential_poly);
+    jc_tl_axpby(&p->normal, 1.0, &tb->roll_normal_a, e, &tb->roll_normal_b);
+    jc_tl_axpby(&p->friction, 1.0, &tb->roll_friction_a, e, &tb->roll_friction_b);
     jc_tl_axpby(&p->slip_pos, m->setup.mu_static, &p->normal, -1.0, &p->friction);
     jc_tl_axpby(&p->slip_neg, m->setup.mu_static, &p->normal, 1.0, &p->friction);
-    p->inertia = &m->inertia_p_poly;
-}
-
-/* dt/du for th = anchor + sigma u^2: 2 u / |w(th)|, finite at a turning
- * point, with P = I_P w^2 taken from the anchor by the exact potential
- * change U(anchor + delta) - U(anchor) (near a turning point P itself is a
- * small difference of large numbers; this keeps the integrand accurate to
- * rounding). The change is written without cancellation for small delta:
- * cos(a + delta) - cos a = -2 sin(a + delta/2) sin(delta/2), likewise for
- * sin; every angle is built from sin and cos of the anchor (kept) and of
- * delta/2, one sincos per point (measured: the integrand with three sines
- * and a trigonometric-polynomial I_P was 20 % of a run's time). */
-typedef struct {
-    const jc_Model *m;
-    double anchor, sigma;
-    double sin_a, cos_a; /* of the anchor */
-    double p0, p1;       /* P and sigma * P' at the anchor */
-} time_integrand;
-
-static double dt_du(double u, void *params)
-{
-    const time_integrand *ti = params;
-    const jc_Model *m = ti->m;
-    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    const double delta = ti->sigma * u * u, sh = sin(0.5 * delta), ch = cos(0.5 * delta);
-    const double s_mid = ti->sin_a * ch + ti->cos_a * sh, c_mid = ti->cos_a * ch - ti->sin_a * sh;
-    const double c_th = c_mid * ch - s_mid * sh; /* cos(anchor + delta) */
-    const double ip = inertia_p_c(m, c_th);
-    if (u == 0.0) return ti->p0 > 0.0 || ti->p1 <= 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
-    const double dcos = -2.0 * s_mid * sh, dsin = 2.0 * c_mid * sh;
-    const double du = M * m->setup.gravity_mps2 * (d * m->cos_incline * dcos - m->sin_incline * (r * delta + d * dsin));
-    const double p = ti->p0 - 2.0 * du;
-    return p > 0.0 ? 2.0 * u / sqrt(p / ip) : 0.0;
-}
-
-/* Time to roll from th_a to th_b (either may be a turning point). p_a is
- * I_P w^2 at th_a as known exactly (the phase's start state); taking it from
- * the energy polynomial instead, e - 2U(th_a), loses it to cancellation when
- * the body starts almost at rest. */
-static int roll_time(jc_Sim *sim, const roll_path *path, double th_a, double p_a, double th_b, double *dt,
-                     char *err, size_t err_len)
-{
-    *dt = 0.0;
-    if (th_a == th_b) return JC_OK;
-    const double mid = 0.5 * (th_a + th_b);
-    const double ends[2] = {th_a, th_b};
-    for (int k = 0; k < 2; ++k) {
-        double f[2];
-        jc_tl_eval(&path->energy, ends[k], &f[0], &f[1]);
-        if (k == 0) f[0] = p_a;
-        const double sigma = mid > ends[k] ? 1.0 : -1.0;
-        /* An end where P is negligible against P' over the interval is a
-         * turning point up to rounding: take P = 0 there exactly. */
-        double p0 = f[0];
-        if (p0 <= 1e-12 * fabs(f[1]) * fabs(mid - ends[k])) p0 = 0.0;
-        time_integrand ti = {sim->m, ends[k], sigma, sin(ends[k]), cos(ends[k]), p0, sigma * f[1]};
-        gsl_function fn = {dt_du, &ti};
-        double part, abserr;
-        int st = gsl_integration_qag(&fn, 0.0, sqrt(fabs(mid - ends[k])), 0.0, 1e-13, QUAD_LIMIT,
-                                     GSL_INTEG_GAUSS21, sim->quad, &part, &abserr);
-        /* Rounding can stop qag short of 1e-13; what events need is an error
-         * within their tolerance or 1e-11 of the time itself. */
-        if (st != GSL_SUCCESS && abserr > fmax(sim->opt->event_tol_s, 1e-11 * fabs(part)))
-            return jc_fail(err, err_len, JC_ENUMERIC,
-                           "rolling time quadrature failed between th = %.9g and %.9g rad (%s; %.3g s +- %.3g s)",
-                           th_a, th_b, gsl_strerror(st), part, abserr);
-        *dt += part;
-    }
-    return JC_OK;
-}
-
-typedef struct {
-    jc_Sim *sim;
-    const roll_path *path;
-    double th_a, p_a, target;
-    int status;
-} time_target;
-
-static double time_minus_target(double th, void *params)
-{
-    time_target *tt = params;
-    double dt = 0.0;
-    if (roll_time(tt->sim, tt->path, tt->th_a, tt->p_a, th, &dt, NULL, 0) != JC_OK) tt->status = JC_ENUMERIC;
-    return dt - tt->target;
-}
-
-/* The th between th_a and th_b reached dt after th_a. */
-static int roll_theta_at(jc_Sim *sim, const roll_path *path, double th_a, double p_a, double th_b, double dt,
-                         double *th, char *err, size_t err_len)
-{
-    time_target tt = {sim, path, th_a, p_a, dt, JC_OK};
-    gsl_function fn = {time_minus_target, &tt};
-    const double lo = fmin(th_a, th_b), hi = fmax(th_a, th_b);
-    const double flo = time_minus_target(lo, &tt), fhi = time_minus_target(hi, &tt);
-    if (flo == 0.0) { *th = lo; return JC_OK; }
-    if (fhi == 0.0) { *th = hi; return JC_OK; }
-    if (flo * fhi > 0.0) {
-        *th = fabs(flo) < fabs(fhi) ? lo : hi;
-        return JC_OK;
-    }
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (!s) return jc_fail(err, err_len, JC_ENOMEM, "out of memory");
-    gsl_root_fsolver_set(s, &fn, lo, hi);
-    int status = GSL_CONTINUE;
-    for (int it = 0; it < 200 && status == GSL_CONTINUE; ++it) {
-        gsl_root_fsolver_iterate(s);
-        status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 1e-13, 0.0);
-    }
-    *th = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
-    if (tt.status != JC_OK) return jc_fail(err, err_len, JC_ENUMERIC, "rolling time inversion failed");
-    return JC_OK;
-}
-
-/* I_P w^2 of a state, directly. */
-static double start_p(const jc_Model *m, const jc_State *s)
-{
-    return inertia_p(m, s->theta_rad) * s->omega_radps * s->omega_radps;
-}
-
-/* The state on the rolling path at th. */
-static jc_State roll_state_at(const jc_Model *m, const roll_path *path, const jc_State *start,
-                              double th, int dir)
-{
-    const double r = m->body.radius_m;
-    const double p = fmax(jc_tl_value(&path->energy, th), 0.0);
-    const double w = dir * sqrt(p / jc_tl_value(path->inertia, th));
-    jc_State s = *start;
-    s.theta_rad = th;
-    s.omega_radps = w;
-    s.x_m = start->x_m + r * (th - start->theta_rad);
-    s.y_m = r;
-    s.vx_mps = r * w;
-    s.vy_mps = 0.0;
-    return s;
-}
-
-static int emit_samples(jc_Sim *sim, const roll_path *path, const jc_State *start, double th_end,
-                        int dir, double t_end, char *err, size_t err_len)
-{
-    double ts;
-    while (jc_sim_sample_due(sim, t_end, &ts)) {
-        double th;
-        int st = roll_theta_at(sim, path, start->theta_rad, start_p(sim->m, start), th_end, ts - start->t_s, &th,
-                               err, err_len);
-        if (st != JC_OK) return st;
-        jc_State s = roll_state_at(sim->m, path, start, th, dir);
-        s.t_s = ts;
-        double thdd, n, f;
-        jc_roll_forces(sim->m, th, s.omega_radps, &thdd, &n, &f);
-        if ((st = jc_sim_sample(sim, &s, JC_MODE_ROLLING, n, f)) != JC_OK)
-            return jc_fail(err, err_len, st, "out of memory for samples");
-    }
-    return JC_OK;
-}
-
-enum { RW_NORMAL, RW_SLIP_POS, RW_SLIP_NEG, RW_ENERGY };
-
-/* ---- rolling with air or rolling resistance: no energy integral, an ODE ---- */
-
-typedef struct {
-    const jc_Model *m;
-    int dir;   /* sign of w during the phase */
-    int armed; /* 1: watch for w falling into the rolling-resistance band */
-} roll_ode;
-
-/* rad/s: rolling resistance ramps to 0 below 1 mrad/s (air.c), which lets a
- * body creep toward equilibrium for ever instead of stopping. Where the spin
- * falls below this and the resistance can hold the body at rest (rest
- * direction 0), it has come to rest: the run ends with termination rest. */
-#define ROLL_REST_BAND_RADPS 1e-3
-
-static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f, jc_Loads *l)
-{
-    jc_roll_at_sc(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, thdd, n, f, l);
-}
-
-static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
-{
-    (void)t;
-    const roll_ode *c = params;
-    double thdd, n, f;
-    jc_Loads l;
-    roll_ode_forces(c, y, &thdd, &n, &f, &l);
-    const double r = c->m->body.radius_m;
-    dydt[JC_Y_X] = r * y[JC_Y_W];
-    dydt[JC_Y_Y] = 0.0;
-    dydt[JC_Y_TH] = y[JC_Y_W];
-    dydt[JC_Y_VX] = r * thdd;
-    dydt[JC_Y_VY] = 0.0;
-    dydt[JC_Y_W] = thdd;
-    dydt[JC_Y_FRICTION] = 0.0;
-    dydt[JC_Y_AIR] = l.air_power_W;
-    dydt[JC_Y_RR] = -l.rr_torque_per_N * n * y[JC_Y_W];
-    dydt[JC_Y_COS] = -y[JC_Y_W] * y[JC_Y_SIN];
-    dydt[JC_Y_SIN] = y[JC_Y_W] * y[JC_Y_COS];
-    return 0;
-}
-
-enum { RE_NORMAL, RE_SLIP_POS, RE_SLIP_NEG, RE_TURN, RE_END, RE_TOP, RE_SLOW, RE_COUNT };
-
-static void roll_ode_events(void *params, const double y[], double ev[])
-{
-    const roll_ode *c = params;
-    double thdd, n, f;
-    roll_ode_forces(c, y, &thdd, &n, &f, NULL);
-    const double mu = c->m->setup.mu_static;
-    ev[RE_NORMAL] = n;
-    ev[RE_SLIP_POS] = mu * n - f;
-    ev[RE_SLIP_NEG] = mu * n + f;
-    ev[RE_TURN] = c->dir * y[JC_Y_W];
-    ev[RE_END] = c->m->setup.ramp_length_m - y[JC_Y_X];
-    ev[RE_TOP] = y[JC_Y_X] + 1e-9; /* the same 1 nm slack as elsewhere */
-    /* Armed: w falls into the band. Not armed: w leaves twice the band (then armed). */
-    ev[RE_SLOW] = c->armed ? c->dir * y[JC_Y_W] - ROLL_REST_BAND_RADPS : 2.0 * ROLL_REST_BAND_RADPS - c->dir * y[JC_Y_W];
-}
-
-static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[])
-{
-    const roll_ode *c = params;
-    double thdd, n, f;
-    roll_ode_forces(c, y, &thdd, &n, &f, NULL);
-    jc_State s;
-    jc_y_to_state(y, t, &s);
-    return jc_sim_sample_y(sim, &s, y, JC_MODE_ROLLING, n, f);
-}
-
-/* Direction in which a body at rest (w = 0) starts to roll, 0 if rolling
- * resistance (or equilibrium) holds it. */
-static int rest_direction(const jc_Model *m, double th)
-{
-    double thdd, n, f;
-    jc_roll_at(m, th, 0.0, 1, &thdd, &n, &f, NULL);
-    if (thdd > 0.0) return 1;
-    jc_roll_at(m, th, 0.0, -1, &thdd, &n, &f, NULL);
-    return thdd < 0.0 ? -1 : 0;
-}
-
-#define ROLL_ODE_MAX_TURNS 100000L
-
-static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
-{
-    const double w0 = sim->s.omega_radps;
-    roll_ode ctx = {sim->m, w0 > 0.0 ? 1 : (w0 < 0.0 ? -1 : rest_direction(sim->m, sim->s.theta_rad)),
-                    fabs(w0) > ROLL_REST_BAND_RADPS};
-    for (long turn = 0; turn < ROLL_ODE_MAX_TURNS; ++turn) {
-        if (ctx.dir == 0) {
-            *end = PHASE_AT_REST;
-            return JC_OK;
-        }
-        const jc_OdePhase phase = {roll_ode_rhs, roll_ode_events, RE_COUNT, roll_ode_sample, &ctx};
-        int which;
-        int st = jc_ode_run(sim, &phase, &which, err, err_len);
-        if (st != JC_OK) return st;
-        sim->s.y_m = sim->m->body.radius_m;
-        sim->s.vy_mps = 0.0;
-        sim->s.vx_mps = sim->m->body.radius_m * sim->s.omega_radps;
-        switch (which) {
-        case RE_NORMAL: *end = PHASE_LIFTOFF; return JC_OK;
-        case RE_SLIP_POS:
-        case RE_SLIP_NEG: *end = PHASE_SLIP; return JC_OK;
-        case RE_TURN:
-            sim->s.omega_radps = sim->s.vx_mps = 0.0;
-            ctx.dir = rest_direction(sim->m, sim->s.theta_rad);
-            ctx.armed = 0;
-            continue;
-        case RE_SLOW:
-            if (ctx.armed && rest_direction(sim->m, sim->s.theta_rad) == 0) {
-                /* The last crawl's kinetic energy (w <= 1 mrad/s) goes to
-                 * rolling resistance, so the balance still closes. */
-                sim->rr_loss_J += jc_kinetic_energy(sim->m, &sim->s);
-                sim->s.omega_radps = sim->s.vx_mps = 0.0;
-                *end = PHASE_AT_REST;
-                return JC_OK;
-            }
-            ctx.armed = !ctx.armed;
-            continue;
-        case RE_END: *end = PHASE_RAMP_END; return JC_OK;
-        case RE_TOP: *end = PHASE_RAMP_TOP; return JC_OK;
-        case JC_ODE_TIME_LIMIT: *end = PHASE_TIME_LIMIT; return JC_OK;
-        default: *end = PHASE_STEP_LIMIT; return JC_OK;
-        }
-    }
-    *end = PHASE_STEP_LIMIT;
-    return JC_OK;
-}
-
-/* ---- micro-slips and periodic rocking (docs/physics.md §4a, "Micro-slips") ---- */
-
-/* The contact point's tangential inverse mass with the normal held: the
- * slip acceleration per newton of friction the cone cannot supply,
- * det K / K_nn with K of the impact law (physics.md §4). */
-static double tangential_compliance(const jc_Model *m, double th)
-{
-    const jc_State at = {.theta_rad = th, .y_m = m->body.radius_m};
-    jc_ImpactInput k;
-    jc_impact_input(m, &at, &k);
-    return (k.ktt * k.knn - k.ktn * k.ktn) / k.knn;
-}
-
-/* Samples of the excess over the cone along an excursion: enough to find
- * its peak to a few per cent, which is all a scale estimate needs. */
-#define EXCURSION_SAMPLES 32
-/* m of rolling (contact point travel): an excursion beyond the cone longer
- * than this is not taken for a micro-slip (the rocking hoop's last ones
- * span 0.2 mm). */
-#define MICRO_SPAN_M 1e-3
-
-/* Whether the excursion of the rolling path beyond the friction cone that
- * starts at `at` on slip function k is a micro-slip: one whose slip scale,
- * k_t dF_max tau^2 (the slip speed the missing friction dF_max builds over
- * the excursion's duration tau, times tau), stays below the contact height
- * (sim options, 1 um by default): the same scale below which a rebound
- * counts as contact. A real contact takes such a tangential displacement
- * elastically (its tangential compliance) instead of slipping. Sets *micro. */
-static int micro_excursion(jc_Sim *sim, const roll_path *path, const jc_State *at, int k, double th_lim,
-                           int *micro, char *err, size_t err_len)
-{
-    const jc_Model *m = sim->m;
-    *micro = 0;
-    if (!(sim->opt->contact_height_m > 0.0)) return JC_OK;
-    const jc_TrigLin *g = k == RW_SLIP_POS ? &path->slip_pos : &path->slip_neg;
-    /* Only an excursion within MICRO_SPAN_M of rolling is a candidate: this
-     * keeps the look-ahead short on the common path (a real slip), and can
-     * only err toward the exact Coulomb model (a slip). */
-    const double span = MICRO_SPAN_M / m->body.radius_m;
-    const double th_to = th_lim > at->theta_rad ? fmin(th_lim, at->theta_rad + span)
-                                                : fmax(th_lim, at->theta_rad - span);
-    /* Beyond the cone -g > 0: its next zero is where the path re-enters it. */
-    jc_ScanSet set = {2, {&path->energy, g}, {1, -1}};
-    jc_ScanHit hit;
-    int st = jc_scan_first(&set, at->theta_rad, th_to, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
-    if (st != JC_OK) return st;
-    /* Longer than the span, off the ramp, or no excursion at all (a touch of
-     * the cone's edge). */
-    if (hit.index < 0 || fabs(hit.theta - at->theta_rad) <= ROLL_ROOT_TOL_RAD) return JC_OK;
-    double dt;
-    if ((st = roll_time(sim, path, at->theta_rad, start_p(m, at), hit.theta, &dt, err, err_len)) != JC_OK)
-        return st;
-    /* Through a turning point the path comes back the same way: twice the time. */
-    const double tau = hit.index == 0 ? 2.0 * dt : dt;
-    double peak = 0.0; /* k_t dF, m/s^2 */
-    for (int i = 0; i <= EXCURSION_SAMPLES; ++i) {
-        const double th = at->theta_rad + (hit.theta - at->theta_rad) * i / EXCURSION_SAMPLES;
-        const double w = sqrt(fmax(jc_tl_value(&path->energy, th), 0.0) / jc_tl_value(path->inertia, th));
-        double thdd, n, f;
-        jc_roll_forces(m, th, w, &thdd, &n, &f);
-        peak = fmax(peak, tangential_compliance(m, th) * (fabs(f) - m->setup.mu_static * n));
-    }
-    *micro = peak * tau * tau < sim->opt->contact_height_m;
-    return JC_OK;
-}
-
-/* s: two turning points this close in time are one (rounding of a turn). */
-#define PERIOD_MIN_S 1e-9
-
-int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
-{
-    if (jc_model_has_resistance(sim->m)) return roll_ode_phase(sim, end, err, err_len);
-    const jc_Model *m = sim->m;
-    const double r = m->body.radius_m, L = m->setup.ramp_length_m;
-    roll_path path;
-    roll_path_init(m, sim->s.theta_rad, sim->s.omega_radps, &path);
-    double thdd, n, f;
-    jc_roll_forces(m, sim->s.theta_rad, sim->s.omega_radps, &thdd, &n, &f);
-    int dir = sim->s.omega_radps != 0.0 ? (sim->s.omega_radps > 0.0 ? 1 : -1) : (thdd > 0.0) - (thdd < 0.0);
-    if (dir == 0) {
-        *end = PHASE_AT_REST;
-        return JC_OK;
-    }
-    /* Slip functions the path is rolling through (a micro-slip excursion):
-     * watched with the opposite sign, so their next zero is the re-entry. */
-    int through[2] = {0, 0};
-    /* The last two turning points: a third at the same angle, with the same
-     * excursions, closes a period of a motion that repeats for ever. */
-    double turn_t[2] = {0.0, 0.0}, turn_th[2] = {0.0, 0.0};
-    int turn_through[2] = {0, 0};
-    long turns = 0;
-    const int may_skip = !(sim->opt->sample_dt_s > 0.0); /* fixed samples need every period */
-    for (long swing = 0; swing < ROLL_MAX_SWINGS; ++swing) {
-        const jc_State start = sim->s;
-        /* Uphill, the start counts as passed 1 nm beyond it (as in sliding and
-         * flight), so that a body rocking back to rest at its start turns there. */
-        const double th_lim = dir > 0 ? start.theta_rad + (L - start.x_m) / r
-                                      : start.theta_rad - (start.x_m + 1e-9) / r;
-        jc_ScanSet set = {4, {&path.normal, &path.slip_pos, &path.slip_neg, &path.energy},
-                          {1, through[0] ? -1 : 1, through[1] ? -1 : 1, 1}};
-        jc_ScanHit hit;
-        int st = jc_scan_first(&set, start.theta_rad, th_lim, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
-        if (st != JC_OK) return st;
-        if (hit.index == RW_ENERGY && r * fabs(hit.theta - start.theta_rad) < ROLL_REST_SWING_M) {
-            /* A swing to a turning point less than 1 nm away: the body rocks
-             * about a stable equilibrium by less than any ramp's roughness
-             * (and the time quadrature of so short a swing is all rounding):
-             * it is at rest here, now. */
-            *end = PHASE_AT_REST;
-            return JC_OK;
-        }
-        double dt;
-        const double p_start = start_p(m, &start);
-        if ((st = roll_time(sim, &path, start.theta_rad, p_start, hit.theta, &dt, err, err_len)) != JC_OK) return st;
-        const double t_max = sim->opt->t_max_s;
-        double th_end = hit.theta;
-        if (start.t_s + dt > t_max) {
-            if ((st = roll_theta_at(sim, &path, start.theta_rad, p_start, hit.theta, t_max - start.t_s, &th_end, err,
-                                    err_len)))
-                return st;
-            dt = t_max - start.t_s;
-        }
-        if ((st = emit_samples(sim, &path, &start, th_end, dir, start.t_s + dt, err, err_len)) != JC_OK) return st;
-        sim->s = roll_state_at(m, &path, &start, th_end, dir);
-        sim->s.t_s = start.t_s + dt;
-        if (th_end != hit.theta) {
-            *end = PHASE_TIME_LIMIT;
-            return JC_OK;
-        }
-        switch (hit.index) {
-        case RW_NORMAL: *end = PHASE_LIFTOFF; return JC_OK;
-        case RW_SLIP_POS:
-        case RW_SLIP_NEG: {
-            const int k = hit.index - RW_SLIP_POS;
-            if (through[k]) { /* back inside the cone */
-                through[k] = 0;
-                continue;
-            }
-            int micro = 0;
-            if ((st = micro_excursion(sim, &path, &sim->s, hit.index, th_lim, &micro, err, err_len)) != JC_OK)
-                return st;
-            if (micro) {
-                through[k] = 1;
-                sim->micro_slips++;
-                continue;
-            }
-            *end = PHASE_SLIP;
-            return JC_OK;
-        }
-        case RW_ENERGY: {
-            /* A turning point: roll back the other way (not a mode change). */
-            sim->s.omega_radps = 0.0;
-            sim->s.vx_mps = 0.0;
-            dir = -dir;
-            const int sig = through[0] | through[1] << 1;
-            const int older = (int)(turns % 2);
-            if (may_skip && turns >= 2 && turn_through[older] == sig &&
-                fabs(sim->s.theta_rad - turn_th[older]) <= 8.0 * ROLL_ROOT_TOL_RAD) {
-                /* Energy is conserved on the path and nothing happened over a
-                 * whole period: the motion repeats for ever. Skip whole periods
-                 * to within one of the time limit. */
-                const double period = sim->s.t_s - turn_t[older];
-                if (period > PERIOD_MIN_S) {
-                    const double skip = floor((t_max - sim->s.t_s) / period) - 1.0;
-                    if (skip > 0.0) {
-                        sim->s.t_s += skip * period;
-                        sim->periodic_period_s = period;
-                        sim->periodic_th_lo_rad = fmin(sim->s.theta_rad, turn_th[1 - older]);
-                        sim->periodic_th_hi_rad = fmax(sim->s.theta_rad, turn_th[1 - older]);
-                    }
-                }
-            }
-            turn_t[older] = sim->s.t_s;
-            turn_th[older] = sim->s.theta_rad;
-            turn_through[older] = sig;
-            turns++;
-            continue;
-        }
-        default:
-            *end = dir > 0 ? PHASE_RAMP_END : PHASE_RAMP_TOP;
-            return JC_OK;
-        }
-    }
-    *end = PHASE_STEP_LIMIT;
-    return JC_OK;
+    p->inertia = &tb->inertia_p_poly;
 }

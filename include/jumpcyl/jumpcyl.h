@@ -182,33 +182,20 @@ JC_API int jc_setup_validate(const jc_Setup *setup, char *err, size_t err_len);
 /* Model: the immutable, validated, precomputed form of a setup (src/model.c) */
 /* ------------------------------------------------------------------------ */
 
-/* Functions of th of the form T0(th) + th T1(th), T0 and T1 trigonometric
- * polynomials of degree <= JC_TRIG_DEGREE. Every quantity of the rolling and
- * paper models, multiplied by a positive factor, has this form; that is what
- * makes the first-crossing search provable (src/trigpoly.c). */
-#define JC_TRIG_DEGREE 4
-typedef struct {
-    double c0[JC_TRIG_DEGREE + 1], s0[JC_TRIG_DEGREE + 1]; /* T0: cos k th, sin k th */
-    double c1[JC_TRIG_DEGREE + 1], s1[JC_TRIG_DEGREE + 1]; /* T1 */
-} jc_TrigLin;
+/* Room for what the model precomputes (src/internal.h, jc_ModelTables: the
+ * rolling and paper models as exact functions of th, and constants the
+ * integrators read). Private: its layout may change in any release. */
+#define JC_MODEL_PRIVATE_DOUBLES 192
 
 typedef struct {
     jc_Setup setup;
     jc_Body body;
     double sin_incline, cos_incline;
-    double theta_end_rad; /* th at which the rolling contact point reaches the ramp end */
-    /* Rolling model, as positive multiples of the physical quantities, for
-     * the setup's start: energy_poly = I_P w^2, normal_poly = N I_P^2,
-     * friction_poly = F I_P^2. */
-    jc_TrigLin energy_poly, normal_poly, friction_poly;
-    /* The same for any start, with e = I_P w^2 + 2 U at that start:
-     * N I_P^2 = roll_normal_a + e roll_normal_b, likewise F. */
-    jc_TrigLin roll_normal_a, roll_normal_b, roll_friction_a, roll_friction_b;
-    jc_TrigLin potential_poly; /* U(th), up to a constant */
-    jc_TrigLin inertia_p_poly; /* I_P(th) */
-    /* Paper's Eq. 9 as lhs_minus_rhs_poly = (LHS - RHS) * d cos th * den > 0 side. */
-    jc_TrigLin paper_poly;
-    double paper_d_m; /* the d the paper's model uses */
+    double theta_end_rad; /* th at which the rolling contact point reaches the ramp end (from the setup's start) */
+    double paper_d_m;     /* the d the paper's model uses */
+    struct {
+        double reserved[JC_MODEL_PRIVATE_DOUBLES];
+    } internal;
 } jc_Model;
 
 /* Validates the setup and precomputes everything the models read. */
