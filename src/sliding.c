@@ -30,16 +30,20 @@
 
 void jc_slide_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l, jc_SlideForces *f)
 {
-    const double M = m->body.mass_kg, ig = m->body.inertia_g_kgm2;
+    /* Reciprocals from the model: this runs at every stage of every step,
+     * and its four divisions were its largest cost (measured). */
+    const jc_ModelTables *tb = jc_model_tables(m);
+    const double M = m->body.mass_kg, inv_ig = tb->inv_inertia_g, inv_m = tb->inv_mass_per_kg;
     const double r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2, mu = m->setup.mu_kinetic;
     const double fx = l ? l->fx_N : 0.0, fy = l ? l->fy_N : 0.0, torque = l ? l->torque_Nm : 0.0;
     const double k = mu * dir * (r + d * c) + d * s + (l ? l->rr_torque_per_N : 0.0);
-    f->denominator = 1.0 + M * d * s * k / ig;
-    f->normal_N = (M * (g * m->cos_incline - d * c * w * w) - fy - M * d * s * torque / ig) / f->denominator;
+    const double mds_ig = M * d * s * inv_ig, w2 = w * w;
+    f->denominator = 1.0 + mds_ig * k;
+    f->normal_N = (M * (g * m->cos_incline - d * c * w2) - fy - mds_ig * torque) / f->denominator;
     f->friction_N = -mu * dir * f->normal_N;
-    f->theta_acc = (f->normal_N * k + torque) / ig;
-    f->x_acc = g * m->sin_incline + (f->friction_N + fx) / M - d * c * f->theta_acc + d * s * w * w;
+    f->theta_acc = (f->normal_N * k + torque) * inv_ig;
+    f->x_acc = g * m->sin_incline + (f->friction_N + fx) * inv_m - d * c * f->theta_acc + d * s * w2;
 }
 
 void jc_slide_forces(const jc_Model *m, double th, double w, int dir, jc_SlideForces *f)
