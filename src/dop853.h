@@ -36,6 +36,7 @@ typedef struct {
     int dense_ready;
     /* Step size control. */
     int rejected_last;
+    double err_old; /* the last accepted step's error (PI control) */
     long rhs_calls;
 } jc_Dop853;
 

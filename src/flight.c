@@ -45,8 +45,17 @@ static trig_rems rems(double u)
     return t;
 }
 
+/* The remainders at the last time asked: the crossing search evaluates the
+ * gap, the distance to the ramp's end and to its start at the same time in
+ * turn, and they share them. */
+typedef struct {
+    double t;
+    trig_rems q;
+} rems_cache;
+
 typedef struct {
     const jc_Model *m;
+    rems_cache *cache;
     double th0, w;
     double cos0, sin0; /* of th0 */
     double y0, vy0, ay0; /* of C, relative to r for y */
@@ -54,8 +63,19 @@ typedef struct {
     double ramp_length;
 } flight;
 
-static void flight_init(const jc_Model *m, const jc_State *s, flight *f)
+static trig_rems rems_at(const flight *f, double t)
 {
+    if (f->cache->t != t) {
+        f->cache->q = rems(f->w * t);
+        f->cache->t = t;
+    }
+    return f->cache->q;
+}
+
+static void flight_init(const jc_Model *m, const jc_State *s, rems_cache *cache, flight *f)
+{
+    cache->t = NAN;
+    f->cache = cache;
     const double d = m->body.cm_offset_m, g = m->setup.gravity_mps2, w = s->omega_radps;
     f->m = m;
     f->th0 = s->theta_rad;
@@ -77,7 +97,7 @@ static void gap_eval(const void *ctx, double t, double out[3])
     const flight *f = ctx;
     const double d = f->m->body.cm_offset_m, w = f->w;
     const double c = f->cos0, s = f->sin0;
-    const trig_rems q = rems(w * t);
+    const trig_rems q = rems_at(f, t);
     const double r3 = c * q.rem2 + s * q.rem1;
     const double r3u = c * q.rem1 - s * q.rem0;
     const double r3uu = -c * q.rem0 - s * q.sin_u;
@@ -95,7 +115,7 @@ static void gap_rate_eval(const void *ctx, double t, double out[3])
     out[0] = g[1];
     out[1] = g[2];
     /* sin(th0 + w t) = sin th0 (1 - (1 - cos u)) + cos th0 sin u */
-    const trig_rems q = rems(f->w * t);
+    const trig_rems q = rems_at(f, t);
     out[2] = -f->m->body.cm_offset_m * f->w * f->w * f->w * (f->sin0 * (1.0 - q.rem0) + f->cos0 * q.sin_u);
 }
 
@@ -104,7 +124,7 @@ static void x_eval(const flight *f, double t, double out[3])
 {
     const double d = f->m->body.cm_offset_m, w = f->w;
     const double c = f->cos0, s = f->sin0;
-    const trig_rems q = rems(w * t);
+    const trig_rems q = rems_at(f, t);
     const double s3 = s * q.rem2 - c * q.rem1;
     const double s3u = s * q.rem1 + c * q.rem0;
     const double s3uu = -s * q.rem0 + c * q.sin_u;
@@ -304,7 +324,8 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
         return st;
     }
     flight f;
-    flight_init(sim->m, &sim->s, &f);
+    rems_cache cache;
+    flight_init(sim->m, &sim->s, &cache, &f);
     const double t0 = sim->s.t_s;
     double t_start = 0.0;
     if (from_liftoff) {

@@ -16,6 +16,8 @@
 #include "internal.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 /* rad: measured, results are the same to 12 digits for caps 0.1 to 1 rad. */
 #define MAX_ROTATION_PER_STEP 0.3
@@ -218,6 +220,7 @@ int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t 
         double h_next;
         const double e = jc_dop853_try(d, p->rhs, p->ctx, h, &h_next);
         sim->run->ode_steps++;
+        if (getenv("JC_DEBUG")) fprintf(stderr, "t=%.6f h=%.3g hrot=%.3g e=%.3g w=%.3f\n", t0, h, h_rot, e, d->y0[JC_Y_W]);
         if (!(e <= 1.0)) {
             /* Rejected, or a stage that overflowed (a stiff spin drag on a
              * tiny inertia, found by fuzzing): retry shorter; a step that
