@@ -234,13 +234,15 @@ static int eval_stage(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, int s, double h, d
 {
     double y[JC_DOP_MAX_DIM];
     stage_input(d, s, h, y);
+    for (int i = d->dim; i < d->full_dim; ++i) y[i] = d->y0[i];
     d->rhs_calls++;
     return rhs(d->t0 + C[s] * h, y, out, ctx);
 }
 
-void jc_dop853_init(jc_Dop853 *d, int dim, double rtol, double atol)
+void jc_dop853_init(jc_Dop853 *d, int dim, int full_dim, double rtol, double atol)
 {
     d->dim = dim;
+    d->full_dim = full_dim;
     d->rtol = rtol;
     d->atol = atol;
     d->h = 0.0;
@@ -256,7 +258,7 @@ int jc_dop853_start(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double t, const doub
     d->h = 0.0;
     d->dense_ready = 0;
     d->rejected_last = 0;
-    for (int i = 0; i < d->dim; ++i) d->y0[i] = y[i];
+    for (int i = 0; i < d->full_dim; ++i) d->y0[i] = y[i];
     d->rhs_calls++;
     return rhs(t, d->y0, d->f0, ctx);
 }
@@ -278,6 +280,7 @@ static double step_error(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)
         e5[i] = ER[0] * k1[i] + ER[1] * k6[i] + ER[2] * k7[i] + ER[3] * k8[i] + ER[4] * k9[i] + ER[5] * k10[i] +
                 ER[6] * k11[i] + ER[7] * k12[i];
     }
+    for (int i = n; i < d->full_dim; ++i) d->y1[i] = d->y0[i];
     double err5 = 0.0, err3 = 0.0;
     for (int i = 0; i < n; ++i) {
         d->y1[i] = d->y0[i] + h * inc[i];
@@ -334,7 +337,7 @@ int jc_dop853_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)
 void jc_dop853_advance(jc_Dop853 *d)
 {
     d->t0 += d->h;
-    for (int i = 0; i < d->dim; ++i) {
+    for (int i = 0; i < d->full_dim; ++i) {
         d->y0[i] = d->y1[i];
         d->f0[i] = d->f1[i];
     }
@@ -359,15 +362,17 @@ int jc_dop853_dense(jc_Dop853 *d, jc_DopRhs rhs, void *ctx)
         for (int r = 0; r < 4; ++r) d->cont[4 + r][i] = h * dr[r][i];
     }
     d->dense_ready = 1;
+    d->dense_h = h;
     return 0;
 }
 
 void jc_dop853_eval(const jc_Dop853 *d, double tau, double y[])
 {
-    const double s = d->h > 0.0 ? tau / d->h : 0.0, s1 = 1.0 - s;
+    const double s = d->dense_h > 0.0 ? tau / d->dense_h : 0.0, s1 = 1.0 - s;
     for (int i = 0; i < d->dim; ++i) {
         const double (*c)[JC_DOP_MAX_DIM] = d->cont;
         y[i] = c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * (c[4][i] + s * (c[5][i] +
                s1 * (c[6][i] + s * c[7][i]))))));
     }
+    for (int i = d->dim; i < d->full_dim; ++i) y[i] = d->y0[i];
 }

@@ -23,7 +23,8 @@
 typedef int (*jc_DopRhs)(double t, const double y[], double dydt[], void *ctx);
 
 typedef struct {
-    int dim;
+    int dim;      /* components integrated */
+    int full_dim; /* components carried: [dim, full_dim) keep their start values */
     double rtol, atol;
     /* The last accepted step, [t0, t0 + h]: y0 -> y1, f0 = f(y0), f1 = f(y1). */
     double t0, h;
@@ -33,6 +34,7 @@ typedef struct {
     double k[17][JC_DOP_MAX_DIM];
     /* Continuous extension of the last accepted step, once prepared. */
     double cont[8][JC_DOP_MAX_DIM];
+    double dense_h; /* the step it extends (kept when a later step overwrites h) */
     int dense_ready;
     /* Step size control. */
     int rejected_last;
@@ -40,8 +42,8 @@ typedef struct {
     long rhs_calls;
 } jc_Dop853;
 
-void jc_dop853_init(jc_Dop853 *d, int dim, double rtol, double atol);
-/* Starts at (t, y): evaluates f0. */
+void jc_dop853_init(jc_Dop853 *d, int dim, int full_dim, double rtol, double atol);
+/* Starts at (t, y), y of full_dim components: evaluates f0. */
 int jc_dop853_start(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double t, const double y[]);
 /* One attempted step of size h from the current start. Returns the scaled
  * error (<= 1: accepted, then y1/f1 hold the new point and the next start
@@ -55,7 +57,8 @@ int jc_dop853_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h);
 void jc_dop853_advance(jc_Dop853 *d);
 /* Prepares the continuous extension of the last accepted step (3 stages). */
 int jc_dop853_dense(jc_Dop853 *d, jc_DopRhs rhs, void *ctx);
-/* The interpolated state at t0 + tau, 0 <= tau <= h (after jc_dop853_dense). */
+/* The interpolated state at t0 + tau, 0 <= tau <= h, on the last prepared
+ * continuous extension (after jc_dop853_dense). */
 void jc_dop853_eval(const jc_Dop853 *d, double tau, double y[]);
 
 #endif

@@ -283,7 +283,7 @@ static int flight_ode_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, cha
     flight_ode ctx = {sim->m, sim->s.vy_mps < 0.0 ? -1.0 : 1.0, from_liftoff ? 1e-12 : 0.0};
     sim->hop_height_m = fmax(sim->s.y_m - r, 0.0);
     for (long k = 0; k < FLIGHT_MAX_APEXES; ++k) {
-        const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx};
+        const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx, JC_Y_DIM};
         int which;
         int st = jc_ode_run(sim, &phase, &which, err, err_len);
         if (st != JC_OK) return st;

@@ -163,7 +163,11 @@ typedef struct jc_Sim {
  * the first event. The state vector is the same in every mode; it carries
  * cos th and sin th (cos' = -w sin, sin' = w cos), so that no right-hand side
  * computes a sine (measured: sincos was 26 % of a run's time with rk8pd). */
-enum { JC_Y_X, JC_Y_Y, JC_Y_TH, JC_Y_VX, JC_Y_VY, JC_Y_W, JC_Y_FRICTION, JC_Y_AIR, JC_Y_RR, JC_Y_COS, JC_Y_SIN,
+/* Ordered so that a phase integrates a prefix of the vector and carries the
+ * rest unchanged: sliding without resistance the first 7 (y, vy are
+ * constant in contact; measured: 7 components instead of 11 take a
+ * quarter fewer instructions per step), with it the first 9, flight all. */
+enum { JC_Y_X, JC_Y_TH, JC_Y_VX, JC_Y_W, JC_Y_COS, JC_Y_SIN, JC_Y_FRICTION, JC_Y_AIR, JC_Y_RR, JC_Y_Y, JC_Y_VY,
        JC_Y_DIM };
 #define JC_ODE_MAX_EVENTS 8
 #define JC_ODE_TIME_LIMIT (-1)
@@ -175,6 +179,7 @@ typedef struct {
     int event_count;
     int (*sample)(jc_Sim *sim, void *ctx, double t, const double y[]);
     void *ctx;
+    int dim; /* components integrated: the first dim; the others keep their start values */
 } jc_OdePhase;
 void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM]);
 void jc_y_to_state(const double y[JC_Y_DIM], double t, jc_State *s);

@@ -129,7 +129,8 @@ static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
 int jc_slide_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     slide_ctx ctx = {sim->m, sim->slip_dir, jc_model_has_resistance(sim->m)};
-    const jc_OdePhase phase = {slide_rhs, slide_events, EV_COUNT, slide_sample, &ctx};
+    const jc_OdePhase phase = {slide_rhs, slide_events, EV_COUNT, slide_sample, &ctx,
+                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1};
     int which;
     int st = jc_ode_run(sim, &phase, &which, err, err_len);
     if (st != JC_OK) return st;
