@@ -176,7 +176,7 @@ static double fall_bound(const flight *f)
 }
 
 /* The largest gap over [0, T]: at the ends or where gap' changes sign. */
-static int largest_gap(const flight *f, double T, double *hop, char *err, size_t err_len)
+static int largest_gap(const flight *f, double T, gsl_root_fsolver *brent, double *hop, char *err, size_t err_len)
 {
     double g[3];
     gap_eval(f, 0.0, g);
@@ -192,7 +192,7 @@ static int largest_gap(const flight *f, double T, double *hop, char *err, size_t
         if (r[0] == 0.0) { t = nextafter(t, INFINITY) + 1e-15; continue; }
         fn.sign = r[0] > 0.0 ? 1.0 : -1.0;
         jc_ScanHit hit;
-        int st = jc_scan_fns(&fn, 1, t, T, 1e-13, &hit, err, err_len);
+        int st = jc_scan_fns_with(&fn, 1, t, T, 1e-13, brent, &hit, err, err_len);
         if (st != JC_OK) return st;
         if (hit.index < 0) break;
         gap_eval(f, hit.theta, g);
@@ -206,10 +206,10 @@ static int largest_gap(const flight *f, double T, double *hop, char *err, size_t
 static int emit_samples(jc_Sim *sim, const flight *f, double t0, double t_end)
 {
     double ts;
-    while (jc_sim_sample_due(sim, t_end, &ts)) {
+    while (jc_record_sample_due(sim, t_end, &ts)) {
         jc_State s = flight_state(f, ts - t0, t0);
         s.t_s = ts; /* the grid time itself: t0 + (ts - t0) may round below it */
-        int st = jc_sim_sample(sim, &s, JC_MODE_FLIGHT, 0.0, 0.0);
+        int st = jc_record_sample(sim, &s, JC_MODE_FLIGHT, 0.0, 0.0);
         if (st != JC_OK) return st;
     }
     return JC_OK;
@@ -272,7 +272,7 @@ static int flight_ode_sample(jc_Sim *sim, void *params, double t, const double y
     (void)params;
     jc_State s;
     jc_y_to_state(y, t, &s);
-    return jc_sim_sample_y(sim, &s, y, JC_MODE_FLIGHT, 0.0, 0.0);
+    return jc_record_sample_y(sim, &s, y, JC_MODE_FLIGHT, 0.0, 0.0);
 }
 
 #define FLIGHT_MAX_APEXES 100000L
@@ -349,7 +349,7 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
     jc_ScanHit hit = {.index = -1};
     double T = horizon;
     for (int resume = 0; horizon > t_start && resume < FLIGHT_MAX_RESUMES; ++resume) {
-        int st = jc_scan_fns(fns, 3, t_start, horizon, tol, &hit, err, err_len);
+        int st = jc_scan_fns_with(fns, 3, t_start, horizon, tol, sim->ws->brent, &hit, err, err_len);
         if (st != JC_OK) return st;
         T = hit.index >= 0 ? hit.theta : horizon;
         /* A "grazing" gap root is only a place where the search's safe step
@@ -366,7 +366,7 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
         hit.index = -1;
         T = horizon;
     }
-    int st = largest_gap(&f, T, &sim->hop_height_m, err, err_len);
+    int st = largest_gap(&f, T, sim->ws->brent, &sim->hop_height_m, err, err_len);
     if (st != JC_OK) return st;
     sim->hop_height_m = fmax(sim->hop_height_m, hop_before);
     if ((st = emit_samples(sim, &f, t0, t0 + T)) != JC_OK)

@@ -4,6 +4,8 @@
 
 #include "jumpcyl/jumpcyl.h"
 
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_roots.h>
 #include <stdarg.h>
 
 /* ---- trigpoly.c: functions of th of the form T0(th) + th T1(th), T0 and T1
@@ -115,11 +117,15 @@ int jc_scan_first(const jc_ScanSet *set, double th_from, double th_to, double to
  * first u where one of the functions stops being positive; root to tol. */
 int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, double tol,
                 jc_ScanHit *hit, char *err, size_t err_len);
+/* The same polishing roots with the caller's Brent solver (a run's
+ * workspace: no allocation), or making one when it is NULL. */
+int jc_scan_fns_with(const jc_ScanFn *fns, int count, double u_from, double u_to, double tol,
+                     gsl_root_fsolver *brent, jc_ScanHit *hit, char *err, size_t err_len);
+int jc_scan_first_with(const jc_ScanSet *set, double th_from, double th_to, double tol_rad, gsl_root_fsolver *brent,
+                       jc_ScanHit *hit, char *err, size_t err_len);
 
 
 /* ---- the simulator's shared pieces (simulate.c and one file per phase) ---- */
-
-#include <gsl/gsl_integration.h>
 
 #include "dop853.h"
 
@@ -136,6 +142,31 @@ typedef enum {
     PHASE_STEP_LIMIT
 } jc_PhaseEnd;
 
+/* workspace.c: a run's allocated helpers, made once and reused by any
+ * number of runs (one at a time). */
+#define JC_QUAD_INTERVALS 200 /* subintervals of the adaptive rolling-time quadrature */
+struct jc_Workspace {
+    gsl_integration_workspace *quad; /* rolling time (rolling_phase.c) */
+    gsl_root_fsolver *brent;         /* root polishing (scan.c, rolling_phase.c) */
+};
+
+/* record.c: what a run has pushed to its recorder, and what it holds back. */
+#define JC_HELD_MAX 4
+typedef struct {
+    const jc_Recorder *rec;        /* where events and samples go */
+    long long sample_k;            /* the next fixed sample is at sample_k * sample_dt_s */
+    double last_sample_t;          /* time of the last sample pushed (-INFINITY before the first) */
+    int samples_made;              /* samples pushed */
+    int sample_limit_hit;          /* max_samples reached: no more samples, the run ends */
+    /* Events made but not yet pushed: the open flight's lift-off (or bounce)
+     * and what follows it until the flight closes (a ramp end, a time limit). */
+    jc_Event held[JC_HELD_MAX];
+    int held_count;
+    int flight_event;              /* index in held of the event whose flight is under way, or -1 */
+    int events_made;               /* events created (pushed or held): what max_events counts */
+} jc_Trace;
+
+/* A run in progress: the driver (simulate.c) owns it, the phases advance it. */
 typedef struct jc_Sim {
     const jc_Model *m;
     const jc_SimOptions *opt;
@@ -145,16 +176,12 @@ typedef struct jc_Sim {
     int slip_dir;                  /* sliding: sign of the slip velocity */
     double friction_loss_J, impact_loss_J, air_loss_J, rr_loss_J;
     double energy0_J;              /* K + U at the start */
-    const jc_Recorder *rec;        /* where events and samples go */
-    long long sample_k;            /* the next fixed sample is at sample_k * sample_dt_s */
-    double last_sample_t;          /* time of the last sample pushed (-INFINITY before the first) */
-    int samples_made;              /* samples pushed */
-    int sample_limit_hit;          /* max_samples reached: no more samples, the run ends */
+    jc_Trace trace;
     double hop_height_m;           /* the last flight's largest gap */
     long micro_slips;              /* cone excursions rolled through (rolling.c, physics.md §4a, micro-slips) */
     double periodic_period_s;      /* > 0: rolling found periodic and whole periods were skipped */
     double periodic_th_lo_rad, periodic_th_hi_rad; /* its turning points */
-    gsl_integration_workspace *quad;
+    jc_Workspace *ws;
     jc_Dop853 dop;                 /* the integrator of phases without a closed form */
     double ode_h_s;                /* its last accepted step: the next phase starts there */
 } jc_Sim;
@@ -187,12 +214,25 @@ void jc_y_to_state(const double y[JC_Y_DIM], double t, jc_State *s);
  * (JC_ODE_TIME_LIMIT, JC_ODE_STEP_LIMIT); sim->s and the losses advance. */
 int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t err_len);
 
-/* simulate.c: records a trajectory sample (derived fields computed here). */
-int jc_sim_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);
+/* record.c: pushes a trajectory sample (derived fields computed here). */
+int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);
+/* The sample with the losses carried in y (ode phases). */
+int jc_record_sample_y(jc_Sim *sim, const jc_State *s, const double y[], jc_Mode mode, double normal_N,
+                       double friction_N);
 /* Whether a fixed-step sample falls in (.., t_end]; its time in *t. A 1
  * takes that sample off the schedule (the counter advances): the caller
- * records it with jc_sim_sample, so the loop always moves on. */
-int jc_sim_sample_due(jc_Sim *sim, double t_end, double *t);
+ * records it with jc_record_sample, so the loop always moves on. */
+int jc_record_sample_due(jc_Sim *sim, double t_end, double *t);
+/* Makes an event at the current state (forces and slip those just before)
+ * and holds it until it is complete: *out (if not NULL) may still be
+ * filled in until the next event. Pushes the earlier held ones that are. */
+int jc_record_event(jc_Sim *sim, jc_EventKind kind, jc_Mode before, double normal, double friction, double slip,
+                    jc_Event **out);
+/* The event just made starts a flight: it waits for jc_record_close_flight. */
+void jc_record_open_flight(jc_Sim *sim);
+void jc_record_close_flight(jc_Sim *sim, int landed);
+/* Pushes the held events that are complete. */
+int jc_record_push(jc_Sim *sim);
 
 /* air.c: loads beyond gravity and the contact force. */
 typedef struct {
@@ -205,8 +245,6 @@ int jc_model_has_resistance(const jc_Model *m);
 /* At angle th given by its sine and cosine. */
 void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, double vx, double vy, double w, jc_Loads *out);
 
-/* The sample with the losses carried in y (ode phases). */
-int jc_sim_sample_y(jc_Sim *sim, const jc_State *s, const double y[], jc_Mode mode, double normal_N, double friction_N);
 
 /* rolling.c: rolling accelerations and contact force; loads NULL for none. */
 void jc_roll_accel(const jc_Model *m, double sin_th, double cos_th, double w, const jc_Loads *loads, double *thdd,

@@ -187,7 +187,7 @@ static double event_state(jc_Sim *sim, const jc_OdePhase *p, int k, double tau, 
 static int emit_samples(jc_Sim *sim, const jc_OdePhase *p, double t_end)
 {
     double ts;
-    while (jc_sim_sample_due(sim, t_end, &ts)) {
+    while (jc_record_sample_due(sim, t_end, &ts)) {
         if (jc_dop853_dense(&sim->dop, p->rhs, p->ctx) != 0) return JC_ENUMERIC;
         double y[JC_Y_DIM];
         jc_dop853_eval(&sim->dop, ts - sim->dop.t0, y);

@@ -16,7 +16,6 @@
 #define ROLL_MAX_SWINGS 1000000L
 /* m: a rolling swing shorter than this (contact point travel) is rest. */
 #define ROLL_REST_SWING_M 1e-9
-#define QUAD_LIMIT 200
 
 /* dt/du for th = anchor + sigma u^2: 2 u / |w(th)|, finite at a turning
  * point, with P = I_P w^2 taken from the anchor by the exact potential
@@ -81,8 +80,8 @@ static int roll_time(jc_Sim *sim, const jc_RollPath *path, double th_a, double p
          * rule; the adaptive rule takes the rest. */
         int st = gsl_integration_qng(&fn, 0.0, sqrt(fabs(mid - ends[k])), 0.0, 1e-13, &part, &abserr, &evals);
         if (st != GSL_SUCCESS)
-            st = gsl_integration_qag(&fn, 0.0, sqrt(fabs(mid - ends[k])), 0.0, 1e-13, QUAD_LIMIT, GSL_INTEG_GAUSS21,
-                                     sim->quad, &part, &abserr);
+            st = gsl_integration_qag(&fn, 0.0, sqrt(fabs(mid - ends[k])), 0.0, 1e-13, JC_QUAD_INTERVALS, GSL_INTEG_GAUSS21,
+                                     sim->ws->quad, &part, &abserr);
         /* Rounding can stop qag short of 1e-13; what events need is an error
          * within their tolerance or 1e-11 of the time itself. */
         if (st != GSL_SUCCESS && abserr > fmax(sim->opt->event_tol_s, 1e-11 * fabs(part)))
@@ -123,8 +122,7 @@ static int roll_theta_at(jc_Sim *sim, const jc_RollPath *path, double th_a, doub
         *th = fabs(flo) < fabs(fhi) ? lo : hi;
         return JC_OK;
     }
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (!s) return jc_fail(err, err_len, JC_ENOMEM, "out of memory");
+    gsl_root_fsolver *s = sim->ws->brent;
     gsl_root_fsolver_set(s, &fn, lo, hi);
     int status = GSL_CONTINUE;
     for (int it = 0; it < 200 && status == GSL_CONTINUE; ++it) {
@@ -132,7 +130,6 @@ static int roll_theta_at(jc_Sim *sim, const jc_RollPath *path, double th_a, doub
         status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 1e-13, 0.0);
     }
     *th = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
     if (tt.status != JC_OK) return jc_fail(err, err_len, JC_ENUMERIC, "rolling time inversion failed");
     return JC_OK;
 }
@@ -164,7 +161,7 @@ static int emit_samples(jc_Sim *sim, const jc_RollPath *path, const jc_State *st
                         int dir, double t_end, char *err, size_t err_len)
 {
     double ts;
-    while (jc_sim_sample_due(sim, t_end, &ts)) {
+    while (jc_record_sample_due(sim, t_end, &ts)) {
         double th;
         int st = roll_theta_at(sim, path, start->theta_rad, start_p(sim->m, start), th_end, ts - start->t_s, &th,
                                err, err_len);
@@ -173,7 +170,7 @@ static int emit_samples(jc_Sim *sim, const jc_RollPath *path, const jc_State *st
         s.t_s = ts;
         double thdd, n, f;
         jc_roll_forces(sim->m, th, s.omega_radps, &thdd, &n, &f);
-        if ((st = jc_sim_sample(sim, &s, JC_MODE_ROLLING, n, f)) != JC_OK)
+        if ((st = jc_record_sample(sim, &s, JC_MODE_ROLLING, n, f)) != JC_OK)
             return jc_fail(err, err_len, st, "out of memory for samples");
     }
     return JC_OK;
@@ -247,7 +244,7 @@ static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[]
     roll_ode_forces(c, y, &thdd, &n, &f, NULL);
     jc_State s;
     jc_y_to_state(y, t, &s);
-    return jc_sim_sample_y(sim, &s, y, JC_MODE_ROLLING, n, f);
+    return jc_record_sample_y(sim, &s, y, JC_MODE_ROLLING, n, f);
 }
 
 /* Direction in which a body at rest (w = 0) starts to roll, 0 if rolling
@@ -354,7 +351,7 @@ static int micro_excursion(jc_Sim *sim, const jc_RollPath *path, const jc_State 
     /* Beyond the cone -g > 0: its next zero is where the path re-enters it. */
     jc_ScanSet set = {2, {&path->energy, g}, {1, -1}};
     jc_ScanHit hit;
-    int st = jc_scan_first(&set, at->theta_rad, th_to, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
+    int st = jc_scan_first_with(&set, at->theta_rad, th_to, ROLL_ROOT_TOL_RAD, sim->ws->brent, &hit, err, err_len);
     if (st != JC_OK) return st;
     /* Longer than the span, off the ramp, or no excursion at all (a touch of
      * the cone's edge). */
@@ -411,7 +408,8 @@ int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
         jc_ScanSet set = {4, {&path.normal, &path.slip_pos, &path.slip_neg, &path.energy},
                           {1, through[0] ? -1 : 1, through[1] ? -1 : 1, 1}};
         jc_ScanHit hit;
-        int st = jc_scan_first(&set, start.theta_rad, th_lim, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
+        int st = jc_scan_first_with(&set, start.theta_rad, th_lim, ROLL_ROOT_TOL_RAD, sim->ws->brent, &hit, err,
+                                    err_len);
         if (st != JC_OK) return st;
         if (hit.index == RW_ENERGY && r * fabs(hit.theta - start.theta_rad) < ROLL_REST_SWING_M) {
             /* A swing to a turning point less than 1 nm away: the body rocks

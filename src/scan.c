@@ -76,13 +76,14 @@ static int safe_over(double g, double g1, double g2, double m3, double h)
     return x >= h || g - 0.5 * g1 * g1 / c >= 0.0;
 }
 
-static int polish(const jc_ScanFn *fn, double a, double b, double tol, double *root,
+/* brent: the caller's solver (a run's workspace), or NULL to make one. */
+static int polish(const jc_ScanFn *fn, double a, double b, double tol, gsl_root_fsolver *brent, double *root,
                   char *err, size_t err_len)
 {
     if (fn_value(b, (void *)fn) == 0.0) { *root = b; return JC_OK; }
     const double lo = a < b ? a : b, hi = a < b ? b : a;
     gsl_function f = {fn_value, (void *)fn};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    gsl_root_fsolver *s = brent ? brent : gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     if (!s) return jc_fail(err, err_len, JC_ENOMEM, "root polishing: out of memory");
     gsl_root_fsolver_set(s, &f, lo, hi);
     int status = GSL_CONTINUE, iter = 0;
@@ -91,7 +92,7 @@ static int polish(const jc_ScanFn *fn, double a, double b, double tol, double *r
         status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), tol, 0.0);
     }
     *root = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
+    if (s != brent) gsl_root_fsolver_free(s);
     if (status != GSL_SUCCESS)
         return jc_fail(err, err_len, JC_ENUMERIC, "root polishing did not converge in [%.17g, %.17g]", lo, hi);
     return JC_OK;
@@ -99,6 +100,12 @@ static int polish(const jc_ScanFn *fn, double a, double b, double tol, double *r
 
 int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, double tol_in,
                 jc_ScanHit *hit, char *err, size_t err_len)
+{
+    return jc_scan_fns_with(fns, count, u_from, u_to, tol_in, NULL, hit, err, err_len);
+}
+
+int jc_scan_fns_with(const jc_ScanFn *fns, int count, double u_from, double u_to, double tol_in,
+                     gsl_root_fsolver *brent, jc_ScanHit *hit, char *err, size_t err_len)
 {
     const double dir = u_to >= u_from ? 1.0 : -1.0;
     const double span = fabs(u_to - u_from);
@@ -144,7 +151,7 @@ int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, dou
                      * may be a double root touched, not crossed. */
                     if (fn_value(b, (void *)&fns[i]) < -fns[i].noise) {
                         double root = b;
-                        int st = polish(&fns[i], at, b, tol, &root, err, err_len);
+                        int st = polish(&fns[i], at, b, tol, brent, &root, err, err_len);
                         if (st != JC_OK) return st;
                         cand_u = fmin(fabs(root - u_from), cand_u);
                         cand_i = i;
@@ -198,6 +205,12 @@ static void trig_eval(const void *ctx, double th, double out[3])
 int jc_scan_first(const jc_ScanSet *set, double th_from, double th_to, double tol_rad,
                   jc_ScanHit *hit, char *err, size_t err_len)
 {
+    return jc_scan_first_with(set, th_from, th_to, tol_rad, NULL, hit, err, err_len);
+}
+
+int jc_scan_first_with(const jc_ScanSet *set, double th_from, double th_to, double tol_rad, gsl_root_fsolver *brent,
+                       jc_ScanHit *hit, char *err, size_t err_len)
+{
     const double th_abs_max = fmax(fabs(th_from), fabs(th_to));
     jc_ScanFn fns[JC_SCAN_MAX];
     trig_fn tf[JC_SCAN_MAX];
@@ -209,5 +222,5 @@ int jc_scan_first(const jc_ScanSet *set, double th_from, double th_to, double to
                              64.0 * DBL_EPSILON * jc_tl_magnitude_bound(set->f[i], th_abs_max),
                              set->sign[i]};
     }
-    return jc_scan_fns(fns, set->count, th_from, th_to, tol_rad, hit, err, err_len);
+    return jc_scan_fns_with(fns, set->count, th_from, th_to, tol_rad, brent, hit, err, err_len);
 }

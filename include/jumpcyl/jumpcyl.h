@@ -413,6 +413,24 @@ typedef struct {
     double rocking_period_s;
 } jc_Run;
 
+/* A run's working memory (the rolling-time quadrature's and the root
+ * polisher's): made once, then lent to any number of runs, one at a time,
+ * so that a run allocates nothing (sweeps, fits, Monte Carlo). A thread
+ * keeps its own. */
+typedef struct jc_Workspace jc_Workspace;
+JC_API jc_Workspace *jc_workspace_new(void); /* NULL when out of memory */
+JC_API void jc_workspace_free(jc_Workspace *ws);
+
+/* The setup's own start: at rest or rolling at theta0 with omega0, the
+ * centre at x = 0 and height r. */
+JC_API jc_State jc_start_state(const jc_Model *model);
+
+/* Checks a state for jc_simulate_from: finite numbers, on the ramp
+ * (0 <= x <= ramp length), not below the incline (y >= r), and not moving
+ * into it from contact (vy >= 0 at y = r); t in [0, the time limit). */
+JC_API int jc_start_validate(const jc_Model *model, const jc_State *start, const jc_SimOptions *options, char *err,
+                             size_t err_len);
+
 JC_API const char *jc_mode_name(jc_Mode mode);
 JC_API const char *jc_event_name(jc_EventKind kind);
 JC_API const char *jc_termination_name(jc_Termination t);
@@ -451,6 +469,18 @@ typedef struct {
  * set as by jc_simulate (identical results). */
 JC_API int jc_simulate_stream(const jc_Model *model, const jc_SimOptions *options, const jc_Recorder *rec,
                        jc_Run *out, char *err, size_t err_len);
+/* Simulates from any state of the body (a restart, a branch, a step of a
+ * fit), streaming as jc_simulate_stream. In contact (y = r, vy = 0) the
+ * run starts in the mode consistent with the forces (rolling when the
+ * contact point does not slip and the cone holds, else sliding, or flight);
+ * above the incline it starts in flight. The energies of its samples and
+ * report are those of jc_kinetic_energy and jc_potential_energy (potential
+ * relative to the setup's start); the balance is taken from this start.
+ * ws: a workspace to use (no allocation in the run), or NULL to make one
+ * for this run. With a recorder that does not allocate, a run with a
+ * workspace allocates nothing. */
+JC_API int jc_simulate_from(const jc_Model *model, const jc_State *start, const jc_SimOptions *options,
+                            const jc_Recorder *rec, jc_Workspace *ws, jc_Run *out, char *err, size_t err_len);
 /* The recorder jc_simulate uses: it appends to arrays->events and
  * arrays->samples (and their counts), which start zeroed and are freed with
  * jc_run_free. Wrap it to add checks of your own (a stop request). */
