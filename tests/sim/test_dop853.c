@@ -1,0 +1,182 @@
+/*
+ * src/dop853.c, the integrator of the phases without a closed form:
+ * - its order (8) and its continuous extension's (7) on y'' = -y, against
+ *   the exact solution;
+ * - against GSL's rk8pd (the integrator it replaced) on 1,000 random
+ *   sliding phases: the sliding equations of motion (docs/physics.md §3,
+ *   forces from jc_slide_accel) integrated by both over the same time, at
+ *   tolerances 1e-12, must agree to 1e-9 of the state's scale.
+ * The seed is printed on a failure; JC_TEST_SEED=N reruns one.
+ */
+#include "sim_common.h"
+
+#include "../../src/internal.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+
+static int oscillator(double t, const double y[], double f[], void *ctx)
+{
+    (void)t;
+    (void)ctx;
+    f[0] = y[1];
+    f[1] = -y[0];
+    return 0;
+}
+
+/* |error| at t = 1 after n fixed steps of y'' = -y from (1, 0). */
+static double fixed_step_error(int n)
+{
+    jc_Dop853 d;
+    jc_dop853_init(&d, 2, 2, 1e-10, 1e-10);
+    const double y0[2] = {1.0, 0.0};
+    jc_dop853_start(&d, oscillator, NULL, 0.0, y0);
+    for (int i = 0; i < n; ++i) {
+        if (jc_dop853_step(&d, oscillator, NULL, 1.0 / n) != 0) return NAN;
+        jc_dop853_advance(&d);
+    }
+    return hypot(d.y0[0] - cos(1.0), d.y0[1] + sin(1.0));
+}
+
+/* The largest error of the continuous extension inside one step of size h. */
+static double dense_error(double h)
+{
+    jc_Dop853 d;
+    jc_dop853_init(&d, 2, 2, 1e-10, 1e-10);
+    const double y0[2] = {1.0, 0.0};
+    jc_dop853_start(&d, oscillator, NULL, 0.0, y0);
+    if (jc_dop853_step(&d, oscillator, NULL, h) != 0 || jc_dop853_dense(&d, oscillator, NULL) != 0) return NAN;
+    double worst = 0.0;
+    for (int k = 1; k < 8; ++k) {
+        double y[2];
+        const double tau = h * k / 8.0;
+        jc_dop853_eval(&d, tau, y);
+        worst = fmax(worst, hypot(y[0] - cos(tau), y[1] + sin(tau)));
+    }
+    return worst;
+}
+
+static int test_order_eight(void)
+{
+    /* Global error ~ h^8: halving h divides it by 256 (outside rounding). */
+    const double e4 = fixed_step_error(4), e8 = fixed_step_error(8);
+    printf("  fixed steps on y'' = -y: error %.3g (4 steps), %.3g (8 steps), ratio %.1f\n", e4, e8, e4 / e8);
+    ENSURE_MSG(e4 / e8 > 180.0 && e4 / e8 < 360.0, "error ratio %.1f, order 8 wants 256", e4 / e8);
+    ENSURE(e8 < 1e-9);
+    return 0;
+}
+
+static int test_continuous_extension_order_seven(void)
+{
+    /* Its local error ~ h^8 (order 7): halving h divides it by about 256. */
+    const double e1 = dense_error(0.8), e2 = dense_error(0.4);
+    printf("  continuous extension: error %.3g (h 0.8), %.3g (h 0.4), ratio %.1f\n", e1, e2, e1 / e2);
+    ENSURE_MSG(e1 / e2 > 150.0 && e1 / e2 < 400.0, "error ratio %.1f, local order 8 wants 256", e1 / e2);
+    ENSURE(e2 < 1e-9);
+    return 0;
+}
+
+/* ---- sliding phases: DOP853 against GSL's rk8pd ---- */
+
+typedef struct {
+    const jc_Model *m;
+    int dir;
+} slide;
+
+/* x, th, vx, w: the sliding equations (no air), sine and cosine taken here. */
+static int slide_rhs(double t, const double y[], double f[], void *ctx)
+{
+    (void)t;
+    const slide *c = ctx;
+    jc_SlideForces sf;
+    jc_slide_accel(c->m, sin(y[1]), cos(y[1]), y[3], c->dir, NULL, &sf);
+    f[0] = y[2];
+    f[1] = y[3];
+    f[2] = sf.x_acc;
+    f[3] = sf.theta_acc;
+    return 0;
+}
+
+/* Adaptive DOP853 from y to time T (no events). */
+static int dop_to(slide *c, double y[4], double T, long *steps)
+{
+    jc_Dop853 d;
+    jc_dop853_init(&d, 4, 4, 1e-12, 1e-14);
+    jc_dop853_start(&d, slide_rhs, c, 0.0, y);
+    double h = 1e-4;
+    *steps = 0;
+    while (d.t0 < T && *steps < 1000000) {
+        const int last = d.t0 + h >= T;
+        if (last) h = T - d.t0;
+        double h_next;
+        const double e = jc_dop853_try(&d, slide_rhs, c, h, &h_next);
+        ++*steps;
+        if (e <= 1.0) {
+            jc_dop853_advance(&d);
+            if (last) d.t0 = T;
+        }
+        h = h_next;
+    }
+    for (int i = 0; i < 4; ++i) y[i] = d.y0[i];
+    return d.t0 >= T ? 0 : 1;
+}
+
+static int test_sliding_phases_match_gsl_rk8pd(void)
+{
+    uint64_t rng;
+    const uint64_t seed = sim_seed(853, &rng);
+    double worst = 0.0;
+    long dop_steps = 0, phases = 0;
+    for (int i = 0; i < 1000; ++i) {
+        jc_Setup s = jc_paper_setup();
+        s.incline_rad = sim_uniform(&rng, 0.0, 60.0) * DEG;
+        s.mu_static = sim_uniform(&rng, 0.05, 1.0);
+        s.mu_kinetic = s.mu_static * sim_uniform(&rng, 0.3, 1.0);
+        s.body.parts[1].offset_m = sim_uniform(&rng, 0.0, 0.09);
+        jc_Model m;
+        char err[256];
+        ENSURE_OK(jc_model_init(&m, &s, err, sizeof err), err);
+        const double r = m.body.radius_m;
+        double y[4] = {0.0, sim_uniform(&rng, -PI, PI), sim_uniform(&rng, -3.0, 3.0), sim_uniform(&rng, -30.0, 30.0)};
+        const double slip = y[2] - r * y[3];
+        slide c = {&m, slip > 0.0 ? 1 : -1};
+        jc_SlideForces f0;
+        jc_slide_accel(&m, sin(y[1]), cos(y[1]), y[3], c.dir, NULL, &f0);
+        /* A sliding phase needs a consistent contact force: D well above 0. */
+        if (!(f0.denominator > 0.2)) continue;
+        const double T = 0.05;
+        double y_gsl[4] = {y[0], y[1], y[2], y[3]};
+        long steps;
+        ENSURE_MSG(dop_to(&c, y, T, &steps) == 0, "seed %llu case %d: DOP853 did not reach T",
+                   (unsigned long long)seed, i);
+        gsl_odeiv2_system sys = {slide_rhs, NULL, 4, &c};
+        gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-4, 1e-14, 1e-12);
+        ENSURE(drv != NULL);
+        double t = 0.0;
+        const int st = gsl_odeiv2_driver_apply(drv, &t, T, y_gsl);
+        gsl_odeiv2_driver_free(drv);
+        ENSURE_MSG(st == GSL_SUCCESS, "seed %llu case %d: rk8pd failed", (unsigned long long)seed, i);
+        const double scale[4] = {1.0, 1.0, 1.0, 10.0}; /* m, rad, m/s, rad/s */
+        for (int k = 0; k < 4; ++k) {
+            const double diff = fabs(y[k] - y_gsl[k]) / fmax(scale[k], fabs(y_gsl[k]));
+            worst = fmax(worst, diff);
+            ENSURE_MSG(diff < 1e-9, "seed %llu case %d component %d: DOP853 %.15g, rk8pd %.15g",
+                       (unsigned long long)seed, i, k, y[k], y_gsl[k]);
+        }
+        dop_steps += steps;
+        phases++;
+    }
+    printf("  %ld sliding phases of 0.05 s: largest difference from rk8pd %.2g of scale, %.1f DOP853 steps each\n",
+           phases, worst, (double)dop_steps / (double)phases);
+    ENSURE(phases >= 500);
+    return 0;
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    RUN_TEST(test_order_eight);
+    RUN_TEST(test_continuous_extension_order_seven);
+    RUN_TEST(test_sliding_phases_match_gsl_rk8pd);
+    TEST_MAIN_END();
+}
