@@ -154,7 +154,7 @@ void cli_error(const char *fmt, ...)
 /* JSON helpers (cJSON). */
 struct cJSON;
 /* {"theta": rad, "x": m, "omega": rad/s, "normal": N, "friction": N, "grazing": bool} or null */
-struct cJSON *cli_json_crossing(const jc_RollCrossing *c);
+struct cJSON *cli_json_crossing(const jc_RollingCrossing *c);
 struct cJSON *cli_json_setup(const jc_Model *m);
 struct cJSON *cli_json_event(const jc_Event *e);
 struct cJSON *cli_json_energy(const jc_EnergyReport *e);

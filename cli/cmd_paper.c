@@ -161,7 +161,7 @@ static int compute_rows(const jc_Setup *base, paper_row *rows, int *count, char 
 
 /* ---- text ---- */
 
-static void cell_x(const jc_RollCrossing *c)
+static void cell_x(const jc_RollingCrossing *c)
 {
     if (c->found) printf(" %14.2f", c->state.x_m * 100);
     else printf(" %14s", "none");
@@ -340,7 +340,7 @@ static void print_text(const paper_row *rows, int n)
     }
     printf("\n%-40s", "  rolling N = 0 inside the error bar");
     for (int i = 0; i < n; ++i) {
-        const jc_RollCrossing *c = &rows[i].rolling.liftoff;
+        const jc_RollingCrossing *c = &rows[i].rolling.liftoff;
         printf(" %14s", !c->found ? "-" : inside(c->state.x_m, &rows[i].table) ? "yes" : "no");
     }
     print_full(rows, n);
@@ -392,7 +392,7 @@ static cJSON *json_row(const paper_row *r)
         cJSON_AddNumberToObject(pm, "minus_printed_theta", p->theta_rad[p->first] - r->table.printed_theta_rad);
     cJSON_AddItemToObject(o, "paper_model", pm);
     cJSON *ro = cJSON_CreateObject();
-    const jc_RollCrossing *lo = &r->rolling.liftoff;
+    const jc_RollingCrossing *lo = &r->rolling.liftoff;
     if (lo->found) {
         cJSON_AddNumberToObject(ro, "theta", lo->state.theta_rad);
         cJSON_AddNumberToObject(ro, "x", lo->state.x_m);

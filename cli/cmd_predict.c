@@ -31,13 +31,13 @@ static int take(int opt, const char *arg, void *ctx)
     return EXIT_USAGE;
 }
 
-static void print_crossing(const char *label, const jc_RollCrossing *c)
+static void print_crossing(const char *label, const jc_RollingCrossing *c)
 {
     if (!c->found) {
         printf("  %-34s none on the rolling path\n", label);
         return;
     }
-    const jc_RollState *s = &c->state;
+    const jc_RollingState *s = &c->state;
     printf("  %-34s th = %9.5f rad  x = %7.2f cm  w = %7.3f rad/s  N = %8.5f N  F = %8.5f N%s\n",
            label, s->theta_rad, s->x_m * 100, s->omega_radps, s->normal_N, s->friction_N,
            c->grazing ? "  (grazing)" : "");
@@ -78,7 +78,7 @@ static void print_text(const jc_Model *m, const jc_PaperResult *p, const jc_Roll
     snprintf(label, sizeof label, "slip onset |F| = mu_s N (%.3g):", m->setup.mu_static);
     print_crossing(label, &r->slip);
     print_crossing("N = 0 on the rolling path:", &r->liftoff);
-    printf("  rolling path ends:                 %s at x = %.2f cm\n", jc_roll_end_name(r->end),
+    printf("  rolling path ends:                 %s at x = %.2f cm\n", jc_rolling_end_name(r->end),
            r->end_x_m * 100);
     print_full(run);
     if (r->liftoff.found)
@@ -107,7 +107,7 @@ static cJSON *json_doc(const jc_Model *m, const jc_PaperResult *p, const jc_Roll
     cJSON *ro = cJSON_AddObjectToObject(doc, "rolling");
     cJSON_AddItemToObject(ro, "liftoff", cli_json_crossing(&r->liftoff));
     cJSON_AddItemToObject(ro, "slip", cli_json_crossing(&r->slip));
-    cJSON_AddStringToObject(ro, "end", jc_roll_end_name(r->end));
+    cJSON_AddStringToObject(ro, "end", jc_rolling_end_name(r->end));
     cJSON_AddNumberToObject(ro, "end_x", r->end_x_m);
     jc_RunSummary sum;
     jc_run_summarize(run, &sum);

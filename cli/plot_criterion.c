@@ -50,7 +50,7 @@ static void exact_sides(const fig_Data *d, double th, double *lhs, double *rhs)
     *lhs = *rhs = NAN;
     const double lo = fmin(m->setup.theta0_rad, d->rolling.end_theta_rad);
     const double hi = fmax(m->setup.theta0_rad, d->rolling.end_theta_rad);
-    jc_RollState rs;
+    jc_RollingState rs;
     char err[256];
     if (th < lo || th > hi || jc_rolling_state(m, th, &rs, err, sizeof err) != JC_OK) return;
     const double g = m->setup.gravity_mps2, dd = m->body.cm_offset_m;
@@ -144,7 +144,7 @@ static void panel_markers(FILE *gp, const fig_Data *d)
                 d->printed_theta_rad);
     }
     if (d->rolling.liftoff.found) {
-        const jc_RollState *s = &d->rolling.liftoff.state;
+        const jc_RollingState *s = &d->rolling.liftoff.state;
         fprintf(gp, "# First N = 0 of the exact rolling model (jc_rolling_predict): a diagnostic, the body slips first\n"
                     "EXACT_THETA = %.10g\nEXACT_Y = %.10g\n"
                     "set label 1 '' at EXACT_THETA, EXACT_Y point pt 13 ps 1.8*PS lc rgb C_GREEN front\n",

@@ -61,7 +61,7 @@ void cli_print_setup(FILE *out, const jc_Model *m, int show_incline)
 #include <cjson/cJSON.h>
 #include <stdlib.h>
 
-cJSON *cli_json_crossing(const jc_RollCrossing *c)
+cJSON *cli_json_crossing(const jc_RollingCrossing *c)
 {
     if (!c->found) return cJSON_CreateNull();
     cJSON *o = cJSON_CreateObject();

@@ -247,14 +247,14 @@ void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, double vx, dou
 
 
 /* rolling.c: rolling accelerations and contact force; loads NULL for none. */
-void jc_roll_accel(const jc_Model *m, double sin_th, double cos_th, double w, const jc_Loads *loads, double *thdd,
+void jc_rolling_accel(const jc_Model *m, double sin_th, double cos_th, double w, const jc_Loads *loads, double *thdd,
                    double *normal, double *friction);
-void jc_roll_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction);
+void jc_rolling_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction);
 /* With the model's loads at the rolling velocity; dir is the direction for
  * rolling resistance when w = 0. */
-void jc_roll_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
+void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
                 jc_Loads *loads);
-void jc_roll_at_sc(const jc_Model *m, double sin_th, double cos_th, double w, int dir, double *thdd, double *normal,
+void jc_rolling_at_sc(const jc_Model *m, double sin_th, double cos_th, double w, int dir, double *thdd, double *normal,
                    double *friction, jc_Loads *loads);
 /* I_P at th given by its cosine. */
 double jc_rolling_inertia_p(const jc_Model *m, double cos_th);
@@ -265,22 +265,22 @@ double jc_rolling_inertia_p(const jc_Model *m, double cos_th);
 typedef struct {
     jc_TrigLin energy, normal, friction, slip_pos, slip_neg;
     const jc_TrigLin *inertia;
-} jc_RollPath;
-void jc_rolling_path_init(const jc_Model *m, double th, double w, jc_RollPath *p);
+} jc_RollingPath;
+void jc_rolling_path_init(const jc_Model *m, double th, double w, jc_RollingPath *p);
 /* rolling_phase.c */
-int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
+int jc_rolling_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
 
 /* sliding.c */
 typedef struct {
     double normal_N, friction_N, theta_acc, x_acc, denominator;
-} jc_SlideForces;
+} jc_SlidingForces;
 /* Contact forces and accelerations; loads NULL for none. */
 /* At angle th given by its sine s and cosine c. */
-void jc_slide_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *loads, jc_SlideForces *f);
-void jc_slide_forces(const jc_Model *m, double th, double w, int slip_dir, jc_SlideForces *f); /* no loads */
+void jc_sliding_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *loads, jc_SlidingForces *f);
+void jc_sliding_forces(const jc_Model *m, double th, double w, int slip_dir, jc_SlidingForces *f); /* no loads */
 /* At a state, with the loads there when the model has any. */
-void jc_slide_at(const jc_Model *m, const jc_State *s, int dir, jc_SlideForces *f, jc_Loads *loads);
-int jc_slide_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
+void jc_sliding_at(const jc_Model *m, const jc_State *s, int dir, jc_SlidingForces *f, jc_Loads *loads);
+int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
 
 /* flight.c */
 double jc_flight_gap(const jc_Model *m, const jc_State *s); /* rim's lowest point above the incline */

@@ -38,8 +38,8 @@ static jc_ModeChoice start_slide(const jc_Model *m, const jc_State *s, int dir, 
 {
     const double r = m->body.radius_m;
     for (int attempt = 0; attempt < 2; ++attempt, dir = -dir) {
-        jc_SlideForces f;
-        jc_slide_at(m, s, dir, &f, NULL);
+        jc_SlidingForces f;
+        jc_sliding_at(m, s, dir, &f, NULL);
         if (!(f.denominator > 0.0 && f.normal_N > 0.0)) continue;
         /* At a slip onset friction is already at the cone's edge, so the
          * slip acceleration starts from zero: only a clear opposition (beyond
@@ -60,8 +60,8 @@ jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_rol
     const double slip = s->vx_mps - r * s->omega_radps;
     if (fabs(slip) > JC_NO_SLIP_MPS) {
         const int dir = slip > 0.0 ? 1 : -1;
-        jc_SlideForces f;
-        jc_slide_at(m, s, dir, &f, NULL);
+        jc_SlidingForces f;
+        jc_sliding_at(m, s, dir, &f, NULL);
         if (f.denominator <= 0.0) return CHOICE_PAINLEVE;
         if (f.normal_N > 0.0) {
             *slip_dir = dir;
@@ -71,7 +71,7 @@ jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_rol
     }
     double thdd, normal, friction;
     const int roll_dir = s->omega_radps > 0.0 ? 1 : (s->omega_radps < 0.0 ? -1 : 0);
-    jc_roll_at(m, s->theta_rad, s->omega_radps, roll_dir, &thdd, &normal, &friction, NULL);
+    jc_rolling_at(m, s->theta_rad, s->omega_radps, roll_dir, &thdd, &normal, &friction, NULL);
     if (allow_roll && normal > 0.0 && fabs(friction) <= m->setup.mu_static * normal) {
         if (s->omega_radps == 0.0 && thdd == 0.0) return CHOICE_REST;
         return CHOICE_ROLL;

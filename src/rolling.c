@@ -10,13 +10,13 @@
 
 #define ROLL_ROOT_TOL_RAD 1e-12
 
-const char *jc_roll_end_name(jc_RollEnd end)
+const char *jc_rolling_end_name(jc_RollingEnd end)
 {
     switch (end) {
-    case JC_ROLL_END_RAMP_END: return "ramp_end";
-    case JC_ROLL_END_TURN_BACK: return "turn_back";
-    case JC_ROLL_END_RAMP_TOP: return "ramp_top";
-    case JC_ROLL_END_AT_REST: return "at_rest";
+    case JC_ROLLING_END_RAMP_END: return "ramp_end";
+    case JC_ROLLING_END_TURN_BACK: return "turn_back";
+    case JC_ROLLING_END_RAMP_TOP: return "ramp_top";
+    case JC_ROLLING_END_AT_REST: return "at_rest";
     }
     return "unknown";
 }
@@ -61,7 +61,7 @@ static int start_direction(const jc_Model *m)
  *                              + (r + d cos th)(M d sin th w^2 + M g sin a + Fx) + T,
  * which without loads is I_P th'' = M g Q + M r d sin th w^2 (physics.md §2).
  * Then F and N follow from Newton's law for G. */
-void jc_roll_accel(const jc_Model *m, double s, double c, double w, const jc_Loads *l, double *thdd, double *normal,
+void jc_rolling_accel(const jc_Model *m, double s, double c, double w, const jc_Loads *l, double *thdd, double *normal,
                    double *friction)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
@@ -84,22 +84,22 @@ void jc_roll_accel(const jc_Model *m, double s, double c, double w, const jc_Loa
     *friction = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline) - fx;
 }
 
-void jc_roll_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction)
+void jc_rolling_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction)
 {
-    jc_roll_accel(m, sin(th), cos(th), w, NULL, thdd, normal, friction);
+    jc_rolling_accel(m, sin(th), cos(th), w, NULL, thdd, normal, friction);
 }
 
-void jc_roll_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
+void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
                 jc_Loads *loads)
 {
-    jc_roll_at_sc(m, sin(th), cos(th), w, dir, thdd, normal, friction, loads);
+    jc_rolling_at_sc(m, sin(th), cos(th), w, dir, thdd, normal, friction, loads);
 }
 
-void jc_roll_at_sc(const jc_Model *m, double s, double c, double w, int dir, double *thdd, double *normal,
+void jc_rolling_at_sc(const jc_Model *m, double s, double c, double w, int dir, double *thdd, double *normal,
                    double *friction, jc_Loads *loads)
 {
     if (!jc_model_has_resistance(m)) {
-        jc_roll_accel(m, s, c, w, NULL, thdd, normal, friction);
+        jc_rolling_accel(m, s, c, w, NULL, thdd, normal, friction);
         if (loads) *loads = (jc_Loads){0};
         return;
     }
@@ -107,11 +107,11 @@ void jc_roll_at_sc(const jc_Model *m, double s, double c, double w, int dir, dou
     jc_loads_at(m, s, c, m->body.radius_m * w, 0.0, w, &l);
     /* At w = 0 rolling resistance opposes the direction about to be taken. */
     if (w == 0.0) l.rr_torque_per_N = -m->setup.rolling_resistance_m * dir;
-    jc_roll_accel(m, s, c, w, &l, thdd, normal, friction);
+    jc_rolling_accel(m, s, c, w, &l, thdd, normal, friction);
     if (loads) *loads = l;
 }
 
-int jc_rolling_state(const jc_Model *m, double th, jc_RollState *out, char *err, size_t err_len)
+int jc_rolling_state(const jc_Model *m, double th, jc_RollingState *out, char *err, size_t err_len)
 {
     if (!isfinite(th))
         return jc_fail(err, err_len, JC_EINVAL, "angle %g rad is not a finite number", th);
@@ -132,14 +132,14 @@ int jc_rolling_state(const jc_Model *m, double th, jc_RollState *out, char *err,
     const double w2 = two_ke / ip;
     out->theta_rad = th;
     out->omega_radps = start_direction(m) * sqrt(w2);
-    jc_roll_forces(m, th, out->omega_radps, &out->alpha_radps2, &out->normal_N, &out->friction_N);
+    jc_rolling_forces(m, th, out->omega_radps, &out->alpha_radps2, &out->normal_N, &out->friction_N);
     out->x_m = r * (th - th0);
     out->kinetic_J = 0.5 * two_ke;
     out->potential_J = u - u0;
     return JC_OK;
 }
 
-static int fill_crossing(const jc_Model *m, const jc_ScanHit *hit, jc_RollCrossing *c,
+static int fill_crossing(const jc_Model *m, const jc_ScanHit *hit, jc_RollingCrossing *c,
                          char *err, size_t err_len)
 {
     c->found = 1;
@@ -156,7 +156,7 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
     const int dir = start_direction(m);
 
     /* N, mu_s N -/+ F and I_P w^2, all cleared of I_P^2: rolling holds while all are > 0. */
-    jc_RollPath path;
+    jc_RollingPath path;
     jc_rolling_path_init(m, th0, m->setup.omega0_radps, &path);
     const jc_TrigLin *watch[WATCH_COUNT] = {&path.normal, &path.slip_pos, &path.slip_neg, &path.energy};
     /* The turning point is watched only along a path that goes downhill. */
@@ -164,7 +164,7 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
 
     /* Uphill or at rest, the path is only the start point. */
     double th_end = dir > 0 ? m->theta_end_rad : th0;
-    out->end = dir > 0 ? JC_ROLL_END_RAMP_END : (dir < 0 ? JC_ROLL_END_RAMP_TOP : JC_ROLL_END_AT_REST);
+    out->end = dir > 0 ? JC_ROLLING_END_RAMP_END : (dir < 0 ? JC_ROLLING_END_RAMP_TOP : JC_ROLLING_END_AT_REST);
     out->end_theta_rad = th_end;
 
     double th = th0;
@@ -194,7 +194,7 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
             st = fill_crossing(m, &hit, &out->slip, err, err_len);
             break;
         case WATCH_ENERGY:
-            out->end = JC_ROLL_END_TURN_BACK;
+            out->end = JC_ROLLING_END_TURN_BACK;
             out->end_theta_rad = th;
             active[WATCH_NORMAL] = active[WATCH_SLIP_POS] = 0;
             break;
@@ -205,7 +205,7 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
     return JC_OK;
 }
 
-void jc_rolling_path_init(const jc_Model *m, double th, double w, jc_RollPath *p)
+void jc_rolling_path_init(const jc_Model *m, double th, double w, jc_RollingPath *p)
 {
     const jc_ModelTables *tb = jc_model_tables(m);
     const double e = jc_tl_value(&tb->inertia_p_poly, th) * w * w + 2.0 * jc_tl_value(&tb->potential_poly, th);

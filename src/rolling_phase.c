@@ -53,7 +53,7 @@ static double dt_du(double u, void *params)
  * I_P w^2 at th_a as known exactly (the phase's start state); taking it from
  * the energy polynomial instead, e - 2U(th_a), loses it to cancellation when
  * the body starts almost at rest. */
-static int roll_time(jc_Sim *sim, const jc_RollPath *path, double th_a, double p_a, double th_b, double *dt,
+static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, double p_a, double th_b, double *dt,
                      char *err, size_t err_len)
 {
     *dt = 0.0;
@@ -95,7 +95,7 @@ static int roll_time(jc_Sim *sim, const jc_RollPath *path, double th_a, double p
 
 typedef struct {
     jc_Sim *sim;
-    const jc_RollPath *path;
+    const jc_RollingPath *path;
     double th_a, p_a, target;
     int status;
 } time_target;
@@ -109,7 +109,7 @@ static double time_minus_target(double th, void *params)
 }
 
 /* The th between th_a and th_b reached dt after th_a. */
-static int roll_theta_at(jc_Sim *sim, const jc_RollPath *path, double th_a, double p_a, double th_b, double dt,
+static int roll_theta_at(jc_Sim *sim, const jc_RollingPath *path, double th_a, double p_a, double th_b, double dt,
                          double *th, char *err, size_t err_len)
 {
     time_target tt = {sim, path, th_a, p_a, dt, JC_OK};
@@ -141,7 +141,7 @@ static double start_p(const jc_Model *m, const jc_State *s)
 }
 
 /* The state on the rolling path at th. */
-static jc_State roll_state_at(const jc_Model *m, const jc_RollPath *path, const jc_State *start,
+static jc_State roll_state_at(const jc_Model *m, const jc_RollingPath *path, const jc_State *start,
                               double th, int dir)
 {
     const double r = m->body.radius_m;
@@ -157,7 +157,7 @@ static jc_State roll_state_at(const jc_Model *m, const jc_RollPath *path, const 
     return s;
 }
 
-static int emit_samples(jc_Sim *sim, const jc_RollPath *path, const jc_State *start, double th_end,
+static int emit_samples(jc_Sim *sim, const jc_RollingPath *path, const jc_State *start, double th_end,
                         int dir, double t_end, char *err, size_t err_len)
 {
     double ts;
@@ -169,7 +169,7 @@ static int emit_samples(jc_Sim *sim, const jc_RollPath *path, const jc_State *st
         jc_State s = roll_state_at(sim->m, path, start, th, dir);
         s.t_s = ts;
         double thdd, n, f;
-        jc_roll_forces(sim->m, th, s.omega_radps, &thdd, &n, &f);
+        jc_rolling_forces(sim->m, th, s.omega_radps, &thdd, &n, &f);
         if ((st = jc_record_sample(sim, &s, JC_MODE_ROLLING, n, f)) != JC_OK)
             return jc_fail(err, err_len, st, "out of memory for samples");
     }
@@ -194,7 +194,7 @@ typedef struct {
 
 static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f, jc_Loads *l)
 {
-    jc_roll_at_sc(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, thdd, n, f, l);
+    jc_rolling_at_sc(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, thdd, n, f, l);
 }
 
 static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
@@ -252,9 +252,9 @@ static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[]
 static int rest_direction(const jc_Model *m, double th)
 {
     double thdd, n, f;
-    jc_roll_at(m, th, 0.0, 1, &thdd, &n, &f, NULL);
+    jc_rolling_at(m, th, 0.0, 1, &thdd, &n, &f, NULL);
     if (thdd > 0.0) return 1;
-    jc_roll_at(m, th, 0.0, -1, &thdd, &n, &f, NULL);
+    jc_rolling_at(m, th, 0.0, -1, &thdd, &n, &f, NULL);
     return thdd < 0.0 ? -1 : 0;
 }
 
@@ -335,7 +335,7 @@ static double tangential_compliance(const jc_Model *m, double th)
  * (sim options, 1 um by default): the same scale below which a rebound
  * counts as contact. A real contact takes such a tangential displacement
  * elastically (its tangential compliance) instead of slipping. Sets *micro. */
-static int micro_excursion(jc_Sim *sim, const jc_RollPath *path, const jc_State *at, int k, double th_lim,
+static int micro_excursion(jc_Sim *sim, const jc_RollingPath *path, const jc_State *at, int k, double th_lim,
                            int *micro, char *err, size_t err_len)
 {
     const jc_Model *m = sim->m;
@@ -366,7 +366,7 @@ static int micro_excursion(jc_Sim *sim, const jc_RollPath *path, const jc_State 
         const double th = at->theta_rad + (hit.theta - at->theta_rad) * i / EXCURSION_SAMPLES;
         const double w = sqrt(fmax(jc_tl_value(&path->energy, th), 0.0) / jc_tl_value(path->inertia, th));
         double thdd, n, f;
-        jc_roll_forces(m, th, w, &thdd, &n, &f);
+        jc_rolling_forces(m, th, w, &thdd, &n, &f);
         peak = fmax(peak, tangential_compliance(m, th) * (fabs(f) - m->setup.mu_static * n));
     }
     *micro = peak * tau * tau < sim->opt->contact_height_m;
@@ -376,15 +376,15 @@ static int micro_excursion(jc_Sim *sim, const jc_RollPath *path, const jc_State 
 /* s: two turning points this close in time are one (rounding of a turn). */
 #define PERIOD_MIN_S 1e-9
 
-int jc_roll_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
+int jc_rolling_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     if (jc_model_has_resistance(sim->m)) return roll_ode_phase(sim, end, err, err_len);
     const jc_Model *m = sim->m;
     const double r = m->body.radius_m, L = m->setup.ramp_length_m;
-    jc_RollPath path;
+    jc_RollingPath path;
     jc_rolling_path_init(m, sim->s.theta_rad, sim->s.omega_radps, &path);
     double thdd, n, f;
-    jc_roll_forces(m, sim->s.theta_rad, sim->s.omega_radps, &thdd, &n, &f);
+    jc_rolling_forces(m, sim->s.theta_rad, sim->s.omega_radps, &thdd, &n, &f);
     int dir = sim->s.omega_radps != 0.0 ? (sim->s.omega_radps > 0.0 ? 1 : -1) : (thdd > 0.0) - (thdd < 0.0);
     if (dir == 0) {
         *end = PHASE_AT_REST;

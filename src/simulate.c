@@ -18,14 +18,14 @@ static void contact_force(const jc_Sim *sim, double *normal, double *friction)
 {
     *normal = *friction = 0.0;
     double thdd;
-    jc_SlideForces f;
+    jc_SlidingForces f;
     const double w = sim->s.omega_radps;
     switch (sim->mode) {
     case JC_MODE_ROLLING:
-        jc_roll_at(sim->m, sim->s.theta_rad, w, (w > 0.0) - (w < 0.0), &thdd, normal, friction, NULL);
+        jc_rolling_at(sim->m, sim->s.theta_rad, w, (w > 0.0) - (w < 0.0), &thdd, normal, friction, NULL);
         break;
     case JC_MODE_SLIDING:
-        jc_slide_at(sim->m, &sim->s, sim->slip_dir, &f, NULL);
+        jc_sliding_at(sim->m, &sim->s, sim->slip_dir, &f, NULL);
         *normal = f.normal_N;
         *friction = f.friction_N;
         break;
@@ -176,8 +176,8 @@ static int do_impact(jc_Sim *sim, int *from_liftoff, char *err, size_t err_len, 
 static int run_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     switch (sim->mode) {
-    case JC_MODE_ROLLING: return jc_roll_phase(sim, end, err, err_len);
-    case JC_MODE_SLIDING: return jc_slide_phase(sim, end, err, err_len);
+    case JC_MODE_ROLLING: return jc_rolling_phase(sim, end, err, err_len);
+    case JC_MODE_SLIDING: return jc_sliding_phase(sim, end, err, err_len);
     case JC_MODE_FLIGHT: return jc_flight_phase(sim, from_liftoff, end, err, err_len);
     }
     return JC_EINVAL;
@@ -295,7 +295,7 @@ static int start_mode(jc_Sim *sim, int *from_liftoff, int *stop)
     }
     double thdd, n_roll, f_roll;
     const double w = sim->s.omega_radps;
-    jc_roll_at(model, sim->s.theta_rad, w, w > 0.0 || (w == 0.0 && model->setup.omega0_radps >= 0.0) ? 1 : -1, &thdd,
+    jc_rolling_at(model, sim->s.theta_rad, w, w > 0.0 || (w == 0.0 && model->setup.omega0_radps >= 0.0) ? 1 : -1, &thdd,
                &n_roll, &f_roll, NULL);
     if (kind >= 0) st = jc_record_event(sim, (jc_EventKind)kind, JC_MODE_ROLLING, n_roll, f_roll, 0.0, NULL);
     if (kind == JC_EVENT_LIFTOFF) {

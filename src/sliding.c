@@ -28,7 +28,7 @@
  * tests/sim/test_random_setups.c all close to 2e-10.) */
 #define PAINLEVE_D_MIN 1e-3
 
-void jc_slide_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l, jc_SlideForces *f)
+void jc_sliding_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l, jc_SlidingForces *f)
 {
     /* Reciprocals from the model: this runs at every stage of every step,
      * and its four divisions were its largest cost (measured). */
@@ -46,18 +46,18 @@ void jc_slide_accel(const jc_Model *m, double s, double c, double w, int dir, co
     f->x_acc = g * m->sin_incline + (f->friction_N + fx) * inv_m - d * c * f->theta_acc + d * s * w2;
 }
 
-void jc_slide_forces(const jc_Model *m, double th, double w, int dir, jc_SlideForces *f)
+void jc_sliding_forces(const jc_Model *m, double th, double w, int dir, jc_SlidingForces *f)
 {
-    jc_slide_accel(m, sin(th), cos(th), w, dir, NULL, f);
+    jc_sliding_accel(m, sin(th), cos(th), w, dir, NULL, f);
 }
 
 /* Sliding at state (th, w, vx): the loads there (none when switched off). */
-void jc_slide_at(const jc_Model *m, const jc_State *s, int dir, jc_SlideForces *f, jc_Loads *loads)
+void jc_sliding_at(const jc_Model *m, const jc_State *s, int dir, jc_SlidingForces *f, jc_Loads *loads)
 {
     jc_Loads l = {0};
     const double sn = sin(s->theta_rad), cs = cos(s->theta_rad);
     if (jc_model_has_resistance(m)) jc_loads_at(m, sn, cs, s->vx_mps, 0.0, s->omega_radps, &l);
-    jc_slide_accel(m, sn, cs, s->omega_radps, dir, &l, f);
+    jc_sliding_accel(m, sn, cs, s->omega_radps, dir, &l, f);
     if (loads) *loads = l;
 }
 
@@ -68,20 +68,20 @@ typedef struct {
 } slide_ctx;
 
 /* Forces at a state vector, with th's sine and cosine taken from it. */
-static void forces_y(const slide_ctx *c, const double y[], jc_SlideForces *f, jc_Loads *l)
+static void forces_y(const slide_ctx *c, const double y[], jc_SlidingForces *f, jc_Loads *l)
 {
     jc_Loads none = {0};
     if (!l) l = &none;
     if (c->loaded) jc_loads_at(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_VX], 0.0, y[JC_Y_W], l);
     else *l = none;
-    jc_slide_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, l, f);
+    jc_sliding_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, l, f);
 }
 
 static int slide_rhs(double t, const double y[], double dydt[], void *params)
 {
     (void)t;
     const slide_ctx *c = params;
-    jc_SlideForces f;
+    jc_SlidingForces f;
     jc_Loads l;
     forces_y(c, y, &f, &l);
     const double slip = y[JC_Y_VX] - c->m->body.radius_m * y[JC_Y_W];
@@ -107,7 +107,7 @@ enum { EV_SLIP, EV_LIFT, EV_PAINLEVE, EV_END, EV_TOP, EV_COUNT };
 static void slide_events(void *params, const double y[], double ev[])
 {
     const slide_ctx *c = params;
-    jc_SlideForces f;
+    jc_SlidingForces f;
     forces_y(c, y, &f, NULL);
     ev[EV_SLIP] = c->dir * (y[JC_Y_VX] - c->m->body.radius_m * y[JC_Y_W]);
     ev[EV_LIFT] = f.normal_N * f.denominator; /* N's numerator: N > 0 while D > 0 */
@@ -119,14 +119,14 @@ static void slide_events(void *params, const double y[], double ev[])
 static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
 {
     const slide_ctx *c = params;
-    jc_SlideForces f;
+    jc_SlidingForces f;
     forces_y(c, y, &f, NULL);
     jc_State s;
     jc_y_to_state(y, t, &s);
     return jc_record_sample_y(sim, &s, y, JC_MODE_SLIDING, f.normal_N, f.friction_N);
 }
 
-int jc_slide_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
+int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     slide_ctx ctx = {sim->m, sim->slip_dir, jc_model_has_resistance(sim->m)};
     const jc_OdePhase phase = {slide_rhs, slide_events, EV_COUNT, slide_sample, &ctx,

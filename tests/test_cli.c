@@ -105,7 +105,7 @@ static int setup_model(const jc_Setup *s, jc_Model *m, jc_PaperResult *p, jc_Rol
     return 0;
 }
 
-static int check_crossing(const cJSON *c, const jc_RollCrossing *want)
+static int check_crossing(const cJSON *c, const jc_RollingCrossing *want)
 {
     if (!want->found) {
         ENSURE(cJSON_IsNull(c));
@@ -146,7 +146,7 @@ static int check_predict(const char *args, const jc_Setup *s)
     bad |= check_crossing(cJSON_GetObjectItemCaseSensitive(ro, "liftoff"), &r.liftoff);
     bad |= check_crossing(cJSON_GetObjectItemCaseSensitive(ro, "slip"), &r.slip);
     const cJSON *end = cJSON_GetObjectItemCaseSensitive(ro, "end");
-    bad |= !cJSON_IsString(end) || strcmp(end->valuestring, jc_roll_end_name(r.end)) != 0;
+    bad |= !cJSON_IsString(end) || strcmp(end->valuestring, jc_rolling_end_name(r.end)) != 0;
     bad |= !(fabs(num(doc, "setup.body.cm_offset") - m.body.cm_offset_m) <= JSON_TOL * m.body.cm_offset_m);
     bad |= !(fabs(num(doc, "setup.incline_deg") - s->incline_rad / DEG) <= 1e-13); /* deg conversion */
     /* The setup as the tool read it (SI; exact decimal round trip). */

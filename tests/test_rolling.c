@@ -167,12 +167,12 @@ static int test_uniform_disc(void)
         char err[256] = "";
         ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
         ENSURE(!res.liftoff.found && !res.slip.found);
-        ENSURE(res.end == JC_ROLL_END_RAMP_END);
+        ENSURE(res.end == JC_ROLLING_END_RAMP_END);
         ENSURE_REL(res.end_x_m, m.setup.ramp_length_m, 1e-14); /* r (L/r): two roundings */
         const double M = m.body.mass_kg, r = m.body.radius_m, ic = m.body.inertia_c_kgm2;
         const double g = m.setup.gravity_mps2, a = m.setup.incline_rad;
         for (double th = 0; th < m.theta_end_rad; th += 0.37) {
-            jc_RollState st;
+            jc_RollingState st;
             ENSURE_OK(jc_rolling_state(&m, th, &st, err, sizeof err), err);
             /* Closed forms with a handful of operations: 1e-12 relative; on the
              * floor both are 0 (up to the rounding of sin(0) terms: 1e-15 g). */
@@ -207,7 +207,7 @@ static int test_energy_identity(void)
         double e0 = 0, scale = D.M * D.g * (D.r + D.d), worst = 0;
         for (int i = 0; i <= 2000; ++i) {
             const double th = D.th0 + (th_end - D.th0) * i / 2000.0;
-            jc_RollState st;
+            jc_RollingState st;
             ENSURE_OK(jc_rolling_state(&m, th, &st, err, sizeof err), err);
             const double ke = kinetic(&D, th, st.omega_radps), u = pot(&D, th);
             if (i == 0) e0 = ke + u;
@@ -238,7 +238,7 @@ static int test_newton_euler_pointwise(void)
         ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
         for (int i = 0; i <= 500; ++i) {
             const double th = D.th0 + (res.end_theta_rad - D.th0) * i / 500.0;
-            jc_RollState st;
+            jc_RollingState st;
             ENSURE_OK(jc_rolling_state(&m, th, &st, err, sizeof err), err);
             const double w2 = fmax(omega2(&D, th), 0.0);
             const forces f = newton_euler(&D, th, w2);
@@ -250,7 +250,7 @@ static int test_newton_euler_pointwise(void)
             ENSURE_NEAR(st.normal_N, f.N, 1e-11 * fs);
             ENSURE_NEAR(st.friction_N, f.F, 1e-11 * fs);
             /* The path from the start: energy = I_P w^2, normal = N I_P^2, friction = F I_P^2. */
-            jc_RollPath path;
+            jc_RollingPath path;
             jc_rolling_path_init(&m, D.th0, D.w0, &path);
             const double ip = 2 * kinetic(&D, th, 1.0);
             ENSURE_NEAR(tl_direct(&path.energy, th), ip * w2, 1e-11 * ip * (fabs(w2) + D.g / D.r));
@@ -303,7 +303,7 @@ static int check_trajectory(const jc_Setup *s, double *worst_rel, double *worst_
         }
         ax /= 12 * h * h;
         ay /= 12 * h * h;
-        jc_RollState st;
+        jc_RollingState st;
         char err[256] = "";
         if (jc_rolling_state(&m, th[2], &st, err, sizeof err) != JC_OK) {
             fprintf(stderr, "%s\n", err);
@@ -389,7 +389,7 @@ static int check_crossings(const jc_Setup *s, jc_RollingResult *res)
                    cs.N, cs.F);
         ENSURE_MSG(lift_to == D.th0 || cl.N > 0, "N = %g at th = %.12g before the reported N = 0 at %.12g",
                    cl.N, th_l, lift_to);
-        if (res->end == JC_ROLL_END_TURN_BACK && i > 0) {
+        if (res->end == JC_ROLLING_END_TURN_BACK && i > 0) {
             const double th_e = D.th0 + (end - D.th0) * i / 10000.0;
             ENSURE_MSG(omega2(&D, th_e) > 0, "w^2 <= 0 at %.12g before the turning point %.12g", th_e, end);
         }
@@ -484,7 +484,7 @@ static int test_at_rest(void)
     jc_RollingResult res;
     char err[256] = "";
     ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
-    ENSURE(res.end == JC_ROLL_END_AT_REST);
+    ENSURE(res.end == JC_ROLLING_END_AT_REST);
     ENSURE(res.end_theta_rad == s.theta0_rad && res.end_x_m == 0.0);
     ENSURE(!res.slip.found && !res.liftoff.found);
     return 0;
@@ -499,7 +499,7 @@ static int test_rocks_and_turns_back(void)
     jc_RollingResult res;
     char err[256] = "";
     ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
-    ENSURE(res.end == JC_ROLL_END_TURN_BACK);
+    ENSURE(res.end == JC_ROLLING_END_TURN_BACK);
     ENSURE(!res.slip.found && !res.liftoff.found);
     /* The turning point: U(th) = U(th0) past th0, bisected here. U - U0 < 0 just
      * past pi (the torque rolls it on) and > 0 at pi + 0.5 (the CM has risen). */
@@ -515,7 +515,7 @@ static int test_rocks_and_turns_back(void)
     ENSURE_REL(res.end_x_m, D.r * (res.end_theta_rad - D.th0), 1e-15);
     /* w^2 = 0 there: kinetic energy from the energy balance, relative to M g r. */
     ENSURE_NEAR(pot(&D, D.th0) - pot(&D, res.end_theta_rad), 0.0, 1e-12 * D.M * D.g * D.r);
-    jc_RollState st;
+    jc_RollingState st;
     ENSURE_OK(jc_rolling_state(&m, res.end_theta_rad, &st, err, sizeof err), err);
     ENSURE_NEAR(st.kinetic_J, 0.0, 1e-12 * D.M * D.g * D.r);
     /* Past the turning point the rolling motion never gets there. */
@@ -529,7 +529,7 @@ static int test_rocks_and_turns_back(void)
     top.theta0_rad = 0.0;
     if (init(&m, &top)) return 1;
     ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
-    ENSURE(res.end == JC_ROLL_END_RAMP_END);
+    ENSURE(res.end == JC_ROLLING_END_RAMP_END);
     return 0;
 }
 
@@ -542,15 +542,15 @@ static int test_rolls_uphill(void)
     jc_RollingResult res;
     char err[256] = "";
     ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
-    ENSURE(res.end == JC_ROLL_END_RAMP_TOP && res.end_x_m == 0.0);
-    jc_RollState st;
+    ENSURE(res.end == JC_ROLLING_END_RAMP_TOP && res.end_x_m == 0.0);
+    jc_RollingState st;
     ENSURE_OK(jc_rolling_state(&m, -0.1, &st, err, sizeof err), err);
     ENSURE(st.omega_radps < 0);
 
-    ENSURE(strcmp(jc_roll_end_name(JC_ROLL_END_RAMP_END), "ramp_end") == 0);
-    ENSURE(strcmp(jc_roll_end_name(JC_ROLL_END_TURN_BACK), "turn_back") == 0);
-    ENSURE(strcmp(jc_roll_end_name(JC_ROLL_END_RAMP_TOP), "ramp_top") == 0);
-    ENSURE(strcmp(jc_roll_end_name(JC_ROLL_END_AT_REST), "at_rest") == 0);
+    ENSURE(strcmp(jc_rolling_end_name(JC_ROLLING_END_RAMP_END), "ramp_end") == 0);
+    ENSURE(strcmp(jc_rolling_end_name(JC_ROLLING_END_TURN_BACK), "turn_back") == 0);
+    ENSURE(strcmp(jc_rolling_end_name(JC_ROLLING_END_RAMP_TOP), "ramp_top") == 0);
+    ENSURE(strcmp(jc_rolling_end_name(JC_ROLLING_END_AT_REST), "at_rest") == 0);
     return 0;
 }
 
@@ -564,14 +564,14 @@ static int test_at_rest_rolling_uphill(void)
     if (init(&m, &b)) return 1;
     const dyn D = dyn_of(&m);
     ENSURE(newton_euler(&D, D.th0, 0.0).alpha < 0); /* the premise, computed here */
-    jc_RollState st;
+    jc_RollingState st;
     jc_RollingResult res;
     char err[256] = "";
     ENSURE_OK(jc_rolling_state(&m, D.th0 - 0.01, &st, err, sizeof err), err);
     ENSURE(st.omega_radps < 0);
     ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
-    ENSURE_MSG(res.end == JC_ROLL_END_RAMP_TOP, "at rest, rolling uphill: end '%s', expected 'ramp_top'",
-               jc_roll_end_name(res.end));
+    ENSURE_MSG(res.end == JC_ROLLING_END_RAMP_TOP, "at rest, rolling uphill: end '%s', expected 'ramp_top'",
+               jc_rolling_end_name(res.end));
     ENSURE(res.end_x_m == 0.0);
     return 0;
 }

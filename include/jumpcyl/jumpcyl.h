@@ -250,39 +250,39 @@ typedef struct {
     double normal_N;        /* N, contact force along +y */
     double friction_N;      /* F, contact force along +x (downhill) */
     double kinetic_J, potential_J; /* potential relative to the start */
-} jc_RollState;
+} jc_RollingState;
 
 /* State on the rolling solution at th (w from the energy integral, taken
  * with the sign of omega0, or of the initial th'' when omega0 = 0).
  * JC_EINVAL if th is out of reach (w^2 < 0 there). */
-JC_API int jc_rolling_state(const jc_Model *model, double theta_rad, jc_RollState *out,
+JC_API int jc_rolling_state(const jc_Model *model, double theta_rad, jc_RollingState *out,
                      char *err, size_t err_len);
 
 typedef struct {
     int found;          /* 0: does not happen before the rolling path ends */
     int grazing;        /* 1: the quantity touched zero without a clean sign change */
-    jc_RollState state; /* at the crossing */
-} jc_RollCrossing;
+    jc_RollingState state; /* at the crossing */
+} jc_RollingCrossing;
 
 typedef enum {
-    JC_ROLL_END_RAMP_END,  /* reached the lower end of the ramp */
-    JC_ROLL_END_TURN_BACK, /* w = 0: rolls back (and rocks, if it started at rest) */
-    JC_ROLL_END_RAMP_TOP,  /* starts by rolling uphill, off the start of the ramp */
-    JC_ROLL_END_AT_REST    /* starts at rest in equilibrium */
-} jc_RollEnd;
+    JC_ROLLING_END_RAMP_END,  /* reached the lower end of the ramp */
+    JC_ROLLING_END_TURN_BACK, /* w = 0: rolls back (and rocks, if it started at rest) */
+    JC_ROLLING_END_RAMP_TOP,  /* starts by rolling uphill, off the start of the ramp */
+    JC_ROLLING_END_AT_REST    /* starts at rest in equilibrium */
+} jc_RollingEnd;
 
 typedef struct {
     /* First rolling N = 0. A DIAGNOSTIC, not the physical jump: with any finite
      * friction the cylinder slips first, and at this point F != 0. */
-    jc_RollCrossing liftoff;
+    jc_RollingCrossing liftoff;
     /* First |F| = mu_s N: where rolling without slipping ends. */
-    jc_RollCrossing slip;
-    jc_RollEnd end;          /* how the rolling path ends if nothing else happens */
+    jc_RollingCrossing slip;
+    jc_RollingEnd end;          /* how the rolling path ends if nothing else happens */
     double end_theta_rad;    /* where it ends */
     double end_x_m;
 } jc_RollingResult;
 
-JC_API const char *jc_roll_end_name(jc_RollEnd end);
+JC_API const char *jc_rolling_end_name(jc_RollingEnd end);
 
 /* Follows the rolling solution from the start; finds the first N = 0 and the
  * first slip onset, each to ~1e-12 rad, by a search that cannot step over a

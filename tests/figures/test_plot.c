@@ -120,7 +120,7 @@ static int check_criterion_rows(const jc_Model *m, const char *path)
         ENSURE_MSG(close_to(v[3], jc_paper_rhs(m, th), DATA_REL, 1e-12), "rhs at %.17g", th);
         ++rows;
         if (isnan(v[4])) continue; /* past the rolling path's end */
-        jc_RollState rs;
+        jc_RollingState rs;
         char err[256];
         ENSURE_OK(jc_rolling_state(m, th, &rs, err, sizeof err), err);
         ENSURE(close_to(v[4], rs.omega_radps * rs.omega_radps / g, DATA_REL, 1e-12));

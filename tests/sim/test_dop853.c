@@ -4,7 +4,7 @@
  *   the exact solution;
  * - against GSL's rk8pd (the integrator it replaced) on 1,000 random
  *   sliding phases: the sliding equations of motion (docs/physics.md §3,
- *   forces from jc_slide_accel) integrated by both over the same time, at
+ *   forces from jc_sliding_accel) integrated by both over the same time, at
  *   tolerances 1e-12, must agree to 1e-9 of the state's scale.
  * The seed is printed on a failure; JC_TEST_SEED=N reruns one.
  */
@@ -88,8 +88,8 @@ static int slide_rhs(double t, const double y[], double f[], void *ctx)
 {
     (void)t;
     const slide *c = ctx;
-    jc_SlideForces sf;
-    jc_slide_accel(c->m, sin(y[1]), cos(y[1]), y[3], c->dir, NULL, &sf);
+    jc_SlidingForces sf;
+    jc_sliding_accel(c->m, sin(y[1]), cos(y[1]), y[3], c->dir, NULL, &sf);
     f[0] = y[2];
     f[1] = y[3];
     f[2] = sf.x_acc;
@@ -140,8 +140,8 @@ static int test_sliding_phases_match_gsl_rk8pd(void)
         double y[4] = {0.0, sim_uniform(&rng, -PI, PI), sim_uniform(&rng, -3.0, 3.0), sim_uniform(&rng, -30.0, 30.0)};
         const double slip = y[2] - r * y[3];
         slide c = {&m, slip > 0.0 ? 1 : -1};
-        jc_SlideForces f0;
-        jc_slide_accel(&m, sin(y[1]), cos(y[1]), y[3], c.dir, NULL, &f0);
+        jc_SlidingForces f0;
+        jc_sliding_accel(&m, sin(y[1]), cos(y[1]), y[3], c.dir, NULL, &f0);
         /* A sliding phase needs a consistent contact force: D well above 0. */
         if (!(f0.denominator > 0.2)) continue;
         const double T = 0.05;

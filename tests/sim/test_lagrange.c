@@ -16,7 +16,7 @@
  * (from x_C = x_G - d sin th).
  * Rolling (§2): F is a fifth unknown, with the constraint x_C'' = r th''.
  *
- * Compared with the internal jc_slide_forces and jc_roll_forces for random
+ * Compared with the internal jc_sliding_forces and jc_rolling_forces for random
  * bodies, inclines, friction, states (th, w) and slip directions.
  */
 #include "sim_common.h"
@@ -69,8 +69,8 @@ static int test_sliding_forces(void)
         for (int i = 0; i < 50; ++i) {
             const double th = uniform(-PI, 3.0 * PI), w = uniform(-40.0, 40.0);
             const int s = i % 2 ? 1 : -1;
-            jc_SlideForces f;
-            jc_slide_forces(&m, th, w, s, &f);
+            jc_SlidingForces f;
+            jc_sliding_forces(&m, th, w, s, &f);
             /* The library's denominator: D = 1 + M d sin th k / I_G. Within
              * 1e-3 of 0 the system is nearly singular (Painleve) and the two
              * computations legitimately differ by rounding / D. */
@@ -107,7 +107,7 @@ static int test_rolling_forces(void)
         for (int i = 0; i < 50; ++i) {
             const double th = uniform(-PI, 3.0 * PI), w = uniform(-40.0, 40.0);
             double thdd_lib, n_lib, f_lib;
-            jc_roll_forces(&m, th, w, &thdd_lib, &n_lib, &f_lib);
+            jc_rolling_forces(&m, th, w, &thdd_lib, &n_lib, &f_lib);
             double thdd, normal, friction;
             if (roll_lm(&b, th, w, &thdd, &normal, &friction)) return 1;
             const double fscale = b.M * (b.g + b.d * w * w);
