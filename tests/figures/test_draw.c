@@ -1,4 +1,4 @@
-/* One animation frame drawn at a known state (cli/draw.c, called directly):
+/* One animation frame drawn at a known state (cli/films/draw.c, called directly):
  * the body parts are where the geometry puts them. The positions are
  * computed here from the geometry alone (incline coordinates, the picture's
  * rotation, the view's scale and centre) and the pixels are read back. */
