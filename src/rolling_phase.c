@@ -28,7 +28,7 @@
  * and a trigonometric-polynomial I_P was 20 % of a run's time). */
 typedef struct {
     const jc_Model *m;
-    double anchor, sigma;
+    double sigma;        /* th = anchor + sigma u^2 */
     double sin_a, cos_a; /* of the anchor */
     double p0, p1;       /* P and sigma * P' at the anchor */
 } time_integrand;
@@ -69,7 +69,7 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
          * turning point up to rounding: take P = 0 there exactly. */
         double p0 = f[0];
         if (p0 <= 1e-12 * fabs(f[1]) * fabs(mid - ends[k])) p0 = 0.0;
-        time_integrand ti = {sim->m, ends[k], sigma, sin(ends[k]), cos(ends[k]), p0, sigma * f[1]};
+        time_integrand ti = {sim->m, sigma, sin(ends[k]), cos(ends[k]), p0, sigma * f[1]};
         gsl_function fn = {dt_du, &ti};
         double part, abserr;
         size_t evals;
