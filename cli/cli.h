@@ -90,7 +90,17 @@ typedef struct cli_SimArgs_s {
 } cli_SimArgs;
 int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len);
 int cli_sim_build(const cli_SimArgs *args, jc_SimOptions *out, char *err, size_t err_len);
+/* A command's inputs, built and checked: the setup, the simulation options
+ * (when sim_args is not NULL) and the model (when model is not NULL). On a
+ * bad value prints "CMD: message" and returns the exit status (EXIT_USAGE
+ * for a value out of range); 0 when all is well. */
+int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
+                     jc_SimOptions *sim, jc_Model *model);
+/* A single-valued option: stores arg in *slot, or refuses a second value. */
+int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg);
 void cli_sim_help(FILE *out);
+/* The help of the shared options: simulation options (with_sim) and setup options. */
+void cli_options_help(FILE *out, int with_sim);
 
 /* ---- record.c: the simulation, stopped by a signal ---- */
 /* Runs the full model into run's arrays; prints the library's message on

@@ -145,7 +145,7 @@ static void to_end_eval(const void *ctx, double t, double out[3])
 static void from_top_eval(const void *ctx, double t, double out[3])
 {
     x_eval(ctx, t, out);
-    out[0] += 1e-9; /* the start, with the same 1 nm slack as in sliding */
+    out[0] += JC_RAMP_TOP_SLACK_M;
 }
 
 static jc_State flight_state(const flight *f, double t, double t0)
@@ -263,7 +263,7 @@ static void flight_ode_events(void *params, const double y[], double ev[])
     const flight_ode *c = params;
     ev[FE_GAP] = y[JC_Y_Y] - c->m->body.radius_m + c->gap_slack;
     ev[FE_END] = c->m->setup.ramp_length_m - y[JC_Y_X];
-    ev[FE_TOP] = y[JC_Y_X] + 1e-9;
+    ev[FE_TOP] = y[JC_Y_X] + JC_RAMP_TOP_SLACK_M;
     ev[FE_APEX] = c->apex_sign * y[JC_Y_VY];
 }
 

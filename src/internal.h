@@ -324,6 +324,11 @@ void jc_impact_apply_law(const jc_Model *m, jc_State *s, jc_ImpactLaw law, doubl
 /* The same with the setup's law. */
 void jc_impact_apply(const jc_Model *m, jc_State *s, double e, jc_ImpactResult *out);
 
+/* The ramp's top counts as passed 1 nm uphill of the start, in every mode,
+ * so that a start exactly at x = 0 (or a body rocking back to rest there)
+ * is not an event. */
+#define JC_RAMP_TOP_SLACK_M 1e-9
+
 /* Slip speeds below this are no slip (mode.c, impact.c): 1 nm/s, far below
  * anything a ramp experiment resolves, far above the rounding of a located
  * stick event or of a state's velocities. */

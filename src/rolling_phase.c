@@ -232,7 +232,7 @@ static void roll_ode_events(void *params, const double y[], double ev[])
     ev[RE_SLIP_NEG] = mu * n + f;
     ev[RE_TURN] = c->dir * y[JC_Y_W];
     ev[RE_END] = c->m->setup.ramp_length_m - y[JC_Y_X];
-    ev[RE_TOP] = y[JC_Y_X] + 1e-9; /* the same 1 nm slack as elsewhere */
+    ev[RE_TOP] = y[JC_Y_X] + JC_RAMP_TOP_SLACK_M;
     /* Armed: w falls into the band. Not armed: w leaves twice the band (then armed). */
     ev[RE_SLOW] = c->armed ? c->dir * y[JC_Y_W] - ROLL_REST_BAND_RADPS : 2.0 * ROLL_REST_BAND_RADPS - c->dir * y[JC_Y_W];
 }
@@ -404,7 +404,7 @@ int jc_rolling_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
         /* Uphill, the start counts as passed 1 nm beyond it (as in sliding and
          * flight), so that a body rocking back to rest at its start turns there. */
         const double th_lim = dir > 0 ? start.theta_rad + (L - start.x_m) / r
-                                      : start.theta_rad - (start.x_m + 1e-9) / r;
+                                      : start.theta_rad - (start.x_m + JC_RAMP_TOP_SLACK_M) / r;
         jc_ScanSet set = {4, {&path.normal, &path.slip_pos, &path.slip_neg, &path.energy},
                           {1, through[0] ? -1 : 1, through[1] ? -1 : 1, 1}};
         jc_ScanHit hit;

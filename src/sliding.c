@@ -15,10 +15,6 @@
 
 #include <math.h>
 
-/* The ramp top counts as passed 1 nm uphill of the start, so that a start
- * exactly at x = 0 is not an event. */
-#define RAMP_TOP_SLACK_M 1e-9
-
 /* D -> 0+ with N's numerator > 0 makes N ~ 1/D grow without bound (the
  * dynamic jam of Painleve's paradox): no step of the integrator reaches
  * D = 0 itself (found: GSL failed with D = 4e-12, N ~ 1e9 N). Where D falls
@@ -113,7 +109,7 @@ static void slide_events(void *params, const double y[], double ev[])
     ev[EV_LIFT] = f.normal_N * f.denominator; /* N's numerator: N > 0 while D > 0 */
     ev[EV_PAINLEVE] = f.denominator - PAINLEVE_D_MIN;
     ev[EV_END] = c->m->setup.ramp_length_m - y[JC_Y_X];
-    ev[EV_TOP] = y[JC_Y_X] + RAMP_TOP_SLACK_M;
+    ev[EV_TOP] = y[JC_Y_X] + JC_RAMP_TOP_SLACK_M;
 }
 
 static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])

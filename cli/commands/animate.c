@@ -58,29 +58,17 @@ static void help(void)
            "--sample-dt is set by --fps and --slowmo; --t-max limits the film.\n\n",
            DEFAULT_SIZE, MIN_SIDE, MAX_W, MIN_SIDE, MAX_H, DEFAULT_FPS, MAX_FPS, DEFAULT_SLOWMO, MAX_SLOWMO,
            "1/(F K)", DEFAULT_MAX_FRAMES, VID_MAX_FRAMES);
-    cli_sim_help(stdout);
-    putchar('\n');
-    cli_setup_help(stdout);
-}
-
-static int take_once(const char **slot, const char *name, const char *arg)
-{
-    if (*slot) {
-        cli_error("animate: --%s given twice ('%s' and '%s')", name, *slot, arg);
-        return EXIT_USAGE;
-    }
-    *slot = arg;
-    return 0;
+    cli_options_help(stdout, 1);
 }
 
 static int take(int opt, const char *arg, void *ctx)
 {
     animate_args *a = ctx;
-    if (opt == 'o') return take_once(&a->output, "output", arg);
-    if (opt == 's') return take_once(&a->size, "size", arg);
-    if (opt == 'f') return take_once(&a->fps, "fps", arg);
-    if (opt == 'k') return take_once(&a->slowmo, "slowmo", arg);
-    if (opt == 'm') return take_once(&a->max_frames, "max-frames", arg);
+    if (opt == 'o') return cli_take_once("animate", &a->output, "output", arg);
+    if (opt == 's') return cli_take_once("animate", &a->size, "size", arg);
+    if (opt == 'f') return cli_take_once("animate", &a->fps, "fps", arg);
+    if (opt == 'k') return cli_take_once("animate", &a->slowmo, "slowmo", arg);
+    if (opt == 'm') return cli_take_once("animate", &a->max_frames, "max-frames", arg);
     if (opt == 'h') { help(); return -1; }
     return EXIT_USAGE;
 }
@@ -152,19 +140,10 @@ static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, co
             cli_error("animate: --sample-dt is set by --fps and --slowmo (dt = 1/(fps slowmo)); leave it out");
             return EXIT_USAGE;
         }
-    char err[512];
     jc_Setup setup;
-    if (cli_setup_build(sa, &setup, err, sizeof err) != 0 || cli_sim_build(sim_args, sim, err, sizeof err) != 0) {
-        cli_error("animate: %s", err);
-        return EXIT_USAGE;
-    }
-    sim->sample_dt_s = 1.0 / (o->fps * o->slowmo);
-    const int st = jc_model_init(model, &setup, err, sizeof err);
-    if (st != JC_OK) {
-        cli_error("animate: %s", err);
-        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
-    }
-    return 0;
+    const int rc = cli_build_inputs("animate", sa, sim_args, &setup, sim, model);
+    if (rc == 0) sim->sample_dt_s = 1.0 / (o->fps * o->slowmo);
+    return rc;
 }
 
 /* Frame k shows the last sample at or before k dt: the regular samples, not

@@ -322,18 +322,42 @@ static void unknown_option(char **argv, int next)
         cli_error("%s: unknown option '%s' (see 'jumpcyl %s --help')", argv[0], arg, argv[0]);
 }
 
+int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
+                     jc_SimOptions *sim, jc_Model *model)
+{
+    char err[512];
+    if (cli_setup_build(sa, setup, err, sizeof err) != 0 ||
+        (sim_args && cli_sim_build(sim_args, sim, err, sizeof err) != 0)) {
+        cli_error("%s: %s", cmd, err);
+        return EXIT_USAGE;
+    }
+    const int st = model ? jc_model_init(model, setup, err, sizeof err) : JC_OK;
+    if (st != JC_OK) {
+        cli_error("%s: %s", cmd, err);
+        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
+    }
+    return 0;
+}
+
+int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg)
+{
+    if (*slot) {
+        cli_error("%s: --%s given twice ('%s' and '%s')", cmd, name, *slot, arg);
+        return EXIT_USAGE;
+    }
+    *slot = arg;
+    return 0;
+}
+
 /* --dump-config: the setup (and simulation options, when the command has
  * them) is built and checked as for a run, then printed instead of run.
  * Returns -1 (done, exit 0) or an exit status. */
 static int dump_config(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim)
 {
-    char err[512];
     jc_Setup setup;
     jc_SimOptions opts;
-    if (cli_setup_build(sa, &setup, err, sizeof err) != 0 || (sim && cli_sim_build(sim, &opts, err, sizeof err) != 0)) {
-        cli_error("%s: %s", cmd, err);
-        return EXIT_USAGE;
-    }
+    const int rc = cli_build_inputs(cmd, sa, sim, &setup, &opts, NULL);
+    if (rc != 0) return rc;
     cli_config_write(stdout, &setup);
     return cli_stdout_finish() == EXIT_OK ? -1 : EXIT_FAIL;
 }
@@ -470,4 +494,13 @@ int cli_sim_build(const cli_SimArgs *a, jc_SimOptions *o, char *err, size_t err_
         return -1;
     }
     return 0;
+}
+
+void cli_options_help(FILE *out, int with_sim)
+{
+    if (with_sim) {
+        cli_sim_help(out);
+        fputc('\n', out);
+    }
+    cli_setup_help(out);
 }

@@ -58,7 +58,7 @@ static void help(void)
          "              paper_model, rolling, full, drag, measured; angles theta in rad,\n"
          "              positions x in m\n"
          "  -h, --help  this help\n");
-    cli_setup_help(stdout);
+    cli_options_help(stdout, 0);
 }
 
 static int take(int opt, const char *arg, void *ctx)
@@ -483,12 +483,9 @@ int cmd_paper(int argc, char **argv)
         cli_error("paper: --incline is set by the table (15, 30, 45 deg); use 'jumpcyl predict --incline ...'");
         return EXIT_USAGE;
     }
-    char err[512];
     jc_Setup setup;
-    if (cli_setup_build(&sa, &setup, err, sizeof err) != 0) {
-        cli_error("paper: %s", err);
-        return EXIT_USAGE;
-    }
+    if ((st = cli_build_inputs("paper", &sa, NULL, &setup, NULL, NULL)) != 0) return st;
+    char err[512];
     paper_row rows[ROWS_MAX];
     int n = 0;
     /* A signal stops between runs (signals.c); the rows complete by then are printed. */

@@ -59,28 +59,16 @@ static void help(void)
          "\n"
          "forces, path and energy sample the full model finely (about 5000 samples over the run)\n"
          "unless --sample-dt is given. Needs gnuplot (Debian: gnuplot-nox).\n");
-    cli_sim_help(stdout);
-    putchar('\n');
-    cli_setup_help(stdout);
-}
-
-static int take_once(const char **slot, const char *name, const char *arg)
-{
-    if (*slot) {
-        cli_error("plot: --%s given twice ('%s' and '%s')", name, *slot, arg);
-        return EXIT_USAGE;
-    }
-    *slot = arg;
-    return 0;
+    cli_options_help(stdout, 1);
 }
 
 static int take(int opt, const char *arg, void *ctx)
 {
     plot_opts *o = ctx;
-    if (opt == 'w') return take_once(&o->what, "what", arg);
-    if (opt == 'o') return take_once(&o->output, "output", arg);
+    if (opt == 'w') return cli_take_once("plot", &o->what, "what", arg);
+    if (opt == 'o') return cli_take_once("plot", &o->output, "output", arg);
     if (opt == 'k') { o->keep_script = 1; return 0; }
-    if (opt == 'm') return take_once(&o->max_samples, "max-samples", arg);
+    if (opt == 'm') return cli_take_once("plot", &o->max_samples, "max-samples", arg);
     if (opt == 'h') { help(); return -1; }
     return EXIT_USAGE;
 }
@@ -247,18 +235,8 @@ static int sim_given(const cli_SimArgs *a, const char *name)
 
 static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Model *model, jc_SimOptions *sim)
 {
-    char err[512];
     jc_Setup setup;
-    if (cli_setup_build(sa, &setup, err, sizeof err) != 0 || cli_sim_build(sim_args, sim, err, sizeof err) != 0) {
-        cli_error("plot: %s", err);
-        return EXIT_USAGE;
-    }
-    const int st = jc_model_init(model, &setup, err, sizeof err);
-    if (st != JC_OK) {
-        cli_error("plot: %s", err);
-        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
-    }
-    return 0;
+    return cli_build_inputs("plot", sa, sim_args, &setup, sim, model);
 }
 
 int cmd_plot(int argc, char **argv)

@@ -19,7 +19,7 @@ static void help(void)
          "              normal (N), friction (N)}; full.liftoff {theta, x, t} or null, full.hops;\n"
          "              x is the centre's travel along the incline\n"
          "  -h, --help  this help\n");
-    cli_setup_help(stdout);
+    cli_options_help(stdout, 0);
 }
 
 static int take(int opt, const char *arg, void *ctx)
@@ -136,17 +136,13 @@ int cmd_predict(int argc, char **argv)
     int st = cli_parse_args(argc, argv, own, 2, take, &o, &sa, NULL);
     if (st) return st < 0 ? EXIT_OK : st;
 
-    char err[512];
     jc_Setup setup;
-    if (cli_setup_build(&sa, &setup, err, sizeof err) != 0) {
-        cli_error("predict: %s", err);
-        return EXIT_USAGE;
-    }
     jc_Model model;
+    if ((st = cli_build_inputs("predict", &sa, NULL, &setup, NULL, &model)) != 0) return st;
+    char err[512];
     jc_PaperResult paper;
     jc_RollingResult rolling;
-    if ((st = jc_model_init(&model, &setup, err, sizeof err)) != JC_OK ||
-        (st = jc_paper_solve(&model, &paper, err, sizeof err)) != JC_OK ||
+    if ((st = jc_paper_solve(&model, &paper, err, sizeof err)) != JC_OK ||
         (st = jc_rolling_predict(&model, &rolling, err, sizeof err)) != JC_OK) {
         cli_error("predict: %s", err);
         return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;

@@ -23,9 +23,7 @@ static void help(void)
          "              bounce into flight also flight_time (s), hop_height (m), landing_x (m)\n"
          "  --csv FILE  write the trajectory (samples every --sample-dt and at every event)\n"
          "  -h, --help  this help\n");
-    cli_sim_help(stdout);
-    putchar('\n');
-    cli_setup_help(stdout);
+    cli_options_help(stdout, 1);
 }
 
 static int take(int opt, const char *arg, void *ctx)
@@ -190,18 +188,10 @@ int cmd_simulate(int argc, char **argv)
     cli_SimArgs sim_args;
     int st = cli_parse_args(argc, argv, own, 3, take, &o, &sa, &sim_args);
     if (st) return st < 0 ? EXIT_OK : st;
-    char err[512];
     jc_Setup setup;
     jc_SimOptions opts;
-    if (cli_setup_build(&sa, &setup, err, sizeof err) != 0 || cli_sim_build(&sim_args, &opts, err, sizeof err) != 0) {
-        cli_error("simulate: %s", err);
-        return EXIT_USAGE;
-    }
     jc_Model model;
-    if ((st = jc_model_init(&model, &setup, err, sizeof err)) != JC_OK) {
-        cli_error("simulate: %s", err);
-        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
-    }
+    if ((st = cli_build_inputs("simulate", &sa, &sim_args, &setup, &opts, &model)) != 0) return st;
     if (o.csv && o.json && strcmp(o.csv, "-") == 0) {
         cli_error("simulate: --csv - and --json would both write to standard output; give --csv a file");
         return EXIT_USAGE;
