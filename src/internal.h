@@ -189,7 +189,7 @@ typedef struct jc_Sim {
 /* ode.c: phases without a closed form, integrated with DOP853 and ended by
  * the first event. The state vector is the same in every mode; it carries
  * cos th and sin th (cos' = -w sin, sin' = w cos), so that no right-hand side
- * computes a sine (measured: sincos was 26 % of a run's time with rk8pd). */
+ * computes a sine (measured: sincos was 26 % of a run's time before). */
 /* Ordered so that a phase integrates a prefix of the vector and carries the
  * rest unchanged: sliding without resistance the first 7 (y, vy are
  * constant in contact; measured: 7 components instead of 11 take a

@@ -126,14 +126,14 @@ static void print_head(const jc_Model *m, const jc_SimOptions *o)
     cli_print_setup(stdout, m, 1);
     if (jc_setup_has_resistance(&m->setup))
         printf("Full model with air and rolling resistance (C_d %g, C_L %g, spin drag %g N m s2, lever %g m;\n"
-               "rho %g kg/m3, length %g m): every phase integrated (rk8pd, rtol %g), impacts (%s's law,\n"
+               "rho %g kg/m3, length %g m): every phase integrated (DOP853, rtol %g), impacts (%s's law,\n"
                "restitution %g, Coulomb friction); events located to %g s; bounces rising less than %g m end\n"
                "in contact.\n\n",
                m->setup.drag_coefficient, m->setup.lift_coefficient, m->setup.spin_drag_Nms2,
                m->setup.rolling_resistance_m, m->setup.air_density_kgpm3, m->setup.length_m, o->ode_rtol,
                law_title(m->setup.impact_law), m->setup.restitution, o->event_tol_s, o->contact_height_m);
     else
-        printf("Full model: rolling (closed form), sliding (rk8pd, rtol %g), flight (ballistic), impacts\n"
+        printf("Full model: rolling (closed form), sliding (DOP853, rtol %g), flight (ballistic), impacts\n"
                "(%s's law, restitution %g, Coulomb friction); events located to %g s; bounces rising\n"
                "less than %g m end in contact.\n\n",
                o->ode_rtol, law_title(m->setup.impact_law), m->setup.restitution, o->event_tol_s,

@@ -295,7 +295,7 @@ JC_API int jc_rolling_predict(const jc_Model *model, jc_RollingResult *out, char
 
 typedef enum {
     JC_MODE_ROLLING, /* contact without slip: closed form (energy integral) */
-    JC_MODE_SLIDING, /* contact with slip: ODE (GSL rk8pd) */
+    JC_MODE_SLIDING, /* contact with slip: ODE (DOP853) */
     JC_MODE_FLIGHT   /* no contact: ballistic, closed form */
 } jc_Mode;
 
