@@ -30,8 +30,8 @@ typedef struct {
     char *err;  /* captured standard error */
 } cli_result;
 
-static const char *cli_run_tool;
-static char **cli_run_wrapper; /* NULL-terminated, may be empty */
+static const char *cli_run_tool __attribute__((unused));
+static char **cli_run_wrapper __attribute__((unused)); /* NULL-terminated, may be empty */
 
 /* main's arguments: argv[1] the tool, argv[2..] the wrapper. */
 static inline int cli_run_init(int argc, char **argv)
@@ -45,10 +45,9 @@ static inline int cli_run_init(int argc, char **argv)
     return 0;
 }
 
-static inline char *cli_run_slurp(const char *path)
+/* A whole stream as a NUL-terminated string (NULL when out of memory). */
+static inline char *cli_run_read_all(FILE *f)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
     size_t cap = 4096, len = 0, n;
     char *buf = malloc(cap);
     while (buf && (n = fread(buf + len, 1, cap - len - 1, f)) > 0) {
@@ -59,8 +58,16 @@ static inline char *cli_run_slurp(const char *path)
             buf = bigger;
         }
     }
-    fclose(f);
     if (buf) buf[len] = '\0';
+    return buf;
+}
+
+static inline char *cli_run_slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    char *buf = cli_run_read_all(f);
+    fclose(f);
     return buf;
 }
 
@@ -129,6 +136,31 @@ static inline void cli_result_free(cli_result *r)
     free(r->out);
     free(r->err);
     r->out = r->err = NULL;
+}
+
+/* Runs "TOOL ARGS" through /bin/sh, with PATH set to path_env when it is
+ * not NULL (to make gnuplot or ffmpeg missing); stdout and stderr captured.
+ * ARGS are the test's own fixed words, quoted as in a shell; tests that
+ * pass names from elsewhere use cli_run (an exact argv, no shell). */
+static inline cli_result cli_run_line(const char *tool, const char *path_env, const char *args)
+{
+    cli_result r = {-1, 0, NULL, NULL};
+    char err_path[] = "/tmp/jc_cli_line_err_XXXXXX";
+    const int fd = mkstemp(err_path);
+    if (fd < 0) return r;
+    close(fd);
+    char cmd[8192];
+    if (path_env) snprintf(cmd, sizeof cmd, "env PATH='%s' '%s' %s 2>'%s'", path_env, tool, args, err_path);
+    else snprintf(cmd, sizeof cmd, "'%s' %s 2>'%s'", tool, args, err_path);
+    FILE *p = popen(cmd, "r");
+    if (p) {
+        r.out = cli_run_read_all(p);
+        const int ws = pclose(p);
+        r.status = ws != -1 && WIFEXITED(ws) ? WEXITSTATUS(ws) : -1;
+    }
+    r.err = cli_run_slurp(err_path);
+    remove(err_path);
+    return r;
 }
 
 /* Exactly one line on standard error. */

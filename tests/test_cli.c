@@ -3,6 +3,7 @@
  * on the same setup; exit statuses and one-line messages for bad input. */
 #define _POSIX_C_SOURCE 200809L
 #include "test.h"
+#include "cli_run.h"
 
 #include <cjson/cJSON.h>
 #include <jumpcyl/jumpcyl.h>
@@ -17,69 +18,19 @@
 
 static const char *cli_path;
 
-typedef struct {
-    int status; /* exit status, -1 if it did not exit normally */
-    char *out, *err;
-} run_result;
-
-static char *slurp(FILE *f)
-{
-    size_t cap = 4096, len = 0;
-    char *buf = malloc(cap);
-    size_t n;
-    while (buf && (n = fread(buf + len, 1, cap - len - 1, f)) > 0) {
-        len += n;
-        if (cap - len < 2) {
-            char *bigger = realloc(buf, cap *= 2);
-            if (!bigger) free(buf);
-            buf = bigger;
-        }
-    }
-    if (buf) buf[len] = '\0';
-    return buf;
-}
-
 /* Runs "jumpcyl ARGS", capturing stdout and stderr. */
-static run_result run(const char *args)
-{
-    run_result r = {-1, NULL, NULL};
-    char err_path[] = "/tmp/jc_test_cli_XXXXXX";
-    const int fd = mkstemp(err_path);
-    if (fd < 0) return r;
-    close(fd);
-    char cmd[4096];
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>'%s'", cli_path, args, err_path);
-    FILE *p = popen(cmd, "r");
-    if (p) {
-        r.out = slurp(p);
-        const int ws = pclose(p);
-        r.status = ws != -1 && WIFEXITED(ws) ? WEXITSTATUS(ws) : -1;
-    }
-    FILE *e = fopen(err_path, "r");
-    if (e) {
-        r.err = slurp(e);
-        fclose(e);
-    }
-    remove(err_path);
-    return r;
-}
-
-static void run_free(run_result *r)
-{
-    free(r->out);
-    free(r->err);
-}
+static cli_result run(const char *args) { return cli_run_line(cli_path, NULL, args); }
 
 /* Runs a command that must succeed with JSON on stdout and nothing on stderr. */
 static cJSON *run_json(const char *args)
 {
-    run_result r = run(args);
+    cli_result r = run(args);
     cJSON *doc = NULL;
     if (r.status != 0 || !r.out || !r.err || r.err[0])
         fprintf(stderr, "'%s': status %d, stderr '%s'\n", args, r.status, r.err ? r.err : "?");
     else if (!(doc = cJSON_Parse(r.out)))
         fprintf(stderr, "'%s': stdout is not JSON\n", args);
-    run_free(&r);
+    cli_result_free(&r);
     return doc;
 }
 
@@ -325,7 +276,7 @@ static int test_bad_input_exit_2(void)
         {"frobnicate", "frobnicate"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
-        run_result r = run(cases[i].args);
+        cli_result r = run(cases[i].args);
         const int status = r.status;
         const int named = r.err && strstr(r.err, cases[i].token) != NULL;
         const char *nl = r.err ? strchr(r.err, '\n') : NULL;
@@ -333,7 +284,7 @@ static int test_bad_input_exit_2(void)
         const int quiet = r.out && r.out[0] == '\0';
         if (status != 2 || !named || !one_line || !quiet)
             fprintf(stderr, "'%s': status %d, stderr '%s'\n", cases[i].args, status, r.err ? r.err : "?");
-        run_free(&r);
+        cli_result_free(&r);
         ENSURE_MSG(status == 2, "'%s' exit status", cases[i].args);
         ENSURE_MSG(named, "'%s': message does not name '%s'", cases[i].args, cases[i].token);
         ENSURE_MSG(one_line, "'%s': message is not exactly one line", cases[i].args);
@@ -346,13 +297,13 @@ static int test_help_and_version(void)
 {
     const char *ok[] = {"--help", "-h", "help", "predict --help", "paper --help", "presets", "--version", ""};
     for (size_t i = 0; i < sizeof ok / sizeof ok[0]; ++i) {
-        run_result r = run(ok[i]);
+        cli_result r = run(ok[i]);
         const int good = r.status == 0 && r.out && r.out[0] && r.err && !r.err[0];
         int expected = 1;
         if (good && strcmp(ok[i], "--version") == 0) expected = strstr(r.out, JC_VERSION_STRING) != NULL;
         if (good && strcmp(ok[i], "presets") == 0)
             for (int k = 0; jc_preset_name(k); ++k) expected &= strstr(r.out, jc_preset_name(k)) != NULL;
-        run_free(&r);
+        cli_result_free(&r);
         ENSURE_MSG(good && expected, "'jumpcyl %s' did not print what it should with status 0", ok[i]);
     }
     return 0;

@@ -1,71 +1,18 @@
-/* Helpers for the figure and animation tests: run the built jumpcyl as a
- * process (optionally with another PATH), scratch directories, files. All
- * static inline, so that a test that does not use one does not warn. */
+/* Helpers for the figure and animation tests: scratch directories, files
+ * (the tool runs through ../cli_run.h, cli_run_line). All static inline, so
+ * that a test that does not use one does not warn. */
 #ifndef JC_FIG_COMMON_H
 #define JC_FIG_COMMON_H
 
 #define _POSIX_C_SOURCE 200809L
 #include "../test.h"
+#include "../cli_run.h"
 
 #include <dirent.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-typedef struct {
-    int status; /* exit status; -1 if it did not exit normally (a crash) */
-    char *out, *err;
-} fig_run_result;
-
-static inline char *fig_slurp(FILE *f)
-{
-    size_t cap = 4096, len = 0, n;
-    char *buf = malloc(cap);
-    while (buf && (n = fread(buf + len, 1, cap - len - 1, f)) > 0) {
-        len += n;
-        if (cap - len < 2) {
-            char *bigger = realloc(buf, cap *= 2);
-            if (!bigger) free(buf);
-            buf = bigger;
-        }
-    }
-    if (buf) buf[len] = '\0';
-    return buf;
-}
-
-/* Runs "'cli' ARGS" with stdout and stderr captured; with path_env, PATH is
- * set to it for jumpcyl (so that gnuplot or ffmpeg can be made missing). */
-static inline fig_run_result fig_run(const char *cli, const char *path_env, const char *args)
-{
-    fig_run_result r = {-1, NULL, NULL};
-    char err_path[] = "/tmp/jc_fig_test_err_XXXXXX";
-    const int fd = mkstemp(err_path);
-    if (fd < 0) return r;
-    close(fd);
-    char cmd[8192];
-    if (path_env) snprintf(cmd, sizeof cmd, "env PATH='%s' '%s' %s 2>'%s'", path_env, cli, args, err_path);
-    else snprintf(cmd, sizeof cmd, "'%s' %s 2>'%s'", cli, args, err_path);
-    FILE *p = popen(cmd, "r");
-    if (p) {
-        r.out = fig_slurp(p);
-        const int ws = pclose(p);
-        r.status = ws != -1 && WIFEXITED(ws) ? WEXITSTATUS(ws) : -1;
-    }
-    FILE *e = fopen(err_path, "r");
-    if (e) {
-        r.err = fig_slurp(e);
-        fclose(e);
-    }
-    remove(err_path);
-    return r;
-}
-
-static inline void fig_run_free(fig_run_result *r)
-{
-    free(r->out);
-    free(r->err);
-}
 
 /* A fresh scratch directory; the test removes it with fig_rmtree. */
 static inline int fig_tmpdir(char *path, size_t len, const char *name)

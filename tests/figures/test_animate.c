@@ -14,10 +14,10 @@ static char dir[1024];
 
 static int run_ok(const char *args)
 {
-    fig_run_result r = fig_run(cli, NULL, args);
+    cli_result r = cli_run_line(cli, NULL, args);
     const int ok = r.status == 0;
     if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
-    fig_run_free(&r);
+    cli_result_free(&r);
     return ok;
 }
 
@@ -80,10 +80,10 @@ static int test_missing_ffmpeg(void)
     ENSURE(fig_empty_path(empty, sizeof empty, dir) == 0);
     snprintf(out, sizeof out, "%s/noff.gif", dir);
     snprintf(args, sizeof args, "animate --incline 45 --size 160x90 --fps 10 --slowmo 1 --output '%s'", out);
-    fig_run_result r = fig_run(cli, empty, args);
+    cli_result r = cli_run_line(cli, empty, args);
     const int ok = r.status == 1 && r.err && strstr(r.err, "ffmpeg was not found") && strstr(r.err, "ffmpeg -nostdin -y -framerate 10");
     if (!ok) fprintf(stderr, "status %d, stderr: %s\n", r.status, r.err ? r.err : "?");
-    fig_run_free(&r);
+    cli_result_free(&r);
     ENSURE(ok);
     ENSURE(!fig_exists(out));
     snprintf(frames, sizeof frames, "%s/noff-frames", dir);
@@ -96,10 +96,10 @@ static int usage_error(const char *opts, const char *needle)
     char out[1100], args[2048];
     snprintf(out, sizeof out, "%s/bad.gif", dir);
     snprintf(args, sizeof args, "animate %s --output '%s'", opts, out);
-    fig_run_result r = fig_run(cli, NULL, args);
+    cli_result r = cli_run_line(cli, NULL, args);
     const int ok = r.status == 2 && r.err && strstr(r.err, needle) && strchr(r.err, '\n') == r.err + strlen(r.err) - 1;
     if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
-    fig_run_free(&r);
+    cli_result_free(&r);
     ENSURE(ok);
     ENSURE(!fig_exists(out));
     return 0;
@@ -114,9 +114,9 @@ static int test_bad_input(void)
     char args[2048], out[1100];
     snprintf(out, sizeof out, "%s/film.avi", dir);
     snprintf(args, sizeof args, "animate --output '%s'", out);
-    fig_run_result r = fig_run(cli, NULL, args);
+    cli_result r = cli_run_line(cli, NULL, args);
     const int ok = r.status == 2 && r.err && strstr(r.err, ".avi");
-    fig_run_free(&r);
+    cli_result_free(&r);
     ENSURE(ok && !fig_exists(out));
     return 0;
 }

@@ -52,10 +52,10 @@ static int init_model(jc_Model *m, double incline_deg)
 
 static int plot_ok(const char *args)
 {
-    fig_run_result r = fig_run(cli, NULL, args);
+    cli_result r = cli_run_line(cli, NULL, args);
     const int ok = r.status == 0;
     if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
-    fig_run_free(&r);
+    cli_result_free(&r);
     return ok;
 }
 
@@ -90,7 +90,7 @@ static int test_svg_and_pdf(void)
     ENSURE_MSG(size > 10000 && size < 10000000, "%ld bytes", size);
     FILE *f = fopen(out, "r");
     ENSURE(f);
-    char *text = fig_slurp(f);
+    char *text = cli_run_read_all(f);
     fclose(f);
     const int complete = text && strstr(text, "</svg>") != NULL;
     free(text);
@@ -162,7 +162,7 @@ static int check_printed(const char *script, double incline_deg)
 {
     FILE *f = fopen(script, "r");
     ENSURE(f);
-    char *text = fig_slurp(f);
+    char *text = cli_run_read_all(f);
     fclose(f);
     ENSURE(text);
     const char *p = strstr(text, "PRINTED_THETA = ");
@@ -351,10 +351,10 @@ static int test_kept_script_reruns(void)
 /* Exit 2, a one-line message naming the value, and no file. */
 static int usage_error(const char *args, const char *out, const char *needle)
 {
-    fig_run_result r = fig_run(cli, NULL, args);
+    cli_result r = cli_run_line(cli, NULL, args);
     const int ok = r.status == 2 && r.err && strstr(r.err, needle) && strchr(r.err, '\n') == r.err + strlen(r.err) - 1;
     if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
-    fig_run_free(&r);
+    cli_result_free(&r);
     ENSURE(ok);
     ENSURE_MSG(!fig_exists(out), "%s was written", out);
     return 0;
@@ -378,9 +378,9 @@ static int test_bad_input(void)
     /* An output directory that does not exist: exit 1 naming the path. */
     snprintf(out, sizeof out, "%s/no/such/dir/x.png", dir);
     snprintf(args, sizeof args, "plot --what path --output '%s'", out);
-    fig_run_result r = fig_run(cli, NULL, args);
+    cli_result r = cli_run_line(cli, NULL, args);
     const int ok = r.status == 1 && r.err && strstr(r.err, out);
-    fig_run_free(&r);
+    cli_result_free(&r);
     ENSURE(ok);
     return 0;
 }
@@ -391,10 +391,10 @@ static int test_missing_gnuplot(void)
     ENSURE(fig_empty_path(empty, sizeof empty, dir) == 0);
     snprintf(out, sizeof out, "%s/nognuplot.png", dir);
     snprintf(args, sizeof args, "plot --what energy --output '%s'", out);
-    fig_run_result r = fig_run(cli, empty, args);
+    cli_result r = cli_run_line(cli, empty, args);
     const int ok = r.status == 1 && r.err && strstr(r.err, "gnuplot") && strstr(r.err, "not found");
     if (!ok) fprintf(stderr, "status %d, stderr: %s\n", r.status, r.err ? r.err : "?");
-    fig_run_free(&r);
+    cli_result_free(&r);
     ENSURE(ok);
     ENSURE(!fig_exists(out));
     return 0;

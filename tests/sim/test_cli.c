@@ -9,6 +9,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "sim_common.h"
 
+#include "../cli_run.h"
+
 #include <cjson/cJSON.h>
 #include <dirent.h>
 #include <gsl/gsl_errno.h>
@@ -24,57 +26,8 @@
 
 static const char *cli_path;
 
-typedef struct {
-    int status; /* exit status, -1 if the process did not exit normally */
-    char *out, *err;
-} proc;
-
-static char *slurp(FILE *f)
-{
-    size_t cap = 1 << 16, len = 0, n;
-    char *buf = malloc(cap);
-    while (buf && (n = fread(buf + len, 1, cap - len - 1, f)) > 0) {
-        len += n;
-        if (cap - len < 2) {
-            char *bigger = realloc(buf, cap *= 2);
-            if (!bigger) free(buf);
-            buf = bigger;
-        }
-    }
-    if (buf) buf[len] = '\0';
-    return buf;
-}
-
 /* Runs "jumpcyl ARGS" through the shell, capturing stdout and stderr. */
-static proc run_cli(const char *args)
-{
-    proc r = {-1, NULL, NULL};
-    char err_path[] = "/tmp/jc_sim_cli_err_XXXXXX";
-    const int fd = mkstemp(err_path);
-    if (fd < 0) return r;
-    close(fd);
-    char cmd[4096];
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>'%s'", cli_path, args, err_path);
-    FILE *p = popen(cmd, "r");
-    if (p) {
-        r.out = slurp(p);
-        const int ws = pclose(p);
-        r.status = ws != -1 && WIFEXITED(ws) ? WEXITSTATUS(ws) : -1;
-    }
-    FILE *e = fopen(err_path, "r");
-    if (e) {
-        r.err = slurp(e);
-        fclose(e);
-    }
-    remove(err_path);
-    return r;
-}
-
-static void proc_free(proc *r)
-{
-    free(r->out);
-    free(r->err);
-}
+static cli_result run_cli(const char *args) { return cli_run_line(cli_path, NULL, args); }
 
 /* The library's run of the same setup. */
 static int library_run(double sample_dt, jc_Model *m, jc_Run *run)
@@ -135,11 +88,11 @@ static int compare_event(const cJSON *je, const jc_Event *e, int i)
 
 static int test_json_matches_library(void)
 {
-    proc r = run_cli("simulate --preset paper --incline 30 --mu 0.5 --json");
+    cli_result r = run_cli("simulate --preset paper --incline 30 --mu 0.5 --json");
     cJSON *doc = r.status == 0 && r.out ? cJSON_Parse(r.out) : NULL;
     const int status = r.status;
     const int quiet = r.err && r.err[0] == '\0';
-    proc_free(&r);
+    cli_result_free(&r);
     ENSURE_MSG(status == 0, "exit status %d", status);
     ENSURE_MSG(doc != NULL, "stdout is not JSON");
     jc_Model m;
@@ -238,7 +191,7 @@ static int check_csv_rows(const char *path, const jc_Run *run)
 {
     FILE *f = fopen(path, "r");
     ENSURE_MSG(f != NULL, "cannot read %s", path);
-    char *text = slurp(f);
+    char *text = cli_run_read_all(f);
     fclose(f);
     ENSURE(text != NULL);
     int bad = 0, row = 0, columns = 0, where[REQUIRED_COUNT];
@@ -324,9 +277,9 @@ static int test_csv(void)
     char path[256], args[512];
     snprintf(path, sizeof path, "%s/trajectory.csv", dir);
     snprintf(args, sizeof args, "simulate --preset paper --incline 30 --mu 0.5 --sample-dt 0.01 --csv '%s'", path);
-    proc r = run_cli(args);
+    cli_result r = run_cli(args);
     const int status = r.status;
-    proc_free(&r);
+    cli_result_free(&r);
     jc_Model m;
     jc_Run run;
     int bad = status != 0;
@@ -361,13 +314,13 @@ static int test_csv_unwritable(void)
 {
     /* A directory that does not exist. */
     const char *missing = "/nonexistent-dir/x.csv";
-    proc r = run_cli("simulate --preset paper --incline 30 --mu 0.5 --csv /nonexistent-dir/x.csv");
+    cli_result r = run_cli("simulate --preset paper --incline 30 --mu 0.5 --csv /nonexistent-dir/x.csv");
     const int status = r.status;
     const int names = r.err && strstr(r.err, missing) != NULL;
     const int one_line = r.err && strchr(r.err, '\n') == r.err + strlen(r.err) - 1;
     const int quiet_out = r.out && r.out[0] == '\0';
     if (!names) fprintf(stderr, "stderr: '%s'\n", r.err ? r.err : "(none)");
-    proc_free(&r);
+    cli_result_free(&r);
     ENSURE_MSG(status == 1, "exit status %d", status);
     ENSURE(names && one_line && quiet_out);
     ENSURE(access(missing, F_OK) != 0);
@@ -383,7 +336,7 @@ static int test_csv_unwritable(void)
     r = run_cli(args);
     const int status2 = r.status;
     const int names2 = r.err && strstr(r.err, target) != NULL;
-    proc_free(&r);
+    cli_result_free(&r);
     char first[256] = "";
     const int entries = dir_entries(dir, first, sizeof first);
     struct stat st;
@@ -405,7 +358,7 @@ static int test_csv_unwritable(void)
  * mu_k > mu_s are usage errors (exit 2) with a message naming them. */
 static int test_impact_law_option(void)
 {
-    proc r = run_cli("simulate --incline 45 --restitution 1 --impact-law newton --json");
+    cli_result r = run_cli("simulate --incline 45 --restitution 1 --impact-law newton --json");
     const int ok_newton = r.status == 0 && r.err && strstr(r.err, "gained kinetic energy under Newton's law") != NULL;
     cJSON *doc = r.out ? cJSON_Parse(r.out) : NULL;
     const cJSON *gains = cJSON_GetObjectItemCaseSensitive(doc, "energy_gaining_impacts");
@@ -416,7 +369,7 @@ static int test_impact_law_option(void)
     if (cJSON_IsNumber(gain)) snprintf(want, sizeof want, "%+.6g J", gain->valuedouble);
     const int names_gain = r.err && want[0] && strstr(r.err, want) != NULL;
     cJSON_Delete(doc);
-    proc_free(&r);
+    cli_result_free(&r);
     ENSURE_MSG(ok_newton && json_ok && names_gain, "newton: warning %d, json %d, gain in the warning %d", ok_newton,
                json_ok, names_gain);
 
@@ -426,16 +379,16 @@ static int test_impact_law_option(void)
     const int quiet = r.status == 0 && r.err && r.err[0] == '\0' && cJSON_IsNumber(gains) && gains->valuedouble == 0 &&
                       string_is(doc, "impact_law", "stronge") == 0;
     cJSON_Delete(doc);
-    proc_free(&r);
+    cli_result_free(&r);
     ENSURE_MSG(quiet, "stronge: a warning or a gain");
 
     r = run_cli("simulate --impact-law elastic");
     const int bad_law = r.status == 2 && r.err && strstr(r.err, "elastic") && strstr(r.err, "stronge, poisson, newton");
-    proc_free(&r);
+    cli_result_free(&r);
     ENSURE(bad_law);
     r = run_cli("simulate --mu-s 0.3 --mu-k 0.5");
     const int bad_mu = r.status == 2 && r.err && strstr(r.err, "larger than static friction");
-    proc_free(&r);
+    cli_result_free(&r);
     ENSURE(bad_mu);
     return 0;
 }
