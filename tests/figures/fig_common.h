@@ -8,6 +8,8 @@
 #include "../test.h"
 #include "../cli_run.h"
 
+#include <gsl/gsl_errno.h>
+
 #include <dirent.h>
 #include <stdlib.h>
 #include <sys/stat.h>
@@ -95,6 +97,27 @@ static inline int fig_empty_path(char *path, size_t len, const char *tmpdir)
 {
     snprintf(path, len, "%s/empty-bin", tmpdir);
     return mkdir(path, 0755);
+}
+
+/* The start of a figure test's main: the tool's path from argv[1], GSL's
+ * aborting error handler off (docs/api.md) and a scratch directory named
+ * for the test. 0, or the exit status 2 after a message. */
+static inline int fig_main_begin(int argc, char **argv, const char *name, const char **cli, char *dir, size_t dir_len)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s PATH-TO-jumpcyl\n", argv[0]);
+        return 2;
+    }
+    *cli = argv[1];
+    gsl_set_error_handler_off();
+    return fig_tmpdir(dir, dir_len, name) != 0 ? 2 : 0;
+}
+
+/* The end: the scratch directory removed, or kept for a look after a failure. */
+static inline void fig_main_end(const char *dir)
+{
+    if (jc_test_failed_count == 0) fig_rmtree(dir);
+    else fprintf(stderr, "files kept in %s\n", dir);
 }
 
 #endif

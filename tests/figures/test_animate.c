@@ -123,18 +123,12 @@ static int test_bad_input(void)
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        fprintf(stderr, "usage: %s PATH-TO-jumpcyl\n", argv[0]);
-        return 2;
-    }
-    cli = argv[1];
-    gsl_set_error_handler_off(); /* docs/api.md: programs that run the full model */
-    if (fig_tmpdir(dir, sizeof dir, "animate") != 0) return 2;
+    const int rc = fig_main_begin(argc, argv, "animate", &cli, dir, sizeof dir);
+    if (rc != 0) return rc;
     RUN_TEST(test_frames_directory);
     RUN_TEST(test_gif_and_mp4);
     RUN_TEST(test_missing_ffmpeg);
     RUN_TEST(test_bad_input);
-    if (jc_test_failed_count == 0) fig_rmtree(dir);
-    else fprintf(stderr, "files kept in %s\n", dir);
+    fig_main_end(dir);
     TEST_MAIN_END();
 }

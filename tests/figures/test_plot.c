@@ -418,13 +418,8 @@ static int test_no_leftovers(void)
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        fprintf(stderr, "usage: %s PATH-TO-jumpcyl\n", argv[0]);
-        return 2;
-    }
-    cli = argv[1];
-    gsl_set_error_handler_off(); /* docs/api.md: programs that run the full model */
-    if (fig_tmpdir(dir, sizeof dir, "plot") != 0) return 2;
+    const int rc = fig_main_begin(argc, argv, "plot", &cli, dir, sizeof dir);
+    if (rc != 0) return rc;
     RUN_TEST(test_every_kind_png);
     RUN_TEST(test_svg_and_pdf);
     RUN_TEST(test_criterion_data);
@@ -433,7 +428,6 @@ int main(int argc, char **argv)
     RUN_TEST(test_bad_input);
     RUN_TEST(test_missing_gnuplot);
     RUN_TEST(test_no_leftovers);
-    if (jc_test_failed_count == 0) fig_rmtree(dir);
-    else fprintf(stderr, "files kept in %s\n", dir);
+    fig_main_end(dir);
     TEST_MAIN_END();
 }
