@@ -191,75 +191,114 @@ static int test_uniform_disc(void)
     return 0;
 }
 
+/* A setup's model, its dynamics as written here, and the library's rolling
+ * prediction. */
+static int predicted(const jc_Setup *s, jc_Model *m, dyn *D, jc_RollingResult *res)
+{
+    if (init(m, s)) return 1;
+    *D = dyn_of(m);
+    char err[256] = "";
+    ENSURE_OK(jc_rolling_predict(m, res, err, sizeof err), err);
+    return 0;
+}
+
+/* The rolling setups the pointwise tests walk along, from the start to the
+ * end of the rolling path. */
+#define PATH_SETUPS 5
+
+/* Setup k's model, its dynamics as written here, and its path's end. */
+static int path_model(size_t k, jc_Model *m, dyn *D, double *th_end)
+{
+    const jc_Setup setups[PATH_SETUPS] = {paper_at(30, 0.5), spinning(), preset("rocking-hoop"), lopsided(),
+                                          rocking()};
+    jc_RollingResult res;
+    if (predicted(&setups[k], m, D, &res)) return 1;
+    *th_end = res.end_theta_rad;
+    return 0;
+}
+
+/* One point of a walk along a rolling path: the library's state at th, the
+ * i-th of n + 1 evenly spaced angles of setup k's path. */
+typedef int (*path_visit)(void *ctx, size_t k, const jc_Model *m, const dyn *D, int i, int n, double th,
+                          const jc_RollingState *st);
+
+/* Visits n + 1 points of every setup's path; stops at the first failure. */
+static int walk_paths(int n, path_visit visit, void *ctx)
+{
+    for (size_t k = 0; k < PATH_SETUPS; ++k) {
+        jc_Model m;
+        dyn D;
+        double th_end;
+        if (path_model(k, &m, &D, &th_end)) return 1;
+        for (int i = 0; i <= n; ++i) {
+            char err[256] = "";
+            const double th = D.th0 + (th_end - D.th0) * i / (double)n;
+            jc_RollingState st;
+            ENSURE_OK(jc_rolling_state(&m, th, &st, err, sizeof err), err);
+            if (visit(ctx, k, &m, &D, i, n, th, &st)) return 1;
+        }
+    }
+    return 0;
+}
+
 /* ---- (b) energy ---- */
+
+typedef struct {
+    double e0, scale, worst;
+} energy_walk;
+
+static int visit_energy(void *ctx, size_t k, const jc_Model *m, const dyn *D, int i, int n, double th,
+                        const jc_RollingState *st)
+{
+    (void)m;
+    energy_walk *w = ctx;
+    const double ke = kinetic(D, th, st->omega_radps), u = pot(D, th);
+    if (i == 0) *w = (energy_walk){ke + u, D->M * D->g * (D->r + D->d), 0.0};
+    w->scale = fmax(w->scale, ke + fabs(u - pot(D, D->th0)));
+    w->worst = fmax(w->worst, fabs(ke + u - w->e0));
+    /* The library's own energies are the same quantities. */
+    ENSURE_NEAR(st->kinetic_J, ke, 1e-12 * w->scale);
+    ENSURE_NEAR(st->potential_J, u - pot(D, D->th0), 1e-12 * w->scale);
+    ENSURE_NEAR(st->x_m, D->r * (th - D->th0), 1e-15 * D->r * (1 + fabs(th)));
+    /* 1e-12 of the energies involved: rounding of ~20 operations. */
+    if (i == n)
+        ENSURE_MSG(w->worst <= 1e-12 * w->scale, "setup %zu: energy drifts by %.3g J of %.3g J", k, w->worst,
+                   w->scale);
+    return 0;
+}
 
 static int test_energy_identity(void)
 {
-    const jc_Setup setups[] = {paper_at(30, 0.5), spinning(), preset("rocking-hoop"), lopsided(), rocking()};
-    for (size_t k = 0; k < sizeof setups / sizeof setups[0]; ++k) {
-        jc_Model m;
-        if (init(&m, &setups[k])) return 1;
-        const dyn D = dyn_of(&m);
-        jc_RollingResult res;
-        char err[256] = "";
-        ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
-        const double th_end = res.end_theta_rad;
-        double e0 = 0, scale = D.M * D.g * (D.r + D.d), worst = 0;
-        for (int i = 0; i <= 2000; ++i) {
-            const double th = D.th0 + (th_end - D.th0) * i / 2000.0;
-            jc_RollingState st;
-            ENSURE_OK(jc_rolling_state(&m, th, &st, err, sizeof err), err);
-            const double ke = kinetic(&D, th, st.omega_radps), u = pot(&D, th);
-            if (i == 0) e0 = ke + u;
-            scale = fmax(scale, ke + fabs(u - pot(&D, D.th0)));
-            worst = fmax(worst, fabs(ke + u - e0));
-            /* The library's own energies are the same quantities. */
-            ENSURE_NEAR(st.kinetic_J, ke, 1e-12 * scale);
-            ENSURE_NEAR(st.potential_J, u - pot(&D, D.th0), 1e-12 * scale);
-            ENSURE_NEAR(st.x_m, D.r * (th - D.th0), 1e-15 * D.r * (1 + fabs(th)));
-        }
-        /* 1e-12 of the energies involved: rounding of ~20 operations. */
-        ENSURE_MSG(worst <= 1e-12 * scale, "setup %zu: energy drifts by %.3g J of %.3g J", k, worst, scale);
-    }
-    return 0;
+    energy_walk w;
+    return walk_paths(2000, visit_energy, &w);
 }
 
 /* ---- second formulation, pointwise: th'', N, F and the model's polynomials ---- */
 
-static int test_newton_euler_pointwise(void)
+static int visit_newton_euler(void *ctx, size_t k, const jc_Model *m, const dyn *D, int i, int n, double th,
+                              const jc_RollingState *st)
 {
-    const jc_Setup setups[] = {paper_at(30, 0.5), spinning(), preset("rocking-hoop"), lopsided(), rocking()};
-    for (size_t k = 0; k < sizeof setups / sizeof setups[0]; ++k) {
-        jc_Model m;
-        if (init(&m, &setups[k])) return 1;
-        const dyn D = dyn_of(&m);
-        jc_RollingResult res;
-        char err[256] = "";
-        ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
-        for (int i = 0; i <= 500; ++i) {
-            const double th = D.th0 + (res.end_theta_rad - D.th0) * i / 500.0;
-            jc_RollingState st;
-            ENSURE_OK(jc_rolling_state(&m, th, &st, err, sizeof err), err);
-            const double w2 = fmax(omega2(&D, th), 0.0);
-            const forces f = newton_euler(&D, th, w2);
-            const double fs = force_scale(&D, w2, f.alpha);
-            /* Two formulations of the same equations: 1e-11 of the force terms
-             * (LU on a 4x4 system with entries from 1e-4 to 1). */
-            ENSURE_NEAR(st.omega_radps * st.omega_radps, w2, 1e-11 * (fabs(w2) + D.g / D.r));
-            ENSURE_NEAR(st.alpha_radps2, f.alpha, 1e-11 * fs / (D.M * D.r));
-            ENSURE_NEAR(st.normal_N, f.N, 1e-11 * fs);
-            ENSURE_NEAR(st.friction_N, f.F, 1e-11 * fs);
-            /* The path from the start: energy = I_P w^2, normal = N I_P^2, friction = F I_P^2. */
-            jc_RollingPath path;
-            jc_rolling_path_init(&m, D.th0, D.w0, &path);
-            const double ip = 2 * kinetic(&D, th, 1.0);
-            ENSURE_NEAR(tl_direct(&path.energy, th), ip * w2, 1e-11 * ip * (fabs(w2) + D.g / D.r));
-            ENSURE_NEAR(tl_direct(&path.normal, th), f.N * ip * ip, 1e-11 * fs * ip * ip);
-            ENSURE_NEAR(tl_direct(&path.friction, th), f.F * ip * ip, 1e-11 * fs * ip * ip);
-        }
-    }
+    (void)ctx, (void)k, (void)i, (void)n;
+    const double w2 = fmax(omega2(D, th), 0.0);
+    const forces f = newton_euler(D, th, w2);
+    const double fs = force_scale(D, w2, f.alpha);
+    /* Two formulations of the same equations: 1e-11 of the force terms
+     * (LU on a 4x4 system with entries from 1e-4 to 1). */
+    ENSURE_NEAR(st->omega_radps * st->omega_radps, w2, 1e-11 * (fabs(w2) + D->g / D->r));
+    ENSURE_NEAR(st->alpha_radps2, f.alpha, 1e-11 * fs / (D->M * D->r));
+    ENSURE_NEAR(st->normal_N, f.N, 1e-11 * fs);
+    ENSURE_NEAR(st->friction_N, f.F, 1e-11 * fs);
+    /* The path from the start: energy = I_P w^2, normal = N I_P^2, friction = F I_P^2. */
+    jc_RollingPath path;
+    jc_rolling_path_init(m, D->th0, D->w0, &path);
+    const double ip = 2 * kinetic(D, th, 1.0);
+    ENSURE_NEAR(tl_direct(&path.energy, th), ip * w2, 1e-11 * ip * (fabs(w2) + D->g / D->r));
+    ENSURE_NEAR(tl_direct(&path.normal, th), f.N * ip * ip, 1e-11 * fs * ip * ip);
+    ENSURE_NEAR(tl_direct(&path.friction, th), f.F * ip * ip, 1e-11 * fs * ip * ip);
     return 0;
 }
+
+static int test_newton_euler_pointwise(void) { return walk_paths(500, visit_newton_euler, NULL); }
 
 /* ---- (c) forces from finite differences of an integrated trajectory ---- */
 
@@ -423,11 +462,9 @@ static int test_paper_slips_before_n_zero(void)
     for (int k = 0; k < 2; ++k) {
         const jc_Setup s = paper_at(30, mus[k]);
         jc_Model m;
-        if (init(&m, &s)) return 1;
-        const dyn D = dyn_of(&m);
+        dyn D;
         jc_RollingResult res;
-        char err[256] = "";
-        ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
+        if (predicted(&s, &m, &D, &res)) return 1;
         ENSURE(res.slip.found && res.liftoff.found && !res.slip.grazing && !res.liftoff.grazing);
         ENSURE(res.slip.state.theta_rad < res.liftoff.state.theta_rad);
         /* At N = 0 the rolling friction is finite, here about 9% of M g. */
@@ -445,13 +482,11 @@ static int test_starts_sliding(void)
     /* 80 deg, mu 0.01: |F|/N = tan(80) I_G / I_P(0) ~ 1 at the start. */
     const jc_Setup s = paper_at(80, 0.01);
     jc_Model m;
-    if (init(&m, &s)) return 1;
-    const dyn D = dyn_of(&m);
+    dyn D;
+    jc_RollingResult res;
+    if (predicted(&s, &m, &D, &res)) return 1;
     const contact c = contact_at(&D, D.th0);
     ENSURE(fabs(c.F) > s.mu_static * c.N); /* the premise, computed here */
-    jc_RollingResult res;
-    char err[256] = "";
-    ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
     ENSURE(res.slip.found);
     ENSURE_NEAR(res.slip.state.theta_rad, D.th0, 1e-12);
     return 0;
@@ -463,12 +498,10 @@ static int test_starts_flying(void)
     jc_Setup s = preset("rocking-hoop");
     s.omega0_radps = 20.0;
     jc_Model m;
-    if (init(&m, &s)) return 1;
-    const dyn D = dyn_of(&m);
-    ENSURE(contact_at(&D, D.th0).N < 0); /* the premise, computed here */
+    dyn D;
     jc_RollingResult res;
-    char err[256] = "";
-    ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
+    if (predicted(&s, &m, &D, &res)) return 1;
+    ENSURE(contact_at(&D, D.th0).N < 0); /* the premise, computed here */
     ENSURE(res.liftoff.found);
     ENSURE_NEAR(res.liftoff.state.theta_rad, D.th0, 1e-12);
     return 0;
@@ -494,11 +527,9 @@ static int test_rocks_and_turns_back(void)
 {
     const jc_Setup s = rocking();
     jc_Model m;
-    if (init(&m, &s)) return 1;
-    const dyn D = dyn_of(&m);
+    dyn D;
     jc_RollingResult res;
-    char err[256] = "";
-    ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
+    if (predicted(&s, &m, &D, &res)) return 1;
     ENSURE(res.end == JC_ROLLING_END_TURN_BACK);
     ENSURE(!res.slip.found && !res.liftoff.found);
     /* The turning point: U(th) = U(th0) past th0, bisected here. U - U0 < 0 just
@@ -516,6 +547,7 @@ static int test_rocks_and_turns_back(void)
     /* w^2 = 0 there: kinetic energy from the energy balance, relative to M g r. */
     ENSURE_NEAR(pot(&D, D.th0) - pot(&D, res.end_theta_rad), 0.0, 1e-12 * D.M * D.g * D.r);
     jc_RollingState st;
+    char err[256] = "";
     ENSURE_OK(jc_rolling_state(&m, res.end_theta_rad, &st, err, sizeof err), err);
     ENSURE_NEAR(st.kinetic_J, 0.0, 1e-12 * D.M * D.g * D.r);
     /* Past the turning point the rolling motion never gets there. */
