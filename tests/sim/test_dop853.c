@@ -24,13 +24,19 @@ static int oscillator(double t, const double y[], double f[], void *ctx)
     return 0;
 }
 
-/* |error| at t = 1 after n fixed steps of y'' = -y from (1, 0). */
+/* A stepper at the start of y'' = -y from (1, 0): y = (cos t, -sin t). */
+static void oscillator_start(jc_Dop853 *d)
+{
+    jc_dop853_init(d, 2, 2, 1e-10, 1e-10);
+    const double y0[2] = {1.0, 0.0};
+    jc_dop853_start(d, oscillator, NULL, 0.0, y0);
+}
+
+/* |error| at t = 1 after n fixed steps. */
 static double fixed_step_error(int n)
 {
     jc_Dop853 d;
-    jc_dop853_init(&d, 2, 2, 1e-10, 1e-10);
-    const double y0[2] = {1.0, 0.0};
-    jc_dop853_start(&d, oscillator, NULL, 0.0, y0);
+    oscillator_start(&d);
     for (int i = 0; i < n; ++i) {
         if (jc_dop853_step(&d, oscillator, NULL, 1.0 / n) != 0) return NAN;
         jc_dop853_advance(&d);
@@ -42,9 +48,7 @@ static double fixed_step_error(int n)
 static double dense_error(double h)
 {
     jc_Dop853 d;
-    jc_dop853_init(&d, 2, 2, 1e-10, 1e-10);
-    const double y0[2] = {1.0, 0.0};
-    jc_dop853_start(&d, oscillator, NULL, 0.0, y0);
+    oscillator_start(&d);
     if (jc_dop853_step(&d, oscillator, NULL, h) != 0 || jc_dop853_dense(&d, oscillator, NULL) != 0) return NAN;
     double worst = 0.0;
     for (int k = 1; k < 8; ++k) {
