@@ -119,18 +119,6 @@ static int rolls_checks(const jc_Setup *sp, const jc_Model *mp, const jc_Run *rp
     return 0;
 }
 
-static int check_rolls(double incline_deg, double mu, double *worst_rel)
-{
-    const jc_Setup s = disc_at(incline_deg, mu);
-    jc_Model m;
-    jc_Run run;
-    if (run_disc(&s, &m, &run, 0.01)) return 1;
-    const int bad = rolls_checks(&s, &m, &run, worst_rel);
-    if (bad) fprintf(stderr, "  (uniform disc rolling at %g deg, mu %g)\n", incline_deg, mu);
-    jc_run_free(&run);
-    return bad;
-}
-
 /* mu < tan(a)/3: slides from t = 0, x(t) = g (sin a - mu cos a) t^2 / 2,
  * w(t) = 2 mu g cos(a) t / r. */
 static int slides_checks(const jc_Setup *sp, const jc_Model *mp, const jc_Run *rp, double *worst_rel)
@@ -174,16 +162,30 @@ static int slides_checks(const jc_Setup *sp, const jc_Model *mp, const jc_Run *r
     return 0;
 }
 
-static int check_slides(double incline_deg, double mu, double *worst_rel)
+typedef int (*disc_checks)(const jc_Setup *s, const jc_Model *m, const jc_Run *run, double *worst_rel);
+
+/* Runs the uniform disc at an incline and friction and applies the checks;
+ * what on a failure. */
+static int check_disc(double incline_deg, double mu, disc_checks checks, const char *what, double *worst_rel)
 {
     const jc_Setup s = disc_at(incline_deg, mu);
     jc_Model m;
     jc_Run run;
     if (run_disc(&s, &m, &run, 0.01)) return 1;
-    const int bad = slides_checks(&s, &m, &run, worst_rel);
-    if (bad) fprintf(stderr, "  (uniform disc sliding at %g deg, mu %g)\n", incline_deg, mu);
+    const int bad = checks(&s, &m, &run, worst_rel);
+    if (bad) fprintf(stderr, "  (uniform disc %s at %g deg, mu %g)\n", what, incline_deg, mu);
     jc_run_free(&run);
     return bad;
+}
+
+static int check_rolls(double incline_deg, double mu, double *worst_rel)
+{
+    return check_disc(incline_deg, mu, rolls_checks, "rolling", worst_rel);
+}
+
+static int check_slides(double incline_deg, double mu, double *worst_rel)
+{
+    return check_disc(incline_deg, mu, slides_checks, "sliding", worst_rel);
 }
 
 static int test_rolls_when_friction_suffices(void)

@@ -197,6 +197,22 @@ static void print_case(const hoop_case *hc)
     printf("\n");
 }
 
+/* A case of the nearly uniform hoop (eta 1e-6) before it is run. */
+static hoop_case hoop_case_new(double w0, double mu)
+{
+    hoop_case hc = {.eta = 1e-6, .w0 = w0, .mu = mu, .th_lib_n0 = NAN, .th_sim = NAN, .t_sim = NAN, .t_mine = NAN,
+                    .sim_kind = JC_EVENT_COUNT};
+    for (int k = 0; k < 6; ++k) hc.next_kinds[k] = JC_EVENT_COUNT;
+    return hc;
+}
+
+static int run_and_print(hoop_case *hc)
+{
+    const int bad = run_case(hc, 0);
+    print_case(hc);
+    return bad;
+}
+
 /* mu < 1: slips at 2 arctan(mu) from the top, before 90 deg. */
 static int test_low_friction_slips_at_2_arctan_mu(void)
 {
@@ -204,12 +220,8 @@ static int test_low_friction_slips_at_2_arctan_mu(void)
     const double w0s[] = {1e-3, 1e-2};
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 2; ++j) {
-            hoop_case hc = {.eta = 1e-6, .w0 = w0s[j], .mu = mus[i], .th_lib_n0 = NAN, .th_sim = NAN,
-                            .t_sim = NAN, .t_mine = NAN, .sim_kind = JC_EVENT_COUNT};
-            for (int k = 0; k < 6; ++k) hc.next_kinds[k] = JC_EVENT_COUNT;
-            const int bad = run_case(&hc, 0);
-            print_case(&hc);
-            if (bad) return 1;
+            hoop_case hc = hoop_case_new(w0s[j], mus[i]);
+            if (run_and_print(&hc)) return 1;
         }
     return 0;
 }
@@ -222,12 +234,8 @@ static int test_high_friction_rolls_to_90_deg(void)
     const double w0s[] = {1e-3, 1e-2};
     for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2; ++j) {
-            hoop_case hc = {.eta = 1e-6, .w0 = w0s[j], .mu = mus[i], .th_lib_n0 = NAN, .th_sim = NAN,
-                            .t_sim = NAN, .t_mine = NAN, .sim_kind = JC_EVENT_COUNT};
-            for (int k = 0; k < 6; ++k) hc.next_kinds[k] = JC_EVENT_COUNT;
-            const int bad = run_case(&hc, 0);
-            print_case(&hc);
-            if (bad) return 1;
+            hoop_case hc = hoop_case_new(w0s[j], mus[i]);
+            if (run_and_print(&hc)) return 1;
             /* Both within a few eta of 90 deg less q/g. */
             const double q_g = R_M * hc.w0 * hc.w0 / 9.78;
             ENSURE_NEAR(hc.th_sim, PI / 2 - q_g, 3.0 * hc.eta);
@@ -244,9 +252,7 @@ static int test_first_event_time(void)
     int failures = 0;
     for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 3; ++j) {
-            hoop_case hc = {.eta = 1e-6, .w0 = w0s[j], .mu = mus[i], .th_lib_n0 = NAN, .th_sim = NAN,
-                            .t_sim = NAN, .t_mine = NAN, .sim_kind = JC_EVENT_COUNT};
-            for (int k = 0; k < 6; ++k) hc.next_kinds[k] = JC_EVENT_COUNT;
+            hoop_case hc = hoop_case_new(w0s[j], mus[i]);
             /* Every case is run and reported; the test fails if any failed. */
             const int bad = run_case(&hc, 1);
             printf("  eta %.0e w0 %.0e mu %g: first event at t %.12f s, quadrature %.12f s, diff %.2e s%s\n", hc.eta,
