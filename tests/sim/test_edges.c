@@ -245,53 +245,69 @@ static int sweep_one(const jc_Setup *s, double t_max, const char *label, int *fa
     return 0;
 }
 
-static int test_sweep_paper(void)
+/* A grid of three parameters (a, b, c): the setup of one point, and its label. */
+typedef int (*grid_setup)(double a, double b, double c, jc_Setup *s, char *label, size_t label_len);
+
+typedef struct {
+    const double *v;
+    int n;
+} axis;
+
+/* Runs every point of the grid for t_max; every run is checked and reported,
+ * and the test fails if any failed. */
+static int sweep_grid(const char *what, axis a, axis b, axis c, grid_setup make, double t_max)
 {
-    const double inclines[] = {5.0, 15.0, 30.0, 45.0, 60.0, 75.0};
-    const double mus[] = {0.05, 0.2, 0.5, 1.0};
-    const double es[] = {0.0, 0.3, 0.5};
     int failures = 0, runs = 0;
-    for (int i = 0; i < 6; ++i)
-        for (int j = 0; j < 4; ++j)
-            for (int k = 0; k < 3; ++k) {
-                jc_Setup s = paper_at(inclines[i], mus[j]);
-                s.restitution = es[k];
+    for (int i = 0; i < a.n; ++i)
+        for (int j = 0; j < b.n; ++j)
+            for (int k = 0; k < c.n; ++k) {
+                jc_Setup s;
                 char label[96];
-                snprintf(label, sizeof label, "paper %g deg mu %g e %g", inclines[i], mus[j], es[k]);
-                if (sweep_one(&s, 60.0, label, &failures)) return 1;
+                if (make(a.v[i], b.v[j], c.v[k], &s, label, sizeof label)) return 1;
+                if (sweep_one(&s, t_max, label, &failures)) return 1;
                 runs++;
             }
-    printf("  %d paper runs, %d failed\n", runs, failures);
+    printf("  %d %s runs, %d failed\n", runs, what, failures);
     ENSURE(failures == 0);
     return 0;
+}
+
+static int paper_point(double incline_deg, double mu, double e, jc_Setup *s, char *label, size_t label_len)
+{
+    *s = paper_at(incline_deg, mu);
+    s->restitution = e;
+    snprintf(label, label_len, "paper %g deg mu %g e %g", incline_deg, mu, e);
+    return 0;
+}
+
+static int test_sweep_paper(void)
+{
+    static const double inclines[] = {5.0, 15.0, 30.0, 45.0, 60.0, 75.0};
+    static const double mus[] = {0.05, 0.2, 0.5, 1.0};
+    static const double es[] = {0.0, 0.3, 0.5};
+    return sweep_grid("paper", (axis){inclines, 6}, (axis){mus, 4}, (axis){es, 3}, paper_point, 60.0);
 }
 
 /* The built-in hoop preset (10 g hoop, 100 g rim mass, floor) at several
  * spins, frictions and restitutions: long runs of rocking, slipping and
  * hopping. */
+static int hoop_point(double w0, double mu, double e, jc_Setup *s, char *label, size_t label_len)
+{
+    char err[256] = "";
+    ENSURE_OK(jc_preset_setup("rocking-hoop", s, err, sizeof err), err);
+    s->omega0_radps = w0;
+    s->mu_static = s->mu_kinetic = mu;
+    s->restitution = e;
+    snprintf(label, label_len, "hoop preset w0 %g mu %g e %g", w0, mu, e);
+    return 0;
+}
+
 static int test_sweep_hoop_preset(void)
 {
-    const double w0s[] = {0.01, 0.1, 0.5, 1.0, 2.0, 5.0, 20.0};
-    const double mus[] = {0.3, 0.5, 1.0};
-    const double es[] = {0.3, 0.5};
-    int failures = 0, runs = 0;
-    for (int i = 0; i < 7; ++i)
-        for (int j = 0; j < 3; ++j)
-            for (int k = 0; k < 2; ++k) {
-                jc_Setup s;
-                char err[256] = "";
-                ENSURE_OK(jc_preset_setup("rocking-hoop", &s, err, sizeof err), err);
-                s.omega0_radps = w0s[i];
-                s.mu_static = s.mu_kinetic = mus[j];
-                s.restitution = es[k];
-                char label[96];
-                snprintf(label, sizeof label, "hoop preset w0 %g mu %g e %g", w0s[i], mus[j], es[k]);
-                if (sweep_one(&s, 20.0, label, &failures)) return 1;
-                runs++;
-            }
-    printf("  %d hoop runs, %d failed\n", runs, failures);
-    ENSURE(failures == 0);
-    return 0;
+    static const double w0s[] = {0.01, 0.1, 0.5, 1.0, 2.0, 5.0, 20.0};
+    static const double mus[] = {0.3, 0.5, 1.0};
+    static const double es[] = {0.3, 0.5};
+    return sweep_grid("hoop", (axis){w0s, 7}, (axis){mus, 3}, (axis){es, 2}, hoop_point, 20.0);
 }
 
 int main(void)
