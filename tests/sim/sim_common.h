@@ -74,6 +74,15 @@ static inline int sim_run(const jc_Model *m, const jc_SimOptions *o, jc_Run *run
     return 0;
 }
 
+/* The setup's model and its run with default options sampled every dt. */
+static inline int sim_run_sampled(const jc_Setup *s, double dt, jc_Model *m, jc_SimOptions *o, jc_Run *run)
+{
+    if (sim_model(m, s)) return 1;
+    *o = jc_default_sim_options();
+    o->sample_dt_s = dt;
+    return sim_run(m, o, run);
+}
+
 /* The paper's preset at an incline (degrees) and friction coefficient. */
 static inline jc_Setup paper_at(double incline_deg, double mu)
 {

@@ -33,11 +33,9 @@ static int check_energy(double incline_deg, double restitution, energy_stats *st
     /* The balance below is that of the resistance-free model. */
     ENSURE(!jc_setup_has_resistance(&s));
     jc_Model m;
-    if (sim_model(&m, &s)) return 1;
-    jc_SimOptions o = jc_default_sim_options();
-    o.sample_dt_s = 1e-3;
+    jc_SimOptions o;
     jc_Run run;
-    if (sim_run(&m, &o, &run)) return 1;
+    if (sim_run_sampled(&s, 1e-3, &m, &o, &run)) return 1;
     int bad = check_run_invariants(&o, &run);
     const jc_State start = {0.0, 0.0, s.body.radius_m, s.body.radius_m * s.omega0_radps, 0.0, s.theta0_rad,
                             s.omega0_radps};

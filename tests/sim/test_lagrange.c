@@ -58,69 +58,88 @@ static int random_model(jc_Model *m)
     return sim_model(m, &s);
 }
 
-static int test_sliding_forces(void)
+/* A state of one of the random models, visited by for_random_states. */
+typedef struct {
+    int compared, painleve_skipped;
+    double worst;
+} compare_stats;
+
+typedef int (*state_visit)(const jc_Model *m, const body_consts *b, double th, double w, int i,
+                           compare_stats *st);
+
+/* 200 random models, 50 random states (th, w) each. */
+static int for_random_states(state_visit visit, compare_stats *st)
 {
-    int compared = 0, painleve_skipped = 0;
-    double worst = 0.0;
     for (int k = 0; k < 200; ++k) {
         jc_Model m;
         if (random_model(&m)) return 1;
         const body_consts b = consts_of(&m);
         for (int i = 0; i < 50; ++i) {
             const double th = uniform(-PI, 3.0 * PI), w = uniform(-40.0, 40.0);
-            const int s = i % 2 ? 1 : -1;
-            jc_SlidingForces f;
-            jc_sliding_forces(&m, th, w, s, &f);
-            /* The library's denominator: D = 1 + M d sin th k / I_G. Within
-             * 1e-3 of 0 the system is nearly singular (Painleve) and the two
-             * computations legitimately differ by rounding / D. */
-            if (fabs(f.denominator) < 1e-3) {
-                painleve_skipped++;
-                continue;
-            }
-            double normal, thdd, xcdd;
-            if (slide_lm(&b, m.setup.mu_kinetic, s, th, w, &normal, &thdd, &xcdd)) return 1;
-            const double fscale = b.M * (b.g + b.d * w * w) / fmin(1.0, fabs(f.denominator));
-            const double ascale = fscale * (b.r + b.d) / b.ig + b.g + b.d * w * w;
-            ENSURE_NEAR(f.normal_N, normal, REL_TOL * fscale);
-            ENSURE_NEAR(f.friction_N, -m.setup.mu_kinetic * s * normal, REL_TOL * fscale);
-            ENSURE_NEAR(f.theta_acc, thdd, REL_TOL * ascale / (b.r + b.d));
-            ENSURE_NEAR(f.x_acc, xcdd, REL_TOL * ascale);
-            worst = fmax(worst, fabs(f.normal_N - normal) / fscale);
-            compared++;
+            if (visit(&m, &b, th, w, i, st)) return 1;
         }
     }
-    printf("  sliding: %d states compared (%d near-Painleve skipped), worst |dN| / scale %.2e\n", compared,
-           painleve_skipped, worst);
-    ENSURE(compared > 9000);
+    return 0;
+}
+
+static int compare_sliding(const jc_Model *m, const body_consts *b, double th, double w, int i, compare_stats *st)
+{
+    const int s = i % 2 ? 1 : -1;
+    jc_SlidingForces f;
+    jc_sliding_forces(m, th, w, s, &f);
+    /* The library's denominator: D = 1 + M d sin th k / I_G. Within
+     * 1e-3 of 0 the system is nearly singular (Painleve) and the two
+     * computations legitimately differ by rounding / D. */
+    if (fabs(f.denominator) < 1e-3) {
+        st->painleve_skipped++;
+        return 0;
+    }
+    double normal, thdd, xcdd;
+    if (slide_lm(b, m->setup.mu_kinetic, s, th, w, &normal, &thdd, &xcdd)) return 1;
+    const double fscale = b->M * (b->g + b->d * w * w) / fmin(1.0, fabs(f.denominator));
+    const double ascale = fscale * (b->r + b->d) / b->ig + b->g + b->d * w * w;
+    ENSURE_NEAR(f.normal_N, normal, REL_TOL * fscale);
+    ENSURE_NEAR(f.friction_N, -m->setup.mu_kinetic * s * normal, REL_TOL * fscale);
+    ENSURE_NEAR(f.theta_acc, thdd, REL_TOL * ascale / (b->r + b->d));
+    ENSURE_NEAR(f.x_acc, xcdd, REL_TOL * ascale);
+    st->worst = fmax(st->worst, fabs(f.normal_N - normal) / fscale);
+    st->compared++;
+    return 0;
+}
+
+static int test_sliding_forces(void)
+{
+    compare_stats st = {0, 0, 0.0};
+    if (for_random_states(compare_sliding, &st)) return 1;
+    printf("  sliding: %d states compared (%d near-Painleve skipped), worst |dN| / scale %.2e\n", st.compared,
+           st.painleve_skipped, st.worst);
+    ENSURE(st.compared > 9000);
+    return 0;
+}
+
+static int compare_rolling(const jc_Model *m, const body_consts *b, double th, double w, int i, compare_stats *st)
+{
+    (void)i;
+    double thdd_lib, n_lib, f_lib;
+    jc_rolling_forces(m, th, w, &thdd_lib, &n_lib, &f_lib);
+    double thdd, normal, friction;
+    if (roll_lm(b, th, w, &thdd, &normal, &friction)) return 1;
+    const double fscale = b->M * (b->g + b->d * w * w);
+    const double ascale = fscale * (b->r + b->d) / b->ig + b->g + b->d * w * w;
+    ENSURE_NEAR(n_lib, normal, REL_TOL * fscale);
+    ENSURE_NEAR(f_lib, friction, REL_TOL * fscale);
+    ENSURE_NEAR(thdd_lib, thdd, REL_TOL * ascale / (b->r + b->d));
+    st->worst = fmax(st->worst, fmax(fabs(n_lib - normal), fabs(f_lib - friction)) / fscale);
+    st->compared++;
     return 0;
 }
 
 static int test_rolling_forces(void)
 {
-    int compared = 0;
-    double worst = 0.0;
-    for (int k = 0; k < 200; ++k) {
-        jc_Model m;
-        if (random_model(&m)) return 1;
-        const body_consts b = consts_of(&m);
-        for (int i = 0; i < 50; ++i) {
-            const double th = uniform(-PI, 3.0 * PI), w = uniform(-40.0, 40.0);
-            double thdd_lib, n_lib, f_lib;
-            jc_rolling_forces(&m, th, w, &thdd_lib, &n_lib, &f_lib);
-            double thdd, normal, friction;
-            if (roll_lm(&b, th, w, &thdd, &normal, &friction)) return 1;
-            const double fscale = b.M * (b.g + b.d * w * w);
-            const double ascale = fscale * (b.r + b.d) / b.ig + b.g + b.d * w * w;
-            ENSURE_NEAR(n_lib, normal, REL_TOL * fscale);
-            ENSURE_NEAR(f_lib, friction, REL_TOL * fscale);
-            ENSURE_NEAR(thdd_lib, thdd, REL_TOL * ascale / (b.r + b.d));
-            worst = fmax(worst, fmax(fabs(n_lib - normal), fabs(f_lib - friction)) / fscale);
-            compared++;
-        }
-    }
-    printf("  rolling: %d states compared, worst |dN|, |dF| / scale %.2e\n", compared, worst);
-    ENSURE(compared == 10000);
+    compare_stats st = {0, 0, 0.0};
+    if (for_random_states(compare_rolling, &st)) return 1;
+    printf("  rolling: %d states compared, worst |dN|, |dF| / scale %.2e\n", st.compared, st.worst);
+    ENSURE(st.compared == 10000);
     return 0;
 }
 
@@ -130,11 +149,9 @@ static int test_along_a_run(void)
 {
     const jc_Setup s = paper_at(30.0, 0.5);
     jc_Model m;
-    if (sim_model(&m, &s)) return 1;
-    jc_SimOptions o = jc_default_sim_options();
-    o.sample_dt_s = 1e-3;
+    jc_SimOptions o;
     jc_Run run;
-    if (sim_run(&m, &o, &run)) return 1;
+    if (sim_run_sampled(&s, 1e-3, &m, &o, &run)) return 1;
     const body_consts b = consts_of(&m);
     int rolling = 0, sliding = 0, bad = 0;
     for (int k = 0; k < run.sample_count && !bad; ++k) {
