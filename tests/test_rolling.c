@@ -12,6 +12,7 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "internal.h" /* jc_rolling_path_init: the polynomials of the rolling path */
+#include "trig_direct.h"
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
@@ -77,16 +78,6 @@ static forces newton_euler(const dyn *D, double th, double w2)
     return (forces){x[0], x[1], x[2], x[3]};
 }
 
-/* jc_TrigLin by its definition: T0(th) + th T1(th). */
-static double tl_direct(const jc_TrigLin *p, double th)
-{
-    double t0 = 0, t1 = 0;
-    for (int k = 0; k <= JC_TRIG_DEGREE; ++k) {
-        t0 += p->c0[k] * cos(k * th) + p->s0[k] * sin(k * th);
-        t1 += p->c1[k] * cos(k * th) + p->s1[k] * sin(k * th);
-    }
-    return t0 + th * t1;
-}
 
 /* The size of the terms N and F are sums of: rounding is relative to it. */
 static double force_scale(const dyn *D, double w2, double alpha)
@@ -292,9 +283,9 @@ static int visit_newton_euler(void *ctx, size_t k, const jc_Model *m, const dyn 
     jc_RollingPath path;
     jc_rolling_path_init(m, D->th0, D->w0, &path);
     const double ip = 2 * kinetic(D, th, 1.0);
-    ENSURE_NEAR(tl_direct(&path.energy, th), ip * w2, 1e-11 * ip * (fabs(w2) + D->g / D->r));
-    ENSURE_NEAR(tl_direct(&path.normal, th), f.N * ip * ip, 1e-11 * fs * ip * ip);
-    ENSURE_NEAR(tl_direct(&path.friction, th), f.F * ip * ip, 1e-11 * fs * ip * ip);
+    ENSURE_NEAR(trig_direct(&path.energy, th), ip * w2, 1e-11 * ip * (fabs(w2) + D->g / D->r));
+    ENSURE_NEAR(trig_direct(&path.normal, th), f.N * ip * ip, 1e-11 * fs * ip * ip);
+    ENSURE_NEAR(trig_direct(&path.friction, th), f.F * ip * ip, 1e-11 * fs * ip * ip);
     return 0;
 }
 

@@ -4,10 +4,11 @@
 #include "test.h"
 
 #include "internal.h" /* src/, added by tests/CMakeLists.txt */
+#include "trig_direct.h"
 
 #define K_MAX JC_TRIG_DEGREE
 #define EPS 2.220446049250313e-16
-/* Rounding of direct() below, relative to the sum of |terms| (deriv_bound(p, 0, |th|)):
+/* Rounding of trig_direct() below, relative to the sum of |terms| (deriv_bound(p, 0, |th|)):
  * ~20 terms, each with libm's cos/sin error and a product: 16 eps. */
 #define EVAL_ROUND (16 * EPS)
 
@@ -37,16 +38,6 @@ static jc_TrigLin random_poly(int deg, int lin)
     return p;
 }
 
-/* The definition, with libm's cos(k th) and sin(k th) for each k. */
-static double direct(const jc_TrigLin *p, double th)
-{
-    double t0 = 0, t1 = 0;
-    for (int k = 0; k <= K_MAX; ++k) {
-        t0 += p->c0[k] * cos(k * th) + p->s0[k] * sin(k * th);
-        t1 += p->c1[k] * cos(k * th) + p->s1[k] * sin(k * th);
-    }
-    return t0 + th * t1;
-}
 
 /* sum of k^n |coefficient| over T0, and over T1 */
 static double ksum(const double *c, const double *s, int n)
@@ -74,7 +65,7 @@ static int test_mul_matches_product(void)
         ENSURE(jc_tl_mul(&out, &x, &y) == JC_OK);
         for (int i = 0; i < 50; ++i) {
             const double th = uniform(-20, 20);
-            const double want = direct(&x, th) * direct(&y, th);
+            const double want = trig_direct(&x, th) * trig_direct(&y, th);
             /* Product-to-sum rounds relative to the coefficients, not to the
              * product (which can vanish): 1e-12 of the factors' scales. */
             const double scale = deriv_bound(&x, 0, fabs(th)) * deriv_bound(&y, 0, fabs(th));
@@ -113,7 +104,7 @@ static int test_add_and_axpby(void)
         const double want = 0.5 * cos(2 * th) - 0.25 * th * sin(3 * th) - th / 8 + cos(th);
         /* a handful of terms of size <= 30: 1e-14 absolute */
         ENSURE_NEAR(jc_tl_value(&p, th), want, 1e-13);
-        ENSURE_NEAR(jc_tl_value(&z, th), 1.5 * direct(&x, th) - 0.75 * direct(&y, th),
+        ENSURE_NEAR(jc_tl_value(&z, th), 1.5 * trig_direct(&x, th) - 0.75 * trig_direct(&y, th),
                     1e-14 * (deriv_bound(&x, 0, 30) + deriv_bound(&y, 0, 30)));
     }
     return 0;
@@ -129,12 +120,12 @@ static int test_eval_value_and_derivative(void)
             double f, df;
             jc_tl_eval(&p, th, &f, &df);
             /* The angle-addition recurrence vs libm: rounding of ~10 terms. */
-            ENSURE_NEAR(f, direct(&p, th), 1e-13 * deriv_bound(&p, 0, fabs(th)));
+            ENSURE_NEAR(f, trig_direct(&p, th), 1e-13 * deriv_bound(&p, 0, fabs(th)));
             ENSURE(jc_tl_value(&p, th) == f);
             /* 5-point central difference: truncation h^4/30 |f^(5)|, rounding
              * (18/12) EVAL_ROUND |f| / h; doubled for the bounds' own looseness. */
-            const double fd = (direct(&p, th - 2 * h) - 8 * direct(&p, th - h) + 8 * direct(&p, th + h) -
-                               direct(&p, th + 2 * h)) / (12 * h);
+            const double fd = (trig_direct(&p, th - 2 * h) - 8 * trig_direct(&p, th - h) + 8 * trig_direct(&p, th + h) -
+                               trig_direct(&p, th + 2 * h)) / (12 * h);
             const double T = fabs(th) + 2 * h;
             const double tol = 2 * (pow(h, 4) / 30 * deriv_bound(&p, 5, T) + 1.5 * EVAL_ROUND * deriv_bound(&p, 0, T) / h);
             ENSURE_NEAR(df, fd, tol);
@@ -155,12 +146,12 @@ static int test_curvature_bound_bounds(void)
         for (int i = 0; i < 200; ++i) {
             const double th = uniform(-T + h, T - h);
             /* Second difference: truncation h^2/12 |f''''|, rounding 4 eps |f| / h^2. */
-            const double f2 = (direct(&p, th + h) - 2 * direct(&p, th) + direct(&p, th - h)) / (h * h);
+            const double f2 = (trig_direct(&p, th + h) - 2 * trig_direct(&p, th) + trig_direct(&p, th - h)) / (h * h);
             const double slack = h * h / 12 * deriv_bound(&p, 4, T) + 4 * EVAL_ROUND * deriv_bound(&p, 0, T) / (h * h);
             ENSURE_MSG(fabs(f2) <= K + slack, "trial %d th %.17g: |f''| ~ %.17g > bound %.17g (+%.3g)", trial,
                        th, fabs(f2), K, slack);
-            ENSURE_MSG(fabs(direct(&p, th)) <= B * (1 + 1e-12), "|f| %.17g > magnitude bound %.17g",
-                       fabs(direct(&p, th)), B);
+            ENSURE_MSG(fabs(trig_direct(&p, th)) <= B * (1 + 1e-12), "|f| %.17g > magnitude bound %.17g",
+                       fabs(trig_direct(&p, th)), B);
         }
     }
     /* Not vacuous: for a cos(k th) the bound is k^2 |a|, attained at th = 0
@@ -193,8 +184,8 @@ static int test_eval3_second_derivative(void)
             ENSURE_NEAR(d[1], df, 1e-14 * deriv_bound(&p, 1, fabs(th)));
             /* 5-point second difference: truncation h^4/90 |f^(6)|, rounding
              * (64/12) EVAL_ROUND |f| / h^2; doubled for the bounds' looseness. */
-            const double fd = (-direct(&p, th - 2 * h) + 16 * direct(&p, th - h) - 30 * direct(&p, th) +
-                               16 * direct(&p, th + h) - direct(&p, th + 2 * h)) / (12 * h * h);
+            const double fd = (-trig_direct(&p, th - 2 * h) + 16 * trig_direct(&p, th - h) - 30 * trig_direct(&p, th) +
+                               16 * trig_direct(&p, th + h) - trig_direct(&p, th + 2 * h)) / (12 * h * h);
             const double T = fabs(th) + 2 * h;
             const double tol = 2 * (pow(h, 4) / 90 * deriv_bound(&p, 6, T) +
                                     64.0 / 12 * EVAL_ROUND * deriv_bound(&p, 0, T) / (h * h));
@@ -214,8 +205,8 @@ static int test_third_bound_bounds(void)
         for (int i = 0; i < 200; ++i) {
             const double th = uniform(-T + 2 * h, T - 2 * h);
             /* Central third difference: truncation h^2/4 |f^(5)|, rounding 6 EVAL_ROUND |f| / (2 h^3). */
-            const double f3 = (direct(&p, th + 2 * h) - 2 * direct(&p, th + h) + 2 * direct(&p, th - h) -
-                               direct(&p, th - 2 * h)) / (2 * h * h * h);
+            const double f3 = (trig_direct(&p, th + 2 * h) - 2 * trig_direct(&p, th + h) + 2 * trig_direct(&p, th - h) -
+                               trig_direct(&p, th - 2 * h)) / (2 * h * h * h);
             const double slack = h * h / 4 * deriv_bound(&p, 5, T) + 3 * EVAL_ROUND * deriv_bound(&p, 0, T) / (h * h * h);
             ENSURE_MSG(fabs(f3) <= K3 + slack, "trial %d th %.17g: third derivative ~ %.17g > bound %.17g (+%.3g)",
                        trial, th, fabs(f3), K3, slack);
