@@ -17,6 +17,29 @@ static int simulate(const jc_Setup *s, jc_Run *run, int *status, char *err, size
     return 0;
 }
 
+/* The numbers of a setup fuzzing found, on the paper's body; the rest as
+ * the paper's. */
+typedef struct {
+    double incline_deg, gravity, mu, restitution, theta0, omega0, ramp, length, air_density, drag, spin_drag;
+} finding;
+
+static jc_Setup finding_setup(const finding *f)
+{
+    jc_Setup s = jc_paper_setup();
+    s.incline_rad = f->incline_deg * DEG;
+    s.gravity_mps2 = f->gravity;
+    s.mu_static = s.mu_kinetic = f->mu;
+    s.restitution = f->restitution;
+    s.theta0_rad = f->theta0;
+    s.omega0_radps = f->omega0;
+    s.ramp_length_m = f->ramp;
+    s.length_m = f->length;
+    s.air_density_kgpm3 = f->air_density;
+    s.drag_coefficient = f->drag;
+    s.spin_drag_Nms2 = f->spin_drag;
+    return s;
+}
+
 /* A 1.8e308 kg part overflowed the rolling model to NaN, and a product of
  * trigonometric polynomials then wrote past a stack array; subnormal masses
  * and gravity made NaN states. Now they are out of range, with the range in
@@ -52,22 +75,12 @@ static int test_extreme_magnitudes_are_rejected(void)
  * reaches the ramp's end with a balanced energy account. */
 static int test_stiff_spin_drag_stays_finite(void)
 {
-    jc_Setup s = jc_paper_setup();
+    const finding f = {73.77, 81.98, 1.64, 0.82, 4.4745, 31.96, 16.39, 0.2459, 1.639, 1.639, 8.196e-5};
+    jc_Setup s = finding_setup(&f);
     s.body.radius_m = 1e-3;
     s.body.part_count = 1;
     s.body.parts[0] = (jc_Part){JC_PART_ROD, 0.2, 0.5e-3, 0.0, 0.1e-3};
-    s.incline_rad = 73.77 * DEG;
-    s.gravity_mps2 = 81.98;
-    s.mu_static = s.mu_kinetic = 1.64;
-    s.restitution = 0.82;
-    s.theta0_rad = 4.4745;
-    s.omega0_radps = 31.96;
-    s.ramp_length_m = 16.39;
     s.paper_cm_offset_m = 0.0;
-    s.length_m = 0.2459;
-    s.air_density_kgpm3 = 1.639;
-    s.drag_coefficient = 1.639;
-    s.spin_drag_Nms2 = 8.196e-5;
     jc_Run run;
     int st;
     char err[256] = "";
@@ -89,21 +102,10 @@ static int test_stiff_spin_drag_stays_finite(void)
  * on (a 0.1 ms hop) and the run reaches the ramp's end. */
 static int test_air_flight_from_rest_advances(void)
 {
-    jc_Setup s = jc_paper_setup();
-    s.incline_rad = 45.0 * DEG;
-    s.gravity_mps2 = 61.76;
     /* Found with mu_s 0.000122 < mu_k 0.00388, now refused (docs/physics.md
      * §4); the same lift-off with both at the kinetic value. */
-    s.mu_static = 0.00388;
-    s.mu_kinetic = 0.00388;
-    s.restitution = 0.113;
-    s.theta0_rad = 0.526;
-    s.omega0_radps = 47.18;
-    s.ramp_length_m = 19.97;
-    s.length_m = 0.187;
-    s.air_density_kgpm3 = 1.23;
-    s.drag_coefficient = 1.247;
-    s.spin_drag_Nms2 = 6.24e-5;
+    const finding f = {45.0, 61.76, 0.00388, 0.113, 0.526, 47.18, 19.97, 0.187, 1.23, 1.247, 6.24e-5};
+    const jc_Setup s = finding_setup(&f);
     jc_Run run;
     int st;
     char err[256] = "";
