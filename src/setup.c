@@ -6,19 +6,34 @@
 
 #define DEG (3.14159265358979323846 / 180.0)
 
-static void paper_body(jc_BodyDef *b)
+/* A body of a 10 cm rim from its first n parts of a, b (n = 1 or 2). */
+static jc_BodyDef rim_body(int n, jc_Part a, jc_Part b)
 {
-    *b = (jc_BodyDef){0};
-    b->radius_m = 0.100;
-    b->part_count = 2;
-    b->parts[0] = (jc_Part){JC_PART_DISC, 0.0342, 0.0, 0.0, 0.100};
-    b->parts[1] = (jc_Part){JC_PART_ROD, 0.0321, 0.0550, 0.0, 0.5 * 9.50e-3};
+    jc_BodyDef body = {.radius_m = 0.100, .part_count = n, .parts = {a, b}};
+    if (n < 2) body.parts[1] = (jc_Part){0};
+    return body;
+}
+
+/* The paper's: Styrofoam disc and brass rod. */
+static jc_BodyDef paper_body(void)
+{
+    return rim_body(2, (jc_Part){JC_PART_DISC, 0.0342, 0.0, 0.0, 0.100},
+                    (jc_Part){JC_PART_ROD, 0.0321, 0.0550, 0.0, 0.5 * 9.50e-3});
+}
+
+/* The paper's setup with another body, and no printed CM offset. */
+static jc_Setup paper_with(jc_BodyDef body)
+{
+    jc_Setup s = jc_paper_setup();
+    s.body = body;
+    s.paper_cm_offset_m = 0.0;
+    return s;
 }
 
 jc_Setup jc_paper_setup(void)
 {
     jc_Setup s = {0};
-    paper_body(&s.body);
+    s.body = paper_body();
     s.incline_rad = 30.0 * DEG;
     s.gravity_mps2 = 9.78;
     /* Friction is not given in the paper; docs/physics.md explains the 0.5. */
@@ -43,17 +58,12 @@ jc_Setup jc_paper_setup(void)
  * (docs/physics.md §4a). */
 static jc_Setup rocking_hoop_setup(void)
 {
-    jc_Setup s = jc_paper_setup();
-    s.body = (jc_BodyDef){0};
-    s.body.radius_m = 0.10;
-    s.body.part_count = 2;
-    s.body.parts[0] = (jc_Part){JC_PART_HOOP, 0.010, 0.0, 0.0, 0.10};
-    s.body.parts[1] = (jc_Part){JC_PART_POINT, 0.100, 0.10, 0.0, 0.0};
+    jc_Setup s = paper_with(rim_body(2, (jc_Part){JC_PART_HOOP, 0.010, 0.0, 0.0, 0.10},
+                                     (jc_Part){JC_PART_POINT, 0.100, 0.10, 0.0, 0.0}));
     s.incline_rad = 0.0;
     s.mu_static = s.mu_kinetic = 0.5;
     s.omega0_radps = 0.1;
     s.ramp_length_m = 3.0;
-    s.paper_cm_offset_m = 0.0;
     return s;
 }
 
@@ -77,13 +87,8 @@ static jc_Setup hoop_setup(void)
 
 static jc_Setup disc_setup(void)
 {
-    jc_Setup s = jc_paper_setup();
-    s.body = (jc_BodyDef){0};
-    s.body.radius_m = 0.10;
-    s.body.part_count = 1;
-    s.body.parts[0] = (jc_Part){JC_PART_DISC, 0.0663, 0.0, 0.0, 0.10};
-    s.paper_cm_offset_m = 0.0;
-    return s;
+    const jc_Part disc = {JC_PART_DISC, 0.0663, 0.0, 0.0, 0.10};
+    return paper_with(rim_body(1, disc, disc));
 }
 
 static const struct {
