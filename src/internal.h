@@ -94,6 +94,8 @@ typedef struct {
     double third_bound;
     double noise;
     double sign; /* watch sign * f, which must stay > 0 */
+    /* f alone at u, for root polishing; NULL: from eval. */
+    double (*value)(const void *ctx, double u);
 } jc_ScanFn;
 
 typedef struct {

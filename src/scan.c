@@ -30,6 +30,7 @@
 static double fn_value(double u, void *params)
 {
     const jc_ScanFn *fn = params;
+    if (fn->value) return fn->sign * fn->value(fn->ctx, u);
     double d[3];
     fn->eval(fn->ctx, u, d);
     return fn->sign * d[0];
@@ -202,6 +203,20 @@ static void trig_eval(const void *ctx, double th, double out[3])
     jc_tl_eval3_basis_upto(t->f, t->basis, t->degree, out);
 }
 
+/* The value alone (root polishing needs no derivatives). */
+static double trig_value(const void *ctx, double th)
+{
+    const trig_fn *t = ctx;
+    if (t->basis->th != th) jc_tl_basis(t->basis, th);
+    double t0 = 0.0, t1 = 0.0;
+    for (int k = 0; k <= t->degree; ++k) {
+        const double ck = t->basis->c[k], sk = t->basis->s[k];
+        t0 += t->f->c0[k] * ck + t->f->s0[k] * sk;
+        t1 += t->f->c1[k] * ck + t->f->s1[k] * sk;
+    }
+    return t0 + th * t1;
+}
+
 int jc_scan_first(const jc_ScanSet *set, double th_from, double th_to, double tol_rad,
                   jc_ScanHit *hit, char *err, size_t err_len)
 {
@@ -220,7 +235,7 @@ int jc_scan_first_with(const jc_ScanSet *set, double th_from, double th_to, doub
         tf[i] = (trig_fn){set->f[i], &basis, jc_tl_degree(set->f[i])};
         fns[i] = (jc_ScanFn){trig_eval, &tf[i], jc_tl_third_bound(set->f[i], th_abs_max),
                              64.0 * DBL_EPSILON * jc_tl_magnitude_bound(set->f[i], th_abs_max),
-                             set->sign[i]};
+                             set->sign[i], trig_value};
     }
     return jc_scan_fns_with(fns, set->count, th_from, th_to, tol_rad, brent, hit, err, err_len);
 }
