@@ -327,7 +327,7 @@ int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs
 {
     char err[512];
     if (cli_setup_build(sa, setup, err, sizeof err) != 0 ||
-        (sim_args && cli_sim_build(sim_args, sim, err, sizeof err) != 0)) {
+        (sim_args && sim && cli_sim_build(sim_args, sim, err, sizeof err) != 0)) {
         cli_error("%s: %s", cmd, err);
         return EXIT_USAGE;
     }
