@@ -119,6 +119,8 @@ int jc_scan_first(const jc_ScanSet *set, double th_from, double th_to, double to
  * first u where one of the functions stops being positive; root to tol. */
 int jc_scan_fns(const jc_ScanFn *fns, int count, double u_from, double u_to, double tol,
                 jc_ScanHit *hit, char *err, size_t err_len);
+/* The smallest positive root of x^3 + a x^2 + b x + c, or INFINITY. */
+double jc_cubic_first_positive(double a, double b, double c);
 /* The same polishing roots with the caller's Brent solver (a run's
  * workspace: no allocation), or making one when it is NULL. */
 int jc_scan_fns_with(const jc_ScanFn *fns, int count, double u_from, double u_to, double tol,

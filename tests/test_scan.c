@@ -4,6 +4,9 @@
 
 #include "internal.h" /* src/, added by tests/CMakeLists.txt */
 
+#include <gsl/gsl_poly.h>
+#include <stdint.h>
+
 #define PI 3.14159265358979323846
 #define EPS 2.220446049250313e-16
 
@@ -219,6 +222,58 @@ static int test_scan_fns_callback(void)
     return 0;
 }
 
+/* Uniform in [lo, hi) from a seeded xorshift64* state. */
+static double uniform_s(uint64_t *state, double lo, double hi)
+{
+    *state ^= *state >> 12;
+    *state ^= *state << 25;
+    *state ^= *state >> 27;
+    return lo + (hi - lo) * (double)((*state * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* The safe step's cubic root against GSL's gsl_poly_solve_cubic, on random
+ * cubics of the form the search makes (c < 0: a positive root exists) and on
+ * the degenerate ones (double and triple roots). */
+static int test_cubic_root_matches_gsl(void)
+{
+    uint64_t state = 20261124;
+    int compared = 0;
+    double worst = 0.0;
+    for (int i = 0; i < 200000; ++i) {
+        double a, b, c;
+        if (i < 3) {
+            /* (x - 1)^3, (x - 1)^2 (x - 2), (x - 2)^2 (x - 1) */
+            const double r[3][3] = {{1, 1, 1}, {1, 1, 2}, {2, 2, 1}};
+            a = -(r[i][0] + r[i][1] + r[i][2]);
+            b = r[i][0] * r[i][1] + r[i][1] * r[i][2] + r[i][0] * r[i][2];
+            c = -r[i][0] * r[i][1] * r[i][2];
+        } else {
+            const double scale = pow(10.0, uniform_s(&state, -6.0, 6.0));
+            a = uniform_s(&state, -10.0, 10.0) * scale;
+            b = uniform_s(&state, -10.0, 10.0) * scale * scale;
+            c = -uniform_s(&state, 0.0, 10.0) * scale * scale * scale;
+        }
+        double x[3];
+        const int n = gsl_poly_solve_cubic(a, b, c, &x[0], &x[1], &x[2]);
+        double want = INFINITY;
+        for (int k = 0; k < n; ++k)
+            if (x[k] > 0.0 && x[k] < want) want = x[k];
+        const double got = jc_cubic_first_positive(a, b, c);
+        ENSURE_MSG(isfinite(want) == isfinite(got), "x^3 + %.17g x^2 + %.17g x + %.17g: %.17g vs GSL %.17g", a, b, c,
+                   got, want);
+        if (!isfinite(want)) continue;
+        /* Both are the same formulas: rounding, amplified near a double root. */
+        const double tol = 1e-9 * (fabs(want) + fabs(a) / 3.0 + sqrt(fabs(a * a - 3.0 * b)) / 3.0);
+        ENSURE_MSG(fabs(got - want) <= tol, "x^3 + %.17g x^2 + %.17g x + %.17g: %.17g vs GSL %.17g", a, b, c, got,
+                   want);
+        worst = fmax(worst, fabs(got - want) / fmax(fabs(want), 1e-300));
+        compared++;
+    }
+    printf("  %d cubics: largest relative difference from GSL %.2g\n", compared, worst);
+    ENSURE(compared > 100000);
+    return 0;
+}
+
 int main(void)
 {
     RUN_TEST(test_narrow_windows_found);
@@ -228,5 +283,6 @@ int main(void)
     RUN_TEST(test_no_root);
     RUN_TEST(test_touching_zero_is_grazing);
     RUN_TEST(test_scan_fns_callback);
+    RUN_TEST(test_cubic_root_matches_gsl);
     TEST_MAIN_END();
 }
