@@ -96,6 +96,9 @@ typedef struct {
     double sign; /* watch sign * f, which must stay > 0 */
     /* f alone at u, for root polishing; NULL: from eval. */
     double (*value)(const void *ctx, double u);
+    /* 1: polish a root by Newton's iteration on eval's f' inside the
+     * bracket, not by Brent's method on f. */
+    int newton;
 } jc_ScanFn;
 
 typedef struct {
