@@ -161,10 +161,16 @@ static int compute_rows(const jc_Setup *base, paper_row *rows, int *count, char 
 
 /* ---- text ---- */
 
+/* One cell of a row: the value, or a placeholder where that run has none. */
+static void cell(int have, const char *fmt, double v, const char *none)
+{
+    if (have) printf(fmt, v);
+    else printf(" %14s", none);
+}
+
 static void cell_x(const jc_RollingCrossing *c)
 {
-    if (c->found) printf(" %14.2f", c->state.x_m * 100);
-    else printf(" %14s", "none");
+    cell(c->found, " %14.2f", c->state.x_m * 100, "none");
 }
 
 static void print_flags(const paper_row *rows, int n)
@@ -203,20 +209,12 @@ static void print_full(const paper_row *rows, int n)
            "Darboux-Keller in the normal impulse with energetic restitution, docs/physics.md section 4)\n",
            s0->mu_static, s0->mu_kinetic, s0->restitution);
     printf("%-40s", "  first lift-off angle (rad)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].full.found) printf(" %14.4f", rows[i].full.theta_rad);
-        else printf(" %14s", "none");
-    }
+    for (int i = 0; i < n; ++i) cell(rows[i].full.found, " %14.4f", rows[i].full.theta_rad, "none");
     printf("\n%-40s", "  first lift-off position (cm)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].full.found) printf(" %14.2f", rows[i].full.x_m * 100);
-        else printf(" %14s", "none");
-    }
+    for (int i = 0; i < n; ++i) cell(rows[i].full.found, " %14.2f", rows[i].full.x_m * 100, "none");
     printf("\n%-40s", "  minus measured (cm)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].full.found) printf(" %+14.2f", (rows[i].full.x_m - rows[i].table.measured_x_m) * 100);
-        else printf(" %14s", "-");
-    }
+    for (int i = 0; i < n; ++i)
+        cell(rows[i].full.found, " %+14.2f", (rows[i].full.x_m - rows[i].table.measured_x_m) * 100, "-");
     printf("\n%-40s", "  inside the error bar");
     for (int i = 0; i < n; ++i)
         printf(" %14s", !rows[i].full.found ? "-" : inside(rows[i].full.x_m, &rows[i].table) ? "yes" : "no");
@@ -248,15 +246,10 @@ static void print_full(const paper_row *rows, int n)
     printf("\nFull model with air drag, C_d = %.2f (rho = %.3f kg/m3, A = 2 r L = %.0f cm2; docs/physics.md)\n",
            PAPER_DRAG_CD, s0->air_density_kgpm3, 2e4 * rows[0].model.body.radius_m * s0->length_m);
     printf("%-40s", "  first lift-off position (cm)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].drag.found) printf(" %14.2f", rows[i].drag.x_m * 100);
-        else printf(" %14s", "none");
-    }
+    for (int i = 0; i < n; ++i) cell(rows[i].drag.found, " %14.2f", rows[i].drag.x_m * 100, "none");
     printf("\n%-40s", "  moved by drag (cm)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].drag.found && rows[i].full.found) printf(" %+14.2f", (rows[i].drag.x_m - rows[i].full.x_m) * 100);
-        else printf(" %14s", "-");
-    }
+    for (int i = 0; i < n; ++i)
+        cell(rows[i].drag.found && rows[i].full.found, " %+14.2f", (rows[i].drag.x_m - rows[i].full.x_m) * 100, "-");
     printf("\n%-40s", "  toward the measurement");
     for (int i = 0; i < n; ++i) {
         const paper_row *r = &rows[i];
