@@ -81,6 +81,25 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
                    cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args,
                    struct cli_SimArgs_s *sim_args);
 
+/* A command's own options: the table (with {"help", no_argument, 0, 'h'}),
+ * take for each of them but --help, and the command's part of the help. */
+typedef struct {
+    const struct option *own;
+    int own_count;
+    cli_own_take_fn take;
+    void (*help)(void);
+} cli_Command;
+/* cli_command_parse's answer when the command goes on to run. */
+#define CLI_GO_ON (-1)
+/* cli_parse_args for a command: --help prints its help, then the shared
+ * options' (the simulation options' too when sim_args is not NULL).
+ * CLI_GO_ON, or the exit status: EXIT_OK after --help or --dump-config. */
+int cli_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_SetupArgs *setup_args,
+                      struct cli_SimArgs_s *sim_args);
+/* cli_command_parse for a command whose one own option is --json (paper,
+ * predict); *json is set when it is given. */
+int cli_json_command_parse(int argc, char **argv, void (*help)(void), int *json, cli_SetupArgs *setup_args);
+
 /* Simulator options (--t-max, --sample-dt, ...), for commands that simulate. */
 #define CLI_SIM_OPTION_COUNT 7
 #define CLI_SIM_OPT_BASE 1100

@@ -417,6 +417,46 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
     return 0;
 }
 
+/* A command's take, with --help answered the same way for every command. */
+typedef struct {
+    const cli_Command *cmd;
+    void *ctx;
+    int with_sim;
+} command_take;
+
+static int take_or_help(int opt, const char *arg, void *p)
+{
+    const command_take *t = p;
+    if (opt != 'h') return t->cmd->take(opt, arg, t->ctx);
+    t->cmd->help();
+    cli_options_help(stdout, t->with_sim);
+    return -1;
+}
+
+int cli_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_SetupArgs *setup_args,
+                      cli_SimArgs *sim_args)
+{
+    command_take t = {cmd, ctx, sim_args != NULL};
+    const int st = cli_parse_args(argc, argv, cmd->own, cmd->own_count, take_or_help, &t, setup_args, sim_args);
+    if (st < 0) return EXIT_OK; /* --help or --dump-config printed what was asked */
+    return st ? st : CLI_GO_ON;
+}
+
+static int take_json(int opt, const char *arg, void *ctx)
+{
+    (void)arg;
+    if (opt != 'j') return EXIT_USAGE;
+    *(int *)ctx = 1;
+    return 0;
+}
+
+int cli_json_command_parse(int argc, char **argv, void (*help)(void), int *json, cli_SetupArgs *setup_args)
+{
+    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
+    const cli_Command cmd = {own, 2, take_json, help};
+    return cli_command_parse(argc, argv, &cmd, json, setup_args, NULL);
+}
+
 /* ---- simulator options ---- */
 
 enum { S_T_MAX, S_MAX_EVENTS, S_SAMPLE_DT, S_RTOL, S_ATOL, S_EVENT_TOL, S_CONTACT_HEIGHT };

@@ -9,10 +9,6 @@
 
 #define ROWS_MAX 8
 
-typedef struct {
-    int json;
-} paper_opts;
-
 /* Friction values of the sweep line: how the first lift-off moves with mu. */
 static const double sweep_mu[] = {0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
 #define SWEEP_COUNT ((int)(sizeof sweep_mu / sizeof sweep_mu[0]))
@@ -58,16 +54,6 @@ static void help(void)
          "              paper_model, rolling, full, drag, measured; angles theta in rad,\n"
          "              positions x in m\n"
          "  -h, --help  this help\n");
-    cli_options_help(stdout, 0);
-}
-
-static int take(int opt, const char *arg, void *ctx)
-{
-    (void)arg;
-    paper_opts *o = ctx;
-    if (opt == 'j') { o->json = 1; return 0; }
-    if (opt == 'h') { help(); return -1; }
-    return EXIT_USAGE;
 }
 
 /* Printed values carry two decimals: differences within half a unit of the
@@ -467,11 +453,10 @@ static int print_rows(const paper_row *rows, int n, int json, int stopped)
 
 int cmd_paper(int argc, char **argv)
 {
-    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
-    paper_opts o = {0};
+    int json = 0;
     cli_SetupArgs sa;
-    int st = cli_parse_args(argc, argv, own, 2, take, &o, &sa, NULL);
-    if (st) return st < 0 ? EXIT_OK : st;
+    int st = cli_json_command_parse(argc, argv, help, &json, &sa);
+    if (st != CLI_GO_ON) return st;
     if (cli_setup_given(&sa, "incline")) {
         cli_error("paper: --incline is set by the table (15, 30, 45 deg); use 'jumpcyl predict --incline ...'");
         return EXIT_USAGE;
@@ -486,7 +471,7 @@ int cmd_paper(int argc, char **argv)
         cli_error("paper: %s", err);
         return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
     }
-    const int rc = n > 0 ? print_rows(rows, n, o.json, st == STOPPED) : EXIT_OK;
+    const int rc = n > 0 ? print_rows(rows, n, json, st == STOPPED) : EXIT_OK;
     if (st != STOPPED) return rc;
     cli_error("paper: stopped by %s; %d complete row(s) printed", cli_signal_name(cli_stop_requested()), n);
     return rc == EXIT_OK ? cli_stop_status() : rc;
