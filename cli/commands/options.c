@@ -94,6 +94,17 @@ void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd
     dst[n] = (struct option){0, 0, 0, 0};
 }
 
+/* An option's value, stored once: 1, or -1 with a message when it comes again. */
+static int take_value(const char **slot, const char *name, const char *text, char *err, size_t err_len)
+{
+    if (*slot) {
+        snprintf(err, err_len, "--%s given twice ('%s' and '%s')", name, *slot, text);
+        return -1;
+    }
+    *slot = text;
+    return 1;
+}
+
 int cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, size_t err_len)
 {
     const int i = opt - B;
@@ -107,12 +118,7 @@ int cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, si
         return 1;
     }
     if (!text) text = ""; /* a flag (--dump-config): present, no value */
-    if (args->value[i]) {
-        snprintf(err, err_len, "--%s given twice ('%s' and '%s')", cli_setup_options[i].name,
-                 args->value[i], text);
-        return -1;
-    }
-    args->value[i] = text;
+    if (take_value(&args->value[i], cli_setup_options[i].name, text, err, err_len) < 0) return -1;
     if (i == O_PRESET) args->preset = text;
     return 1;
 }
@@ -490,12 +496,7 @@ int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t
 {
     const int i = opt - SB;
     if (i < 0 || i >= CLI_SIM_OPTION_COUNT) return 0;
-    if (args->value[i]) {
-        snprintf(err, err_len, "--%s given twice ('%s' and '%s')", cli_sim_options[i].name, args->value[i], text);
-        return -1;
-    }
-    args->value[i] = text;
-    return 1;
+    return take_value(&args->value[i], cli_sim_options[i].name, text, err, err_len);
 }
 
 int cli_sim_build(const cli_SimArgs *a, jc_SimOptions *o, char *err, size_t err_len)
