@@ -72,9 +72,10 @@ void cli_setup_help(FILE *out);
 void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd, int cmd_count);
 
 /* Parses a command's arguments: its own options (handled by own_take, which
- * returns 0 when it took the option, -1 when it printed an error) and the
- * setup options. Returns -1 for help printed (exit 0), EXIT_USAGE after a
- * message, or 0 to go on. */
+ * returns 0 when it took the option, -1 to stop with exit 0 (help printed),
+ * or EXIT_USAGE after a message) and the setup options. Returns -1 for help
+ * or --dump-config printed (exit 0), EXIT_USAGE after a message, or 0 to go
+ * on. Commands call it through cli_command_parse. */
 typedef int (*cli_own_take_fn)(int opt, const char *arg, void *ctx);
 struct cli_SimArgs_s;
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
@@ -199,7 +200,7 @@ int cli_sim_json_end(FILE *out, const jc_Model *m, const jc_Run *run, const jc_R
 int cmd_paper(int argc, char **argv);
 int cmd_predict(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
-int cmd_plot(int argc, char **argv);    /* cmd_plot.c: figures with gnuplot */
-int cmd_animate(int argc, char **argv); /* cmd_animate.c: films with cairo and ffmpeg */
+int cmd_plot(int argc, char **argv);    /* commands/plot.c: figures with gnuplot */
+int cmd_animate(int argc, char **argv); /* commands/animate.c: films with cairo and ffmpeg */
 
 #endif
