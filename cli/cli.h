@@ -110,6 +110,8 @@ typedef struct cli_SimArgs_s {
 } cli_SimArgs;
 int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len);
 int cli_sim_build(const cli_SimArgs *args, jc_SimOptions *out, char *err, size_t err_len);
+/* Whether a simulation option (by long name) was given. */
+int cli_sim_given(const cli_SimArgs *args, const char *long_name);
 /* A command's inputs, built and checked: the setup, the simulation options
  * (when sim_args is not NULL) and the model (when model is not NULL). On a
  * bad value prints "CMD: message" and returns the exit status (EXIT_USAGE

@@ -139,11 +139,10 @@ static int check_args(const animate_args *a, animate_opts *o)
 static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, const animate_opts *o,
                         jc_Model *model, jc_SimOptions *sim)
 {
-    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
-        if (sim_args->value[i] && strcmp(cli_sim_options[i].name, "sample-dt") == 0) {
-            cli_error("animate: --sample-dt is set by --fps and --slowmo (dt = 1/(fps slowmo)); leave it out");
-            return EXIT_USAGE;
-        }
+    if (cli_sim_given(sim_args, "sample-dt")) {
+        cli_error("animate: --sample-dt is set by --fps and --slowmo (dt = 1/(fps slowmo)); leave it out");
+        return EXIT_USAGE;
+    }
     jc_Setup setup;
     const int rc = cli_build_inputs("animate", sa, sim_args, &setup, sim, model);
     if (rc == 0) sim->sample_dt_s = 1.0 / (o->fps * o->slowmo);

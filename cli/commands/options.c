@@ -499,6 +499,13 @@ int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t
     return take_value(&args->value[i], cli_sim_options[i].name, text, err, err_len);
 }
 
+int cli_sim_given(const cli_SimArgs *args, const char *long_name)
+{
+    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
+        if (strcmp(cli_sim_options[i].name, long_name) == 0) return args->value[i] != NULL;
+    return 0;
+}
+
 int cli_sim_build(const cli_SimArgs *a, jc_SimOptions *o, char *err, size_t err_len)
 {
     *o = jc_default_sim_options();

@@ -232,13 +232,6 @@ static int make_figure(fig_Data *d, const plot_opts *o, const plot_kind *kind, f
     return rc;
 }
 
-static int sim_given(const cli_SimArgs *a, const char *name)
-{
-    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
-        if (strcmp(cli_sim_options[i].name, name) == 0) return a->value[i] != NULL;
-    return 0;
-}
-
 static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Model *model, jc_SimOptions *sim)
 {
     jc_Setup setup;
@@ -287,7 +280,7 @@ int cmd_plot(int argc, char **argv)
     if (kind->panel == NULL) d.caption[0] = '\0';
     char cmdline[2048];
     command_line(argc, argv, cmdline, sizeof cmdline);
-    st = make_figure(&d, &o, kind, format, &sim, sim_given(&sim_args, "sample-dt"), max_samples, cmdline);
+    st = make_figure(&d, &o, kind, format, &sim, cli_sim_given(&sim_args, "sample-dt"), max_samples, cmdline);
     if (d.have_run) jc_run_free(&d.run);
     if (st == EXIT_OK) printf("Figure: %s\n", o.output);
     return st;
