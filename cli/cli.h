@@ -72,14 +72,34 @@ void cli_setup_help(FILE *out);
 void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd, int cmd_count);
 
 /* Parses a command's arguments: its own options (handled by own_take, which
- * returns 0 when it took the option, -1 when it printed an error) and the
- * setup options. Returns -1 for help printed (exit 0), EXIT_USAGE after a
- * message, or 0 to go on. */
+ * returns 0 when it took the option, -1 to stop with exit 0 (help printed),
+ * or EXIT_USAGE after a message) and the setup options. Returns -1 for help
+ * or --dump-config printed (exit 0), EXIT_USAGE after a message, or 0 to go
+ * on. Commands call it through cli_command_parse. */
 typedef int (*cli_own_take_fn)(int opt, const char *arg, void *ctx);
 struct cli_SimArgs_s;
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
                    cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args,
                    struct cli_SimArgs_s *sim_args);
+
+/* A command's own options: the table (with {"help", no_argument, 0, 'h'}),
+ * take for each of them but --help, and the command's part of the help. */
+typedef struct {
+    const struct option *own;
+    int own_count;
+    cli_own_take_fn take;
+    void (*help)(void);
+} cli_Command;
+/* cli_command_parse's answer when the command goes on to run. */
+#define CLI_GO_ON (-1)
+/* cli_parse_args for a command: --help prints its help, then the shared
+ * options' (the simulation options' too when sim_args is not NULL).
+ * CLI_GO_ON, or the exit status: EXIT_OK after --help or --dump-config. */
+int cli_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_SetupArgs *setup_args,
+                      struct cli_SimArgs_s *sim_args);
+/* cli_command_parse for a command whose one own option is --json (paper,
+ * predict); *json is set when it is given. */
+int cli_json_command_parse(int argc, char **argv, void (*help)(void), int *json, cli_SetupArgs *setup_args);
 
 /* Simulator options (--t-max, --sample-dt, ...), for commands that simulate. */
 #define CLI_SIM_OPTION_COUNT 7
@@ -90,6 +110,8 @@ typedef struct cli_SimArgs_s {
 } cli_SimArgs;
 int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len);
 int cli_sim_build(const cli_SimArgs *args, jc_SimOptions *out, char *err, size_t err_len);
+/* Whether a simulation option (by long name) was given. */
+int cli_sim_given(const cli_SimArgs *args, const char *long_name);
 /* A command's inputs, built and checked: the setup, the simulation options
  * (when sim_args is not NULL) and the model (when model is not NULL). On a
  * bad value prints "CMD: message" and returns the exit status (EXIT_USAGE
@@ -180,7 +202,7 @@ int cli_sim_json_end(FILE *out, const jc_Model *m, const jc_Run *run, const jc_R
 int cmd_paper(int argc, char **argv);
 int cmd_predict(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
-int cmd_plot(int argc, char **argv);    /* cmd_plot.c: figures with gnuplot */
-int cmd_animate(int argc, char **argv); /* cmd_animate.c: films with cairo and ffmpeg */
+int cmd_plot(int argc, char **argv);    /* commands/plot.c: figures with gnuplot */
+int cmd_animate(int argc, char **argv); /* commands/animate.c: films with cairo and ffmpeg */
 
 #endif

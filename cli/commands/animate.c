@@ -58,7 +58,6 @@ static void help(void)
            "--sample-dt is set by --fps and --slowmo; --t-max limits the film.\n\n",
            DEFAULT_SIZE, MIN_SIDE, MAX_W, MIN_SIDE, MAX_H, DEFAULT_FPS, MAX_FPS, DEFAULT_SLOWMO, MAX_SLOWMO,
            "1/(F K)", DEFAULT_MAX_FRAMES, VID_MAX_FRAMES);
-    cli_options_help(stdout, 1);
 }
 
 static int take(int opt, const char *arg, void *ctx)
@@ -69,9 +68,14 @@ static int take(int opt, const char *arg, void *ctx)
     if (opt == 'f') return cli_take_once("animate", &a->fps, "fps", arg);
     if (opt == 'k') return cli_take_once("animate", &a->slowmo, "slowmo", arg);
     if (opt == 'm') return cli_take_once("animate", &a->max_frames, "max-frames", arg);
-    if (opt == 'h') { help(); return -1; }
     return EXIT_USAGE;
 }
+
+/* The command's own options; the setup and simulation options come with cli_command_parse. */
+static const struct option own[] = {{"output", required_argument, 0, 'o'}, {"size", required_argument, 0, 's'},
+                                    {"fps", required_argument, 0, 'f'},    {"slowmo", required_argument, 0, 'k'},
+                                    {"max-frames", required_argument, 0, 'm'}, {"help", no_argument, 0, 'h'}};
+static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
 /* "960x540" within the allowed sizes. */
 static int parse_size(const char *text, int *w, int *h)
@@ -135,11 +139,10 @@ static int check_args(const animate_args *a, animate_opts *o)
 static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, const animate_opts *o,
                         jc_Model *model, jc_SimOptions *sim)
 {
-    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
-        if (sim_args->value[i] && strcmp(cli_sim_options[i].name, "sample-dt") == 0) {
-            cli_error("animate: --sample-dt is set by --fps and --slowmo (dt = 1/(fps slowmo)); leave it out");
-            return EXIT_USAGE;
-        }
+    if (cli_sim_given(sim_args, "sample-dt")) {
+        cli_error("animate: --sample-dt is set by --fps and --slowmo (dt = 1/(fps slowmo)); leave it out");
+        return EXIT_USAGE;
+    }
     jc_Setup setup;
     const int rc = cli_build_inputs("animate", sa, sim_args, &setup, sim, model);
     if (rc == 0) sim->sample_dt_s = 1.0 / (o->fps * o->slowmo);
@@ -316,14 +319,11 @@ static int animate_run(const jc_Model *model, const jc_Run *run, const animate_o
 
 int cmd_animate(int argc, char **argv)
 {
-    static const struct option own[] = {{"output", required_argument, 0, 'o'}, {"size", required_argument, 0, 's'},
-                                        {"fps", required_argument, 0, 'f'},    {"slowmo", required_argument, 0, 'k'},
-                                        {"max-frames", required_argument, 0, 'm'}, {"help", no_argument, 0, 'h'}};
     animate_args a = {0};
     cli_SetupArgs sa;
     cli_SimArgs sim_args;
-    int st = cli_parse_args(argc, argv, own, 6, take, &a, &sa, &sim_args);
-    if (st) return st < 0 ? EXIT_OK : st;
+    int st = cli_command_parse(argc, argv, &command, &a, &sa, &sim_args);
+    if (st != CLI_GO_ON) return st;
     animate_opts o;
     jc_Model model;
     jc_SimOptions sim;

@@ -94,6 +94,17 @@ void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd
     dst[n] = (struct option){0, 0, 0, 0};
 }
 
+/* An option's value, stored once: 1, or -1 with a message when it comes again. */
+static int take_value(const char **slot, const char *name, const char *text, char *err, size_t err_len)
+{
+    if (*slot) {
+        snprintf(err, err_len, "--%s given twice ('%s' and '%s')", name, *slot, text);
+        return -1;
+    }
+    *slot = text;
+    return 1;
+}
+
 int cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, size_t err_len)
 {
     const int i = opt - B;
@@ -107,12 +118,7 @@ int cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, si
         return 1;
     }
     if (!text) text = ""; /* a flag (--dump-config): present, no value */
-    if (args->value[i]) {
-        snprintf(err, err_len, "--%s given twice ('%s' and '%s')", cli_setup_options[i].name,
-                 args->value[i], text);
-        return -1;
-    }
-    args->value[i] = text;
+    if (take_value(&args->value[i], cli_setup_options[i].name, text, err, err_len) < 0) return -1;
     if (i == O_PRESET) args->preset = text;
     return 1;
 }
@@ -417,6 +423,46 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
     return 0;
 }
 
+/* A command's take, with --help answered the same way for every command. */
+typedef struct {
+    const cli_Command *cmd;
+    void *ctx;
+    int with_sim;
+} command_take;
+
+static int take_or_help(int opt, const char *arg, void *p)
+{
+    const command_take *t = p;
+    if (opt != 'h') return t->cmd->take(opt, arg, t->ctx);
+    t->cmd->help();
+    cli_options_help(stdout, t->with_sim);
+    return -1;
+}
+
+int cli_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_SetupArgs *setup_args,
+                      cli_SimArgs *sim_args)
+{
+    command_take t = {cmd, ctx, sim_args != NULL};
+    const int st = cli_parse_args(argc, argv, cmd->own, cmd->own_count, take_or_help, &t, setup_args, sim_args);
+    if (st < 0) return EXIT_OK; /* --help or --dump-config printed what was asked */
+    return st ? st : CLI_GO_ON;
+}
+
+static int take_json(int opt, const char *arg, void *ctx)
+{
+    (void)arg;
+    if (opt != 'j') return EXIT_USAGE;
+    *(int *)ctx = 1;
+    return 0;
+}
+
+int cli_json_command_parse(int argc, char **argv, void (*help)(void), int *json, cli_SetupArgs *setup_args)
+{
+    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
+    const cli_Command cmd = {own, 2, take_json, help};
+    return cli_command_parse(argc, argv, &cmd, json, setup_args, NULL);
+}
+
 /* ---- simulator options ---- */
 
 enum { S_T_MAX, S_MAX_EVENTS, S_SAMPLE_DT, S_RTOL, S_ATOL, S_EVENT_TOL, S_CONTACT_HEIGHT };
@@ -450,12 +496,14 @@ int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t
 {
     const int i = opt - SB;
     if (i < 0 || i >= CLI_SIM_OPTION_COUNT) return 0;
-    if (args->value[i]) {
-        snprintf(err, err_len, "--%s given twice ('%s' and '%s')", cli_sim_options[i].name, args->value[i], text);
-        return -1;
-    }
-    args->value[i] = text;
-    return 1;
+    return take_value(&args->value[i], cli_sim_options[i].name, text, err, err_len);
+}
+
+int cli_sim_given(const cli_SimArgs *args, const char *long_name)
+{
+    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
+        if (strcmp(cli_sim_options[i].name, long_name) == 0) return args->value[i] != NULL;
+    return 0;
 }
 
 int cli_sim_build(const cli_SimArgs *a, jc_SimOptions *o, char *err, size_t err_len)

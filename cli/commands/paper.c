@@ -9,10 +9,6 @@
 
 #define ROWS_MAX 8
 
-typedef struct {
-    int json;
-} paper_opts;
-
 /* Friction values of the sweep line: how the first lift-off moves with mu. */
 static const double sweep_mu[] = {0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
 #define SWEEP_COUNT ((int)(sizeof sweep_mu / sizeof sweep_mu[0]))
@@ -58,16 +54,6 @@ static void help(void)
          "              paper_model, rolling, full, drag, measured; angles theta in rad,\n"
          "              positions x in m\n"
          "  -h, --help  this help\n");
-    cli_options_help(stdout, 0);
-}
-
-static int take(int opt, const char *arg, void *ctx)
-{
-    (void)arg;
-    paper_opts *o = ctx;
-    if (opt == 'j') { o->json = 1; return 0; }
-    if (opt == 'h') { help(); return -1; }
-    return EXIT_USAGE;
 }
 
 /* Printed values carry two decimals: differences within half a unit of the
@@ -161,10 +147,16 @@ static int compute_rows(const jc_Setup *base, paper_row *rows, int *count, char 
 
 /* ---- text ---- */
 
+/* One cell of a row: the value, or a placeholder where that run has none. */
+static void cell(int have, const char *fmt, double v, const char *none)
+{
+    if (have) printf(fmt, v);
+    else printf(" %14s", none);
+}
+
 static void cell_x(const jc_RollingCrossing *c)
 {
-    if (c->found) printf(" %14.2f", c->state.x_m * 100);
-    else printf(" %14s", "none");
+    cell(c->found, " %14.2f", c->state.x_m * 100, "none");
 }
 
 static void print_flags(const paper_row *rows, int n)
@@ -203,20 +195,12 @@ static void print_full(const paper_row *rows, int n)
            "Darboux-Keller in the normal impulse with energetic restitution, docs/physics.md section 4)\n",
            s0->mu_static, s0->mu_kinetic, s0->restitution);
     printf("%-40s", "  first lift-off angle (rad)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].full.found) printf(" %14.4f", rows[i].full.theta_rad);
-        else printf(" %14s", "none");
-    }
+    for (int i = 0; i < n; ++i) cell(rows[i].full.found, " %14.4f", rows[i].full.theta_rad, "none");
     printf("\n%-40s", "  first lift-off position (cm)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].full.found) printf(" %14.2f", rows[i].full.x_m * 100);
-        else printf(" %14s", "none");
-    }
+    for (int i = 0; i < n; ++i) cell(rows[i].full.found, " %14.2f", rows[i].full.x_m * 100, "none");
     printf("\n%-40s", "  minus measured (cm)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].full.found) printf(" %+14.2f", (rows[i].full.x_m - rows[i].table.measured_x_m) * 100);
-        else printf(" %14s", "-");
-    }
+    for (int i = 0; i < n; ++i)
+        cell(rows[i].full.found, " %+14.2f", (rows[i].full.x_m - rows[i].table.measured_x_m) * 100, "-");
     printf("\n%-40s", "  inside the error bar");
     for (int i = 0; i < n; ++i)
         printf(" %14s", !rows[i].full.found ? "-" : inside(rows[i].full.x_m, &rows[i].table) ? "yes" : "no");
@@ -248,15 +232,10 @@ static void print_full(const paper_row *rows, int n)
     printf("\nFull model with air drag, C_d = %.2f (rho = %.3f kg/m3, A = 2 r L = %.0f cm2; docs/physics.md)\n",
            PAPER_DRAG_CD, s0->air_density_kgpm3, 2e4 * rows[0].model.body.radius_m * s0->length_m);
     printf("%-40s", "  first lift-off position (cm)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].drag.found) printf(" %14.2f", rows[i].drag.x_m * 100);
-        else printf(" %14s", "none");
-    }
+    for (int i = 0; i < n; ++i) cell(rows[i].drag.found, " %14.2f", rows[i].drag.x_m * 100, "none");
     printf("\n%-40s", "  moved by drag (cm)");
-    for (int i = 0; i < n; ++i) {
-        if (rows[i].drag.found && rows[i].full.found) printf(" %+14.2f", (rows[i].drag.x_m - rows[i].full.x_m) * 100);
-        else printf(" %14s", "-");
-    }
+    for (int i = 0; i < n; ++i)
+        cell(rows[i].drag.found && rows[i].full.found, " %+14.2f", (rows[i].drag.x_m - rows[i].full.x_m) * 100, "-");
     printf("\n%-40s", "  toward the measurement");
     for (int i = 0; i < n; ++i) {
         const paper_row *r = &rows[i];
@@ -474,11 +453,10 @@ static int print_rows(const paper_row *rows, int n, int json, int stopped)
 
 int cmd_paper(int argc, char **argv)
 {
-    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
-    paper_opts o = {0};
+    int json = 0;
     cli_SetupArgs sa;
-    int st = cli_parse_args(argc, argv, own, 2, take, &o, &sa, NULL);
-    if (st) return st < 0 ? EXIT_OK : st;
+    int st = cli_json_command_parse(argc, argv, help, &json, &sa);
+    if (st != CLI_GO_ON) return st;
     if (cli_setup_given(&sa, "incline")) {
         cli_error("paper: --incline is set by the table (15, 30, 45 deg); use 'jumpcyl predict --incline ...'");
         return EXIT_USAGE;
@@ -493,7 +471,7 @@ int cmd_paper(int argc, char **argv)
         cli_error("paper: %s", err);
         return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
     }
-    const int rc = n > 0 ? print_rows(rows, n, o.json, st == STOPPED) : EXIT_OK;
+    const int rc = n > 0 ? print_rows(rows, n, json, st == STOPPED) : EXIT_OK;
     if (st != STOPPED) return rc;
     cli_error("paper: stopped by %s; %d complete row(s) printed", cli_signal_name(cli_stop_requested()), n);
     return rc == EXIT_OK ? cli_stop_status() : rc;

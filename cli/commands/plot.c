@@ -59,7 +59,6 @@ static void help(void)
          "\n"
          "forces, path and energy sample the full model finely (about 5000 samples over the run)\n"
          "unless --sample-dt is given. Needs gnuplot (Debian: gnuplot-nox).\n");
-    cli_options_help(stdout, 1);
 }
 
 static int take(int opt, const char *arg, void *ctx)
@@ -69,9 +68,16 @@ static int take(int opt, const char *arg, void *ctx)
     if (opt == 'o') return cli_take_once("plot", &o->output, "output", arg);
     if (opt == 'k') { o->keep_script = 1; return 0; }
     if (opt == 'm') return cli_take_once("plot", &o->max_samples, "max-samples", arg);
-    if (opt == 'h') { help(); return -1; }
     return EXIT_USAGE;
 }
+
+/* The command's own options; the setup and simulation options come with cli_command_parse. */
+static const struct option own[] = {{"what", required_argument, 0, 'w'},
+                                    {"output", required_argument, 0, 'o'},
+                                    {"keep-script", no_argument, 0, 'k'},
+                                    {"max-samples", required_argument, 0, 'm'},
+                                    {"help", no_argument, 0, 'h'}};
+static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
 static const plot_kind *find_kind(const char *name)
 {
@@ -226,13 +232,6 @@ static int make_figure(fig_Data *d, const plot_opts *o, const plot_kind *kind, f
     return rc;
 }
 
-static int sim_given(const cli_SimArgs *a, const char *name)
-{
-    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
-        if (strcmp(cli_sim_options[i].name, name) == 0) return a->value[i] != NULL;
-    return 0;
-}
-
 static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Model *model, jc_SimOptions *sim)
 {
     jc_Setup setup;
@@ -241,16 +240,11 @@ static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc
 
 int cmd_plot(int argc, char **argv)
 {
-    static const struct option own[] = {{"what", required_argument, 0, 'w'},
-                                        {"output", required_argument, 0, 'o'},
-                                        {"keep-script", no_argument, 0, 'k'},
-                                        {"max-samples", required_argument, 0, 'm'},
-                                        {"help", no_argument, 0, 'h'}};
     plot_opts o = {0};
     cli_SetupArgs sa;
     cli_SimArgs sim_args;
-    int st = cli_parse_args(argc, argv, own, 5, take, &o, &sa, &sim_args);
-    if (st) return st < 0 ? EXIT_OK : st;
+    int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
+    if (st != CLI_GO_ON) return st;
     const plot_kind *kind;
     fig_Format format;
     if ((st = check_opts(&o, &kind, &format)) != 0) return st;
@@ -286,7 +280,7 @@ int cmd_plot(int argc, char **argv)
     if (kind->panel == NULL) d.caption[0] = '\0';
     char cmdline[2048];
     command_line(argc, argv, cmdline, sizeof cmdline);
-    st = make_figure(&d, &o, kind, format, &sim, sim_given(&sim_args, "sample-dt"), max_samples, cmdline);
+    st = make_figure(&d, &o, kind, format, &sim, cli_sim_given(&sim_args, "sample-dt"), max_samples, cmdline);
     if (d.have_run) jc_run_free(&d.run);
     if (st == EXIT_OK) printf("Figure: %s\n", o.output);
     return st;

@@ -4,10 +4,6 @@
 #include <cjson/cJSON.h>
 #include <string.h>
 
-typedef struct {
-    int json;
-} predict_opts;
-
 static void help(void)
 {
     puts("Usage: jumpcyl predict [SETUP OPTIONS] [--json]\n"
@@ -19,16 +15,6 @@ static void help(void)
          "              normal (N), friction (N)}; full.liftoff {theta, x, t} or null, full.hops;\n"
          "              x is the centre's travel along the incline\n"
          "  -h, --help  this help\n");
-    cli_options_help(stdout, 0);
-}
-
-static int take(int opt, const char *arg, void *ctx)
-{
-    (void)arg;
-    predict_opts *o = ctx;
-    if (opt == 'j') { o->json = 1; return 0; }
-    if (opt == 'h') { help(); return -1; }
-    return EXIT_USAGE;
 }
 
 static void print_crossing(const char *label, const jc_RollingCrossing *c)
@@ -130,11 +116,10 @@ static cJSON *json_doc(const jc_Model *m, const jc_PaperResult *p, const jc_Roll
 
 int cmd_predict(int argc, char **argv)
 {
-    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
-    predict_opts o = {0};
+    int json = 0;
     cli_SetupArgs sa;
-    int st = cli_parse_args(argc, argv, own, 2, take, &o, &sa, NULL);
-    if (st) return st < 0 ? EXIT_OK : st;
+    int st = cli_json_command_parse(argc, argv, help, &json, &sa);
+    if (st != CLI_GO_ON) return st;
 
     jc_Setup setup;
     jc_Model model;
@@ -154,7 +139,7 @@ int cmd_predict(int argc, char **argv)
         return EXIT_FAIL;
     }
     int rc;
-    if (o.json) {
+    if (json) {
         rc = cli_json_print(json_doc(&model, &paper, &rolling, &run));
     } else {
         print_text(&model, &paper, &rolling, &run);

@@ -23,7 +23,6 @@ static void help(void)
          "              bounce into flight also flight_time (s), hop_height (m), landing_x (m)\n"
          "  --csv FILE  write the trajectory (samples every --sample-dt and at every event)\n"
          "  -h, --help  this help\n");
-    cli_options_help(stdout, 1);
 }
 
 static int take(int opt, const char *arg, void *ctx)
@@ -31,9 +30,14 @@ static int take(int opt, const char *arg, void *ctx)
     simulate_opts *o = ctx;
     if (opt == 'j') { o->json = 1; return 0; }
     if (opt == 'c') { o->csv = arg; return 0; }
-    if (opt == 'h') { help(); return -1; }
     return EXIT_USAGE;
 }
+
+/* The command's own options; the setup and simulation options come with cli_command_parse. */
+static const struct option own[] = {{"json", no_argument, 0, 'j'},
+                                    {"csv", required_argument, 0, 'c'},
+                                    {"help", no_argument, 0, 'h'}};
+static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
 /* Everything simulate writes while the run goes on: events to the table
  * or the JSON document on standard output, samples to the CSV. Nothing is
@@ -180,14 +184,11 @@ static int on_event(void *ctx, const jc_Event *e)
 
 int cmd_simulate(int argc, char **argv)
 {
-    static const struct option own[] = {{"json", no_argument, 0, 'j'},
-                                        {"csv", required_argument, 0, 'c'},
-                                        {"help", no_argument, 0, 'h'}};
     simulate_opts o = {0};
     cli_SetupArgs sa;
     cli_SimArgs sim_args;
-    int st = cli_parse_args(argc, argv, own, 3, take, &o, &sa, &sim_args);
-    if (st) return st < 0 ? EXIT_OK : st;
+    int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
+    if (st != CLI_GO_ON) return st;
     jc_Setup setup;
     jc_SimOptions opts;
     jc_Model model;
