@@ -235,7 +235,6 @@ static int eval_stage(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, int s, double h, d
     double y[JC_DOP_MAX_DIM];
     stage_input(d, s, h, y);
     for (int i = d->dim; i < d->full_dim; ++i) y[i] = d->y0[i];
-    d->rhs_calls++;
     return rhs(d->t0 + C[s] * h, y, out, ctx);
 }
 
@@ -248,7 +247,6 @@ void jc_dop853_init(jc_Dop853 *d, int dim, int full_dim, double rtol, double ato
     d->h = 0.0;
     d->dense_ready = 0;
     d->rejected_last = 0;
-    d->rhs_calls = 0;
     d->err_old = 1e-4;
 }
 
@@ -259,7 +257,6 @@ int jc_dop853_start(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double t, const doub
     d->dense_ready = 0;
     d->rejected_last = 0;
     for (int i = 0; i < d->full_dim; ++i) d->y0[i] = y[i];
-    d->rhs_calls++;
     return rhs(t, d->y0, d->f0, ctx);
 }
 
@@ -298,7 +295,6 @@ static double step_error(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)
 /* f1 at the step's end; 0 when it and y1 are finite. */
 static int end_rate(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)
 {
-    d->rhs_calls++;
     if (rhs(d->t0 + h, d->y1, d->f1, ctx) != 0) return -1;
     for (int i = 0; i < d->dim; ++i)
         if (!isfinite(d->y1[i]) || !isfinite(d->f1[i])) return -1;
