@@ -10,7 +10,8 @@
  * polynomial and the state there costs 3 extra stages per step, and the
  * stepper keeps its workspace in fixed arrays (no allocation per run).
  * Measured (make bench, the paper's three runs): a full run took 85 us with
- * rk8pd, 38 us once the ODE phases moved to this stepper.
+ * rk8pd and 49 us with this stepper, before the other speedups of the
+ * same work (docs/architecture.md has the figure now).
  */
 #ifndef JUMPCYL_DOP853_H
 #define JUMPCYL_DOP853_H
