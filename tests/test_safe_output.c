@@ -64,6 +64,16 @@ static int new_dir(char *out, size_t len, const char *name)
     return mkdir(out, 0755);
 }
 
+/* A fresh directory named after `name`, and the paths of two files in it. */
+static int dir_with_two(char dir[512], const char *name, char a[600], const char *name_a, char b[600],
+                        const char *name_b)
+{
+    if (new_dir(dir, 512, name) != 0) return -1;
+    snprintf(a, 600, "%s/%s", dir, name_a);
+    snprintf(b, 600, "%s/%s", dir, name_b);
+    return 0;
+}
+
 static int write_text(const char *path, const char *text)
 {
     FILE *f = fopen(path, "wb");
@@ -605,9 +615,7 @@ static int test_csv_to_stdout(void)
 static int test_read_only_target(void)
 {
     char dir[512], fig[600], csv[600];
-    ENSURE(new_dir(dir, sizeof dir, "readonly") == 0);
-    snprintf(fig, sizeof fig, "%s/fig.png", dir);
-    snprintf(csv, sizeof csv, "%s/run.csv", dir);
+    ENSURE(dir_with_two(dir, "readonly", fig, "fig.png", csv, "run.csv") == 0);
     ENSURE(write_text(fig, OLD_TEXT) == 0 && write_text(csv, OLD_TEXT) == 0);
     ENSURE(chmod(fig, 0444) == 0 && chmod(csv, 0444) == 0);
     const char *plot[] = {"plot", "--what", "energy", "--output", fig, NULL};
@@ -625,9 +633,7 @@ static int test_read_only_target(void)
 static int test_budgets(void)
 {
     char dir[512], film[600], fig[600];
-    ENSURE(new_dir(dir, sizeof dir, "budget") == 0);
-    snprintf(film, sizeof film, "%s/long.gif", dir);
-    snprintf(fig, sizeof fig, "%s/fine.png", dir);
+    ENSURE(dir_with_two(dir, "budget", film, "long.gif", fig, "fine.png") == 0);
     /* 60 s at 30 fps x 8: 14,400 frames. */
     const char *animate[] = {"animate", HOOP, "--output", film, NULL};
     if (expect_error(animate, NULL, 2, "over the budget of 5000; raise it with --max-frames")) return 1;
