@@ -13,37 +13,35 @@
 
 static int jc_test_passed_count, jc_test_failed_count;
 
+/* Every ENSURE* failure: "file:line: ", a head, the printf-style rest and a
+ * newline on stderr; then the test returns 1. */
+#define ENSURE_FAIL_(head, ...)                                                         \
+    do {                                                                                \
+        fprintf(stderr, "%s:%d: %s", __FILE__, __LINE__, head);                         \
+        fprintf(stderr, __VA_ARGS__);                                                   \
+        fputc('\n', stderr);                                                            \
+        return 1;                                                                       \
+    } while (0)
+
 #define ENSURE(cond)                                                                    \
     do {                                                                                \
-        if (!(cond)) {                                                                  \
-            fprintf(stderr, "%s:%d: ENSURE(%s) failed\n", __FILE__, __LINE__, #cond);   \
-            return 1;                                                                   \
-        }                                                                               \
+        if (!(cond)) ENSURE_FAIL_("ENSURE(" #cond ") failed", "%s", "");                \
     } while (0)
 
 /* Like ENSURE, with a printf-style explanation (the values that matter). */
 #define ENSURE_MSG(cond, ...)                                                           \
     do {                                                                                \
-        if (!(cond)) {                                                                  \
-            fprintf(stderr, "%s:%d: ENSURE(%s) failed: ", __FILE__, __LINE__, #cond);   \
-            fprintf(stderr, __VA_ARGS__);                                               \
-            fputc('\n', stderr);                                                        \
-            return 1;                                                                   \
-        }                                                                               \
+        if (!(cond)) ENSURE_FAIL_("ENSURE(" #cond ") failed: ", __VA_ARGS__);           \
     } while (0)
 
 /* |a - b| <= abs_tol; NaN never passes. */
 #define ENSURE_NEAR(a, b, abs_tol)                                                      \
     do {                                                                                \
         const double ens_a_ = (a), ens_b_ = (b), ens_t_ = (abs_tol);                    \
-        if (!(fabs(ens_a_ - ens_b_) <= ens_t_)) {                                       \
-            fprintf(stderr,                                                             \
-                    "%s:%d: ENSURE_NEAR(%s, %s) failed: %.17g vs %.17g, |diff| %.3g > " \
-                    "tol %.3g\n",                                                       \
-                    __FILE__, __LINE__, #a, #b, ens_a_, ens_b_, fabs(ens_a_ - ens_b_),  \
-                    ens_t_);                                                            \
-            return 1;                                                                   \
-        }                                                                               \
+        if (!(fabs(ens_a_ - ens_b_) <= ens_t_))                                         \
+            ENSURE_FAIL_("ENSURE_NEAR(" #a ", " #b ") failed: ",                        \
+                         "%.17g vs %.17g, |diff| %.3g > tol %.3g", ens_a_, ens_b_,      \
+                         fabs(ens_a_ - ens_b_), ens_t_);                                \
     } while (0)
 
 /* |a - b| <= rel_tol * max(|a|, |b|); NaN never passes. */
@@ -51,25 +49,17 @@ static int jc_test_passed_count, jc_test_failed_count;
     do {                                                                                \
         const double ens_a_ = (a), ens_b_ = (b), ens_t_ = (rel_tol);                    \
         const double ens_s_ = fmax(fabs(ens_a_), fabs(ens_b_));                         \
-        if (!(fabs(ens_a_ - ens_b_) <= ens_t_ * ens_s_)) {                              \
-            fprintf(stderr,                                                             \
-                    "%s:%d: ENSURE_REL(%s, %s) failed: %.17g vs %.17g, rel diff %.3g > " \
-                    "tol %.3g\n",                                                       \
-                    __FILE__, __LINE__, #a, #b, ens_a_, ens_b_,                         \
-                    ens_s_ > 0 ? fabs(ens_a_ - ens_b_) / ens_s_ : 0.0, ens_t_);         \
-            return 1;                                                                   \
-        }                                                                               \
+        if (!(fabs(ens_a_ - ens_b_) <= ens_t_ * ens_s_))                                \
+            ENSURE_FAIL_("ENSURE_REL(" #a ", " #b ") failed: ",                         \
+                         "%.17g vs %.17g, rel diff %.3g > tol %.3g", ens_a_, ens_b_,    \
+                         ens_s_ > 0 ? fabs(ens_a_ - ens_b_) / ens_s_ : 0.0, ens_t_);    \
     } while (0)
 
 /* A library call that must succeed; prints its message otherwise. */
 #define ENSURE_OK(call, err)                                                            \
     do {                                                                                \
         const int ens_st_ = (call);                                                     \
-        if (ens_st_ != 0) {                                                             \
-            fprintf(stderr, "%s:%d: %s returned %d: %s\n", __FILE__, __LINE__, #call,   \
-                    ens_st_, (err));                                                    \
-            return 1;                                                                   \
-        }                                                                               \
+        if (ens_st_ != 0) ENSURE_FAIL_(#call, " returned %d: %s", ens_st_, (err));      \
     } while (0)
 
 #define RUN_TEST(fn)                                                                    \
