@@ -22,12 +22,18 @@ static jc_BodyDef disc_plus(jc_Part p)
     return b;
 }
 
+/* Computes `def` into `b`; a failure ends the test with the library's message. */
+#define BODY_OK(def, b)                                                                        \
+    do {                                                                                       \
+        char body_err_[256] = "";                                                              \
+        ENSURE_OK(jc_body_compute(&(def), &(b), body_err_, sizeof body_err_), body_err_);      \
+    } while (0)
+
 static int test_paper_body_by_hand(void)
 {
     jc_BodyDef def = paper_body();
     jc_Body b;
-    char err[256] = "";
-    ENSURE_OK(jc_body_compute(&def, &b, err, sizeof err), err);
+    BODY_OK(def, b);
     /* The paper: disc 34.2 g r = 10 cm; rod 32.1 g at 5.50 cm, diameter 9.50 mm. */
     const double M = 0.0663, d = 32.1 * 5.5 / 66.3 * 1e-2;
     const double ic = 0.5 * 0.0342 * 0.1 * 0.1 + 0.0321 * (0.055 * 0.055 + 0.5 * 0.00475 * 0.00475);
@@ -48,8 +54,7 @@ static int test_hoop_inertia(void)
     /* A 20 g hoop of radius 3 cm, its axis 6 cm off C: I = m R^2 + m a^2. */
     jc_BodyDef def = disc_plus((jc_Part){JC_PART_HOOP, 0.020, 0.06, 0.0, 0.03});
     jc_Body b;
-    char err[256] = "";
-    ENSURE_OK(jc_body_compute(&def, &b, err, sizeof err), err);
+    BODY_OK(def, b);
     const double ic = 0.5 * 0.050 * 0.01 + (0.020 * 0.03 * 0.03 + 0.020 * 0.06 * 0.06);
     ENSURE_REL(b.inertia_c_kgm2, ic, SUM_TOL);
     ENSURE_REL(b.cm_offset_m, 0.020 * 0.06 / 0.070, SUM_TOL);
@@ -58,7 +63,7 @@ static int test_hoop_inertia(void)
     /* A lone centred hoop: I_C = I_G = m r^2, d = 0. */
     jc_BodyDef h = {.radius_m = 0.1, .part_count = 1};
     h.parts[0] = (jc_Part){JC_PART_HOOP, 0.3, 0.0, 0.0, 0.1};
-    ENSURE_OK(jc_body_compute(&h, &b, err, sizeof err), err);
+    BODY_OK(h, b);
     ENSURE_REL(b.inertia_c_kgm2, 0.3 * 0.01, SUM_TOL);
     ENSURE_REL(b.inertia_g_kgm2, 0.3 * 0.01, SUM_TOL);
     ENSURE(b.cm_offset_m == 0.0 && b.cm_angle_rad == 0.0 && b.disc_mass_kg == 0.0);
@@ -68,24 +73,23 @@ static int test_hoop_inertia(void)
 static int test_point_and_rod_inertia(void)
 {
     jc_Body b;
-    char err[256] = "";
     /* Point: I = m a^2. */
     jc_BodyDef def = disc_plus((jc_Part){JC_PART_POINT, 0.030, 0.08, 0.0, 0.0});
-    ENSURE_OK(jc_body_compute(&def, &b, err, sizeof err), err);
+    BODY_OK(def, b);
     ENSURE_REL(b.inertia_c_kgm2, 0.5 * 0.050 * 0.01 + 0.030 * 0.08 * 0.08, SUM_TOL);
     ENSURE_REL(b.mass_kg, 0.080, SUM_TOL);
     /* Line-mass rod (radius 0) is a point in cross-section. */
     jc_BodyDef line = disc_plus((jc_Part){JC_PART_ROD, 0.030, 0.08, 0.0, 0.0});
     jc_Body bl;
-    ENSURE_OK(jc_body_compute(&line, &bl, err, sizeof err), err);
+    BODY_OK(line, bl);
     ENSURE_REL(bl.inertia_c_kgm2, b.inertia_c_kgm2, 0.0);
     /* Rod with its own radius rho: I = m a^2 + m rho^2 / 2. */
     jc_BodyDef rod = disc_plus((jc_Part){JC_PART_ROD, 0.030, 0.08, 0.0, 0.01});
-    ENSURE_OK(jc_body_compute(&rod, &b, err, sizeof err), err);
+    BODY_OK(rod, b);
     ENSURE_REL(b.inertia_c_kgm2, 0.5 * 0.050 * 0.01 + 0.030 * (0.08 * 0.08 + 0.5 * 0.01 * 0.01), SUM_TOL);
     /* A smaller off-centre disc: I = m R^2/2 + m a^2; disc_mass counts both discs. */
     jc_BodyDef dd = disc_plus((jc_Part){JC_PART_DISC, 0.010, 0.05, 1.0, 0.02});
-    ENSURE_OK(jc_body_compute(&dd, &b, err, sizeof err), err);
+    BODY_OK(dd, b);
     ENSURE_REL(b.inertia_c_kgm2, 0.5 * 0.050 * 0.01 + 0.010 * (0.5 * 0.02 * 0.02 + 0.05 * 0.05), SUM_TOL);
     ENSURE_REL(b.disc_mass_kg, 0.060, SUM_TOL);
     return 0;
@@ -100,8 +104,7 @@ static int test_disc_mass_sums_discs_only(void)
     def.parts[3] = (jc_Part){JC_PART_ROD, 0.020, 0.05, -1.0, 0.004};
     def.parts[4] = (jc_Part){JC_PART_POINT, 0.005, 0.09, 0.5, 0.0};
     jc_Body b;
-    char err[256] = "";
-    ENSURE_OK(jc_body_compute(&def, &b, err, sizeof err), err);
+    BODY_OK(def, b);
     ENSURE_REL(b.disc_mass_kg, 0.047, SUM_TOL);
     ENSURE_REL(b.mass_kg, 0.087, SUM_TOL);
     /* The full hand sum, CM as a vector sum in the body frame (sin, cos). */
@@ -129,8 +132,7 @@ static int test_opposite_points_cancel(void)
         def.parts[2] = (jc_Part){JC_PART_POINT, 0.025, 0.07, phis[i] + PI, 0.0};
         def.part_count = 3;
         jc_Body b;
-        char err[256] = "";
-        ENSURE_OK(jc_body_compute(&def, &b, err, sizeof err), err);
+        BODY_OK(def, b);
         /* d is zero up to the rounding of sin/cos (phi + pi is not exact): ~1e-16 * a. */
         ENSURE_NEAR(b.cm_offset_m, 0.0, 1e-15 * 0.07);
         ENSURE_REL(b.inertia_c_kgm2, 0.5 * 0.050 * 0.01 + 2 * 0.025 * 0.07 * 0.07, SUM_TOL);
@@ -146,16 +148,14 @@ static int test_cm_angle_direction(void)
     for (size_t i = 0; i < sizeof phis / sizeof phis[0]; ++i) {
         jc_BodyDef def = disc_plus((jc_Part){JC_PART_ROD, 0.030, 0.05, phis[i], 0.002});
         jc_Body b;
-        char err[256] = "";
-        ENSURE_OK(jc_body_compute(&def, &b, err, sizeof err), err);
+        BODY_OK(def, b);
         ENSURE_REL(b.cm_offset_m, 0.030 * 0.05 / 0.080, SUM_TOL);
         ENSURE_NEAR(b.cm_angle_rad, phis[i], 1e-14); /* atan2 of sin, cos: a few ulps of pi */
     }
     /* Angles wrap: 2 pi + phi is phi. */
     jc_BodyDef def = disc_plus((jc_Part){JC_PART_ROD, 0.030, 0.05, 2 * PI + 0.7, 0.0});
     jc_Body b;
-    char err[256] = "";
-    ENSURE_OK(jc_body_compute(&def, &b, err, sizeof err), err);
+    BODY_OK(def, b);
     ENSURE_NEAR(b.cm_angle_rad, 0.7, 1e-14);
     return 0;
 }
@@ -165,10 +165,9 @@ static int test_part_touching_rim_allowed(void)
     /* offset + radius == r exactly, and with rounding (0.07 + 0.03 != 0.1 in binary). */
     jc_BodyDef def = disc_plus((jc_Part){JC_PART_ROD, 0.01, 0.07, 0.0, 0.03});
     jc_Body b;
-    char err[256] = "";
-    ENSURE_OK(jc_body_compute(&def, &b, err, sizeof err), err);
+    BODY_OK(def, b);
     def = disc_plus((jc_Part){JC_PART_POINT, 0.01, 0.10, 0.0, 0.0});
-    ENSURE_OK(jc_body_compute(&def, &b, err, sizeof err), err);
+    BODY_OK(def, b);
     ENSURE(strcmp(jc_part_kind_name(JC_PART_DISC), "disc") == 0);
     ENSURE(strcmp(jc_part_kind_name(JC_PART_HOOP), "hoop") == 0);
     ENSURE(strcmp(jc_part_kind_name(JC_PART_ROD), "rod") == 0);
