@@ -110,28 +110,41 @@ static int test_add_and_axpby(void)
     return 0;
 }
 
-static int test_eval_value_and_derivative(void)
+/* h, the step of the finite differences the derivatives are checked against. */
+static const double FD_H = 1e-3;
+
+/* Calls `check` at 50 random angles in [-20, 20] on each of 100 random
+ * polynomials (odd trials with a linear part); the first failure ends it. */
+static int for_random_points(int (*check)(const jc_TrigLin *p, double th))
 {
-    const double h = 1e-3;
     for (int trial = 0; trial < 100; ++trial) {
         jc_TrigLin p = random_poly(K_MAX, trial % 2);
-        for (int i = 0; i < 50; ++i) {
-            const double th = uniform(-20, 20);
-            double f, df;
-            jc_tl_eval(&p, th, &f, &df);
-            /* The angle-addition recurrence vs libm: rounding of ~10 terms. */
-            ENSURE_NEAR(f, trig_direct(&p, th), 1e-13 * deriv_bound(&p, 0, fabs(th)));
-            ENSURE(jc_tl_value(&p, th) == f);
-            /* 5-point central difference: truncation h^4/30 |f^(5)|, rounding
-             * (18/12) EVAL_ROUND |f| / h; doubled for the bounds' own looseness. */
-            const double fd = (trig_direct(&p, th - 2 * h) - 8 * trig_direct(&p, th - h) + 8 * trig_direct(&p, th + h) -
-                               trig_direct(&p, th + 2 * h)) / (12 * h);
-            const double T = fabs(th) + 2 * h;
-            const double tol = 2 * (pow(h, 4) / 30 * deriv_bound(&p, 5, T) + 1.5 * EVAL_ROUND * deriv_bound(&p, 0, T) / h);
-            ENSURE_NEAR(df, fd, tol);
-        }
+        for (int i = 0; i < 50; ++i)
+            if (check(&p, uniform(-20, 20))) return 1;
     }
     return 0;
+}
+
+static int check_value_and_derivative(const jc_TrigLin *p, double th)
+{
+    double f, df;
+    jc_tl_eval(p, th, &f, &df);
+    /* The angle-addition recurrence vs libm: rounding of ~10 terms. */
+    ENSURE_NEAR(f, trig_direct(p, th), 1e-13 * deriv_bound(p, 0, fabs(th)));
+    ENSURE(jc_tl_value(p, th) == f);
+    /* 5-point central difference: truncation h^4/30 |f^(5)|, rounding
+     * (18/12) EVAL_ROUND |f| / h; doubled for the bounds' own looseness. */
+    const double fd = (trig_direct(p, th - 2 * FD_H) - 8 * trig_direct(p, th - FD_H) + 8 * trig_direct(p, th + FD_H) -
+                       trig_direct(p, th + 2 * FD_H)) / (12 * FD_H);
+    const double T = fabs(th) + 2 * FD_H;
+    const double tol = 2 * (pow(FD_H, 4) / 30 * deriv_bound(p, 5, T) + 1.5 * EVAL_ROUND * deriv_bound(p, 0, T) / FD_H);
+    ENSURE_NEAR(df, fd, tol);
+    return 0;
+}
+
+static int test_eval_value_and_derivative(void)
+{
+    return for_random_points(check_value_and_derivative);
 }
 
 static int test_curvature_bound_bounds(void)
@@ -169,30 +182,28 @@ static int test_curvature_bound_bounds(void)
     return 0;
 }
 
+static int check_second_derivative(const jc_TrigLin *p, double th)
+{
+    double d[3], f, df;
+    jc_tl_eval3(p, th, d);
+    jc_tl_eval(p, th, &f, &df);
+    /* The same sums as jc_tl_eval: equal up to a few ulps of the terms. */
+    ENSURE_NEAR(d[0], f, 1e-14 * deriv_bound(p, 0, fabs(th)));
+    ENSURE_NEAR(d[1], df, 1e-14 * deriv_bound(p, 1, fabs(th)));
+    /* 5-point second difference: truncation h^4/90 |f^(6)|, rounding
+     * (64/12) EVAL_ROUND |f| / h^2; doubled for the bounds' looseness. */
+    const double fd = (-trig_direct(p, th - 2 * FD_H) + 16 * trig_direct(p, th - FD_H) - 30 * trig_direct(p, th) +
+                       16 * trig_direct(p, th + FD_H) - trig_direct(p, th + 2 * FD_H)) / (12 * FD_H * FD_H);
+    const double T = fabs(th) + 2 * FD_H;
+    const double tol = 2 * (pow(FD_H, 4) / 90 * deriv_bound(p, 6, T) +
+                            64.0 / 12 * EVAL_ROUND * deriv_bound(p, 0, T) / (FD_H * FD_H));
+    ENSURE_NEAR(d[2], fd, tol);
+    return 0;
+}
+
 static int test_eval3_second_derivative(void)
 {
-    const double h = 1e-3;
-    for (int trial = 0; trial < 100; ++trial) {
-        jc_TrigLin p = random_poly(K_MAX, trial % 2);
-        for (int i = 0; i < 50; ++i) {
-            const double th = uniform(-20, 20);
-            double d[3], f, df;
-            jc_tl_eval3(&p, th, d);
-            jc_tl_eval(&p, th, &f, &df);
-            /* The same sums as jc_tl_eval: equal up to a few ulps of the terms. */
-            ENSURE_NEAR(d[0], f, 1e-14 * deriv_bound(&p, 0, fabs(th)));
-            ENSURE_NEAR(d[1], df, 1e-14 * deriv_bound(&p, 1, fabs(th)));
-            /* 5-point second difference: truncation h^4/90 |f^(6)|, rounding
-             * (64/12) EVAL_ROUND |f| / h^2; doubled for the bounds' looseness. */
-            const double fd = (-trig_direct(&p, th - 2 * h) + 16 * trig_direct(&p, th - h) - 30 * trig_direct(&p, th) +
-                               16 * trig_direct(&p, th + h) - trig_direct(&p, th + 2 * h)) / (12 * h * h);
-            const double T = fabs(th) + 2 * h;
-            const double tol = 2 * (pow(h, 4) / 90 * deriv_bound(&p, 6, T) +
-                                    64.0 / 12 * EVAL_ROUND * deriv_bound(&p, 0, T) / (h * h));
-            ENSURE_NEAR(d[2], fd, tol);
-        }
-    }
-    return 0;
+    return for_random_points(check_second_derivative);
 }
 
 static int test_third_bound_bounds(void)
