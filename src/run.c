@@ -100,10 +100,22 @@ double jc_potential_energy(const jc_Model *m, const jc_State *s)
 
 /* ---- summary ---- */
 
-void jc_summary_init(jc_RunSummary *out) { *out = (jc_RunSummary){.first_liftoff = -1, .largest_hop = -1}; }
+void jc_summary_init(jc_RunSummary *out)
+{
+    *out = (jc_RunSummary){.first_liftoff = -1, .largest_hop = -1, .first_event = -1,
+                           .first_event_kind = JC_EVENT_COUNT, .first_slip = -1};
+}
 
 void jc_summary_add(jc_RunSummary *out, const jc_Event *e, int index)
 {
+    if (out->first_event < 0) {
+        out->first_event = index;
+        out->first_event_kind = e->kind;
+    }
+    if (e->kind == JC_EVENT_SLIP && out->first_slip < 0) {
+        out->first_slip = index;
+        out->first_slip_state = e->state;
+    }
     if (e->kind == JC_EVENT_LIFTOFF) {
         if (out->first_liftoff < 0) {
             out->first_liftoff = index;

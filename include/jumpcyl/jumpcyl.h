@@ -496,6 +496,10 @@ typedef struct {
     double largest_hop_m;    /* its largest gap under the rim */
     double flight_time_s;    /* total time in flight */
     jc_State first_liftoff_state; /* the state at the first lift-off (zero if none) */
+    int first_event;         /* index of the run's first event, -1 if none */
+    jc_EventKind first_event_kind; /* its kind (JC_EVENT_COUNT if none) */
+    int first_slip;          /* event index of the first slip (rolling -> sliding), -1 if none */
+    jc_State first_slip_state; /* the state there (zero if none) */
 } jc_RunSummary;
 
 JC_API void jc_run_summarize(const jc_Run *run, jc_RunSummary *out);

@@ -126,7 +126,17 @@ static int test_random_setups(uint64_t seed, jc_ImpactLaw law, int runs)
                 shortest = fmin(shortest, ev->flight_time_s);
         }
         shortest_flight = fmin(shortest_flight, shortest);
+        /* the summary's first event and first slip, against a plain search of the events */
+        int slip_at = -1;
+        for (int k = 0; k < run.event_count && slip_at < 0; ++k)
+            if (run.events[k].kind == JC_EVENT_SLIP) slip_at = k;
+        const int first_ok = run.event_count == 0 ? sum.first_event == -1 && sum.first_event_kind == JC_EVENT_COUNT
+                                                  : sum.first_event == 0 && sum.first_event_kind == run.events[0].kind;
+        const int slip_ok = sum.first_slip == slip_at &&
+                            (slip_at < 0 || sum.first_slip_state.t_s == run.events[slip_at].state.t_s);
         jc_run_free(&run);
+        ENSURE_MSG(first_ok && slip_ok, "summary: first event %d, first slip %d (events say %d); " SETUP_FMT,
+                   sum.first_event, sum.first_slip, slip_at, SETUP_ARGS);
         ENSURE_MSG(inv == 0, "invariants; " SETUP_FMT, SETUP_ARGS);
         ENSURE_MSG(shortest > o.event_tol_s, "a flight of %g s; " SETUP_FMT, shortest, SETUP_ARGS);
         ENSURE_MSG(physical(t), "ended with %s after %d events; " SETUP_FMT, jc_termination_name(t), n, SETUP_ARGS);
