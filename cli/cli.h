@@ -61,8 +61,22 @@ typedef struct {
 /* If opt is a setup option's val, records it and returns 1; 0 otherwise;
  * -1 with a message on a repeated option or too many parts. */
 int cli_setup_take(cli_SetupArgs *args, int opt, const char *optarg_text, char *err, size_t err_len);
-/* Builds and validates the setup. */
+/* Builds and validates the setup: cli_setup_base, then cli_setup_apply. */
 int cli_setup_build(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
+/* The preset, the experiment file and the parts: where the single-valued
+ * options start from (made once for the many cases of a sweep). */
+int cli_setup_base(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
+/* The single-valued options over a base setup, then the setup's check. */
+int cli_setup_apply(const cli_SetupArgs *args, jc_Setup *s, char *err, size_t err_len);
+/* The index of a setup option by long name ("rod-offset"), -1 if none. */
+int cli_setup_option_index(const char *long_name);
+/* How the option's value reads: 0 and *q for a number, 1 for a name
+ * (impact-law), -1 for an option that is not a single value (preset,
+ * part, config, dump-config). */
+int cli_setup_option_quantity(int index, cli_Quantity *q);
+/* The SI value a numeric option has in a setup (mu: mu_s); 0, or -1 when
+ * the setup has none (--rod-mass of a body without a rod). */
+int cli_setup_option_value(const jc_Setup *s, int index, double *out);
 /* Index of a setup option by long name, for commands that forbid one. */
 int cli_setup_given(const cli_SetupArgs *args, const char *long_name);
 /* Help text for the setup options. */

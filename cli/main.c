@@ -1,6 +1,7 @@
 /* jumpcyl: command dispatch. Data goes to stdout, messages to stderr;
  * exit 0 ok, 1 failure, 2 bad usage or input. */
 #include "cli.h"
+#include "batch.h"
 
 #include <gsl/gsl_errno.h>
 #include <signal.h>
@@ -30,6 +31,8 @@ static void usage(FILE *out)
           "  simulate   the full motion: slip, lift-off, flight, landing, further hops\n"
           "  plot       a figure (gnuplot): the paper's criterion, forces, path, energy, overview\n"
           "  animate    a film of the motion (cairo; ffmpeg for .gif and .mp4)\n"
+          "  sweep      the full model over a grid of setup values: one CSV row per case\n"
+          "  mc         Monte Carlo: how sure the first lift-off is, given the inputs' uncertainties\n"
           "  presets    list the built-in setups\n"
           "\n"
           "  jumpcyl COMMAND --help   options of a command\n"
@@ -58,12 +61,14 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "presets") == 0) return cmd_presets(argc - 1, argv + 1);
     if (strcmp(cmd, "plot") == 0) return cmd_plot(argc - 1, argv + 1);
     if (strcmp(cmd, "animate") == 0) return cmd_animate(argc - 1, argv + 1);
+    if (strcmp(cmd, "sweep") == 0) return cmd_sweep(argc - 1, argv + 1);
+    if (strcmp(cmd, "mc") == 0) return cmd_mc(argc - 1, argv + 1);
     if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
         static char paper_name[] = "paper";
         argv[0] = paper_name;
         return cmd_paper(argc, argv);
     }
-    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate; see 'jumpcyl --help')", cmd);
+    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
 }
 
@@ -78,7 +83,8 @@ int main(int argc, char **argv)
         /* Whatever the command was doing, it left every target as it was.
          * paper says itself what it kept; a closed pipe needs no words. */
         const int is_paper = argc < 2 || strcmp(argv[1], "paper") == 0 || argv[1][0] == '-';
-        if (!is_paper && sig != SIGPIPE)
+        const int is_batch = argc >= 2 && (strcmp(argv[1], "sweep") == 0 || strcmp(argv[1], "mc") == 0);
+        if (!is_paper && !is_batch && sig != SIGPIPE)
             cli_error("stopped by %s; no output file was written or changed", cli_signal_name(sig));
         fclose(stdout);
         return cli_stop_status();

@@ -253,7 +253,7 @@ static int apply_body_options(const cli_SetupArgs *a, jc_Setup *s, char *err, si
     return 0;
 }
 
-int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
+int cli_setup_base(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
 {
     char msg[256];
     *s = jc_paper_setup();
@@ -270,29 +270,90 @@ int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_l
         for (int i = 0; i < a->part_count; ++i)
             if (parse_part(a->part_text[i], r, &s->body.parts[i], err, err_len)) return -1;
     }
+    return 0;
+}
+
+/* How each single-valued setup option reads its number (the same table
+ * builds the setup below). */
+static const struct { int opt; cli_Quantity q; size_t field; } scalars[] = {
+    {O_INCLINE, Q_ANGLE, offsetof(jc_Setup, incline_rad)},
+    {O_G, Q_ACCELERATION, offsetof(jc_Setup, gravity_mps2)},
+    {O_MU, Q_NUMBER, offsetof(jc_Setup, mu_static)},
+    {O_MU_S, Q_NUMBER, offsetof(jc_Setup, mu_static)},
+    {O_MU_K, Q_NUMBER, offsetof(jc_Setup, mu_kinetic)},
+    {O_RESTITUTION, Q_NUMBER, offsetof(jc_Setup, restitution)},
+    {O_THETA0, Q_ANGLE, offsetof(jc_Setup, theta0_rad)},
+    {O_OMEGA0, Q_ANGULAR_SPEED, offsetof(jc_Setup, omega0_radps)},
+    {O_RAMP_LENGTH, Q_LENGTH, offsetof(jc_Setup, ramp_length_m)},
+    {O_PAPER_D, Q_LENGTH, offsetof(jc_Setup, paper_cm_offset_m)},
+    {O_LENGTH, Q_LENGTH, offsetof(jc_Setup, length_m)},
+    {O_AIR_DENSITY, Q_DENSITY, offsetof(jc_Setup, air_density_kgpm3)},
+    {O_DRAG, Q_NUMBER, offsetof(jc_Setup, drag_coefficient)},
+    {O_LIFT, Q_NUMBER, offsetof(jc_Setup, lift_coefficient)},
+    {O_SPIN_DRAG, Q_SPIN_DRAG, offsetof(jc_Setup, spin_drag_Nms2)},
+    {O_ROLLING_RES, Q_LENGTH, offsetof(jc_Setup, rolling_resistance_m)},
+};
+
+int cli_setup_option_quantity(int index, cli_Quantity *q)
+{
+    if (index == O_RADIUS || index == O_ROD_OFFSET || index == O_ROD_RADIUS) *q = Q_LENGTH;
+    else if (index == O_DISC_MASS || index == O_ROD_MASS) *q = Q_MASS;
+    else if (index == O_IMPACT_LAW) return 1;
+    else {
+        size_t k = 0;
+        while (k < sizeof scalars / sizeof scalars[0] && scalars[k].opt != index) ++k;
+        if (k == sizeof scalars / sizeof scalars[0]) return -1;
+        *q = scalars[k].q;
+    }
+    return 0;
+}
+
+int cli_setup_option_index(const char *long_name)
+{
+    for (int i = 0; i < CLI_SETUP_OPTION_COUNT; ++i)
+        if (strcmp(cli_setup_options[i].name, long_name) == 0) return i;
+    return -1;
+}
+
+int cli_setup_option_value(const jc_Setup *s, int index, double *out)
+{
+    static const struct { int opt; jc_PartKind kind; int field; } parts[] = {
+        {O_DISC_MASS, JC_PART_DISC, 0}, {O_ROD_MASS, JC_PART_ROD, 0},
+        {O_ROD_OFFSET, JC_PART_ROD, 1}, {O_ROD_RADIUS, JC_PART_ROD, 2}};
+    if (index == O_RADIUS) {
+        *out = s->body.radius_m;
+        return 0;
+    }
+    for (size_t k = 0; k < sizeof parts / sizeof parts[0]; ++k) {
+        if (parts[k].opt != index) continue;
+        const jc_Part *p = NULL;
+        for (int i = s->body.part_count - 1; i >= 0; --i)
+            if (s->body.parts[i].kind == parts[k].kind) p = &s->body.parts[i]; /* the first of its kind */
+        if (!p) return -1;
+        *out = parts[k].field == 0 ? p->mass_kg : parts[k].field == 1 ? p->offset_m : p->radius_m;
+        return 0;
+    }
+    for (size_t k = 0; k < sizeof scalars / sizeof scalars[0]; ++k) {
+        if (scalars[k].opt != index) continue;
+        memcpy(out, (const char *)s + scalars[k].field, sizeof *out);
+        return 0;
+    }
+    return -1;
+}
+
+int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
+{
+    return cli_setup_base(a, s, err, err_len) != 0 ? -1 : cli_setup_apply(a, s, err, err_len);
+}
+
+int cli_setup_apply(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
+{
+    char msg[256];
     if (apply_body_options(a, s, err, err_len)) return -1;
     const int body_changed = a->part_count > 0 || a->value[O_RADIUS] || a->value[O_DISC_MASS] ||
                              a->value[O_ROD_MASS] || a->value[O_ROD_OFFSET] || a->value[O_ROD_RADIUS];
     if (body_changed) s->paper_cm_offset_m = 0.0; /* the printed d was for the paper's body */
 
-    static const struct { int opt; cli_Quantity q; size_t field; } scalars[] = {
-        {O_INCLINE, Q_ANGLE, offsetof(jc_Setup, incline_rad)},
-        {O_G, Q_ACCELERATION, offsetof(jc_Setup, gravity_mps2)},
-        {O_MU, Q_NUMBER, offsetof(jc_Setup, mu_static)},
-        {O_MU_S, Q_NUMBER, offsetof(jc_Setup, mu_static)},
-        {O_MU_K, Q_NUMBER, offsetof(jc_Setup, mu_kinetic)},
-        {O_RESTITUTION, Q_NUMBER, offsetof(jc_Setup, restitution)},
-        {O_THETA0, Q_ANGLE, offsetof(jc_Setup, theta0_rad)},
-        {O_OMEGA0, Q_ANGULAR_SPEED, offsetof(jc_Setup, omega0_radps)},
-        {O_RAMP_LENGTH, Q_LENGTH, offsetof(jc_Setup, ramp_length_m)},
-        {O_PAPER_D, Q_LENGTH, offsetof(jc_Setup, paper_cm_offset_m)},
-        {O_LENGTH, Q_LENGTH, offsetof(jc_Setup, length_m)},
-        {O_AIR_DENSITY, Q_DENSITY, offsetof(jc_Setup, air_density_kgpm3)},
-        {O_DRAG, Q_NUMBER, offsetof(jc_Setup, drag_coefficient)},
-        {O_LIFT, Q_NUMBER, offsetof(jc_Setup, lift_coefficient)},
-        {O_SPIN_DRAG, Q_SPIN_DRAG, offsetof(jc_Setup, spin_drag_Nms2)},
-        {O_ROLLING_RES, Q_LENGTH, offsetof(jc_Setup, rolling_resistance_m)},
-    };
     for (size_t k = 0; k < sizeof scalars / sizeof scalars[0]; ++k) {
         double v;
         if (!a->value[scalars[k].opt]) continue;
@@ -368,6 +429,15 @@ static int dump_config(const char *cmd, const cli_SetupArgs *sa, const cli_SimAr
     return cli_stdout_finish() == EXIT_OK ? -1 : EXIT_FAIL;
 }
 
+/* Options a command takes many times, each adding one item. */
+static int is_repeatable(const char *name)
+{
+    static const char *const names[] = {"vary", "sigma", "range"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
+        if (strcmp(name, names[i]) == 0) return 1;
+    return 0;
+}
+
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
                    cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args, cli_SimArgs *sim_args)
 {
@@ -405,7 +475,7 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
         }
         /* A command's own option counts once, as the setup options do. */
         for (int i = 0; i < own_count && i < 32; ++i) {
-            if (own[i].val != c || c == 'h') continue;
+            if (own[i].val != c || c == 'h' || is_repeatable(own[i].name)) continue;
             if (own_seen & (1u << i)) {
                 cli_error("%s: --%s given twice", argv[0], own[i].name);
                 return EXIT_USAGE;

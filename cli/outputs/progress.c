@@ -36,8 +36,8 @@ void cli_progress_update(cli_Progress *p, long done, long total)
     p->last_s = now;
     if (total > 0 && done > 0) {
         const double eta = elapsed * (double)(total - done) / (double)done;
-        fprintf(stderr, "\r%s %ld/%ld (%3.0f%%), ETA %.0f s   ", p->label, done, total,
-                100.0 * (double)done / (double)total, eta);
+        fprintf(stderr, "\r%s %ld/%ld (%3.0f%%), %.3g/s, ETA %.0f s   ", p->label, done, total,
+                100.0 * (double)done / (double)total, (double)done / elapsed, eta);
     } else {
         fprintf(stderr, "\r%s (%.0f s)   ", p->label, elapsed);
     }

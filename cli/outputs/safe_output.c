@@ -209,7 +209,7 @@ int cli_output_verify(const char *path, cli_Check check, char *why, size_t why_l
 }
 
 /* fsync of the directory that holds path: the rename itself reaches the disk. */
-static void sync_dir(const char *path)
+void cli_sync_dir(const char *path)
 {
     char dir[CLI_PATH_MAX];
     if (dir_of(path, dir, sizeof dir) != 0) return;
@@ -267,7 +267,7 @@ int cli_output_publish(cli_Output *o)
         return -1;
     }
     o->tmp[0] = '\0';
-    sync_dir(o->target);
+    cli_sync_dir(o->target);
     return 0;
 }
 

@@ -55,6 +55,9 @@ int cli_output_publish(cli_Output *o);
 /* Removes the temporary file; the target stays as it was. Safe to repeat. */
 void cli_output_abort(cli_Output *o);
 
+/* fsync of the directory that holds path, so that a rename in it reaches the disk. */
+void cli_sync_dir(const char *path);
+
 /* Whether the file at path is complete as check says; 0, or -1 with the
  * reason in why. */
 int cli_output_verify(const char *path, cli_Check check, char *why, size_t why_len);

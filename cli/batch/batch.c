@@ -1,0 +1,467 @@
+/* The engine of batch jobs. Cases are computed in blocks: the threads of a
+ * process share a block (OpenMP, dynamic schedule), the processes of an MPI
+ * job each take a slice of it and rank 0 gathers the slices, and the block's
+ * rows are then appended in case order. Each row is therefore written by
+ * the same code at the same place whatever the number of threads,
+ * processes or shards, and the file is byte for byte the same.
+ *
+ * The rows go to FILE.part, flushed after every block and fsynced at least
+ * every second, and FILE.part becomes FILE only when the job is complete:
+ * a stop (Ctrl-C, a kill, the end of a Slurm allocation) leaves every
+ * finished row in FILE.part and an older FILE untouched, and --resume
+ * checks the rows there and continues after them. */
+#include "batch.h"
+#include "figures.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#ifdef JC_HAVE_MPI
+#include <mpi.h>
+#endif
+
+/* Cases per thread in a block: a block takes a few tens of milliseconds, so
+ * a stop is honoured quickly and rows reach the file steadily. */
+#define BLOCK_CASES_PER_THREAD 256
+#define FSYNC_PERIOD_S 1.0
+
+/* ---- processes (MPI) ---- */
+
+static int mpi_rank(void)
+{
+#ifdef JC_HAVE_MPI
+    int up = 0, rank = 0;
+    MPI_Initialized(&up);
+    if (up) MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    return rank;
+#else
+    return 0;
+#endif
+}
+
+static int mpi_size(void)
+{
+#ifdef JC_HAVE_MPI
+    int up = 0, size = 1;
+    MPI_Initialized(&up);
+    if (up) MPI_Comm_size(MPI_COMM_WORLD, &size);
+    return size;
+#else
+    return 1;
+#endif
+}
+
+void cli_batch_mpi_begin(int *argc, char ***argv)
+{
+#ifdef JC_HAVE_MPI
+    int up = 0;
+    MPI_Initialized(&up);
+    if (!up) MPI_Init(argc, argv);
+#else
+    (void)argc;
+    (void)argv;
+#endif
+}
+
+void cli_batch_mpi_end(void)
+{
+#ifdef JC_HAVE_MPI
+    int up = 0, down = 0;
+    MPI_Initialized(&up);
+    MPI_Finalized(&down);
+    if (up && !down) MPI_Finalize();
+#endif
+}
+
+int cli_batch_is_writer(void) { return mpi_rank() == 0; }
+
+/* A value decided on rank 0, known to every rank. */
+static long share_long(long v)
+{
+#ifdef JC_HAVE_MPI
+    if (mpi_size() > 1) MPI_Bcast(&v, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+#endif
+    return v;
+}
+
+/* ---- options ---- */
+
+int cli_shard_parse(const char *text, cli_Shard *s, char *err, size_t err_len)
+{
+    char *end;
+    errno = 0;
+    const long k = strtol(text, &end, 10);
+    const int k_ok = end != text && *end == '/' && errno == 0;
+    const char *n_text = k_ok ? end + 1 : "";
+    const long n = k_ok ? strtol(n_text, &end, 10) : 0;
+    if (!k_ok || end == n_text || *end || errno || text[0] == '+' || n_text[0] == '+' || n < 1 || n > 1000000 ||
+        k < 1 || k > n) {
+        snprintf(err, err_len, "--shard '%s' is not valid (allowed: K/N with 1 <= K <= N <= 1000000, e.g. 3/8)", text);
+        return -1;
+    }
+    s->k = k;
+    s->n = n;
+    return 0;
+}
+
+void cli_shard_range(const cli_Shard *s, long total, long *lo, long *hi)
+{
+    /* Floor of (k-1) total / n in 128-bit-safe form: total and n are small enough for long double. */
+    *lo = (long)((long double)total * (long double)(s->k - 1) / (long double)s->n);
+    *hi = (long)((long double)total * (long double)s->k / (long double)s->n);
+    if (s->k == s->n) *hi = total;
+}
+
+int cli_threads_parse(const char *text, int *threads, char *err, size_t err_len)
+{
+    char *end;
+    errno = 0;
+    const long n = strtol(text, &end, 10);
+    if (end == text || *end || errno || text[0] == '+' || n < 1 || n > 1024) {
+        snprintf(err, err_len, "--threads '%s' is not valid (allowed: a whole number from 1 to 1024)", text);
+        return -1;
+    }
+    *threads = (int)n;
+    return 0;
+}
+
+int cli_batch_take(const char *cmd, cli_BatchArgs *a, int opt, const char *arg)
+{
+    switch (opt) {
+    case 'o': return cli_take_once(cmd, &a->output, "output", arg);
+    case 't': return cli_take_once(cmd, &a->threads, "threads", arg);
+    case 's': return cli_take_once(cmd, &a->shard, "shard", arg);
+    case 'r': a->resume = 1; return 0;
+    case 'q': a->quiet = 1; return 0;
+    default: return 1;
+    }
+}
+
+int cli_batch_configure(const char *cmd, const cli_BatchArgs *a, cli_Batch *b)
+{
+    char err[256];
+    b->cmd = cmd;
+    b->output = a->output;
+    b->resume = a->resume;
+    b->quiet = a->quiet;
+    b->shard = (cli_Shard){1, 1};
+    b->threads = 0;
+    if ((a->threads && cli_threads_parse(a->threads, &b->threads, err, sizeof err) != 0) ||
+        (a->shard && cli_shard_parse(a->shard, &b->shard, err, sizeof err) != 0)) {
+        cli_error("%s: %s", cmd, err);
+        return EXIT_USAGE;
+    }
+    if (a->output && !*a->output) {
+        cli_error("%s: --output needs a file name (or - for standard output)", cmd);
+        return EXIT_USAGE;
+    }
+    return EXIT_OK;
+}
+
+void cli_batch_help(void)
+{
+    puts("  --threads N     threads (default: every core; the output does not depend on it)\n"
+         "  --shard K/N     only the K-th of N equal, disjoint parts of the cases (Slurm job\n"
+         "                  arrays: --shard $SLURM_ARRAY_TASK_ID/N); only part 1 has the header,\n"
+         "                  so 'cat' of the parts in order is the whole job's file\n"
+         "  --resume        continue an unfinished job from FILE.part (rows are kept there,\n"
+         "                  fsynced every second, until the job completes and it becomes FILE)\n"
+         "  --quiet         no progress line (it is only shown on a terminal anyway)\n"
+         "Under mpirun (a build with -DJUMPCYL_MPI=ON) the processes share the cases and\n"
+         "rank 0 writes them in order: the same file as one process.");
+}
+
+/* ---- the rows' file ---- */
+
+typedef struct {
+    FILE *f;
+    int to_stdout;
+    char part[CLI_PATH_MAX];
+    double last_sync_s;
+} rows_file;
+
+/* Whether the row's inputs (the text between the index and the outcome)
+ * are those the job gives that case. */
+static int row_matches(const cli_Batch *b, long index, const char *line, size_t len)
+{
+    char inputs[CLI_ROW_MAX], why[256];
+    jc_Setup s;
+    b->make_case(b->ctx, index, inputs, sizeof inputs, &s, why, sizeof why);
+    char head[CLI_ROW_MAX + 32];
+    const int n = snprintf(head, sizeof head, "%ld%s%s,", index, *inputs ? "," : "", inputs);
+    return n > 0 && (size_t)n <= len && memcmp(head, line, (size_t)n) == 0;
+}
+
+/* Reads the rows FILE.part holds, checks that they are this job's, hands
+ * them to the consumer and cuts off a last line left half written. The
+ * number of complete rows, or -1 after a message. */
+static long resume_rows(const cli_Batch *b, FILE *f, const char *part, long lo, long hi)
+{
+    char *line = NULL;
+    size_t cap = 0;
+    long rows = 0, line_no = 0;
+    off_t good_end = 0;
+    ssize_t n;
+    int bad = 0;
+    const int want_header = b->shard.k == 1;
+    while ((n = getline(&line, &cap, f)) > 0) {
+        ++line_no;
+        if (line[n - 1] != '\n') break; /* half written when the job stopped: rewritten below */
+        if (want_header && line_no == 1) {
+            if (strcmp(line, b->header) != 0) {
+                cli_error("%s: %s: its header is not this job's (other --vary, --sigma or --range options?); "
+                          "remove it to start again",
+                          b->cmd, part);
+                bad = 1;
+                break;
+            }
+        } else {
+            cli_CaseResult r;
+            const long index = lo + rows;
+            if (index >= hi || cli_case_from_row(line, (size_t)n - 1, b->input_columns, &r) != 0 ||
+                !row_matches(b, index, line, (size_t)n)) {
+                cli_error("%s: %s: line %ld is not case %ld of this job; remove the file to start again", b->cmd,
+                          part, line_no, index);
+                bad = 1;
+                break;
+            }
+            if (b->consume) b->consume(b->consume_ctx, index, &r);
+            ++rows;
+        }
+        good_end += (off_t)n;
+    }
+    free(line);
+    if (bad) return -1;
+    if (ferror(f) || ftruncate(fileno(f), good_end) != 0 || fseeko(f, good_end, SEEK_SET) != 0) {
+        cli_error("%s: cannot read or cut %s: %s", b->cmd, part, strerror(errno));
+        return -1;
+    }
+    if (want_header && good_end == 0) return 0; /* not even the header: start afresh */
+    return rows;
+}
+
+/* Opens the rows' file; *done receives the rows already there (resume).
+ * EXIT_OK or an exit status after a message. */
+static int rows_open(const cli_Batch *b, rows_file *w, long lo, long hi, long *done)
+{
+    memset(w, 0, sizeof *w);
+    *done = 0;
+    if (!b->output) return EXIT_OK;
+    if (strcmp(b->output, "-") == 0) {
+        if (b->resume) {
+            cli_error("%s: --resume needs --output FILE (standard output cannot be continued)", b->cmd);
+            return EXIT_USAGE;
+        }
+        w->f = stdout;
+        w->to_stdout = 1;
+    } else {
+        if (snprintf(w->part, sizeof w->part, "%s.part", b->output) >= (int)sizeof w->part) {
+            cli_error("%s: --output '%s': the name is too long", b->cmd, b->output);
+            return EXIT_USAGE;
+        }
+        if (cli_check_output_dir(b->output) != 0) return EXIT_FAIL;
+        struct stat st;
+        const int exists = stat(w->part, &st) == 0;
+        if (exists && !b->resume) {
+            cli_error("%s: %s holds the rows of an unfinished job: continue it with --resume, or remove it", b->cmd,
+                      w->part);
+            return EXIT_USAGE;
+        }
+        w->f = fopen(w->part, exists ? "r+" : "w");
+        if (!w->f) {
+            cli_error("%s: cannot open %s: %s", b->cmd, w->part, strerror(errno));
+            return EXIT_FAIL;
+        }
+        if (exists) {
+            const long rows = resume_rows(b, w->f, w->part, lo, hi);
+            if (rows < 0) {
+                fclose(w->f);
+                w->f = NULL;
+                return EXIT_USAGE;
+            }
+            *done = rows;
+            if (cli_batch_is_writer() && rows > 0)
+                fprintf(stderr, "%s: resuming after %ld finished cases in %s\n", b->cmd, rows, w->part);
+        }
+    }
+    if (b->shard.k == 1 && (w->to_stdout || ftello(w->f) == 0)) fputs(b->header, w->f);
+    w->last_sync_s = cli_now_s();
+    return EXIT_OK;
+}
+
+/* The block's rows, flushed; fsynced when the last sync is a second old
+ * (always when final). 0, or -1 after a message. */
+static int rows_write(const cli_Batch *b, rows_file *w, const cli_CaseResult *r, long n, int final)
+{
+    if (!w->f) return 0;
+    for (long i = 0; i < n; ++i) fwrite(r[i].row, 1, (size_t)r[i].row_len, w->f);
+    int bad = fflush(w->f) != 0 || ferror(w->f);
+    if (!bad && !w->to_stdout && (final || cli_now_s() - w->last_sync_s >= FSYNC_PERIOD_S)) {
+        bad = fsync(fileno(w->f)) != 0;
+        w->last_sync_s = cli_now_s();
+    }
+    if (bad) cli_error("%s: cannot write %s: %s", b->cmd, w->to_stdout ? "standard output" : w->part,
+                       strerror(errno ? errno : EIO));
+    return bad ? -1 : 0;
+}
+
+/* Closes the file; when the job is complete FILE.part becomes FILE. */
+static int rows_close(const cli_Batch *b, rows_file *w, int complete)
+{
+    if (!w->f || w->to_stdout) return 0;
+    int bad = fflush(w->f) != 0 || fsync(fileno(w->f)) != 0;
+    bad |= fclose(w->f) != 0;
+    w->f = NULL;
+    if (!bad && complete) {
+        bad = rename(w->part, b->output) != 0;
+        if (!bad) cli_sync_dir(b->output);
+    }
+    if (bad) cli_error("%s: cannot finish %s: %s", b->cmd, complete ? b->output : w->part, strerror(errno));
+    return bad ? -1 : 0;
+}
+
+/* ---- computing ---- */
+
+/* Cases [first, first + n) into r, on every thread of this process. */
+static void compute(const cli_Batch *b, long first, long n, cli_CaseResult *r, jc_Workspace **ws)
+{
+#pragma omp parallel for schedule(dynamic, 4)
+    for (long i = 0; i < n; ++i) {
+        int t = 0;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+#endif
+        char inputs[CLI_ROW_MAX / 2], why[256] = "";
+        jc_Setup s;
+        const int ok = b->make_case(b->ctx, first + i, inputs, sizeof inputs, &s, why, sizeof why) == 0;
+        cli_case_run(first + i, inputs, ok ? &s : NULL, why, b->sim, ws[t], &r[i]);
+    }
+}
+
+/* Cases [first, first + n) of the block: this rank's slice computed here,
+ * the others gathered from their ranks onto rank 0. */
+static void compute_block(const cli_Batch *b, long first, long n, cli_CaseResult *r, jc_Workspace **ws)
+{
+    const int size = mpi_size();
+    if (size == 1) {
+        compute(b, first, n, r, ws);
+        return;
+    }
+#ifdef JC_HAVE_MPI
+    const int rank = mpi_rank();
+    int counts[256], displs[256];
+    for (int p = 0; p < size && p < 256; ++p) {
+        const long a = n * p / size, z = n * (p + 1) / size;
+        counts[p] = (int)((z - a) * (long)sizeof *r);
+        displs[p] = (int)(a * (long)sizeof *r);
+    }
+    const long a = n * rank / size, z = n * (rank + 1) / size;
+    compute(b, first + a, z - a, r + a, ws);
+    MPI_Gatherv(rank == 0 ? MPI_IN_PLACE : (void *)(r + a), counts[rank], MPI_BYTE, r, counts, displs, MPI_BYTE, 0,
+                MPI_COMM_WORLD);
+#endif
+}
+
+static int thread_count(const cli_Batch *b)
+{
+#ifdef _OPENMP
+    if (b->threads > 0) omp_set_num_threads(b->threads);
+    return omp_get_max_threads();
+#else
+    (void)b;
+    return 1;
+#endif
+}
+
+/* The kinds of cases seen, for the closing note. */
+typedef struct {
+    long invalid, failed;
+    long first_invalid;
+} case_notes;
+
+static void note_cases(case_notes *c, long first, const cli_CaseResult *r, long n)
+{
+    for (long i = 0; i < n; ++i) {
+        if (r[i].kind == CASE_INVALID && c->invalid++ == 0) c->first_invalid = first + i;
+        c->failed += r[i].kind == CASE_FAILED;
+    }
+}
+
+int cli_batch_run(const cli_Batch *b)
+{
+    long lo, hi, done = 0;
+    cli_shard_range(&b->shard, b->total, &lo, &hi);
+    const int writer = cli_batch_is_writer(), size = mpi_size();
+    if (size > 256) {
+        if (writer) cli_error("%s: at most 256 MPI processes (got %d)", b->cmd, size);
+        return EXIT_USAGE;
+    }
+    rows_file w;
+    int rc = writer ? rows_open(b, &w, lo, hi, &done) : EXIT_OK;
+    if (!writer) memset(&w, 0, sizeof w);
+    rc = (int)share_long(rc);
+    if (rc != EXIT_OK) return rc;
+    done = share_long(done);
+
+    const int threads = thread_count(b);
+    const long block = (long)BLOCK_CASES_PER_THREAD * threads * size;
+    cli_CaseResult *r = malloc((size_t)block * sizeof *r);
+    jc_Workspace **ws = calloc((size_t)threads, sizeof *ws);
+    int ok = r && ws;
+    for (int t = 0; ok && t < threads; ++t) ok = (ws[t] = jc_workspace_new()) != NULL;
+    if (!ok) {
+        cli_error("%s: out of memory", b->cmd);
+        rc = EXIT_FAIL;
+    }
+    cli_Progress progress;
+    char label[64];
+    snprintf(label, sizeof label, "%s: cases", b->cmd);
+    cli_progress_begin(&progress, label);
+    if (b->quiet || !writer) progress.enabled = 0;
+    case_notes notes = {0, 0, -1};
+    long next = lo + done;
+    while (rc == EXIT_OK && next < hi) {
+        /* Rank 0 decides whether to go on (a stop signal reaches it first). */
+        if (share_long(cli_stop_requested()) != 0) {
+            rc = -1;
+            break;
+        }
+        const long n = hi - next < block ? hi - next : block;
+        compute_block(b, next, n, r, ws);
+        if (writer) {
+            for (long i = 0; i < n; ++i)
+                if (b->consume) b->consume(b->consume_ctx, next + i, &r[i]);
+            note_cases(&notes, next, r, n);
+            if (rows_write(b, &w, r, n, next + n == hi) != 0) rc = EXIT_FAIL;
+        }
+        rc = (int)share_long(rc);
+        next += n;
+        cli_progress_update(&progress, next - lo - done, hi - lo - done);
+    }
+    cli_progress_end(&progress);
+    if (rc == -1) rc = EXIT_OK; /* stopped: the caller's status comes from the signal */
+    const int complete = rc == EXIT_OK && next >= hi;
+    if (writer && rows_close(b, &w, complete) != 0 && rc == EXIT_OK) rc = EXIT_FAIL;
+    if (writer && !complete && w.part[0] && cli_stop_requested())
+        cli_error("%s: stopped after %ld of %ld cases; they are kept in %s: run the same command with --resume to "
+                  "continue",
+                  b->cmd, next - lo, hi - lo, w.part);
+    if (writer && notes.invalid > 0)
+        cli_error("%s: %ld case(s) are not valid setups (first: case %ld); their rows say invalid_setup", b->cmd,
+                  notes.invalid, notes.first_invalid);
+    if (writer && notes.failed > 0)
+        cli_error("%s: %ld case(s) failed numerically; their rows say failed", b->cmd, notes.failed);
+    for (int t = 0; ws && t < threads; ++t) jc_workspace_free(ws[t]);
+    free(ws);
+    free(r);
+    if (rc == EXIT_OK && !complete) return writer ? cli_stop_status() : EXIT_FAIL;
+    return rc;
+}

@@ -1,0 +1,273 @@
+/* jumpcyl mc: Monte Carlo propagation of input uncertainties through the
+ * full model: where the first lift-off falls, how sure that is, and in how
+ * many separate windows of the ramp. */
+#include "batch.h"
+#include "figures.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEFAULT_SAMPLES 1000
+#define MAX_SAMPLES 100000000L /* the summary keeps two doubles per sample: 1.6 GB at most */
+#define DEFAULT_GAP_M 0.02     /* lift-offs further apart than this are separate regions */
+#define HOP_GAP_M 0.005        /* the same for the largest hops */
+
+typedef struct {
+    const char *samples, *seed, *gap;
+    const char *sigma[CLI_PARAM_MAX], *range[CLI_PARAM_MAX];
+    int n_sigma, n_range, no_defaults, json;
+    cli_BatchArgs batch;
+} mc_opts;
+
+static void help(void)
+{
+    puts("Usage: jumpcyl mc [SETUP OPTIONS] [SIMULATION OPTIONS] [--samples N] [--seed S]\n"
+         "                  [--sigma NAME=VALUE ...] [--range NAME=LO:HI ...] [--no-defaults]\n"
+         "                  [--output FILE.csv] [--threads N] [--shard K/N] [--resume] [--json]\n"
+         "Monte Carlo propagation of input uncertainties through the full model: the\n"
+         "distribution of the first lift-off and of the largest hop.\n"
+         "\n"
+         "  --samples N     samples (default 1000)\n"
+         "  --seed S        seed of the random numbers, 0 .. 2^64-1 (default 1); sample i is\n"
+         "                  the same for any --threads, --shard or MPI process count\n"
+         "  --sigma NAME=VALUE  a normal spread of a setup option about its value, with units\n"
+         "                  (--sigma rod-offset=0.5mm, --sigma theta0=2); 0 fixes it\n"
+         "  --range NAME=LO:HI  a uniform spread (--range mu=0.3:1.0)\n"
+         "  --no-defaults   only the spreads given; by default the paper's stated tolerances are\n"
+         "                  normal standard deviations (radius 0.05 cm, disc-mass and rod-mass\n"
+         "                  0.05 g, rod-offset 0.05 cm, theta0 3 deg) and friction and\n"
+         "                  restitution, which it did not measure, are uniform (mu 0.3..1.0,\n"
+         "                  restitution 0.1..0.6); an option set on the line keeps its value\n"
+         "  --region-gap LEN  lift-offs further apart than this are separate regions (default 2cm)\n"
+         "  --json          the summary as JSON\n"
+         "  --output FILE   also keep every sample's row (its drawn values and outcome, as sweep)");
+    cli_batch_help();
+    puts("A sample whose drawn values make no valid setup (a negative mass) is drawn again, up\n"
+         "to 64 times: the normals are truncated to valid setups.\n"
+         "  -h, --help      this help\n");
+}
+
+static int take(int opt, const char *arg, void *ctx)
+{
+    mc_opts *o = ctx;
+    switch (opt) {
+    case 'n': return cli_take_once("mc", &o->samples, "samples", arg);
+    case 'S': return cli_take_once("mc", &o->seed, "seed", arg);
+    case 'g': return cli_take_once("mc", &o->gap, "region-gap", arg);
+    case 'D': o->no_defaults = 1; return 0;
+    case 'j': o->json = 1; return 0;
+    case 'z':
+    case 'u': {
+        const char **list = opt == 'z' ? o->sigma : o->range;
+        int *n = opt == 'z' ? &o->n_sigma : &o->n_range;
+        if (*n == CLI_PARAM_MAX) {
+            cli_error("mc: too many --%s options (allowed: at most %d)", opt == 'z' ? "sigma" : "range",
+                      CLI_PARAM_MAX);
+            return EXIT_USAGE;
+        }
+        list[(*n)++] = arg;
+        return 0;
+    }
+    default: {
+        const int st = cli_batch_take("mc", &o->batch, opt, arg);
+        return st == 1 ? EXIT_USAGE : st;
+    }
+    }
+}
+
+static const struct option own[] = {
+    {"samples", required_argument, 0, 'n'}, {"seed", required_argument, 0, 'S'},
+    {"sigma", required_argument, 0, 'z'},   {"range", required_argument, 0, 'u'},
+    {"no-defaults", no_argument, 0, 'D'},   {"region-gap", required_argument, 0, 'g'},
+    {"json", no_argument, 0, 'j'},          CLI_BATCH_OPTIONS,
+    {"help", no_argument, 0, 'h'}};
+static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
+
+static int parse_numbers(const mc_opts *o, long *samples, uint64_t *seed, double *gap)
+{
+    char *end;
+    *samples = DEFAULT_SAMPLES;
+    *seed = 1;
+    *gap = DEFAULT_GAP_M;
+    if (o->samples) {
+        errno = 0;
+        *samples = strtol(o->samples, &end, 10);
+        if (end == o->samples || *end || errno || o->samples[0] == '+' || *samples < 1 || *samples > MAX_SAMPLES) {
+            cli_error("mc: --samples '%s' is not valid (allowed: a whole number from 1 to %ld)", o->samples,
+                      MAX_SAMPLES);
+            return EXIT_USAGE;
+        }
+    }
+    if (o->seed) {
+        errno = 0;
+        const unsigned long long s = strtoull(o->seed, &end, 10);
+        if (end == o->seed || *end || errno || o->seed[0] == '-' || o->seed[0] == '+') {
+            cli_error("mc: --seed '%s' is not valid (allowed: a whole number from 0 to 18446744073709551615)",
+                      o->seed);
+            return EXIT_USAGE;
+        }
+        *seed = (uint64_t)s;
+    }
+    char msg[256];
+    if (o->gap && (cli_parse_quantity(o->gap, Q_LENGTH, gap, msg, sizeof msg) != 0 || !(*gap > 0))) {
+        cli_error("mc: --region-gap '%s' is not valid (allowed: a length > 0, e.g. 2cm)", o->gap);
+        return EXIT_USAGE;
+    }
+    return EXIT_OK;
+}
+
+static void print_spreads(const cli_McJob *job)
+{
+    printf("Uncertain inputs (%d):\n", job->n);
+    if (job->n == 0) printf("  none: every sample is the same run\n");
+    for (int j = 0; j < job->n; ++j) {
+        const cli_Param *p = &job->params[j];
+        const double k = p->column_scale;
+        const char *unit = strchr(p->column, '_') && p->q != Q_NUMBER ? strrchr(p->column, '_') + 1 : "";
+        if (strcmp(p->column, "mu_s") == 0 || strcmp(p->column, "mu_k") == 0) unit = "";
+        if (p->kind == PARAM_NORMAL)
+            printf("  %-14s normal  %.6g %s, sigma %.4g %s   (%s)\n", cli_setup_options[p->option].name, p->a * k, unit,
+                   p->b * k, unit, job->why[j]);
+        else
+            printf("  %-14s uniform %.6g .. %.6g %s   (%s)\n", cli_setup_options[p->option].name, p->a * k, p->b * k,
+                   unit, job->why[j]);
+    }
+}
+
+static void print_stats(const char *what, const cli_Stats *s, long total, double scale, const char *unit)
+{
+    if (s->n == 0) {
+        printf("  no sample has one\n");
+        return;
+    }
+    printf("  %s: mean %.2f %s, sd %.2f %s; 2.5 %% %.2f, median %.2f, 97.5 %% %.2f %s\n", what, s->mean * scale, unit,
+           s->sd * scale, unit, s->p2_5 * scale, s->p50 * scale, s->p97_5 * scale, unit);
+    printf("  %d separate region(s)%s:\n", s->region_count, s->regions_truncated ? " (first 16 shown)" : "");
+    for (int i = 0; i < s->region_count; ++i) {
+        const cli_Region *r = &s->regions[i];
+        printf("    %8.2f .. %8.2f %s: %5.1f %% of the samples (mean %.2f %s)\n", r->lo_m * scale, r->hi_m * scale,
+               unit, 100.0 * (double)r->count / (double)total, r->mean_m * scale, unit);
+    }
+}
+
+static cJSON *json_stats(const cli_Stats *s, long total)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "count", (double)s->n);
+    cJSON_AddNumberToObject(o, "fraction", total ? (double)s->n / (double)total : 0.0);
+    if (s->n > 0) {
+        cJSON_AddNumberToObject(o, "mean", s->mean);
+        cJSON_AddNumberToObject(o, "sd", s->sd);
+        cJSON_AddNumberToObject(o, "p2_5", s->p2_5);
+        cJSON_AddNumberToObject(o, "p50", s->p50);
+        cJSON_AddNumberToObject(o, "p97_5", s->p97_5);
+    }
+    cJSON *regions = cJSON_AddArrayToObject(o, "regions");
+    for (int i = 0; i < s->region_count; ++i) {
+        cJSON *r = cJSON_CreateObject();
+        cJSON_AddNumberToObject(r, "lo", s->regions[i].lo_m);
+        cJSON_AddNumberToObject(r, "hi", s->regions[i].hi_m);
+        cJSON_AddNumberToObject(r, "mean", s->regions[i].mean_m);
+        cJSON_AddNumberToObject(r, "fraction", (double)s->regions[i].count / (double)total);
+        cJSON_AddItemToArray(regions, r);
+    }
+    return o;
+}
+
+static int report(const cli_McJob *job, cli_McTally *t, long samples, double gap, int json, const cli_Shard *shard)
+{
+    cli_Stats lift, hop;
+    const long valid = t->valid;
+    cli_stats_compute(t->liftoff_x_m, t->liftoffs, t->none, t->invalid, gap, &lift);
+    cli_stats_compute(t->hop_m, t->valid, 0, t->invalid, HOP_GAP_M, &hop);
+    if (json) {
+        cJSON *doc = cJSON_CreateObject();
+        cJSON_AddNumberToObject(doc, "samples", (double)samples);
+        cJSON_AddNumberToObject(doc, "valid", (double)valid);
+        cJSON_AddNumberToObject(doc, "invalid", (double)t->invalid);
+        cJSON_AddNumberToObject(doc, "slides_at_start", (double)t->slides);
+        cJSON_AddNumberToObject(doc, "no_liftoff", (double)t->none);
+        cJSON *l = json_stats(&lift, valid);
+        cJSON_AddItemToObject(doc, "first_liftoff_x_m", l);
+        cJSON_AddItemToObject(doc, "largest_hop_m", json_stats(&hop, valid));
+        return cli_json_print(doc);
+    }
+    if (shard->n > 1)
+        printf("(shard %ld of %ld: these samples only; 'cat' the shards' files for the whole set)\n", shard->k,
+               shard->n);
+    print_spreads(job);
+    printf("\n%ld samples, %ld valid setups", samples, valid);
+    if (t->invalid) printf(" (%ld invalid or failed)", t->invalid);
+    printf(".\nFirst lift-off on the ramp: %ld of %ld (%.1f %%); no lift-off: %ld (%.1f %%)", t->liftoffs, valid,
+           valid ? 100.0 * (double)t->liftoffs / (double)valid : 0.0, t->none,
+           valid ? 100.0 * (double)t->none / (double)valid : 0.0);
+    if (t->slides) printf("; slides from the start: %ld", t->slides);
+    printf("\n");
+    print_stats("position x", &lift, valid, 100.0, "cm");
+    printf("Largest hop (rim above the incline; 0 without a hop):\n");
+    print_stats("height", &hop, valid, 1000.0, "mm");
+    return EXIT_OK;
+}
+
+int cmd_mc(int argc, char **argv)
+{
+    mc_opts o;
+    memset(&o, 0, sizeof o);
+    cli_SetupArgs sa;
+    cli_SimArgs sim_args;
+    int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
+    if (st != CLI_GO_ON) return st;
+    cli_Batch b;
+    memset(&b, 0, sizeof b);
+    long samples;
+    uint64_t seed;
+    double gap;
+    if ((st = cli_batch_configure("mc", &o.batch, &b)) != EXIT_OK || (st = parse_numbers(&o, &samples, &seed, &gap)))
+        return st;
+    if (b.output && strcmp(b.output, "-") == 0) {
+        cli_error("mc: --output - is not allowed: the summary goes to standard output; give --output FILE.csv");
+        return EXIT_USAGE;
+    }
+    jc_Setup setup;
+    jc_SimOptions sim;
+    jc_Model model;
+    if ((st = cli_build_inputs("mc", &sa, &sim_args, &setup, &sim, &model)) != 0) return st;
+    cli_McJob job;
+    if ((st = cli_mc_job_init(&job, "mc", &sa, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != 0)
+        return st;
+    char *header = cli_batch_header(job.params, job.n);
+    cli_McTally tally;
+    if (!header || cli_mc_tally_init(&tally, samples) != 0) {
+        cli_error("mc: out of memory for %ld samples", samples);
+        free(header);
+        cli_mc_tally_free(&tally);
+        return EXIT_FAIL;
+    }
+    b.total = samples;
+    b.input_columns = job.n;
+    b.header = header;
+    b.sim = &sim;
+    b.make_case = cli_mc_make_case;
+    b.ctx = &job;
+    b.consume = cli_mc_consume;
+    b.consume_ctx = &tally;
+    st = cli_batch_run(&b);
+    long lo, hi;
+    cli_shard_range(&b.shard, samples, &lo, &hi);
+    if (st == EXIT_OK && cli_batch_is_writer()) {
+        if (!o.json) {
+            printf("Monte Carlo: %ld samples (seed %llu) of the full model about this setup:\n", hi - lo,
+                   (unsigned long long)seed);
+            cli_print_setup(stdout, &model, 1);
+            printf("\n");
+        }
+        st = report(&job, &tally, hi - lo, gap, o.json, &b.shard);
+    }
+    cli_mc_tally_free(&tally);
+    free(header);
+    cli_mc_job_free(&job);
+    return st;
+}
