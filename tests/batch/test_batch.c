@@ -1,0 +1,418 @@
+/* Batch jobs (sweep, mc) end to end, the tool run as a process:
+ * - a sweep's rows are the runs `simulate` makes, value by value;
+ * - the file is the same bytes for 1, 2 and 4 threads and for shards put
+ *   back together with cat;
+ * - a sweep stopped by SIGTERM keeps its finished rows and --resume ends in
+ *   the same bytes; a half-written last row is cut, another job's file refused;
+ * - Monte Carlo with no spread is the deterministic run; with a small normal
+ *   spread of theta0 its mean and standard deviation converge to the
+ *   linearised propagation (slope by central differences of two runs);
+ * - bad --vary, --sigma, --range, --shard, --threads, --samples: exit 2,
+ *   one line, no file. */
+#define _POSIX_C_SOURCE 200809L
+#include "../cli_run.h"
+#include "../test.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+static char dir[64];
+
+static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
+
+static int file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* The number of a JSON object's member, NaN when it is absent. */
+static double num(const cJSON *o, const char *name)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, name);
+    return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+/* A field of a CSV line by 0-based index, as a number (NaN if empty). */
+static double csv_num(const char *line, int index)
+{
+    const char *p = line;
+    for (int i = 0; i < index && p; ++i) {
+        p = strchr(p, ',');
+        if (p) ++p;
+    }
+    if (!p || *p == ',' || *p == '\n' || *p == '\0') return NAN;
+    return strtod(p, NULL);
+}
+
+static void csv_text(const char *line, int index, char *out, size_t len)
+{
+    const char *p = line;
+    for (int i = 0; i < index && p; ++i) {
+        p = strchr(p, ',');
+        if (p) ++p;
+    }
+    const size_t n = p ? strcspn(p, ",\n") : 0;
+    snprintf(out, len, "%.*s", (int)n, p ? p : "");
+}
+
+/* The k-th line (0-based) of text, NULL if there is none. */
+static const char *line_at(const char *text, int k)
+{
+    for (int i = 0; i < k && text; ++i) {
+        text = strchr(text, '\n');
+        if (text) ++text;
+    }
+    return text && *text ? text : NULL;
+}
+
+/* Rows of a sweep over the incline against `simulate --json` at each value. */
+static int test_sweep_rows_are_simulate_runs(void)
+{
+    const char *incl[] = {"12", "30", "45", "60"};
+    const char *args[] = {"sweep", "--vary", "incline=12,30,45,60", "--mu", "0.4", "--output", "-", NULL};
+    cli_result r = cli_run(args);
+    ENSURE_MSG(r.status == 0, "sweep exit %d: %s", r.status, r.err);
+    ENSURE_MSG(strncmp(r.out, "case,incline_deg,first_event,first_slip_theta_rad,first_slip_x_m,first_slip_t_s,"
+                              "first_liftoff_theta_rad,first_liftoff_x_m,first_liftoff_t_s,liftoffs,bounces,"
+                              "largest_hop_m,termination,end_x_m,end_t_s,energy_balance_error_J\n",
+                       strlen("case,incline_deg,")) == 0,
+               "header: %.200s", r.out);
+    for (int k = 0; k < 4; ++k) {
+        const char *row = line_at(r.out, k + 1);
+        ENSURE_MSG(row != NULL, "row %d missing", k);
+        const char *sargs[] = {"simulate", "--incline", incl[k], "--mu", "0.4", "--json", NULL};
+        cli_result s = cli_run(sargs);
+        ENSURE(s.status == 0);
+        cJSON *doc = cJSON_Parse(s.out);
+        ENSURE(doc != NULL);
+        const cJSON *sum = cJSON_GetObjectItemCaseSensitive(doc, "summary");
+        const cJSON *events = cJSON_GetObjectItemCaseSensitive(doc, "events");
+        const cJSON *e0 = cJSON_GetArrayItem(events, 0);
+        char term[32], first[32];
+        csv_text(row, 12, term, sizeof term);
+        csv_text(row, 2, first, sizeof first);
+        const cJSON *jt = cJSON_GetObjectItemCaseSensitive(doc, "termination");
+        const cJSON *jk = cJSON_GetObjectItemCaseSensitive(e0, "kind");
+        /* %.12g in the row: 1e-11 relative */
+        const double tol = 2e-11;
+        ENSURE_MSG(csv_num(row, 0) == k && csv_num(row, 1) == atof(incl[k]), "row %d: %s", k, row);
+        ENSURE_MSG(cJSON_IsString(jt) && strcmp(term, jt->valuestring) == 0, "termination %s", term);
+        ENSURE_MSG(cJSON_IsString(jk) && strcmp(first, jk->valuestring) == 0, "first event %s", first);
+        if (strcmp(first, "slip") == 0) {
+            ENSURE_REL(csv_num(row, 3), num(e0, "theta"), tol);
+            ENSURE_REL(csv_num(row, 4), num(e0, "x"), tol);
+            ENSURE_REL(csv_num(row, 5), num(e0, "t"), tol);
+        }
+        const double lx = num(sum, "first_liftoff_x");
+        if (isnan(lx)) ENSURE(isnan(csv_num(row, 7)));
+        else {
+            ENSURE_REL(csv_num(row, 7), lx, tol);
+            ENSURE_REL(csv_num(row, 6), num(sum, "first_liftoff_theta"), tol);
+        }
+        ENSURE(csv_num(row, 9) == num(sum, "liftoffs") && csv_num(row, 10) == num(sum, "bounces"));
+        if (num(sum, "liftoffs") > 0) ENSURE_REL(csv_num(row, 11), num(sum, "largest_hop"), tol);
+        ENSURE_REL(csv_num(row, 14), num(doc, "t_end"), tol);
+        cJSON_Delete(doc);
+        cli_result_free(&s);
+    }
+    ENSURE(line_at(r.out, 5) == NULL);
+    cli_result_free(&r);
+    return 0;
+}
+
+/* A grid sweep to a file with the given extra options; its bytes (caller frees). */
+static char *grid_sweep(const char *name, const char *opt1, const char *opt2)
+{
+    char out[128], part[160];
+    path_in(out, sizeof out, name);
+    snprintf(part, sizeof part, "%s.part", out);
+    remove(out);
+    remove(part);
+    const char *args[] = {"sweep", "--vary", "incline=10:50:8", "--vary", "rod-offset=2cm:8cm:1.5cm", "--vary",
+                          "impact-law=stronge,newton", "--output", out, opt1, opt2, NULL};
+    cli_result r = cli_run(args);
+    char *text = r.status == 0 && !file_exists(part) ? cli_run_slurp(out) : NULL;
+    if (!text) fprintf(stderr, "sweep %s %s: exit %d: %s\n", opt1 ? opt1 : "", opt2 ? opt2 : "", r.status, r.err);
+    cli_result_free(&r);
+    return text;
+}
+
+static int test_same_bytes_for_threads_and_shards(void)
+{
+    char *one = grid_sweep("t1.csv", "--threads", "1");
+    char *two = grid_sweep("t2.csv", "--threads", "2");
+    char *four = grid_sweep("t4.csv", "--threads", "4");
+    ENSURE(one && two && four);
+    ENSURE_MSG(strcmp(one, two) == 0 && strcmp(one, four) == 0, "thread counts differ");
+    /* 6 x 5 x 2 = 60 cases and a header */
+    ENSURE(line_at(one, 60) != NULL && line_at(one, 61) == NULL);
+    size_t len = 0;
+    char joined[65536] = "";
+    for (int k = 1; k <= 7; ++k) {
+        char shard[16], name[32];
+        snprintf(shard, sizeof shard, "%d/7", k);
+        snprintf(name, sizeof name, "s%d.csv", k);
+        char *part = grid_sweep(name, "--shard", shard);
+        ENSURE(part != NULL);
+        ENSURE(len + strlen(part) < sizeof joined);
+        memcpy(joined + len, part, strlen(part) + 1);
+        len += strlen(part);
+        free(part);
+    }
+    ENSURE_MSG(strcmp(joined, one) == 0, "the 7 shards put together are not the single file");
+    free(one);
+    free(two);
+    free(four);
+    return 0;
+}
+
+static void sleep_s(double s)
+{
+    struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
+    nanosleep(&ts, NULL);
+}
+
+static long file_size(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 ? (long)st.st_size : -1;
+}
+
+static int test_stopped_sweep_resumes_to_the_same_bytes(void)
+{
+    char out[128], part[160], ref[128];
+    path_in(out, sizeof out, "stop.csv");
+    path_in(ref, sizeof ref, "ref.csv");
+    snprintf(part, sizeof part, "%s.part", out);
+    remove(out);
+    remove(part);
+    const char *job[] = {"sweep", "--vary", "incline=20:40:0.01", "--vary", "mu=0.3,0.6,0.9", "--output", NULL,
+                         "--quiet", NULL, NULL};
+    job[6] = ref;
+    cli_result whole = cli_run(job);
+    ENSURE_MSG(whole.status == 0, "%s", whole.err);
+    cli_result_free(&whole);
+    char *expected = cli_run_slurp(ref);
+    ENSURE(expected != NULL);
+
+    job[6] = out;
+    char out_tmp[64], err_tmp[64];
+    const pid_t pid = cli_run_start(job, NULL, out_tmp, err_tmp);
+    ENSURE(pid > 0);
+    /* Stop it once it has written some rows, well before its end. */
+    for (int i = 0; i < 2000 && file_size(part) < 4000; ++i) sleep_s(0.005);
+    kill(pid, SIGTERM);
+    cli_result r = cli_run_wait(pid, out_tmp, err_tmp, 1);
+    ENSURE_MSG(r.status == 143 || r.status == 0, "exit %d after SIGTERM: %s", r.status, r.err);
+    if (r.status == 143) {
+        ENSURE_MSG(!file_exists(out) && file_exists(part), "a stopped job keeps FILE.part and makes no FILE");
+        ENSURE_MSG(strstr(r.err, "--resume") != NULL, "the message names --resume: %s", r.err);
+        char *kept = cli_run_slurp(part);
+        ENSURE(kept && strlen(kept) < strlen(expected) && strncmp(kept, expected, strlen(kept)) == 0);
+        printf("  stopped after %ld bytes of %zu; the kept rows are the first rows of the whole job\n",
+               (long)strlen(kept), strlen(expected));
+        free(kept);
+        /* A half-written row at the end, as a kill during a write leaves it. */
+        FILE *f = fopen(part, "a");
+        ENSURE(f != NULL);
+        fputs("999999,25.5,0.3,sl", f);
+        fclose(f);
+        /* without --resume: refused, nothing touched */
+        job[8] = NULL;
+        cli_result again = cli_run(job);
+        ENSURE_MSG(again.status == 2 && cli_one_line(again.err) && strstr(again.err, "--resume"), "%s", again.err);
+        cli_result_free(&again);
+        job[8] = "--resume";
+        cli_result res = cli_run(job);
+        ENSURE_MSG(res.status == 0, "resume exit %d: %s", res.status, res.err);
+        cli_result_free(&res);
+        job[8] = NULL;
+    } else {
+        printf("  (the job ended before the stop; nothing to resume)\n");
+    }
+    cli_result_free(&r);
+    char *got = cli_run_slurp(out);
+    ENSURE_MSG(got && strcmp(got, expected) == 0, "the resumed file differs from the uninterrupted one");
+    ENSURE(!file_exists(part));
+    free(got);
+
+    /* Another job's rows are refused. */
+    FILE *f = fopen(part, "w");
+    ENSURE(f != NULL);
+    fputs(expected, f); /* header of a 2-parameter job, resumed as a 1-parameter one */
+    fclose(f);
+    const char *other[] = {"sweep", "--vary", "incline=20:40:1", "--output", out, "--resume", NULL};
+    cli_result o = cli_run(other);
+    ENSURE_MSG(o.status == 2 && cli_one_line(o.err) && strstr(o.err, "header"), "exit %d: %s", o.status, o.err);
+    cli_result_free(&o);
+    remove(part);
+    free(expected);
+    return 0;
+}
+
+static cJSON *mc_json(const char *const *extra, cli_result *keep)
+{
+    const char *args[24] = {"mc", "--json", "--quiet"};
+    int n = 3;
+    for (int i = 0; extra[i] && n < 23; ++i) args[n++] = extra[i];
+    args[n] = NULL;
+    *keep = cli_run(args);
+    if (keep->status != 0) fprintf(stderr, "mc: exit %d: %s\n", keep->status, keep->err);
+    return keep->status == 0 ? cJSON_Parse(keep->out) : NULL;
+}
+
+static double first_liftoff_x(const char *theta0)
+{
+    const char *args[] = {"simulate", "--json", "--theta0", theta0, NULL};
+    cli_result r = cli_run(args);
+    cJSON *doc = r.status == 0 ? cJSON_Parse(r.out) : NULL;
+    const double x = doc ? num(cJSON_GetObjectItemCaseSensitive(doc, "summary"), "first_liftoff_x") : NAN;
+    cJSON_Delete(doc);
+    cli_result_free(&r);
+    return x;
+}
+
+static int test_mc_without_spread_is_the_run(void)
+{
+    const char *extra[] = {"--no-defaults", "--samples", "40", NULL};
+    cli_result r;
+    cJSON *doc = mc_json(extra, &r);
+    ENSURE(doc != NULL);
+    const cJSON *l = cJSON_GetObjectItemCaseSensitive(doc, "first_liftoff_x_m");
+    const double x0 = first_liftoff_x("0");
+    ENSURE(num(l, "count") == 40 && num(l, "sd") == 0.0);
+    ENSURE_REL(num(l, "mean"), x0, 1e-14);
+    ENSURE_REL(num(l, "p2_5"), x0, 1e-14);
+    cJSON_Delete(doc);
+    cli_result_free(&r);
+    return 0;
+}
+
+/* theta0 ~ N(0, (0.5 deg)^2) at 30 degrees: the first lift-off is nearly
+ * linear in theta0 over +-2 deg, so x ~ N(x0, (|dx/dtheta0| 0.5 deg)^2). */
+static int test_mc_converges_to_the_linearised_spread(void)
+{
+    const double h_deg = 1.0, sigma_deg = 0.5;
+    const double slope = (first_liftoff_x("1") - first_liftoff_x("-1")) / (2 * h_deg); /* m per degree */
+    const double x0 = first_liftoff_x("0"), sd_lin = fabs(slope) * sigma_deg;
+    ENSURE(isfinite(slope) && sd_lin > 1e-4);
+    const char *sizes[] = {"250", "1000", "8000"};
+    double prev_err = INFINITY;
+    for (int k = 0; k < 3; ++k) {
+        const char *extra[] = {"--no-defaults", "--sigma", "theta0=0.5", "--samples", sizes[k], "--seed", "7", NULL};
+        cli_result r;
+        cJSON *doc = mc_json(extra, &r);
+        ENSURE(doc != NULL);
+        const cJSON *l = cJSON_GetObjectItemCaseSensitive(doc, "first_liftoff_x_m");
+        const double n = atof(sizes[k]), mean = num(l, "mean"), sd = num(l, "sd");
+        /* 4 standard errors: of a mean sd/sqrt(n), of a normal's sd sd/sqrt(2n) */
+        ENSURE_MSG(fabs(mean - x0) <= 4 * sd_lin / sqrt(n) + 1e-6, "n %.0f: mean %.9g vs %.9g", n, mean, x0);
+        const double err = fabs(sd / sd_lin - 1);
+        ENSURE_MSG(err <= 4 / sqrt(2 * n) + 0.01, "n %.0f: sd %.6g vs linearised %.6g", n, sd, sd_lin);
+        ENSURE_MSG(fabs(num(l, "p97_5") - num(l, "p2_5") - 2 * 1.959964 * sd_lin) <= 8 * sd_lin / sqrt(n) + 2e-5,
+                   "n %.0f: the 95 %% interval %.6g wide", n, num(l, "p97_5") - num(l, "p2_5"));
+        printf("  n %5.0f: mean %.6f m (run %.6f), sd %.4g mm (linearised %.4g mm)\n", n, mean, x0, sd * 1e3,
+               sd_lin * 1e3);
+        if (k == 2) ENSURE_MSG(err < 0.05 && err <= prev_err + 0.03, "sd error %.3g after %.3g", err, prev_err);
+        prev_err = err;
+        cJSON_Delete(doc);
+        cli_result_free(&r);
+    }
+    return 0;
+}
+
+/* The sampled values are those of the seed and the sample index alone:
+ * shards of a Monte Carlo job put together are the whole job. */
+static int test_mc_shards_are_the_whole_job(void)
+{
+    char whole[128], a[128], b[128];
+    path_in(whole, sizeof whole, "mc.csv");
+    path_in(a, sizeof a, "mc1.csv");
+    path_in(b, sizeof b, "mc2.csv");
+    const char *j0[] = {"mc", "--samples", "300", "--seed", "99", "--output", whole, "--threads", "2", NULL};
+    const char *j1[] = {"mc", "--samples", "300", "--seed", "99", "--output", a, "--shard", "1/2", "--threads", "1", NULL};
+    const char *j2[] = {"mc", "--samples", "300", "--seed", "99", "--output", b, "--shard", "2/2", NULL};
+    cli_result r0 = cli_run(j0), r1 = cli_run(j1), r2 = cli_run(j2);
+    ENSURE(r0.status == 0 && r1.status == 0 && r2.status == 0);
+    char *w = cli_run_slurp(whole), *p1 = cli_run_slurp(a), *p2 = cli_run_slurp(b);
+    ENSURE(w && p1 && p2 && strlen(p1) + strlen(p2) == strlen(w));
+    ENSURE(strncmp(w, p1, strlen(p1)) == 0 && strcmp(w + strlen(p1), p2) == 0);
+    ENSURE(strstr(r0.out, "radius") && strstr(r0.out, "uniform"));
+    free(w);
+    free(p1);
+    free(p2);
+    cli_result_free(&r0);
+    cli_result_free(&r1);
+    cli_result_free(&r2);
+    return 0;
+}
+
+static int test_bad_values(void)
+{
+    char out[128];
+    path_in(out, sizeof out, "bad.csv");
+    static const char *const cases[][8] = {
+        {"sweep", "--vary", "incline=95", "--output", NULL},
+        {"sweep", "--vary", "incline=30:10:5", "--output", NULL},
+        {"sweep", "--vary", "incline=10:30:0", "--output", NULL},
+        {"sweep", "--vary", "incline=", "--output", NULL},
+        {"sweep", "--vary", "incline=10,,20", "--output", NULL},
+        {"sweep", "--vary", "wheels=3", "--output", NULL},
+        {"sweep", "--vary", "preset=paper", "--output", NULL},
+        {"sweep", "--vary", "mu=-0.5", "--output", NULL},
+        {"sweep", "--vary", "impact-law=elastic", "--output", NULL},
+        {"sweep", "--vary", "incline=0:80:1e-9", "--output", NULL},
+        {"sweep", "--vary", "incline=10", "--incline", "20", "--output", NULL},
+        {"sweep", "--vary", "incline=10", "--shard", "0/3", "--output", NULL},
+        {"sweep", "--vary", "incline=10", "--shard", "4/3", "--output", NULL},
+        {"sweep", "--vary", "incline=10", "--shard", "1/x", "--output", NULL},
+        {"sweep", "--vary", "incline=10", "--threads", "0", "--output", NULL},
+        {"mc", "--sigma", "mu=-1", "--output", NULL},
+        {"mc", "--sigma", "impact-law=1", "--output", NULL},
+        {"mc", "--range", "mu=1:0.5", "--output", NULL},
+        {"mc", "--range", "mu=0.5", "--output", NULL},
+        {"mc", "--samples", "0", "--output", NULL},
+        {"mc", "--samples", "10", "--seed", "-4", "--output", NULL},
+        {"mc", "--sigma", "rod-offset=1mm", "--sigma", "rod-offset=2mm", "--output", NULL},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        const char *args[10];
+        int n = 0;
+        for (; cases[i][n]; ++n) args[n] = cases[i][n];
+        args[n++] = out;
+        args[n] = NULL;
+        remove(out);
+        cli_result r = cli_run(args);
+        ENSURE_MSG(r.status == 2 && cli_one_line(r.err), "case %zu (%s %s %s): exit %d, stderr: %s", i, args[0],
+                   args[1], args[2], r.status, r.err);
+        ENSURE_MSG(!file_exists(out), "case %zu left a file", i);
+        cli_result_free(&r);
+    }
+    printf("  %zu bad values refused with one line each\n", sizeof cases / sizeof cases[0]);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (cli_run_init(argc, argv) != 0) return 2;
+    snprintf(dir, sizeof dir, "/tmp/jc_batch_XXXXXX");
+    if (!mkdtemp(dir)) return 2;
+    RUN_TEST(test_sweep_rows_are_simulate_runs);
+    RUN_TEST(test_same_bytes_for_threads_and_shards);
+    RUN_TEST(test_stopped_sweep_resumes_to_the_same_bytes);
+    RUN_TEST(test_mc_without_spread_is_the_run);
+    RUN_TEST(test_mc_converges_to_the_linearised_spread);
+    RUN_TEST(test_mc_shards_are_the_whole_job);
+    RUN_TEST(test_bad_values);
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    TEST_MAIN_END();
+}
