@@ -7,11 +7,14 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
 # Debian packages the build and tests need.
-DEB_PACKAGES := cmake make gcc pkgconf libgsl-dev libcjson-dev gnuplot-nox libcairo2-dev ffmpeg
+DEB_PACKAGES := cmake make gcc pkgconf libgsl-dev libcjson-dev gnuplot-nox libcairo2-dev ffmpeg librandom123-dev
 
 # Input safety (docs/config.md): experiment files (inih); the CI's fuzzing
 # (clang and its libFuzzer runtime), valgrind run and static analysis.
 DEB_PACKAGES += libinih-dev clang libclang-rt-14-dev valgrind cppcheck
+# The optional MPI build of the batch commands and its CI check (make test-mpi).
+DEB_PACKAGES += libopenmpi-dev openmpi-bin
+MPI_BUILD    ?= build-mpi
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := options config simulate names
@@ -19,7 +22,7 @@ LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/te
                 tests/test_safe_output.c tests/test_sim_json.c tests/sim/test_stream.c
 
 .PHONY: all deps configure build run test asan test-asan bench install-check clean help
-.PHONY: test-valgrind fuzz lint
+.PHONY: test-valgrind fuzz lint test-mpi
 
 all: build
 
@@ -30,6 +33,7 @@ help:
 	@echo "make test-asan  the test suite built with AddressSanitizer + UndefinedBehaviorSanitizer"
 	@echo "make test-valgrind  the CLI tests with every run of the tool under valgrind"
 	@echo "make fuzz       build the libFuzzer targets (clang) and run each FUZZ_SECONDS=$(FUZZ_SECONDS) s"
+	@echo "make test-mpi   the MPI build (-DJUMPCYL_MPI=ON): sweep and mc under mpirun -n 2 equal one process"
 	@echo "make lint       cppcheck on the sources, zero findings (lint/cppcheck-suppressions.txt)"
 	@echo "make bench      build and run the benchmarks"
 	@echo "make install-check  install into a scratch prefix and build a program against it"
@@ -84,6 +88,12 @@ asan: test-asan
 test-valgrind: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L valgrind --no-tests=error
 
+# The batch commands built with MPI, run under mpirun -n 2 against one process.
+test-mpi: deps
+	cmake -S . -B $(MPI_BUILD) -DJUMPCYL_MPI=ON -DJC_BUILD_TESTS=OFF -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
+	cmake --build $(MPI_BUILD) -j $(JOBS) --target jumpcyl_cli
+	tests/batch/test_mpi.sh $(MPI_BUILD)/jumpcyl
+
 # libFuzzer targets (fuzz/) in their own build directory, each run for
 # FUZZ_SECONDS from its corpus (fuzz/run.sh); skipped, with a message, where
 # clang is missing.
@@ -118,4 +128,4 @@ install-check: build
 	LD_LIBRARY_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib ./$(BUILD)/install-check/roll_example_pc
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(MPI_BUILD)

@@ -40,6 +40,15 @@ static void usage(FILE *out)
           out);
 }
 
+/* A batch command: under mpirun (an MPI build) its processes share the cases. */
+static int batch_command(int (*cmd)(int, char **), int argc, char **argv)
+{
+    cli_batch_mpi_begin(&argc, &argv);
+    const int rc = cmd(argc - 1, argv + 1);
+    cli_batch_mpi_end();
+    return rc;
+}
+
 static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
@@ -61,8 +70,8 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "presets") == 0) return cmd_presets(argc - 1, argv + 1);
     if (strcmp(cmd, "plot") == 0) return cmd_plot(argc - 1, argv + 1);
     if (strcmp(cmd, "animate") == 0) return cmd_animate(argc - 1, argv + 1);
-    if (strcmp(cmd, "sweep") == 0) return cmd_sweep(argc - 1, argv + 1);
-    if (strcmp(cmd, "mc") == 0) return cmd_mc(argc - 1, argv + 1);
+    if (strcmp(cmd, "sweep") == 0) return batch_command(cmd_sweep, argc, argv);
+    if (strcmp(cmd, "mc") == 0) return batch_command(cmd_mc, argc, argv);
     if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
         static char paper_name[] = "paper";
         argv[0] = paper_name;
