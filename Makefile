@@ -112,7 +112,8 @@ lint: deps
 
 bench: build
 	cmake --build $(BUILD) --target jumpcyl_bench -j $(JOBS)
-	./$(BUILD)/bench/jumpcyl_bench
+	@# The batch commands too (and under mpirun when the MPI build is there: make test-mpi).
+	./$(BUILD)/bench/jumpcyl_bench ./$(BUILD)/jumpcyl $$(test -x $(MPI_BUILD)/jumpcyl && echo ./$(MPI_BUILD)/jumpcyl)
 
 # Installs into a scratch prefix, then builds examples/consumer against the
 # installed CMake package and the pkg-config file.

@@ -3,7 +3,10 @@
  * cylinder down its 3.2 m ramp (15, 30, 45 deg), per rolling-model
  * prediction and per paper-model solve, single thread, with the accuracy the
  * default tolerances reach (first lift-off against a run with tolerances
- * 100 times tighter). The last line is one JSON object.
+ * 100 times tighter). Given the tool's path (and an MPI build's), it also
+ * times the batch commands end to end: simulations per second of `sweep`
+ * and `mc` on 1 and 2 threads and under `mpirun -n 2`. The last line is one
+ * JSON object.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <jumpcyl/jumpcyl.h>
@@ -11,7 +14,14 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <spawn.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <fcntl.h>
 #include <time.h>
+#include <unistd.h>
+
+extern char **environ;
 
 static double now_us(void)
 {
@@ -65,8 +75,69 @@ static void time_runs(const jc_Setup *s, double t_sim[SIM_REPS], jc_Model *m, jc
 #define BATCH 200
 #define BATCHES 200
 
-int main(void)
+/* Wall time (s) of a command run with its output to /dev/null; -1 if it failed. */
+static double time_command(char *const argv[])
 {
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    pid_t pid;
+    const double t0 = now_us();
+    const int st = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    int ws = 0;
+    if (st != 0 || waitpid(pid, &ws, 0) != pid || !WIFEXITED(ws) || WEXITSTATUS(ws) != 0) return -1;
+    return (now_us() - t0) * 1e-6;
+}
+
+/* Cases of the batch benchmarks: the paper's cylinder at 30 degrees, a sweep
+ * over theta0 and a Monte Carlo job of its default spreads. */
+#define BATCH_SWEEP_CASES 200001
+#define BATCH_SWEEP_VARY "theta0=0:1:0.000005"
+#define BATCH_MC_SAMPLES "100000"
+
+typedef struct {
+    double sweep[2], mc[2], sweep_mpi; /* simulations per second; 1 and 2 threads */
+} batch_rates;
+
+static double rate(double cases, double seconds) { return seconds > 0 ? cases / seconds : -1; }
+
+static void time_batch(const char *cli, const char *mpi_cli, batch_rates *r)
+{
+    char out[] = "/tmp/jc_bench_XXXXXX";
+    const int fd = mkstemp(out);
+    if (fd < 0) die("batch", "no temporary file");
+    close(fd);
+    for (int t = 0; t < 2; ++t) {
+        char threads[8];
+        snprintf(threads, sizeof threads, "%d", t + 1);
+        remove(out);
+        char *sweep[] = {(char *)cli, "sweep", "--vary", BATCH_SWEEP_VARY, "--threads", threads, "--quiet",
+                         "--output", out, NULL};
+        r->sweep[t] = rate(BATCH_SWEEP_CASES, time_command(sweep));
+        remove(out);
+        char *mc[] = {(char *)cli, "mc", "--samples", BATCH_MC_SAMPLES, "--threads", threads, "--quiet", NULL};
+        r->mc[t] = rate(atof(BATCH_MC_SAMPLES), time_command(mc));
+    }
+    r->sweep_mpi = -1;
+    if (mpi_cli) {
+        remove(out);
+        char *mpi[] = {"mpirun", "-n", "2", "--oversubscribe", "--allow-run-as-root", (char *)mpi_cli, "sweep",
+                       "--vary", BATCH_SWEEP_VARY, "--threads", "1", "--quiet", "--output", out, NULL};
+        r->sweep_mpi = rate(BATCH_SWEEP_CASES, time_command(mpi));
+    }
+    remove(out);
+    printf("\nbatch commands, paper's cylinder at 30 deg (simulations per second, whole command):\n"
+           "  sweep %d cases: %.0f/s on 1 thread, %.0f/s on 2 threads", BATCH_SWEEP_CASES, r->sweep[0], r->sweep[1]);
+    if (mpi_cli) printf(", %.0f/s under mpirun -n 2 (1 thread each)", r->sweep_mpi);
+    printf("\n  mc %s samples (default spreads): %.0f/s on 1 thread, %.0f/s on 2 threads\n", BATCH_MC_SAMPLES,
+           r->mc[0], r->mc[1]);
+    printf("  10^6 simulations: %.1f s with sweep on 2 threads\n", 1e6 / r->sweep[1]);
+}
+
+int main(int argc, char **argv)
+{
+    const char *cli = argc > 1 ? argv[1] : NULL, *mpi_cli = argc > 2 ? argv[2] : NULL;
     char err[256];
     const double inclines[3] = {15, 30, 45};
     double sim_all[3 * SIM_REPS], roll_all[3 * BATCHES], paper_all[3 * BATCHES];
@@ -140,8 +211,15 @@ int main(void)
     printf("event accuracy: first lift-off within %.1e s and %.1e m of a run with 100x tighter tolerances\n",
            worst_dt, worst_dx);
     printf("with air drag: full simulation %.1f us median (%.1fx the drag-free run)\n", md, md / ms);
+    batch_rates br = {{-1, -1}, {-1, -1}, -1};
+    if (cli) time_batch(cli, mpi_cli, &br);
     printf("{\"full_sim_us_median\": %.3f, \"rolling_predict_us_median\": %.4f, \"paper_solve_us_median\": %.3f, "
-           "\"full_sim_drag_us_median\": %.3f, \"first_liftoff_dt_s\": %.3e, \"first_liftoff_dx_m\": %.3e}\n",
+           "\"full_sim_drag_us_median\": %.3f, \"first_liftoff_dt_s\": %.3e, \"first_liftoff_dx_m\": %.3e",
            ms, mr, mp, md, worst_dt, worst_dx);
+    if (cli)
+        printf(", \"sweep_sims_per_s_1t\": %.0f, \"sweep_sims_per_s_2t\": %.0f, \"mc_sims_per_s_1t\": %.0f, "
+               "\"mc_sims_per_s_2t\": %.0f, \"sweep_sims_per_s_mpi2\": %.0f, \"million_sims_s\": %.2f",
+               br.sweep[0], br.sweep[1], br.mc[0], br.mc[1], br.sweep_mpi, 1e6 / br.sweep[1]);
+    printf("}\n");
     return 0;
 }
