@@ -228,6 +228,16 @@ int cli_mc_tally_init(cli_McTally *t, long samples);
 void cli_mc_tally_free(cli_McTally *t);
 void cli_mc_consume(void *ctx, long index, const cli_CaseResult *r);
 
+/* The first lift-off's distribution for the options sa on an incline
+ * (degrees), with the default spreads, computed on every core: for
+ * `paper` and its figure. tally (may be NULL) receives the counts only.
+ * EXIT_OK, an exit status after a message, or the stop status. */
+int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double incline_deg, long samples, uint64_t seed,
+                         cli_Stats *out, cli_McTally *tally);
+/* Samples per incline of `paper` and `plot --what paper-uncertainty`. */
+#define CLI_PAPER_MC_SAMPLES 2000
+#define CLI_PAPER_MC_SEED 1
+
 /* ---- sweep.c, mc.c, map.c ---- */
 int cmd_sweep(int argc, char **argv);
 int cmd_mc(int argc, char **argv);

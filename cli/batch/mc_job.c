@@ -164,3 +164,44 @@ void cli_mc_consume(void *ctx, long index, const cli_CaseResult *r)
     if (!isnan(r->liftoff_x_m)) t->liftoff_x_m[t->liftoffs++] = r->liftoff_x_m;
     else t->none++;
 }
+
+int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double incline_deg, long samples, uint64_t seed,
+                         cli_Stats *out, cli_McTally *tally_out)
+{
+    cli_SetupArgs args = *sa;
+    char incline[32];
+    snprintf(incline, sizeof incline, "%.17gdeg", incline_deg);
+    args.value[cli_setup_option_index("incline")] = incline;
+    cli_McJob job;
+    int st = cli_mc_job_init(&job, cmd, &args, NULL, 0, NULL, 0, 0, seed);
+    if (st != EXIT_OK) return st;
+    cli_McTally t;
+    if (cli_mc_tally_init(&t, samples) != 0) {
+        cli_mc_tally_free(&t);
+        cli_error("%s: out of memory", cmd);
+        return EXIT_FAIL;
+    }
+    const jc_SimOptions sim = jc_default_sim_options();
+    cli_Batch b;
+    memset(&b, 0, sizeof b);
+    b.cmd = cmd;
+    b.total = samples;
+    b.shard = (cli_Shard){1, 1};
+    b.quiet = 1;
+    b.input_columns = job.n;
+    b.sim = &sim;
+    b.make_case = cli_mc_make_case;
+    b.ctx = &job;
+    b.consume = cli_mc_consume;
+    b.consume_ctx = &t;
+    st = cli_batch_run(&b);
+    if (st == EXIT_OK) cli_stats_compute(t.liftoff_x_m, t.liftoffs, t.none, t.invalid, 0.02, out);
+    if (tally_out) {
+        tally_out->liftoffs = t.liftoffs;
+        tally_out->valid = t.valid;
+        tally_out->none = t.none;
+        tally_out->invalid = t.invalid;
+    }
+    cli_mc_tally_free(&t);
+    return st;
+}

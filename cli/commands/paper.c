@@ -2,6 +2,7 @@
  * model and the measurement. Only the printed and measured values are data
  * (jc_paper_table); every other number comes from the library. */
 #include "cli.h"
+#include "batch.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -38,6 +39,8 @@ typedef struct {
     full_result drag; /* the full model with air drag at PAPER_DRAG_CD */
     full_result newton; /* the full model with Newton's impact law instead of Stronge's */
     full_result sweep[SWEEP_COUNT];
+    cli_Stats mc;       /* the full model's first lift-off under the inputs' uncertainties */
+    cli_McTally mc_counts;
 } paper_row;
 
 static void help(void)
@@ -110,7 +113,21 @@ static int run_full(const jc_Setup *s, full_result *out, char *err, size_t err_l
     return st;
 }
 
-static int compute_rows(const jc_Setup *base, paper_row *rows, int *count, char *err, size_t err_len)
+/* The Monte Carlo spread of the full model's first lift-off at the row's
+ * incline: the paper's tolerances and the unmeasured friction and
+ * restitution (cli/batch/mc_job.c). */
+static int run_uncertainty(const cli_SetupArgs *sa, paper_row *r, char *err, size_t err_len)
+{
+    const int st = cli_mc_liftoff_stats("paper", sa, r->table.incline_deg, CLI_PAPER_MC_SAMPLES, CLI_PAPER_MC_SEED,
+                                        &r->mc, &r->mc_counts);
+    if (st == EXIT_OK) return JC_OK;
+    if (cli_stop_requested()) return STOPPED;
+    snprintf(err, err_len, "the Monte Carlo runs failed");
+    return JC_ENUMERIC;
+}
+
+static int compute_rows(const jc_Setup *base, const cli_SetupArgs *sa, paper_row *rows, int *count, char *err,
+                        size_t err_len)
 {
     const jc_PaperTableRow *table;
     int n = jc_paper_table(&table);
@@ -140,6 +157,7 @@ static int compute_rows(const jc_Setup *base, paper_row *rows, int *count, char 
             sw.mu_static = sw.mu_kinetic = sweep_mu[k];
             if ((st = run_full(&sw, &r->sweep[k], err, err_len)) != JC_OK) return st;
         }
+        if ((st = run_uncertainty(sa, r, err, err_len)) != JC_OK) return st;
     }
     *count = n;
     return JC_OK;
@@ -263,6 +281,40 @@ static void print_full(const paper_row *rows, int n)
     printf("  ('in': inside the measured error bar)");
 }
 
+static int mc_inside(const paper_row *r)
+{
+    return r->mc.n > 0 && r->table.measured_x_m >= r->mc.p2_5 && r->table.measured_x_m <= r->mc.p97_5;
+}
+
+static void print_uncertainty(const paper_row *rows, int n)
+{
+    printf("\nUncertainty of the full model (Monte Carlo, %d samples per incline, seed %d: the paper's\n"
+           "tolerances as normal spreads: r, rod offset 0.05 cm, masses 0.05 g, theta0 3 deg; friction\n"
+           "0.3..1.0 and restitution 0.1..0.6 uniform, as the paper did not measure them; 'jumpcyl mc')\n",
+           CLI_PAPER_MC_SAMPLES, CLI_PAPER_MC_SEED);
+    printf("%-40s", "  first lift-off, median (cm)");
+    for (int i = 0; i < n; ++i) cell(rows[i].mc.n > 0, " %14.2f", rows[i].mc.p50 * 100, "none");
+    printf("\n%-40s", "  95 % interval (cm)");
+    for (int i = 0; i < n; ++i) {
+        if (rows[i].mc.n > 0) printf(" %6.1f..%6.1f", rows[i].mc.p2_5 * 100, rows[i].mc.p97_5 * 100);
+        else printf(" %14s", "none");
+    }
+    printf("\n%-40s", "  samples that lift off on the ramp");
+    for (int i = 0; i < n; ++i) {
+        const cli_McTally *t = &rows[i].mc_counts;
+        printf(" %13.1f%%", t->valid ? 100.0 * (double)t->liftoffs / (double)t->valid : 0.0);
+    }
+    printf("\n%-40s", "  measurement inside the 95 % interval");
+    for (int i = 0; i < n; ++i) printf(" %14s", rows[i].mc.n == 0 ? "-" : mc_inside(&rows[i]) ? "yes" : "no");
+    printf("\n%-40s", "  interval and error bar overlap");
+    for (int i = 0; i < n; ++i) {
+        const paper_row *r = &rows[i];
+        const int overlap = r->mc.n > 0 && r->mc.p97_5 >= r->table.measured_x_m - r->table.measured_error_m &&
+                            r->mc.p2_5 <= r->table.measured_x_m + r->table.measured_error_m;
+        printf(" %14s", r->mc.n == 0 ? "-" : overlap ? "yes" : "no");
+    }
+}
+
 static void print_text(const paper_row *rows, int n)
 {
     const jc_Model *m0 = &rows[0].model;
@@ -323,6 +375,7 @@ static void print_text(const paper_row *rows, int n)
         printf(" %14s", !c->found ? "-" : inside(c->state.x_m, &rows[i].table) ? "yes" : "no");
     }
     print_full(rows, n);
+    print_uncertainty(rows, n);
     printf("\n\nAll intersections of Eq. 9 up to the ramp end (rad); the first is the paper's prediction:\n");
     for (int i = 0; i < n; ++i) {
         printf("  %2.0f deg:", rows[i].table.incline_deg);
@@ -429,6 +482,18 @@ static cJSON *json_row(const paper_row *r)
                               fabs(r->drag.x_m - r->table.measured_x_m) < fabs(r->full.x_m - r->table.measured_x_m));
     }
     cJSON_AddItemToObject(o, "drag", dr);
+    cJSON *un = cJSON_CreateObject();
+    cJSON_AddNumberToObject(un, "samples", CLI_PAPER_MC_SAMPLES);
+    cJSON_AddNumberToObject(un, "seed", CLI_PAPER_MC_SEED);
+    cJSON_AddNumberToObject(un, "liftoff_fraction",
+                            r->mc_counts.valid ? (double)r->mc_counts.liftoffs / (double)r->mc_counts.valid : 0.0);
+    if (r->mc.n > 0) {
+        cJSON_AddNumberToObject(un, "p2_5", r->mc.p2_5);
+        cJSON_AddNumberToObject(un, "p50", r->mc.p50);
+        cJSON_AddNumberToObject(un, "p97_5", r->mc.p97_5);
+    }
+    cJSON_AddBoolToObject(un, "measured_inside", mc_inside(r));
+    cJSON_AddItemToObject(o, "full_uncertainty", un);
     cJSON *me = theta_x(NAN, r->table.measured_x_m);
     cJSON_AddNumberToObject(me, "error", r->table.measured_error_m);
     cJSON_AddItemToObject(o, "measured", me);
@@ -467,7 +532,7 @@ int cmd_paper(int argc, char **argv)
     paper_row rows[ROWS_MAX];
     int n = 0;
     /* A signal stops between runs (signals.c); the rows complete by then are printed. */
-    if ((st = compute_rows(&setup, rows, &n, err, sizeof err)) != JC_OK && st != STOPPED) {
+    if ((st = compute_rows(&setup, &sa, rows, &n, err, sizeof err)) != JC_OK && st != STOPPED) {
         cli_error("paper: %s", err);
         return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
     }

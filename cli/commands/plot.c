@@ -9,26 +9,30 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { NEED_CRITERION = 1, NEED_RUN = 2 };
+enum { NEED_CRITERION = 1, NEED_RUN = 2, NEED_UNCERTAINTY = 4 };
 
 typedef struct {
     const char *name;
     unsigned needs;
     void (*panel)(FILE *gp, const fig_Data *d); /* NULL: the overview */
     const char *help;
+    int cols, rows; /* the page, in panels */
 } plot_kind;
 
 static const plot_kind kinds[] = {
     {"paper-criterion", NEED_CRITERION, fig_criterion_panel,
      "both sides of the paper's Eq. 9 against the rotation angle (its Figures 2-4),\n"
-     "                      every intersection, the printed jump angle, the exact N = 0 condition"},
-    {"forces", NEED_RUN, fig_forces_panel, "N/(M g cos a) and |F|/N along the ramp, friction band, events"},
-    {"path", NEED_RUN, fig_path_panel, "gap between rim and incline and the centre's speed; hop heights"},
-    {"energy", NEED_RUN, fig_energy_panel, "kinetic, potential, friction and impact losses, their sum"},
-    {"overview", NEED_CRITERION | NEED_RUN, NULL, "the four above on one page"},
+     "                      every intersection, the printed jump angle, the exact N = 0 condition", 1, 1},
+    {"forces", NEED_RUN, fig_forces_panel, "N/(M g cos a) and |F|/N along the ramp, friction band, events", 1, 1},
+    {"path", NEED_RUN, fig_path_panel, "gap between rim and incline and the centre's speed; hop heights", 1, 1},
+    {"energy", NEED_RUN, fig_energy_panel, "kinetic, potential, friction and impact losses, their sum", 1, 1},
+    {"overview", NEED_CRITERION | NEED_RUN, NULL, "the four above on one page", 2, 2},
+    {"paper-uncertainty", NEED_UNCERTAINTY, fig_uncertainty_panels,
+     "the paper's three inclines: printed jump site, the full model's first lift-off\n"
+     "                      with its 95 % band (Monte Carlo of the inputs' uncertainties), measured", 3, 1},
 };
 #define KIND_COUNT (int)(sizeof kinds / sizeof kinds[0])
-#define KIND_NAMES "paper-criterion, forces, path, energy, overview"
+#define KIND_NAMES "paper-criterion, forces, path, energy, overview, paper-uncertainty"
 
 typedef struct {
     const char *what;
@@ -161,11 +165,12 @@ static int write_script(fig_Data *d, const plot_kind *kind, fig_Format format, c
     char base[256];
     cli_safe_name(slash ? slash + 1 : o->output, base, sizeof base);
     const int overview = kind->panel == NULL;
-    fig_script_begin(gp, format, overview ? 2 : 1, overview ? 2 : 1, base, cmdline);
+    fig_script_begin(gp, format, kind->cols, kind->rows, base, cmdline);
     fputs("\n# ---- Data ----\n", gp);
     int rc = EXIT_OK;
     if (kind->needs & NEED_CRITERION) rc = fig_criterion_prepare(d);
     if (rc == EXIT_OK && (kind->needs & NEED_RUN)) rc = fig_run_prepare(d, sim, dt_given, max_samples);
+    if (rc == EXIT_OK && (kind->needs & NEED_UNCERTAINTY)) rc = fig_uncertainty_prepare(d);
     if (rc == EXIT_OK && overview) write_overview(gp, d);
     else if (rc == EXIT_OK) kind->panel(gp, d);
     int err = fflush(gp) != 0 ? errno : 0;
@@ -275,7 +280,12 @@ int cmd_plot(int argc, char **argv)
         cli_error("plot: gnuplot was not found in PATH; install it (Debian: sudo apt-get install gnuplot-nox)");
         return EXIT_FAIL;
     }
+    if ((kind->needs & NEED_UNCERTAINTY) && cli_setup_given(&sa, "incline")) {
+        cli_error("plot: --what %s shows the table's inclines (15, 30, 45 deg); leave out --incline", kind->name);
+        return EXIT_USAGE;
+    }
     d.model = &model;
+    d.setup_args = &sa;
     fig_caption(&model, d.caption, sizeof d.caption);
     if (kind->panel == NULL) d.caption[0] = '\0';
     char cmdline[2048];

@@ -14,6 +14,8 @@ typedef enum { FIG_PNG, FIG_SVG, FIG_PDF } fig_Format;
  * script reads no file, so no name of the user's ever reaches gnuplot. */
 typedef struct {
     const jc_Model *model;
+    const cli_SetupArgs *setup_args; /* the options the model came from (paper-uncertainty) */
+    int table_rows;                  /* paper-uncertainty: inclines of the paper's table */
     FILE *gp;                /* the script, in the scratch directory */
     char caption[256];       /* the setup in one line (enhanced text); "" in the overview,
                                 whose page title carries it */
@@ -75,6 +77,10 @@ void fig_body_caption(const jc_Model *m, char *out, size_t len);
 /* ---- plot_criterion.c: the paper's Eq. 9 and the exact N = 0 criterion ---- */
 int fig_criterion_prepare(fig_Data *d);
 void fig_criterion_panel(FILE *gp, const fig_Data *d);
+
+/* ---- plot_uncertainty.c: the paper's jump sites with the full model's band ---- */
+int fig_uncertainty_prepare(fig_Data *d);
+void fig_uncertainty_panels(FILE *gp, const fig_Data *d);
 
 /* ---- plot_run.c: the full model's trajectory, events and hops ---- */
 /* Simulates (with options o; a fine sample_dt is chosen unless dt_given;

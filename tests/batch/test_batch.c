@@ -399,6 +399,58 @@ static int test_bad_values(void)
     return 0;
 }
 
+/* paper's uncertainty: for each incline the 95 % interval of the first
+ * lift-off is ordered, holds the nominal run, says rightly whether the
+ * measurement is inside, and is the interval `mc` gives for that incline. */
+static int test_paper_uncertainty(void)
+{
+    const char *args[] = {"paper", "--json", NULL};
+    cli_result r = cli_run(args);
+    ENSURE_MSG(r.status == 0, "%s", r.err);
+    cJSON *doc = cJSON_Parse(r.out);
+    ENSURE(doc != NULL);
+    const cJSON *rows = cJSON_GetObjectItemCaseSensitive(doc, "rows");
+    ENSURE(cJSON_GetArraySize(rows) == 3);
+    for (int i = 0; i < 3; ++i) {
+        const cJSON *row = cJSON_GetArrayItem(rows, i);
+        const cJSON *u = cJSON_GetObjectItemCaseSensitive(row, "full_uncertainty");
+        const double lo = num(u, "p2_5"), mid = num(u, "p50"), hi = num(u, "p97_5");
+        const double x = num(cJSON_GetObjectItemCaseSensitive(row, "full"), "x");
+        const double meas = num(cJSON_GetObjectItemCaseSensitive(row, "measured"), "x");
+        ENSURE_MSG(lo < mid && mid < hi && lo <= x && x <= hi, "row %d: %g %g %g, nominal %g", i, lo, mid, hi, x);
+        const cJSON *in = cJSON_GetObjectItemCaseSensitive(u, "measured_inside");
+        ENSURE(cJSON_IsBool(in) && cJSON_IsTrue(in) == (meas >= lo && meas <= hi));
+        printf("  %2.0f deg: 95 %% interval %.2f .. %.2f cm, measured %.1f cm: %s\n",
+               num(row, "incline_deg"), lo * 100, hi * 100, meas * 100, cJSON_IsTrue(in) ? "inside" : "outside");
+        if (i == 1) {
+            const char *extra[] = {"--incline", "30", "--samples", "2000", "--seed", "1", NULL};
+            cli_result m;
+            cJSON *mc = mc_json(extra, &m);
+            ENSURE(mc != NULL);
+            const cJSON *l = cJSON_GetObjectItemCaseSensitive(mc, "first_liftoff_x_m");
+            ENSURE(num(l, "p2_5") == lo && num(l, "p97_5") == hi);
+            cJSON_Delete(mc);
+            cli_result_free(&m);
+        }
+    }
+    cJSON_Delete(doc);
+    cli_result_free(&r);
+    char png[128];
+    path_in(png, sizeof png, "u.png");
+    const char *plot[] = {"plot", "--what", "paper-uncertainty", "--output", png, NULL};
+    cli_result p = cli_run(plot);
+    ENSURE_MSG(p.status == 0, "%s", p.err);
+    char *img = cli_run_slurp(png);
+    ENSURE(img && memcmp(img, "\x89PNG", 4) == 0);
+    free(img);
+    cli_result_free(&p);
+    const char *bad[] = {"plot", "--what", "paper-uncertainty", "--incline", "20", "--output", png, NULL};
+    p = cli_run(bad);
+    ENSURE(p.status == 2 && cli_one_line(p.err));
+    cli_result_free(&p);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (cli_run_init(argc, argv) != 0) return 2;
@@ -411,6 +463,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_mc_converges_to_the_linearised_spread);
     RUN_TEST(test_mc_shards_are_the_whole_job);
     RUN_TEST(test_bad_values);
+    RUN_TEST(test_paper_uncertainty);
     char cmd[128];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
