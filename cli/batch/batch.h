@@ -228,6 +228,8 @@ int cli_mc_tally_init(cli_McTally *t, long samples);
 void cli_mc_tally_free(cli_McTally *t);
 void cli_mc_consume(void *ctx, long index, const cli_CaseResult *r);
 
+/* The batch's fields for the job's samples, gathered into tally. */
+void cli_mc_batch(cli_Batch *b, const cli_McJob *job, cli_McTally *tally, long samples, const jc_SimOptions *sim);
 /* The first lift-off's distribution for the options sa on an incline
  * (degrees), with the default spreads, computed on every core: for
  * `paper` and its figure. tally (may be NULL) receives the counts only.

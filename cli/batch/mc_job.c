@@ -165,6 +165,17 @@ void cli_mc_consume(void *ctx, long index, const cli_CaseResult *r)
     else t->none++;
 }
 
+void cli_mc_batch(cli_Batch *b, const cli_McJob *job, cli_McTally *tally, long samples, const jc_SimOptions *sim)
+{
+    b->total = samples;
+    b->input_columns = job->n;
+    b->sim = sim;
+    b->make_case = cli_mc_make_case;
+    b->ctx = job;
+    b->consume = cli_mc_consume;
+    b->consume_ctx = tally;
+}
+
 int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double incline_deg, long samples, uint64_t seed,
                          cli_Stats *out, cli_McTally *tally_out)
 {
@@ -185,15 +196,9 @@ int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double inclin
     cli_Batch b;
     memset(&b, 0, sizeof b);
     b.cmd = cmd;
-    b.total = samples;
     b.shard = (cli_Shard){1, 1};
     b.quiet = 1;
-    b.input_columns = job.n;
-    b.sim = &sim;
-    b.make_case = cli_mc_make_case;
-    b.ctx = &job;
-    b.consume = cli_mc_consume;
-    b.consume_ctx = &t;
+    cli_mc_batch(&b, &job, &t, samples, &sim);
     st = cli_batch_run(&b);
     if (st == EXIT_OK) cli_stats_compute(t.liftoff_x_m, t.liftoffs, t.none, t.invalid, 0.02, out);
     if (tally_out) {

@@ -246,14 +246,8 @@ int cmd_mc(int argc, char **argv)
         cli_mc_tally_free(&tally);
         return EXIT_FAIL;
     }
-    b.total = samples;
-    b.input_columns = job.n;
+    cli_mc_batch(&b, &job, &tally, samples, &sim);
     b.header = header;
-    b.sim = &sim;
-    b.make_case = cli_mc_make_case;
-    b.ctx = &job;
-    b.consume = cli_mc_consume;
-    b.consume_ctx = &tally;
     st = cli_batch_run(&b);
     long lo, hi;
     cli_shard_range(&b.shard, samples, &lo, &hi);
