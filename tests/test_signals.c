@@ -29,11 +29,20 @@ static int stop_paper(int sig, int json)
 {
     const char *args[] = {"paper", SLOW_PAPER, json ? "--json" : NULL, NULL};
     char out_tmp[64], err_tmp[64];
-    const pid_t pid = cli_run_start(args, NULL, out_tmp, err_tmp);
-    ENSURE(pid > 0);
-    sleep_ms(150); /* past start-up (a few ms), well inside the 2 s of runs */
-    kill(pid, sig);
-    cli_result r = cli_run_wait(pid, out_tmp, err_tmp, 1);
+    cli_result r;
+    /* Past start-up (a few ms; more under a sanitizer on a loaded machine),
+     * well inside the seconds of runs. A process ended by the signal itself
+     * got it before its handler was installed: tried again, later. */
+    for (long delay_ms = 150;; delay_ms *= 2) {
+        const pid_t pid = cli_run_start(args, NULL, out_tmp, err_tmp);
+        ENSURE(pid > 0);
+        sleep_ms(delay_ms);
+        kill(pid, sig);
+        r = cli_run_wait(pid, out_tmp, err_tmp, 1);
+        if (r.signal != sig || delay_ms >= 1200) break;
+        fprintf(stderr, "  (the signal came before start-up ended after %ld ms; again)\n", delay_ms);
+        cli_result_free(&r);
+    }
     const char *name = sig == SIGINT ? "SIGINT" : "SIGTERM";
     const int status_ok = r.status == 128 + sig;
     const int said = r.err && strstr(r.err, "stopped by") && strstr(r.err, name) && cli_one_line(r.err);
