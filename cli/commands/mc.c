@@ -16,7 +16,7 @@
 #define HOP_GAP_M 0.005        /* the same for the largest hops */
 
 typedef struct {
-    const char *samples, *seed, *gap;
+    const char *samples, *seed, *gap, *summarize;
     const char *sigma[CLI_PARAM_MAX], *range[CLI_PARAM_MAX];
     int n_sigma, n_range, no_defaults, json;
     cli_BatchArgs batch;
@@ -43,7 +43,9 @@ static void help(void)
          "                  restitution 0.1..0.6); an option set on the line keeps its value\n"
          "  --region-gap LEN  lift-offs further apart than this are separate regions (default 2cm)\n"
          "  --json          the summary as JSON\n"
-         "  --output FILE   also keep every sample's row (its drawn values and outcome, as sweep)");
+         "  --output FILE   also keep every sample's row (its drawn values and outcome, as sweep)\n"
+         "  --summarize FILE  the summary of rows kept earlier (shards put together with cat),\n"
+         "                  without running anything");
     cli_batch_help();
     puts("A sample whose drawn values make no valid setup (a negative mass) is drawn again, up\n"
          "to 64 times: the normals are truncated to valid setups.\n"
@@ -58,6 +60,7 @@ static int take(int opt, const char *arg, void *ctx)
     case 'S': return cli_take_once("mc", &o->seed, "seed", arg);
     case 'g': return cli_take_once("mc", &o->gap, "region-gap", arg);
     case 'D': o->no_defaults = 1; return 0;
+    case 'f': return cli_take_once("mc", &o->summarize, "summarize", arg);
     case 'j': o->json = 1; return 0;
     case 'z':
     case 'u': {
@@ -82,7 +85,7 @@ static const struct option own[] = {
     {"samples", required_argument, 0, 'n'}, {"seed", required_argument, 0, 'S'},
     {"sigma", required_argument, 0, 'z'},   {"range", required_argument, 0, 'u'},
     {"no-defaults", no_argument, 0, 'D'},   {"region-gap", required_argument, 0, 'g'},
-    {"json", no_argument, 0, 'j'},          CLI_BATCH_OPTIONS,
+    {"json", no_argument, 0, 'j'},          {"summarize", required_argument, 0, 'f'}, CLI_BATCH_OPTIONS,
     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
@@ -198,7 +201,7 @@ static int report(const cli_McJob *job, cli_McTally *t, long samples, double gap
     if (shard->n > 1)
         printf("(shard %ld of %ld: these samples only; 'cat' the shards' files for the whole set)\n", shard->k,
                shard->n);
-    print_spreads(job);
+    if (job) print_spreads(job);
     printf("\n%ld samples, %ld valid setups", samples, valid);
     if (t->invalid) printf(" (%ld invalid or failed)", t->invalid);
     printf(".\nFirst lift-off on the ramp: %ld of %ld (%.1f %%); no lift-off: %ld (%.1f %%)", t->liftoffs, valid,
@@ -210,6 +213,65 @@ static int report(const cli_McJob *job, cli_McTally *t, long samples, double gap
     printf("Largest hop (rim above the incline; 0 without a hop):\n");
     print_stats("height", &hop, valid, 1000.0, "mm");
     return EXIT_OK;
+}
+
+/* --summarize FILE: the rows of an earlier job (its shards put together)
+ * read back and summarised as the job would have been. */
+static int summarize(const mc_opts *o, double gap)
+{
+    FILE *f = fopen(o->summarize, "r");
+    if (!f) {
+        cli_error("mc: --summarize '%s': %s", o->summarize, strerror(errno));
+        return EXIT_USAGE;
+    }
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t n = getline(&line, &cap, f);
+    int commas = 0;
+    for (ssize_t i = 0; i < n; ++i) commas += line[i] == ',';
+    const int inputs = commas - CLI_OUTCOME_COLUMNS;
+    int st = EXIT_OK;
+    if (n <= 0 || strncmp(line, "case,", 5) != 0 || inputs < 0) {
+        cli_error("mc: --summarize '%s': the first line is not the header of mc or sweep rows (case,...)",
+                  o->summarize);
+        st = EXIT_USAGE;
+    }
+    cli_McTally t;
+    long rows = 0, line_no = 1;
+    memset(&t, 0, sizeof t);
+    if (st == EXIT_OK && cli_mc_tally_init(&t, 1 << 16) != 0) st = EXIT_FAIL;
+    while (st == EXIT_OK && (n = getline(&line, &cap, f)) > 0) {
+        ++line_no;
+        cli_CaseResult r;
+        if (line[n - 1] != '\n' || cli_case_from_row(line, (size_t)n - 1, inputs, &r) != 0) {
+            cli_error("mc: --summarize '%s': line %ld is not a whole row of %d input columns", o->summarize, line_no,
+                      inputs);
+            st = EXIT_USAGE;
+            break;
+        }
+        if (t.valid >= t.cap) { /* grow: a merged file has no stated size */
+            double *a = realloc(t.liftoff_x_m, 2 * (size_t)t.cap * sizeof *a);
+            if (a) t.liftoff_x_m = a;
+            double *b = a ? realloc(t.hop_m, 2 * (size_t)t.cap * sizeof *b) : NULL;
+            if (b) t.hop_m = b;
+            if (!a || !b) {
+                cli_error("mc: --summarize: out of memory after %ld rows", rows);
+                st = EXIT_FAIL;
+                break;
+            }
+            t.cap *= 2;
+        }
+        cli_mc_consume(&t, rows++, &r);
+    }
+    free(line);
+    fclose(f);
+    if (st == EXIT_OK) {
+        if (!o->json) printf("Summary of %ld rows in %s\n", rows, o->summarize);
+        const cli_Shard whole = {1, 1};
+        st = report(NULL, &t, rows, gap, o->json, &whole);
+    }
+    cli_mc_tally_free(&t);
+    return st;
 }
 
 int cmd_mc(int argc, char **argv)
@@ -227,6 +289,7 @@ int cmd_mc(int argc, char **argv)
     double gap;
     if ((st = cli_batch_configure("mc", &o.batch, &b)) != EXIT_OK || (st = parse_numbers(&o, &samples, &seed, &gap)))
         return st;
+    if (o.summarize) return summarize(&o, gap);
     if (b.output && strcmp(b.output, "-") == 0) {
         cli_error("mc: --output - is not allowed: the summary goes to standard output; give --output FILE.csv");
         return EXIT_USAGE;

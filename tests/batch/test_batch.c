@@ -345,6 +345,25 @@ static int test_mc_shards_are_the_whole_job(void)
     ENSURE(w && p1 && p2 && strlen(p1) + strlen(p2) == strlen(w));
     ENSURE(strncmp(w, p1, strlen(p1)) == 0 && strcmp(w + strlen(p1), p2) == 0);
     ENSURE(strstr(r0.out, "radius") && strstr(r0.out, "uniform"));
+    /* The summary of the whole job, read back from its rows, is the job's own
+     * to the rows' 12 significant digits. */
+    const char *sum[] = {"mc", "--summarize", whole, "--json", NULL};
+    const char *job[] = {"mc", "--samples", "300", "--seed", "99", "--json", NULL};
+    cli_result rs = cli_run(sum), rj = cli_run(job);
+    ENSURE_MSG(rs.status == 0 && rj.status == 0, "%s %s", rs.err, rj.err);
+    cJSON *ds = cJSON_Parse(rs.out), *dj = cJSON_Parse(rj.out);
+    ENSURE(ds && dj);
+    const char *keys[] = {"mean", "sd", "p2_5", "p50", "p97_5"};
+    for (int k = 0; k < 5; ++k) {
+        const double from_rows = num(cJSON_GetObjectItemCaseSensitive(ds, "first_liftoff_x_m"), keys[k]);
+        const double from_job = num(cJSON_GetObjectItemCaseSensitive(dj, "first_liftoff_x_m"), keys[k]);
+        ENSURE_REL(from_rows, from_job, k == 1 ? 1e-9 : 1e-11);
+    }
+    ENSURE(num(ds, "samples") == 300 && num(ds, "valid") == num(dj, "valid"));
+    cJSON_Delete(ds);
+    cJSON_Delete(dj);
+    cli_result_free(&rs);
+    cli_result_free(&rj);
     free(w);
     free(p1);
     free(p2);
