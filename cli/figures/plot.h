@@ -64,10 +64,14 @@ const char *fig_scratch_name(fig_Format f);
 /* How a finished figure of the format is checked (safe_output.h). */
 cli_Check fig_check(fig_Format f);
 /* Runs gnuplot in the scratch directory work on FIG_SCRIPT_NAME, which
- * writes fig_scratch_name(f) there; checks that it is complete. output is
- * the user's name, for messages only. Returns EXIT_OK, EXIT_FAIL after a
- * message, or cli_stop_status() after a stop signal. */
-int fig_render(const char *work, fig_Format f, const char *output);
+ * writes fig_scratch_name(f) there; checks that it is complete. cmd
+ * ("plot", "map") and output, the user's name, are for messages only.
+ * Returns EXIT_OK, EXIT_FAIL after a message, or cli_stop_status() after a
+ * stop signal. */
+int fig_render(const char *cmd, const char *work, fig_Format f, const char *output);
+/* The command line (argv[0] the command's name), for a script's header:
+ * shell-quoted words on one line, control characters shown as '?'. */
+void fig_command_line(int argc, char **argv, char *out, size_t len);
 /* The incline and contact in one line, and the body in another, for titles. */
 void fig_caption(const jc_Model *m, char *out, size_t len);
 void fig_body_caption(const jc_Model *m, char *out, size_t len);
