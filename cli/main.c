@@ -33,6 +33,7 @@ static void usage(FILE *out)
           "  animate    a film of the motion (cairo; ffmpeg for .gif and .mp4)\n"
           "  sweep      the full model over a grid of setup values: one CSV row per case\n"
           "  mc         Monte Carlo: how sure the first lift-off is, given the inputs' uncertainties\n"
+          "  map        a regime map (gnuplot): the first lift-off over two setup options\n"
           "  presets    list the built-in setups\n"
           "\n"
           "  jumpcyl COMMAND --help   options of a command\n"
@@ -72,12 +73,13 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "animate") == 0) return cmd_animate(argc - 1, argv + 1);
     if (strcmp(cmd, "sweep") == 0) return batch_command(cmd_sweep, argc, argv);
     if (strcmp(cmd, "mc") == 0) return batch_command(cmd_mc, argc, argv);
+    if (strcmp(cmd, "map") == 0) return batch_command(cmd_map, argc, argv);
     if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
         static char paper_name[] = "paper";
         argv[0] = paper_name;
         return cmd_paper(argc, argv);
     }
-    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc; see 'jumpcyl --help')", cmd);
+    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
 }
 
@@ -92,7 +94,8 @@ int main(int argc, char **argv)
         /* Whatever the command was doing, it left every target as it was.
          * paper says itself what it kept; a closed pipe needs no words. */
         const int is_paper = argc < 2 || strcmp(argv[1], "paper") == 0 || argv[1][0] == '-';
-        const int is_batch = argc >= 2 && (strcmp(argv[1], "sweep") == 0 || strcmp(argv[1], "mc") == 0);
+        const int is_batch = argc >= 2 && (strcmp(argv[1], "sweep") == 0 || strcmp(argv[1], "mc") == 0 ||
+                                           strcmp(argv[1], "map") == 0);
         if (!is_paper && !is_batch && sig != SIGPIPE)
             cli_error("stopped by %s; no output file was written or changed", cli_signal_name(sig));
         fclose(stdout);

@@ -151,6 +151,17 @@ static const bad_case cases[] = {
      NO_CSV, "[plot]\n", 0, NULL},
     {A("animate", "--size", " 960x540", "--output", "@film.gif"), 2, "--size ' 960x540'", NO_CSV, NULL, 0, NULL},
     {A("animate", "--fps", "0", "--output", "@film.gif"), 2, "--fps '0'", NO_CSV, NULL, 0, NULL},
+    /* ---- map: both axes and the output are checked before any case runs ---- */
+    {A("map", "--x", "incline=5:5:1", "--y", "mu=0.1,0.2", "--output", "@map.png", "--keep-script"), 2,
+     "--x 'incline=5:5:1': 1 value (allowed: at least 2", NO_CSV, NULL, 0, NULL},
+    {A("map", "--x", "incline=10,30,20", "--y", "mu=0.1,0.2", "--output", "@map.png"), 2, "the values must increase",
+     NO_CSV, NULL, 0, NULL},
+    {A("map", "--x", "incline=5,6", "--y", "incline=7,8", "--output", "@map.png"), 2, "both vary incline", NO_CSV,
+     NULL, 0, NULL},
+    {A("map", "--x", "impact-law=newton,stronge", "--y", "mu=0.1,0.2", "--output", "@map.png"), 2,
+     "impact-law is a name", NO_CSV, NULL, 0, NULL},
+    {A("map", "--x", "incline=5,6", "--y", "mu=0.1,nan", "--output", "@map.png"), 2, "'nan'", NO_CSV, NULL, 0, NULL},
+    {A("map", "--x", "incline=5,6", "--y", "mu=0.1,0.2", "--output", "@map.jpg"), 2, "'.jpg'", NO_CSV, NULL, 0, NULL},
     /* ---- outputs that cannot be written: exit 1, the path named ---- */
     {A("simulate", "--csv", "@nodir/out.csv"), 1, "nodir/out.csv: No such file or directory", NO_CSV, NULL, 0, NULL},
     {A("simulate", "--csv", "/dev/full"), 1, "cannot write /dev/full: No space left on device", NO_CSV, NULL, 0, NULL},
@@ -159,6 +170,8 @@ static const bad_case cases[] = {
     {A("predict", "--dump-config"), 1, "standard output", NO_CSV, NULL, 0, "/dev/full"},
     {A("paper"), 1, "standard output", NO_CSV, NULL, 0, "/dev/full"},
     {A("plot", "--what", "overview", "--output", "@nodir/fig.png"), 1, "nodir/fig.png", NO_CSV, NULL, 0, NULL},
+    {A("map", "--x", "incline=5,6", "--y", "mu=0.1,0.2", "--output", "@nodir/map.png", "--keep-script"), 1,
+     "nodir/map.png", NO_CSV, NULL, 0, NULL},
 };
 #define CASE_COUNT ((int)(sizeof cases / sizeof cases[0]))
 

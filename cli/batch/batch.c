@@ -455,10 +455,11 @@ int cli_batch_run(const cli_Batch *b)
                   "continue",
                   b->cmd, next - lo, hi - lo, w.part);
     if (writer && notes.invalid > 0)
-        cli_error("%s: %ld case(s) are not valid setups (first: case %ld); their rows say invalid_setup", b->cmd,
-                  notes.invalid, notes.first_invalid);
+        cli_error("%s: %ld case(s) are not valid setups (first: case %ld)%s", b->cmd, notes.invalid,
+                  notes.first_invalid, b->output ? "; their rows say invalid_setup" : "");
     if (writer && notes.failed > 0)
-        cli_error("%s: %ld case(s) failed numerically; their rows say failed", b->cmd, notes.failed);
+        cli_error("%s: %ld case(s) failed numerically%s", b->cmd, notes.failed,
+                  b->output ? "; their rows say failed" : "");
     for (int t = 0; ws && t < threads; ++t) jc_workspace_free(ws[t]);
     free(ws);
     free(r);

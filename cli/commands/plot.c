@@ -114,27 +114,6 @@ static int check_opts(const plot_opts *o, const plot_kind **kind, fig_Format *fo
     return 0;
 }
 
-/* The command line, for the script's header: shell-quoted words on one
- * comment line (control characters shown as '?'). */
-static void command_line(int argc, char **argv, char *out, size_t len)
-{
-    char *buf = NULL;
-    size_t n = 0;
-    FILE *m = open_memstream(&buf, &n);
-    if (!m) {
-        snprintf(out, len, "jumpcyl plot");
-        return;
-    }
-    fputs("jumpcyl", m);
-    for (int i = 0; i < argc; ++i) {
-        fputc(' ', m);
-        cli_shell_word(m, argv[i]);
-    }
-    fclose(m);
-    snprintf(out, len, "%s", buf ? buf : "jumpcyl plot");
-    free(buf);
-}
-
 static void write_overview(FILE *gp, const fig_Data *d)
 {
     char caption[256], body[256];
@@ -230,7 +209,7 @@ static int make_figure(fig_Data *d, const plot_opts *o, const plot_kind *kind, f
         rc = EXIT_FAIL;
     }
     if (rc == EXIT_OK) rc = write_script(d, kind, format, o, sim, dt_given, max_samples, cmdline, script);
-    if (rc == EXIT_OK) rc = fig_render(work.path, format, o->output);
+    if (rc == EXIT_OK) rc = fig_render("plot", work.path, format, o->output);
     if (rc == EXIT_OK) rc = publish(o, format, figure, script);
     cli_workdir_remove(&work);
     if (rc != EXIT_OK && cli_stop_requested()) rc = cli_stop_status();
@@ -289,7 +268,7 @@ int cmd_plot(int argc, char **argv)
     fig_caption(&model, d.caption, sizeof d.caption);
     if (kind->panel == NULL) d.caption[0] = '\0';
     char cmdline[2048];
-    command_line(argc, argv, cmdline, sizeof cmdline);
+    fig_command_line(argc, argv, cmdline, sizeof cmdline);
     st = make_figure(&d, &o, kind, format, &sim, cli_sim_given(&sim_args, "sample-dt"), max_samples, cmdline);
     if (d.have_run) jc_run_free(&d.run);
     if (st == EXIT_OK) printf("Figure: %s\n", o.output);

@@ -127,6 +127,25 @@ void fig_panel_begin(FILE *gp, const char *what)
     fputs("reset\ndo for [i = 1:STYLE_LINES] { eval $STYLE[i] }\n", gp);
 }
 
+void fig_command_line(int argc, char **argv, char *out, size_t len)
+{
+    char *buf = NULL;
+    size_t n = 0;
+    FILE *m = open_memstream(&buf, &n);
+    if (!m) {
+        snprintf(out, len, "jumpcyl %s", argc > 0 ? argv[0] : "");
+        return;
+    }
+    fputs("jumpcyl", m);
+    for (int i = 0; i < argc; ++i) {
+        fputc(' ', m);
+        cli_shell_word(m, argv[i]);
+    }
+    fclose(m);
+    snprintf(out, len, "%s", buf ? buf : "jumpcyl");
+    free(buf);
+}
+
 void fig_caption(const jc_Model *m, char *out, size_t len)
 {
     const jc_Setup *s = &m->setup;
@@ -150,12 +169,12 @@ cli_Check fig_check(fig_Format f)
     return f == FIG_PNG ? CLI_CHECK_PNG : f == FIG_SVG ? CLI_CHECK_SVG : CLI_CHECK_PDF;
 }
 
-int fig_render(const char *work, fig_Format f, const char *output)
+int fig_render(const char *cmd, const char *work, fig_Format f, const char *output)
 {
-    char log_path[CLI_PATH_MAX], figure[CLI_PATH_MAX], pre[64];
+    char log_path[CLI_PATH_MAX], figure[CLI_PATH_MAX], pre[64], label[64];
     if (cli_path_join(log_path, sizeof log_path, work, FIG_LOG_NAME) != 0 ||
         cli_path_join(figure, sizeof figure, work, fig_scratch_name(f)) != 0) {
-        cli_error("plot: scratch path too long: %s", work);
+        cli_error("%s: scratch path too long: %s", cmd, work);
         return EXIT_FAIL;
     }
     /* Run in the scratch directory on names made here: nothing the user
@@ -163,7 +182,8 @@ int fig_render(const char *work, fig_Format f, const char *output)
     snprintf(pre, sizeof pre, "outfile = '%s'", fig_scratch_name(f));
     char *argv[] = {"gnuplot", "-e", pre, FIG_SCRIPT_NAME, NULL};
     cli_Progress progress;
-    cli_progress_begin(&progress, "plot: gnuplot is rendering");
+    snprintf(label, sizeof label, "%s: gnuplot is rendering", cmd);
+    cli_progress_begin(&progress, label);
     const int st = cli_run_program(argv, work, log_path, &progress);
     cli_progress_end(&progress);
     if (st == CLI_RUN_STOPPED) return cli_stop_status();
@@ -173,7 +193,7 @@ int fig_render(const char *work, fig_Format f, const char *output)
     }
     if (st != 0) {
         if (st > 0) {
-            cli_error("plot: gnuplot failed (exit status %d) making %s:", st, output);
+            cli_error("%s: gnuplot failed (exit status %d) making %s:", cmd, st, output);
             cli_print_log_tail(log_path);
         }
         return EXIT_FAIL;

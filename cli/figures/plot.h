@@ -66,10 +66,14 @@ const char *fig_scratch_name(fig_Format f);
 /* How a finished figure of the format is checked (safe_output.h). */
 cli_Check fig_check(fig_Format f);
 /* Runs gnuplot in the scratch directory work on FIG_SCRIPT_NAME, which
- * writes fig_scratch_name(f) there; checks that it is complete. output is
- * the user's name, for messages only. Returns EXIT_OK, EXIT_FAIL after a
- * message, or cli_stop_status() after a stop signal. */
-int fig_render(const char *work, fig_Format f, const char *output);
+ * writes fig_scratch_name(f) there; checks that it is complete. cmd
+ * ("plot", "map") and output, the user's name, are for messages only.
+ * Returns EXIT_OK, EXIT_FAIL after a message, or cli_stop_status() after a
+ * stop signal. */
+int fig_render(const char *cmd, const char *work, fig_Format f, const char *output);
+/* The command line (argv[0] the command's name), for a script's header:
+ * shell-quoted words on one line, control characters shown as '?'. */
+void fig_command_line(int argc, char **argv, char *out, size_t len);
 /* The incline and contact in one line, and the body in another, for titles. */
 void fig_caption(const jc_Model *m, char *out, size_t len);
 void fig_body_caption(const jc_Model *m, char *out, size_t len);
@@ -94,5 +98,36 @@ const char *fig_event_label(jc_EventKind k);
 void fig_forces_panel(FILE *gp, const fig_Data *d);
 void fig_path_panel(FILE *gp, const fig_Data *d);
 void fig_energy_panel(FILE *gp, const fig_Data *d);
+
+/* ---- plot_map.c: jumpcyl map, the first lift-off over two setup options ---- */
+
+/* What a cell of the map is: the batch's case kinds (batch.h, cli_CaseKind). */
+enum { FIG_CELL_LIFTOFF, FIG_CELL_NONE, FIG_CELL_SLIDES, FIG_CELL_INVALID, FIG_CELL_FAILED, FIG_CELL_KINDS };
+
+typedef struct {
+    char label[96];         /* "incline (°)", "rod-offset (cm)": enhanced text */
+    long count;             /* >= 2 */
+    const double *values;   /* the axis' values in its unit, increasing */
+} fig_MapAxis;
+
+#define FIG_MAP_PAPER_MAX 3
+
+typedef struct {
+    fig_Format format;
+    fig_MapAxis x, y;
+    const unsigned char *kind; /* per cell, cell iy * x.count + ix: FIG_CELL_* */
+    const double *liftoff_cm;  /* per cell: first lift-off x (cm), NaN if none */
+    double ramp_cm;            /* the colour scale when nothing lifts off */
+    char title[256], subtitle[256]; /* the fixed setup (enhanced text) */
+    /* The paper's setups: points in the axes' units, labels ("paper 15°"). */
+    int paper_count;
+    double paper_x[FIG_MAP_PAPER_MAX], paper_y[FIG_MAP_PAPER_MAX];
+    char paper_label[FIG_MAP_PAPER_MAX][40];
+    int paper_differs;         /* the map's other options are not the paper's */
+} fig_Map;
+
+/* Writes the map's data blocks and its panel into the script (after
+ * fig_script_begin). */
+void fig_map_write(FILE *gp, const fig_Map *m);
 
 #endif
