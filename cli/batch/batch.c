@@ -166,6 +166,15 @@ int cli_batch_configure(const char *cmd, const cli_BatchArgs *a, cli_Batch *b)
     return EXIT_OK;
 }
 
+int cli_batch_refuse_samples(const char *cmd, const cli_SimArgs *sim_args)
+{
+    if (!cli_sim_given(sim_args, "sample-dt")) return EXIT_OK;
+    cli_error("%s: --sample-dt has no effect here: a case keeps its events' summary, not a trajectory "
+              "(use 'jumpcyl simulate --sample-dt' for one run)",
+              cmd);
+    return EXIT_USAGE;
+}
+
 void cli_batch_help(void)
 {
     puts("  --threads N     threads (default: every core; the output does not depend on it)\n"

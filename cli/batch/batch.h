@@ -159,6 +159,9 @@ typedef struct {
 int cli_batch_take(const char *cmd, cli_BatchArgs *a, int opt, const char *arg);
 /* Their values into the job: EXIT_OK, or EXIT_USAGE after a message. */
 int cli_batch_configure(const char *cmd, const cli_BatchArgs *a, cli_Batch *b);
+/* --sample-dt is refused: a case records no trajectory. EXIT_OK, or
+ * EXIT_USAGE after a message. */
+int cli_batch_refuse_samples(const char *cmd, const cli_SimArgs *sim_args);
 /* Their help lines. */
 void cli_batch_help(void);
 

@@ -586,6 +586,7 @@ int cmd_map(int argc, char **argv)
     memset(&job, 0, sizeof job);
     jc_Setup fixed;
     jc_SimOptions sim;
+    if ((st = cli_batch_refuse_samples("map", &sim_args)) != EXIT_OK) return st;
     if ((st = cli_build_inputs("map", &sa, &sim_args, &fixed, &sim, NULL)) != 0) return st;
     char err[512];
     if (cli_setup_base(&sa, &job.base, err, sizeof err) != 0) {

@@ -297,6 +297,7 @@ int cmd_mc(int argc, char **argv)
     jc_Setup setup;
     jc_SimOptions sim;
     jc_Model model;
+    if ((st = cli_batch_refuse_samples("mc", &sim_args)) != EXIT_OK) return st;
     if ((st = cli_build_inputs("mc", &sa, &sim_args, &setup, &sim, &model)) != 0) return st;
     cli_McJob job;
     if ((st = cli_mc_job_init(&job, "mc", &sa, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != 0)

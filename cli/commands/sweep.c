@@ -135,6 +135,7 @@ int cmd_sweep(int argc, char **argv)
     sweep_job job;
     memset(&job, 0, sizeof job);
     jc_SimOptions sim;
+    if ((st = cli_batch_refuse_samples("sweep", &sim_args)) != EXIT_OK) return st;
     if ((st = cli_build_inputs("sweep", &sa, &sim_args, &job.base, &sim, NULL)) != 0) return st;
     char err[512];
     if (cli_setup_base(&sa, &job.base, err, sizeof err) != 0) {

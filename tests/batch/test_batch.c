@@ -400,6 +400,8 @@ static int test_bad_values(void)
         {"mc", "--samples", "0", "--output", NULL},
         {"mc", "--samples", "10", "--seed", "-4", "--output", NULL},
         {"mc", "--sigma", "rod-offset=1mm", "--sigma", "rod-offset=2mm", "--output", NULL},
+        {"sweep", "--vary", "incline=10", "--sample-dt", "0.01", "--output", NULL},
+        {"mc", "--samples", "10", "--sample-dt", "0.01", "--output", NULL},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         const char *args[10];
