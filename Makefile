@@ -6,14 +6,18 @@ WERROR     ?= OFF
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-# Debian packages the build and tests need.
-DEB_PACKAGES := cmake make gcc pkgconf libgsl-dev libcjson-dev gnuplot-nox libcairo2-dev ffmpeg librandom123-dev
-
-# Input safety (docs/config.md): experiment files (inih); the CI's fuzzing
-# (clang and its libFuzzer runtime), valgrind run and static analysis.
-DEB_PACKAGES += libinih-dev clang libclang-rt-14-dev valgrind cppcheck
-# The optional MPI build of the batch commands and its CI check (make test-mpi).
-DEB_PACKAGES += libopenmpi-dev openmpi-bin
+# Debian packages that building, running and `make test` need (`make run`
+# and `make test` install only these). Each developer tool comes with the
+# target that uses it (DEV_PACKAGES below).
+DEB_PACKAGES := cmake make gcc pkgconf libgsl-dev libcjson-dev libinih-dev libcairo2-dev librandom123-dev \
+                gnuplot-nox ffmpeg
+# make fuzz: clang and its libFuzzer runtime; make test-valgrind; make lint;
+# make test-mpi: the optional MPI build; make install: the man page.
+FUZZ_PACKAGES     := clang libclang-rt-14-dev
+VALGRIND_PACKAGES := valgrind
+LINT_PACKAGES     := cppcheck
+MPI_PACKAGES      := libopenmpi-dev openmpi-bin
+INSTALL_PACKAGES  := help2man
 MPI_BUILD    ?= build-mpi
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 60
@@ -22,7 +26,7 @@ LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/te
                 tests/test_safe_output.c tests/test_sim_json.c tests/sim/test_stream.c tests/batch/test_map.c
 
 .PHONY: all deps configure build run test asan test-asan bench install-check clean help
-.PHONY: test-valgrind fuzz lint test-mpi
+.PHONY: test-valgrind fuzz lint test-mpi install deps-fuzz deps-valgrind deps-lint deps-mpi deps-install
 
 all: build
 
@@ -36,12 +40,14 @@ help:
 	@echo "make test-mpi   the MPI build (-DJUMPCYL_MPI=ON): sweep and mc under mpirun -n 2 equal one process"
 	@echo "make lint       cppcheck on the sources, zero findings (lint/cppcheck-suppressions.txt)"
 	@echo "make bench      build and run the benchmarks"
+	@echo "make install    install the tool, man page, bash completion and library (PREFIX=/usr/local, DESTDIR=)"
 	@echo "make install-check  install into a scratch prefix and build a program against it"
 	@echo "Variables: BUILD=$(BUILD) WERROR=$(WERROR) JOBS=$(JOBS) CMAKE_ARGS=..."
 
-deps:
-	@missing=""; \
-	for p in $(DEB_PACKAGES); do \
+# $(call need,PACKAGES): installs the missing ones when root, or prints the
+# apt-get line to run and fails.
+need = missing=""; \
+	for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
@@ -54,6 +60,19 @@ deps:
 	    exit 1; \
 	  fi; \
 	fi
+
+deps:
+	@$(call need,$(DEB_PACKAGES))
+deps-fuzz: deps-fuzz
+	@$(call need,$(FUZZ_PACKAGES))
+deps-valgrind: deps
+	@$(call need,$(VALGRIND_PACKAGES))
+deps-lint:
+	@$(call need,$(LINT_PACKAGES))
+deps-mpi: deps
+	@$(call need,$(MPI_PACKAGES))
+deps-install: deps
+	@$(call need,$(INSTALL_PACKAGES))
 
 $(BUILD)/CMakeCache.txt: | deps
 	cmake -S . -B $(BUILD) -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
@@ -84,12 +103,16 @@ asan: test-asan
 
 # The CLI tests (bad inputs, experiment files) again, with every run of the
 # tool under valgrind --error-exitcode=1 --leak-check=full (ctest label
-# "valgrind", registered when valgrind was found at configure time).
-test-valgrind: build
+# "valgrind", registered when valgrind was found at configure time: the
+# build is configured again, as valgrind may have come after its first
+# configuration).
+test-valgrind: deps-valgrind
+	cmake -S . -B $(BUILD) -UJC_VALGRIND -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
+	cmake --build $(BUILD) -j $(JOBS)
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L valgrind --no-tests=error
 
 # The batch commands built with MPI, run under mpirun -n 2 against one process.
-test-mpi: deps
+test-mpi: deps-mpi
 	cmake -S . -B $(MPI_BUILD) -DJUMPCYL_MPI=ON -DJC_BUILD_TESTS=OFF -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
 	cmake --build $(MPI_BUILD) -j $(JOBS) --target jumpcyl_cli
 	tests/batch/test_mpi.sh $(MPI_BUILD)/jumpcyl
@@ -97,7 +120,7 @@ test-mpi: deps
 # libFuzzer targets (fuzz/) in their own build directory, each run for
 # FUZZ_SECONDS from its corpus (fuzz/run.sh); skipped, with a message, where
 # clang is missing.
-fuzz: deps
+fuzz: deps-fuzz
 	@if ! command -v clang >/dev/null 2>&1; then echo "make fuzz: clang not found, fuzzing skipped"; exit 0; fi; \
 	set -e; \
 	CC=clang cmake -S . -B $(FUZZ_BUILD) -DJC_FUZZ=ON -DJC_BUILD_TESTS=OFF -DJC_WERROR=$(WERROR) $(CMAKE_ARGS); \
@@ -106,7 +129,7 @@ fuzz: deps
 
 # Static analysis: every finding fails, unless lint/cppcheck-suppressions.txt
 # says why it is not a defect.
-lint: deps
+lint: deps-lint
 	cppcheck --enable=warning,style,performance,portability --std=c11 --error-exitcode=1 --inline-suppr --quiet \
 	  -I include -I cli -I src --suppressions-list=lint/cppcheck-suppressions.txt $(LINT_SOURCES)
 
@@ -114,6 +137,17 @@ bench: build
 	cmake --build $(BUILD) --target jumpcyl_bench -j $(JOBS)
 	@# The batch commands too (and under mpirun when the MPI build is there: make test-mpi).
 	./$(BUILD)/bench/jumpcyl_bench ./$(BUILD)/jumpcyl $$(test -x $(MPI_BUILD)/jumpcyl && echo ./$(MPI_BUILD)/jumpcyl)
+
+# make install [PREFIX=/usr/local] [DESTDIR=...]: the tool, its man page and
+# bash completion, the library, headers, pkg-config and CMake files. The
+# build is configured again so that help2man, installed just before, is found.
+PREFIX ?= /usr/local
+install: deps-install
+	cmake -S . -B $(BUILD) -UHELP2MAN -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
+	cmake --build $(BUILD) -j $(JOBS)
+	DESTDIR=$(DESTDIR) cmake --install $(BUILD) --prefix $(PREFIX)
+	@echo "Installed under $(DESTDIR)$(PREFIX): bin/jumpcyl, share/man/man1/jumpcyl.1,"
+	@echo "share/bash-completion/completions/jumpcyl, the library, headers, pkg-config and CMake files."
 
 # Installs into a scratch prefix, then builds examples/consumer against the
 # installed CMake package and the pkg-config file.
@@ -127,6 +161,9 @@ install-check: build
 	PKG_CONFIG_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib/pkgconfig \
 	  sh -c 'cc -std=c17 -Wall -Wextra -Wpedantic -Werror examples/roll_example.c $$(pkg-config --cflags --libs --static jumpcyl) -o $(BUILD)/install-check/roll_example_pc'
 	LD_LIBRARY_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib ./$(BUILD)/install-check/roll_example_pc
+	@# make install itself, into a staging DESTDIR: the tool, its man page, bash completion.
+	$(MAKE) install DESTDIR=$(CURDIR)/$(BUILD)/install-check/destdir PREFIX=/usr/local
+	tests/test_install.sh $(CURDIR)/$(BUILD)/install-check/destdir /usr/local
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(MPI_BUILD)
