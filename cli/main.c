@@ -9,9 +9,14 @@
 
 static int cmd_presets(int argc, char **argv)
 {
-    (void)argv;
+    if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
+        puts("Usage: jumpcyl presets\n"
+             "The built-in setups, each with a line on what it is; use one with --preset NAME\n"
+             "(and see its every value with 'jumpcyl predict --preset NAME --dump-config').");
+        return EXIT_OK;
+    }
     if (argc > 1) {
-        cli_error("presets: takes no arguments");
+        cli_error("presets: takes no arguments (see 'jumpcyl presets --help')");
         return EXIT_USAGE;
     }
     for (int i = 0; jc_preset_name(i); ++i) printf("%-12s %s\n", jc_preset_name(i), jc_preset_description(i));

@@ -295,7 +295,10 @@ static int test_bad_input_exit_2(void)
 
 static int test_help_and_version(void)
 {
-    const char *ok[] = {"--help", "-h", "help", "predict --help", "paper --help", "presets", "--version", ""};
+    /* every command's --help and -h exit 0 with text on stdout, nothing on stderr */
+    const char *ok[] = {"--help", "-h", "help", "predict --help", "paper --help", "presets", "--version", "",
+                        "simulate --help", "plot --help", "animate --help", "sweep --help", "mc --help",
+                        "map --help", "presets --help", "presets -h", "sweep -h", "mc -h"};
     for (size_t i = 0; i < sizeof ok / sizeof ok[0]; ++i) {
         cli_result r = run(ok[i]);
         const int good = r.status == 0 && r.out && r.out[0] && r.err && !r.err[0];
