@@ -312,6 +312,29 @@ static int test_help_and_version(void)
     return 0;
 }
 
+/* A plain body length over 1 m or mass over 10 kg gets a one-line note on
+ * how it was read; with a unit, or small, nothing. The paper's model names
+ * the start values it ignores. */
+static int test_notes(void)
+{
+    cli_result r = run("predict --radius 1.5 --disc-mass 12");
+    ENSURE_MSG(r.status == 0 && strstr(r.err, "--radius 1.5 was read as 1.5 m") && strstr(r.err, "1.5cm") &&
+                   strstr(r.err, "--disc-mass 12 was read as 12 kg") && strstr(r.err, "12g"),
+               "stderr: %s", r.err);
+    int lines = 0;
+    for (const char *c = r.err; *c; ++c) lines += *c == '\n';
+    ENSURE_MSG(lines == 2, "%d lines", lines);
+    cli_result_free(&r);
+    r = run("predict --radius 15cm --disc-mass 40g --ramp-length 5");
+    ENSURE_MSG(r.status == 0 && r.err[0] == '\0', "stderr: %s", r.err);
+    ENSURE(strstr(r.out, "ignores theta0") == NULL);
+    cli_result_free(&r);
+    r = run("predict --theta0 5");
+    ENSURE(r.status == 0 && strstr(r.out, "ignores theta0 = 5 deg"));
+    cli_result_free(&r);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -320,6 +343,7 @@ int main(int argc, char **argv)
     }
     cli_path = argv[1];
     RUN_TEST(test_predict_json);
+    RUN_TEST(test_notes);
     RUN_TEST(test_paper_json);
     RUN_TEST(test_units);
     RUN_TEST(test_bad_input_exit_2);

@@ -389,6 +389,31 @@ static void unknown_option(char **argv, int next)
         cli_error("%s: unknown option '%s' (see 'jumpcyl %s --help')", argv[0], arg, argv[0]);
 }
 
+/* A plain number is SI: "--radius 15" is a 15 m wheel. A body length over
+ * 1 m or a mass over 10 kg given without a unit is most likely meant in cm
+ * or g: a one-line note says how it was read (the ramp's length is metres
+ * by nature and gets none). */
+static void note_bare_units(const char *cmd, const cli_SetupArgs *a)
+{
+    static const struct { int opt; cli_Quantity q; double above; const char *unit, *hint; } checks[] = {
+        {O_RADIUS, Q_LENGTH, 1.0, "m", "cm"},      {O_ROD_OFFSET, Q_LENGTH, 1.0, "m", "cm"},
+        {O_ROD_RADIUS, Q_LENGTH, 1.0, "m", "mm"},  {O_LENGTH, Q_LENGTH, 1.0, "m", "cm"},
+        {O_PAPER_D, Q_LENGTH, 1.0, "m", "cm"},     {O_ROLLING_RES, Q_LENGTH, 1.0, "m", "mm"},
+        {O_DISC_MASS, Q_MASS, 10.0, "kg", "g"},    {O_ROD_MASS, Q_MASS, 10.0, "kg", "g"},
+    };
+    for (size_t k = 0; k < sizeof checks / sizeof checks[0]; ++k) {
+        const char *text = a->value[checks[k].opt];
+        char *end;
+        if (!text) continue;
+        const double v = strtod(text, &end);
+        if (end == text || *end || !(v > checks[k].above)) continue; /* has a unit, or is small */
+        fprintf(stderr, "jumpcyl: %s: note: --%s %s was read as %s %s (a plain number is SI); write %s%s for %s\n",
+                cmd, cli_setup_options[checks[k].opt].name, text, text, checks[k].unit, text, checks[k].hint,
+                strcmp(checks[k].hint, "g") == 0 ? "grams" : strcmp(checks[k].hint, "cm") == 0 ? "centimetres"
+                                                                                         : "millimetres");
+    }
+}
+
 int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
                      jc_SimOptions *sim, jc_Model *model)
 {
@@ -403,6 +428,7 @@ int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs
         cli_error("%s: %s", cmd, err);
         return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
     }
+    note_bare_units(cmd, sa);
     return 0;
 }
 

@@ -50,6 +50,9 @@ static void print_text(const jc_Model *m, const jc_PaperResult *p, const jc_Roll
     cli_print_setup(stdout, m, 1);
     printf("\nPaper's model (Eq. 9 as printed; d = %.4f cm, M1 = %.2f g; starts at rest at th = 0):\n",
            p->cm_offset_m * 100, p->disc_mass_kg * 1e3);
+    if (m->setup.theta0_rad != 0.0 || m->setup.omega0_radps != 0.0)
+        printf("  note: this model ignores theta0 = %.4g deg and omega0 = %.4g rad/s; the exact models use them\n",
+               cli_deg(m->setup.theta0_rad), m->setup.omega0_radps);
     if (p->first < 0) {
         printf("  no intersection before the ramp end: the paper's model predicts no jump\n");
     } else {
