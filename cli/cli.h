@@ -185,6 +185,9 @@ void cli_tmpdir_untrack(int slot);
 /* ---- report.c ---- */
 #define CLI_PI 3.14159265358979323846
 double cli_deg(double rad);
+/* v as printf shows it with that many decimals, without a negative zero:
+ * values that round to zero become +0. */
+double cli_shown(double v, int decimals);
 void cli_print_setup(FILE *out, const jc_Model *m, int show_incline);
 /* A word as the shell reads it: single-quoted unless plainly safe; control
  * characters shown as '?', so that it stays on one line (and a comment line

@@ -335,6 +335,37 @@ static int test_notes(void)
     return 0;
 }
 
+/* "-0.000" (a value that rounds to zero, printed with a sign) in text. */
+static const char *negative_zero(const char *s)
+{
+    for (const char *p = strstr(s, "-0"); p; p = strstr(p + 1, "-0")) {
+        const char *q = p + 2;
+        if (*q == '.') ++q;
+        while (*q == '0') ++q;
+        if (q > p + 2 && !(*q >= '1' && *q <= '9')) return p;
+    }
+    return NULL;
+}
+
+static int test_no_negative_zeros(void)
+{
+    const char *runs[] = {"simulate --incline 15", "simulate --incline 30", "simulate --incline 45",
+                          "simulate --preset hoop --t-max 2", "simulate --preset rocking-hoop --t-max 2",
+                          "simulate --preset disc", "predict", "predict --incline 45", "predict --preset hoop",
+                          "paper"};
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; ++i) {
+        cli_result r = run(runs[i]);
+        const char *z = r.status == 0 ? negative_zero(r.out) : "failed";
+        char shown[48];
+        snprintf(shown, sizeof shown, "%.40s", z ? z : "");
+        cli_result_free(&r);
+        ENSURE_MSG(z == NULL, "'jumpcyl %s' prints a negative zero: ...%s", runs[i], shown);
+    }
+    ENSURE(negative_zero("F = -0.0000 N") && negative_zero("-0.00") && !negative_zero("-0.0012") &&
+           !negative_zero("x -0.5") && !negative_zero("1e-05"));
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -344,6 +375,7 @@ int main(int argc, char **argv)
     cli_path = argv[1];
     RUN_TEST(test_predict_json);
     RUN_TEST(test_notes);
+    RUN_TEST(test_no_negative_zeros);
     RUN_TEST(test_paper_json);
     RUN_TEST(test_units);
     RUN_TEST(test_bad_input_exit_2);

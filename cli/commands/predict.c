@@ -25,7 +25,8 @@ static void print_crossing(const char *label, const jc_RollingCrossing *c)
     }
     const jc_RollingState *s = &c->state;
     printf("  %-34s th = %9.5f rad  x = %7.2f cm  w = %7.3f rad/s  N = %8.5f N  F = %8.5f N%s\n",
-           label, s->theta_rad, s->x_m * 100, s->omega_radps, s->normal_N, s->friction_N,
+           label, cli_shown(s->theta_rad, 5), cli_shown(s->x_m * 100, 2), cli_shown(s->omega_radps, 3),
+           cli_shown(s->normal_N, 5), cli_shown(s->friction_N, 5),
            c->grazing ? "  (grazing)" : "");
 }
 

@@ -93,8 +93,9 @@ static void print_event(const jc_Model *m, int i, const jc_Event *e)
     char change[32];
     snprintf(change, sizeof change, "%s->%s", jc_mode_name(e->mode_before), jc_mode_name(e->mode_after));
     printf("%3d %-13s %-17s %9.6f %8.2f %8.3f %9.4f %9.3f %8.4f %8.4f %8.4f", i + 1, jc_event_name(e->kind), change,
-           s->t_s, s->x_m * 100, (s->y_m - m->body.radius_m) * 1e3, s->theta_rad, s->omega_radps, e->slip_mps, e->normal_N,
-           e->friction_N);
+           s->t_s, cli_shown(s->x_m * 100, 2), cli_shown((s->y_m - m->body.radius_m) * 1e3, 3),
+           cli_shown(s->theta_rad, 4), cli_shown(s->omega_radps, 3), cli_shown(e->slip_mps, 4),
+           cli_shown(e->normal_N, 4), cli_shown(e->friction_N, 4));
     if (e->kind == JC_EVENT_TOUCHDOWN || e->kind == JC_EVENT_BOUNCE) printf("  impact %.3f m/s;", e->impact_speed_mps);
     if (e->kind == JC_EVENT_LIFTOFF || (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT)) {
         printf("  flight %.4f s, hop %.3f mm", e->flight_time_s, e->hop_height_m * 1e3);

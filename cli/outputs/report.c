@@ -7,6 +7,13 @@
 
 double cli_deg(double rad) { return rad * 180.0 / CLI_PI; }
 
+double cli_shown(double v, int decimals)
+{
+    /* A value that rounds to zero at this many decimals prints as 0, never
+     * as -0 (a normal force of -1e-17 N at a lift-off is zero). */
+    return fabs(v) < 0.5 * pow(10.0, -decimals) ? 0.0 : v;
+}
+
 /* One line, whatever the message quotes: a value with a line break or a
  * control character (from a file or an argument) is shown with '?' in its
  * place, so that the message stays one line and cannot drive the terminal. */
