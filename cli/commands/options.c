@@ -395,11 +395,10 @@ static void unknown_option(char **argv, int next)
  * by nature and gets none). */
 static void note_bare_units(const char *cmd, const cli_SetupArgs *a)
 {
-    static const struct { int opt; cli_Quantity q; double above; const char *unit, *hint; } checks[] = {
-        {O_RADIUS, Q_LENGTH, 1.0, "m", "cm"},      {O_ROD_OFFSET, Q_LENGTH, 1.0, "m", "cm"},
-        {O_ROD_RADIUS, Q_LENGTH, 1.0, "m", "mm"},  {O_LENGTH, Q_LENGTH, 1.0, "m", "cm"},
-        {O_PAPER_D, Q_LENGTH, 1.0, "m", "cm"},     {O_ROLLING_RES, Q_LENGTH, 1.0, "m", "mm"},
-        {O_DISC_MASS, Q_MASS, 10.0, "kg", "g"},    {O_ROD_MASS, Q_MASS, 10.0, "kg", "g"},
+    static const struct { int opt; double above; const char *unit, *hint; } checks[] = {
+        {O_RADIUS, 1.0, "m", "cm"},      {O_ROD_OFFSET, 1.0, "m", "cm"}, {O_ROD_RADIUS, 1.0, "m", "mm"},
+        {O_LENGTH, 1.0, "m", "cm"},      {O_PAPER_D, 1.0, "m", "cm"},    {O_ROLLING_RES, 1.0, "m", "mm"},
+        {O_DISC_MASS, 10.0, "kg", "g"},  {O_ROD_MASS, 10.0, "kg", "g"},
     };
     for (size_t k = 0; k < sizeof checks / sizeof checks[0]; ++k) {
         const char *text = a->value[checks[k].opt];
