@@ -529,7 +529,7 @@ static void shifted(double v, int shift, char *buf, size_t len)
     const int exp10 = atoi(p + 1) + shift;
     while (nd > 1 && digits[nd - 1] == '0') digits[--nd] = '\0';
     if (v == 0.0) {
-        snprintf(buf, len, "0");
+        snprintf(buf, len, "%s", neg ? "-0" : "0"); /* -0 stays -0: the dump is exact to the bit */
     } else if (exp10 >= 0 && exp10 < 15) {
         /* the point after digit exp10 */
         char out[48];
@@ -569,7 +569,7 @@ static void write_number(FILE *out, double v, const char *unit)
             snprintf(d, sizeof d, "%.*f", decimals, deg);
             char token[80];
             snprintf(token, sizeof token, "%sdeg", d);
-            if (cli_parse_quantity(token, Q_ANGLE, &back, err, sizeof err) == 0 && back == v) {
+            if (cli_parse_quantity(token, Q_ANGLE, &back, err, sizeof err) == 0 && memcmp(&back, &v, sizeof v) == 0) {
                 snprintf(buf, sizeof buf, "%s", d);
                 written = "deg";
                 break;
