@@ -230,6 +230,65 @@ static int cli_round_trip(const char *const *args, const char *label)
     return 0;
 }
 
+/* One vocabulary: every single-valued setup option, written under its own
+ * name in its section of a file (with a hyphen as on the command line, and
+ * with an underscore), gives the setup the option gives. */
+static int test_option_names_in_files(void)
+{
+    static const struct {
+        const char *option, *section, *value;
+    } cases[] = {
+        {"radius", "body", "12cm"},          {"disc-mass", "body", "40g"},         {"rod-mass", "body", "30g"},
+        {"rod-offset", "body", "6cm"},       {"rod-radius", "body", "3mm"},        {"length", "body", "8cm"},
+        {"incline", "incline", "20"},        {"g", "incline", "9.81"},             {"ramp-length", "incline", "4"},
+        {"mu", "contact", "0.4"},            {"mu-s", "contact", "0.7"},           {"mu-k", "contact", "0.3"},
+        {"restitution", "contact", "0.5"},   {"impact-law", "contact", "newton"},
+        {"rolling-resistance", "contact", "1mm"}, {"theta0", "start", "10"},      {"omega0", "start", "2"},
+        {"air-density", "air", "1.1"},       {"drag-coefficient", "air", "0.6"},   {"lift-coefficient", "air", "0.2"},
+        {"spin-drag", "air", "1e-6"},        {"paper-d", "paper", "2.7cm"},
+    };
+    int checked = 0;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        cli_SetupArgs a;
+        memset(&a, 0, sizeof a);
+        const int idx = cli_setup_option_index(cases[i].option);
+        ENSURE_MSG(idx >= 0, "%s", cases[i].option);
+        a.value[idx] = cases[i].value;
+        jc_Setup from_option;
+        char err[512] = "";
+        ENSURE_MSG(cli_setup_build(&a, &from_option, err, sizeof err) == 0, "--%s %s: %s", cases[i].option,
+                   cases[i].value, err);
+        for (int underscore = 0; underscore < 2; ++underscore) {
+            char key[64], text[256];
+            snprintf(key, sizeof key, "%s", cases[i].option);
+            for (char *c = key; underscore && *c; ++c)
+                if (*c == '-') *c = '_';
+            snprintf(text, sizeof text, "[%s]\n%s = %s\n", cases[i].section, key, cases[i].value);
+            jc_Setup from_file = jc_paper_setup();
+            ENSURE_MSG(cli_config_parse("t.ini", text, strlen(text), &from_file, err, sizeof err) == 0, "%s: %s", text,
+                       err);
+            const char *what = "";
+            ENSURE_MSG(same_setup(&from_option, &from_file, &what), "'%s' in [%s]: %s differs from --%s %s", key,
+                       cases[i].section, what, cases[i].option, cases[i].value);
+            ++checked;
+        }
+    }
+    /* every single-valued option of the command line is in the list */
+    int options = 0;
+    for (int i = 0; i < CLI_SETUP_OPTION_COUNT; ++i) {
+        cli_Quantity q;
+        options += cli_setup_option_quantity(i, &q) >= 0;
+    }
+    ENSURE_MSG(options == (int)(sizeof cases / sizeof cases[0]), "%d options, %zu cases", options,
+               sizeof cases / sizeof cases[0]);
+    const char *both = "[contact]\nmu = 0.4\nmu_s = 0.5\n";
+    jc_Setup s = jc_paper_setup();
+    char err[512] = "";
+    ENSURE(cli_config_parse("t.ini", both, strlen(both), &s, err, sizeof err) != 0 && strstr(err, "either mu"));
+    printf("  %d option names read from files as the options read them\n", checked);
+    return 0;
+}
+
 static int test_cli_round_trip(void)
 {
     const char *plain[] = {"predict", "--dump-config", NULL};
@@ -314,6 +373,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_round_trip_random);
     RUN_TEST(test_examples);
     RUN_TEST(test_partial_file);
+    RUN_TEST(test_option_names_in_files);
     RUN_TEST(test_cli_round_trip);
     RUN_TEST(test_cli_overrides);
     RUN_TEST(test_cli_examples_run);

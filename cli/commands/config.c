@@ -87,7 +87,28 @@ typedef struct {
     int section_line[SECTION_COUNT];
     jc_ImpactLaw impact_law; /* [contact] impact_law, a name */
     int impact_law_line;
+    double mu;               /* [contact] mu: both coefficients, as --mu */
+    int mu_line;
+    double shortcut[4];      /* [body] disc_mass, rod_mass, rod_offset, rod_radius, as the options */
+    int shortcut_line[4];
 } staged;
+
+/* The command line's option names, each accepted in its section as well:
+ * a file and the options speak one vocabulary (docs/config.md). */
+static const struct {
+    int section;
+    const char *key, *same_as;
+} option_names[] = {
+    {SEC_INCLINE, "incline", "angle"}, {SEC_INCLINE, "g", "gravity"}, {SEC_AIR, "air_density", "density"},
+    {SEC_PAPER, "paper_d", "cm_offset"},
+};
+/* [body] keys that set a part, as --disc-mass, --rod-mass, --rod-offset, --rod-radius do. */
+static const struct {
+    const char *key;
+    jc_PartKind kind;
+    int field; /* 0 mass, 1 offset, 2 radius */
+} body_shortcuts[4] = {{"disc_mass", JC_PART_DISC, 0}, {"rod_mass", JC_PART_ROD, 0}, {"rod_offset", JC_PART_ROD, 1},
+                       {"rod_radius", JC_PART_ROD, 2}};
 
 typedef struct {
     const char *name; /* the file, for messages */
@@ -278,7 +299,16 @@ static void allowed_keys(int sec, char *buf, size_t n)
     }
     if (sec == SEC_CONTACT) {
         const size_t used = strlen(buf);
-        snprintf(buf + used, n - used, "%simpact_law", used ? ", " : "");
+        snprintf(buf + used, n - used, "%simpact_law, mu", used ? ", " : "");
+    }
+    for (size_t k = 0; k < sizeof option_names / sizeof option_names[0]; ++k) {
+        if (option_names[k].section != sec) continue;
+        const size_t used = strlen(buf);
+        snprintf(buf + used, n - used, ", %s", option_names[k].key);
+    }
+    for (int k = 0; sec == SEC_BODY && k < 4; ++k) {
+        const size_t used = strlen(buf);
+        snprintf(buf + used, n - used, ", %s", body_shortcuts[k].key);
     }
     for (int k = 0; sec >= SEC_PART_FIRST && k < PART_KEY_COUNT; ++k) {
         const size_t used = strlen(buf);
@@ -316,11 +346,31 @@ static void part_key(parser *p, const char *key, const char *value)
 }
 
 /* inih's handler: one "key = value" line of the current section. */
-static int on_pair(void *user, const char *section, const char *key, const char *value)
+static int on_pair(void *user, const char *section, const char *key_text, const char *value)
 {
     (void)section; /* the reader tracks sections itself, with their lines */
     parser *p = user;
     if (p->error_line) return 1;
+    /* ramp-length or ramp_length: as on the command line, or as a C name */
+    char key[64];
+    snprintf(key, sizeof key, "%s", key_text);
+    for (char *c = key; *c; ++c)
+        if (*c == '-') *c = '_';
+    if (p->section != SEC_NONE && p->section < SEC_PART_FIRST) {
+        for (size_t k = 0; k < sizeof option_names / sizeof option_names[0]; ++k)
+            if (option_names[k].section == p->section && strcmp(key, option_names[k].key) == 0)
+                snprintf(key, sizeof key, "%s", option_names[k].same_as);
+        if (p->section == SEC_CONTACT && strcmp(key, "mu") == 0) {
+            if (first_time(p, &p->st.mu_line, key) == 0) parse_value(p, key, value, Q_NUMBER, &p->st.mu);
+            return 1;
+        }
+        for (int k = 0; p->section == SEC_BODY && k < 4; ++k) {
+            if (strcmp(key, body_shortcuts[k].key) != 0) continue;
+            if (first_time(p, &p->st.shortcut_line[k], key) == 0)
+                parse_value(p, key, value, body_shortcuts[k].field == 0 ? Q_MASS : Q_LENGTH, &p->st.shortcut[k]);
+            return 1;
+        }
+    }
     if (p->section == SEC_NONE) {
         fail(p, p->line, "key '%s' before any section (start with [body], [incline], ...)", key);
         return 1;
@@ -340,7 +390,7 @@ static int on_pair(void *user, const char *section, const char *key, const char 
             parse_value(p, key, value, scalar_keys[i].q, &p->st.value[i]);
         return 1;
     }
-    char allowed[128];
+    char allowed[256];
     allowed_keys(p->section, allowed, sizeof allowed);
     fail(p, p->line, "unknown key '%s' in [%s] (allowed: %s)", key, section_names[p->section], allowed);
     return 1;
@@ -410,6 +460,39 @@ static void apply(const staged *st, int parts, jc_Setup *s)
     if ((parts > 0 || radius_given) && !paper_d_given) s->paper_cm_offset_m = 0.0;
 }
 
+/* mu sets both coefficients: with mu_s or mu_k it would be ambiguous. */
+static void check_mu(parser *p)
+{
+    const int s = scalar_index(offsetof(jc_Setup, mu_static)), k = scalar_index(offsetof(jc_Setup, mu_kinetic));
+    if (p->st.mu_line && (p->st.value_line[s] || p->st.value_line[k]))
+        fail(p, p->st.mu_line, "mu sets both mu_s and mu_k; give either mu or mu_s/mu_k");
+}
+
+/* [contact] mu, and the [body] keys that set a part (after the parts are
+ * in place); 0, or -1 with the message. */
+static int apply_shortcuts(parser *p, jc_Setup *s)
+{
+    if (p->st.mu_line) s->mu_static = s->mu_kinetic = p->st.mu;
+    int changed = 0;
+    for (int k = 0; k < 4; ++k) {
+        if (!p->st.shortcut_line[k]) continue;
+        jc_Part *part = NULL;
+        for (int i = s->body.part_count - 1; i >= 0; --i)
+            if (s->body.parts[i].kind == body_shortcuts[k].kind) part = &s->body.parts[i];
+        if (!part) {
+            fail(p, p->st.shortcut_line[k], "%s needs a body with a %s part", body_shortcuts[k].key,
+                 jc_part_kind_name(body_shortcuts[k].kind));
+            return -1;
+        }
+        const int f = body_shortcuts[k].field;
+        *(f == 0 ? &part->mass_kg : f == 1 ? &part->offset_m : &part->radius_m) = p->st.shortcut[k];
+        changed = 1;
+    }
+    /* The printed d belongs to the paper's body, as with the options. */
+    if (changed && !p->st.value_line[scalar_index(offsetof(jc_Setup, paper_cm_offset_m))]) s->paper_cm_offset_m = 0.0;
+    return 0;
+}
+
 int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *setup, char *err, size_t err_len)
 {
     parser *p = calloc(1, sizeof *p);
@@ -429,8 +512,13 @@ int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *s
         p->error_line = -1;
     }
     const int parts = p->error_line ? 0 : check_parts(p);
+    if (!p->error_line) check_mu(p);
     const int ok = !p->error_line;
     if (ok) apply(&p->st, parts, setup);
+    if (ok && apply_shortcuts(p, setup) != 0) {
+        free(p);
+        return -1;
+    }
     free(p);
     return ok ? 0 : -1;
 }
