@@ -113,7 +113,7 @@ static const bad_case cases[] = {
     {SIM("--config", "@case.ini", "--config", "@case.ini"), 2, "--config given twice", CSV, "", 0, NULL},
     {A("predict", "--dump-config", "--mu", "nan"), 2, "'nan'", NO_CSV, NULL, 0, NULL},
     /* ---- experiment files: FILE:LINE: and the bad key or value ---- */
-    {INI, "case.ini:3: unknown key 'colour' in [body] (allowed: radius, length)", CSV,
+    {INI, "case.ini:3: unknown key 'colour' in [body] (allowed: radius, length, disc_mass, rod_mass, rod_offset, rod_radius)", CSV,
      "[body]\nradius = 10 cm\ncolour = red\n", 0, NULL},
     {INI, "case.ini:2: unknown section [bodyy]", CSV, "; a comment\n[bodyy]\nradius = 1\n", 0, NULL},
     {INI, "case.ini:5: section [body] given twice (first on line 1)", CSV,
