@@ -332,6 +332,12 @@ static int test_notes(void)
     r = run("predict --theta0 5");
     ENSURE(r.status == 0 && strstr(r.out, "ignores theta0 = 5 deg"));
     cli_result_free(&r);
+    r = run("paper --omega0 2");
+    ENSURE(r.status == 0 && strstr(r.out, "paper's model ignores theta0 = 0 deg and omega0 = 2 rad/s"));
+    cli_result_free(&r);
+    r = run("paper");
+    ENSURE(r.status == 0 && !strstr(r.out, "model ignores"));
+    cli_result_free(&r);
     return 0;
 }
 

@@ -394,6 +394,10 @@ static void print_text(const paper_row *rows, int n)
            rows[0].paper.cm_offset_m * 100,
            m0->setup.paper_cm_offset_m > 0.0 ? "as printed, rounded" : "the exact value",
            m0->body.cm_offset_m * 100, m0->setup.mu_static);
+    if (m0->setup.theta0_rad != 0.0 || m0->setup.omega0_radps != 0.0)
+        printf("  * The paper's model ignores theta0 = %.4g deg and omega0 = %.4g rad/s: it starts at rest\n"
+               "    at th = 0. The exact rolling model and the full model start from them.\n",
+               cli_deg(m0->setup.theta0_rad), m0->setup.omega0_radps);
 }
 
 /* ---- JSON ---- */
