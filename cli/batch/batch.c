@@ -192,7 +192,8 @@ void cli_batch_help(void)
 
 typedef struct {
     FILE *f;
-    int to_stdout;
+    int to_stdout;   /* written in place: "-", or a device or FIFO (no FILE.part, no rename) */
+    int opened;      /* a device or FIFO we opened (closed at the end) */
     char part[CLI_PATH_MAX];
     double last_sync_s;
 } rows_file;
@@ -263,6 +264,7 @@ static int rows_open(const cli_Batch *b, rows_file *w, long lo, long hi, long *d
 {
     memset(w, 0, sizeof *w);
     *done = 0;
+    struct stat target;
     if (!b->output) return EXIT_OK;
     if (strcmp(b->output, "-") == 0) {
         if (b->resume) {
@@ -271,7 +273,22 @@ static int rows_open(const cli_Batch *b, rows_file *w, long lo, long hi, long *d
         }
         w->f = stdout;
         w->to_stdout = 1;
+    } else if (stat(b->output, &target) == 0 && !S_ISREG(target.st_mode)) {
+        /* /dev/null, a FIFO, a terminal: written in place, never renamed
+         * over (a rename would replace the device node); a directory is refused. */
+        if (cli_output_check_target(b->output) != 0) return EXIT_USAGE;
+        if (b->resume) {
+            cli_error("%s: --resume needs --output FILE, a regular file ('%s' is not one)", b->cmd, b->output);
+            return EXIT_USAGE;
+        }
+        w->f = fopen(b->output, "w");
+        if (!w->f) {
+            cli_error("%s: cannot open %s: %s", b->cmd, b->output, strerror(errno));
+            return EXIT_FAIL;
+        }
+        w->to_stdout = w->opened = 1;
     } else {
+        if (cli_output_check_target(b->output) != 0) return EXIT_FAIL;
         if (snprintf(w->part, sizeof w->part, "%s.part", b->output) >= (int)sizeof w->part) {
             cli_error("%s: --output '%s': the name is too long", b->cmd, b->output);
             return EXIT_USAGE;
@@ -317,7 +334,7 @@ static int rows_write(const cli_Batch *b, rows_file *w, const cli_CaseResult *r,
         bad = fsync(fileno(w->f)) != 0;
         w->last_sync_s = cli_now_s();
     }
-    if (bad) cli_error("%s: cannot write %s: %s", b->cmd, w->to_stdout ? "standard output" : w->part,
+    if (bad) cli_error("%s: cannot write %s: %s", b->cmd, w->opened ? b->output : w->to_stdout ? "standard output" : w->part,
                        strerror(errno ? errno : EIO));
     return bad ? -1 : 0;
 }
@@ -325,6 +342,12 @@ static int rows_write(const cli_Batch *b, rows_file *w, const cli_CaseResult *r,
 /* Closes the file; when the job is complete FILE.part becomes FILE. */
 static int rows_close(const cli_Batch *b, rows_file *w, int complete)
 {
+    if (w->opened) {
+        const int bad = fclose(w->f) != 0;
+        w->f = NULL;
+        if (bad) cli_error("%s: cannot write %s: %s", b->cmd, b->output, strerror(errno));
+        return bad ? -1 : 0;
+    }
     if (!w->f || w->to_stdout) return 0;
     int bad = fflush(w->f) != 0 || fsync(fileno(w->f)) != 0;
     bad |= fclose(w->f) != 0;

@@ -472,6 +472,33 @@ static int test_paper_uncertainty(void)
     return 0;
 }
 
+/* A device or FIFO is written in place, never renamed over; a directory or
+ * a full device is refused with one line. */
+static int test_special_outputs(void)
+{
+    const char *to_null[] = {"sweep", "--vary", "incline=10,20", "--output", "/dev/null", NULL};
+    cli_result r = cli_run(to_null);
+    struct stat st;
+    ENSURE_MSG(r.status == 0 && stat("/dev/null", &st) == 0 && S_ISCHR(st.st_mode) && !file_exists("/dev/null.part"),
+               "%s", r.err);
+    cli_result_free(&r);
+    const char *to_full[] = {"sweep", "--vary", "incline=10,20", "--output", "/dev/full", NULL};
+    r = cli_run(to_full);
+    ENSURE_MSG(r.status == 1 && cli_one_line(r.err) && strstr(r.err, "No space"), "%d %s", r.status, r.err);
+    cli_result_free(&r);
+    const char *to_dir[] = {"sweep", "--vary", "incline=10,20", "--output", dir, NULL};
+    r = cli_run(to_dir);
+    char part[128];
+    snprintf(part, sizeof part, "%s.part", dir);
+    ENSURE_MSG(r.status == 2 && cli_one_line(r.err) && !file_exists(part), "%d %s", r.status, r.err);
+    cli_result_free(&r);
+    const char *resume_null[] = {"mc", "--samples", "5", "--output", "/dev/null", "--resume", NULL};
+    r = cli_run(resume_null);
+    ENSURE_MSG(r.status == 2 && cli_one_line(r.err), "%d %s", r.status, r.err);
+    cli_result_free(&r);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (cli_run_init(argc, argv) != 0) return 2;
@@ -485,6 +512,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_mc_shards_are_the_whole_job);
     RUN_TEST(test_bad_values);
     RUN_TEST(test_paper_uncertainty);
+    RUN_TEST(test_special_outputs);
     char cmd[128];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
