@@ -24,7 +24,8 @@ static const plot_kind kinds[] = {
      "both sides of the paper's Eq. 9 against the rotation angle (its Figures 2-4),\n"
      "                      every intersection, the printed jump angle, the exact N = 0 condition", 1, 1},
     {"forces", NEED_RUN, fig_forces_panel, "N/(M g cos a) and |F|/N along the ramp, friction band, events", 1, 1},
-    {"path", NEED_RUN, fig_path_panel, "gap between rim and incline and the centre's speed; hop heights", 1, 1},
+    {"gap", NEED_RUN, fig_path_panel,
+     "gap between rim and incline and the centre's speed; hop heights ('path' is its former name)", 1, 1},
     {"energy", NEED_RUN, fig_energy_panel, "kinetic, potential, friction and impact losses, their sum", 1, 1},
     {"overview", NEED_CRITERION | NEED_RUN, NULL, "the four above on one page", 2, 2},
     {"paper-uncertainty", NEED_UNCERTAINTY, fig_uncertainty_panels,
@@ -32,7 +33,7 @@ static const plot_kind kinds[] = {
      "                      with its 95 % band (Monte Carlo of the inputs' uncertainties), measured", 3, 1},
 };
 #define KIND_COUNT (int)(sizeof kinds / sizeof kinds[0])
-#define KIND_NAMES "paper-criterion, forces, path, energy, overview, paper-uncertainty"
+#define KIND_NAMES "paper-criterion, forces, gap, energy, overview, paper-uncertainty"
 
 typedef struct {
     const char *what;
@@ -85,6 +86,7 @@ static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take
 
 static const plot_kind *find_kind(const char *name)
 {
+    if (strcmp(name, "path") == 0) name = "gap"; /* the former name: scripts that use it still work */
     for (int i = 0; i < KIND_COUNT; ++i)
         if (strcmp(kinds[i].name, name) == 0) return &kinds[i];
     return NULL;

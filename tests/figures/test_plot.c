@@ -61,7 +61,7 @@ static int plot_ok(const char *args)
 
 static int test_every_kind_png(void)
 {
-    static const char *kinds[] = {"paper-criterion", "forces", "path", "energy", "overview"};
+    static const char *kinds[] = {"paper-criterion", "forces", "gap", "path", "energy", "overview"};
     for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i) {
         char args[2048], out[1100];
         snprintf(out, sizeof out, "%s/%s.png", dir, kinds[i]);
