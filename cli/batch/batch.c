@@ -374,7 +374,7 @@ static void compute(const cli_Batch *b, long first, long n, cli_CaseResult *r, j
         char inputs[CLI_ROW_MAX / 2], why[256] = "";
         jc_Setup s;
         const int ok = b->make_case(b->ctx, first + i, inputs, sizeof inputs, &s, why, sizeof why) == 0;
-        cli_case_run(first + i, inputs, ok ? &s : NULL, why, b->sim, ws[t], &r[i]);
+        cli_case_run(first + i, inputs, ok ? &s : NULL, b->sim, ws[t], &r[i]);
     }
 }
 

@@ -25,6 +25,7 @@ typedef struct {
     cli_Quantity q;
     char column[48];            /* CSV column: "rod_offset_m", "incline_deg", "impact_law" */
     double column_scale;        /* SI value times this is the column's value (1, or 180/pi for degrees) */
+    const char *unit;           /* the column's unit ("m", "deg"; "" for numbers and names) */
     cli_ParamKind kind;
     /* PARAM_LIST: the values, SI (numbers) or indices into names (impact-law) */
     long count;
@@ -43,7 +44,7 @@ int cli_param_parse_vary(const char *text, const cli_SetupArgs *base_args, cli_P
  * nominal value of a normal comes from the setup. 0, or -1 with a message. */
 int cli_param_parse_spread(const char *text, cli_ParamKind kind, const jc_Setup *nominal, cli_Param *p, char *err,
                            size_t err_len);
-/* A parameter at its nominal value (one column, no spread): for --sigma 0. */
+/* Frees a parameter's list of values. */
 void cli_param_free(cli_Param *p);
 /* The SI value of an option in a setup (the mean of a normal). */
 double cli_param_nominal(int option, const jc_Setup *s);
@@ -92,8 +93,8 @@ typedef struct {
 void cli_outcome_header(FILE *out);
 #define CLI_OUTCOME_COLUMNS 14
 /* Runs the case and writes its row: "index,inputs,outcome\n". setup may be
- * NULL with why set: an invalid case (its row says so). */
-void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const char *why, const jc_SimOptions *sim,
+ * NULL: an invalid case (its row says so). */
+void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const jc_SimOptions *sim,
                   jc_Workspace *ws, cli_CaseResult *r);
 /* The result of a row read back from a file (for --resume): 0, or -1 if the
  * line is not a row of input_columns inputs. */
@@ -212,7 +213,6 @@ typedef struct {
  * EXIT_OK, or EXIT_USAGE after a message. */
 int cli_mc_job_init(cli_McJob *job, const char *cmd, const cli_SetupArgs *sa, const char *const *sigma, int n_sigma,
                     const char *const *range, int n_range, int no_defaults, uint64_t seed);
-void cli_mc_job_free(cli_McJob *job);
 /* The batch's make_case for the job's samples. */
 int cli_mc_make_case(const void *ctx, long index, char *inputs, size_t len, jc_Setup *setup, char *why,
                      size_t why_len);

@@ -102,8 +102,6 @@ int cli_mc_job_init(cli_McJob *job, const char *cmd, const cli_SetupArgs *sa, co
     return st;
 }
 
-void cli_mc_job_free(cli_McJob *job) { (void)job; /* spreads hold no memory */ }
-
 /* The sample's values, attempt a: draw number a * CLI_PARAM_MAX + j for input j. */
 static void draw(const cli_McJob *job, long index, int a, double *values)
 {

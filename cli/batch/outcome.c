@@ -54,16 +54,14 @@ static void add_event_state(cli_CaseResult *r, int index, const jc_State *s)
     else row_add(r, ",%.12g,%.12g,%.12g", s->theta_rad, s->x_m, s->t_s);
 }
 
-static void row_invalid(cli_CaseResult *r, const char *termination, const char *why)
+/* The reason is not a field (it would need CSV quoting in every reader):
+ * the termination column says what happened, stderr counts such cases. */
+static void row_invalid(cli_CaseResult *r, const char *termination)
 {
-    /* The reason as its own quoted field would need CSV quoting rules in
-     * every reader; the termination column says what happened and stderr
-     * gives the reason of the first such case. */
-    (void)why;
     row_add(r, ",,,,,,,,,,,%s,,,\n", termination);
 }
 
-void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const char *why, const jc_SimOptions *sim,
+void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const jc_SimOptions *sim,
                   jc_Workspace *ws, cli_CaseResult *r)
 {
     r->row_len = 0;
@@ -74,7 +72,7 @@ void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const c
     char err[256];
     if (!setup || jc_model_init(&model, setup, err, sizeof err) != JC_OK) {
         r->kind = CASE_INVALID;
-        row_invalid(r, "invalid_setup", setup ? err : why);
+        row_invalid(r, "invalid_setup");
         return;
     }
     summary_ctx ctx;
@@ -85,7 +83,7 @@ void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const c
     jc_Run run;
     if (jc_simulate_from(&model, &start, sim, &rec, ws, &run, err, sizeof err) != JC_OK) {
         r->kind = CASE_FAILED;
-        row_invalid(r, "failed", err);
+        row_invalid(r, "failed");
         return;
     }
     const jc_RunSummary *s = &ctx.sum;

@@ -67,7 +67,9 @@ static int param_begin(const char *text, size_t name_len, const char *flag, cli_
         return -1;
     }
     p->is_name = how == 1;
-    snprintf(p->column, sizeof p->column, "%s%s", name, p->is_name ? "" : column_suffix(p->q));
+    const char *suffix = p->is_name ? "" : column_suffix(p->q);
+    p->unit = *suffix ? suffix + 1 : "";
+    snprintf(p->column, sizeof p->column, "%s%s", name, suffix);
     for (char *c = p->column; *c; ++c)
         if (*c == '-') *c = '_';
     p->column_scale = !p->is_name && p->q == Q_ANGLE ? 180.0 / CLI_PI : 1.0;

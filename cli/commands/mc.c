@@ -129,8 +129,7 @@ static void print_spreads(const cli_McJob *job)
     for (int j = 0; j < job->n; ++j) {
         const cli_Param *p = &job->params[j];
         const double k = p->column_scale;
-        const char *unit = strchr(p->column, '_') && p->q != Q_NUMBER ? strrchr(p->column, '_') + 1 : "";
-        if (strcmp(p->column, "mu_s") == 0 || strcmp(p->column, "mu_k") == 0) unit = "";
+        const char *unit = p->unit;
         if (p->kind == PARAM_NORMAL)
             printf("  %-14s normal  %.6g %s, sigma %.4g %s   (%s)\n", cli_setup_options[p->option].name, p->a * k, unit,
                    p->b * k, unit, job->why[j]);
@@ -326,6 +325,5 @@ int cmd_mc(int argc, char **argv)
     }
     cli_mc_tally_free(&tally);
     free(header);
-    cli_mc_job_free(&job);
     return st;
 }
