@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { NEED_CRITERION = 1, NEED_RUN = 2, NEED_UNCERTAINTY = 4 };
+enum { NEED_CRITERION = 1, NEED_RUN = 2, NEED_UNCERTAINTY = 4, NEED_TRAJECTORY = 8 };
 
 typedef struct {
     const char *name;
@@ -27,13 +27,17 @@ static const plot_kind kinds[] = {
     {"gap", NEED_RUN, fig_path_panel,
      "gap between rim and incline and the centre's speed; hop heights ('path' is its former name)", 1, 1},
     {"energy", NEED_RUN, fig_energy_panel, "kinetic, potential, friction and impact losses, their sum", 1, 1},
-    {"overview", NEED_CRITERION | NEED_RUN, NULL, "the four above on one page", 2, 2},
+    {"trajectory", NEED_RUN | NEED_TRAJECTORY, fig_trajectory_panels,
+     "the body's path to scale: centre, parts, centre of mass, outlines at the events;\n"
+     "                      zoomed on the lift-off and hops, the whole ramp, the first flight's gap", 2, 2},
+    {"overview", NEED_CRITERION | NEED_RUN, NULL,
+     "paper-criterion, forces, gap, energy on one page, zoomed on the lift-off and hops", 2, 2},
     {"paper-uncertainty", NEED_UNCERTAINTY, fig_uncertainty_panels,
      "the paper's three inclines: printed jump site, the full model's first lift-off\n"
      "                      with its 95 % band (Monte Carlo of the inputs' uncertainties), measured", 3, 1},
 };
 #define KIND_COUNT (int)(sizeof kinds / sizeof kinds[0])
-#define KIND_NAMES "paper-criterion, forces, gap, energy, overview, paper-uncertainty"
+#define KIND_NAMES "paper-criterion, forces, gap, energy, trajectory, overview, paper-uncertainty"
 
 typedef struct {
     const char *what;
@@ -62,7 +66,7 @@ static void help(void)
          "                  before the work starts\n"
          "  -h, --help      this help\n"
          "\n"
-         "forces, path and energy sample the full model finely (about 5000 samples over the run)\n"
+         "forces, gap, energy, trajectory and overview sample the full model finely (about 5000 samples over the run)\n"
          "unless --sample-dt is given. Needs gnuplot (Debian: gnuplot-nox).\n");
 }
 
@@ -121,7 +125,13 @@ static void write_overview(FILE *gp, const fig_Data *d)
     char caption[256], body[256];
     fig_caption(d->model, caption, sizeof caption);
     fig_body_caption(d->model, body, sizeof body);
-    fprintf(gp, "\nset multiplot layout 2,2 title \"jumpcyl: %s; %s\" font F_TITLE\n", caption, body);
+    char zoom[320] = "";
+    if (d->zoomed) {
+        char words[200];
+        fig_zoom_caption(d, words, sizeof words);
+        snprintf(zoom, sizeof zoom, "\\nforces, hops, energy %s; the whole run: plot --what forces", words);
+    }
+    fprintf(gp, "\nset multiplot layout 2,2 title \"jumpcyl: %s; %s%s\" font F_TITLE\n", caption, body, zoom);
     fig_criterion_panel(gp, d);
     fig_forces_panel(gp, d);
     fig_path_panel(gp, d);
@@ -150,7 +160,9 @@ static int write_script(fig_Data *d, const plot_kind *kind, fig_Format format, c
     fputs("\n# ---- Data ----\n", gp);
     int rc = EXIT_OK;
     if (kind->needs & NEED_CRITERION) rc = fig_criterion_prepare(d);
+    d->zoom_wanted = overview;
     if (rc == EXIT_OK && (kind->needs & NEED_RUN)) rc = fig_run_prepare(d, sim, dt_given, max_samples);
+    if (rc == EXIT_OK && (kind->needs & NEED_TRAJECTORY)) rc = fig_trajectory_prepare(d);
     if (rc == EXIT_OK && (kind->needs & NEED_UNCERTAINTY)) rc = fig_uncertainty_prepare(d);
     if (rc == EXIT_OK && overview) write_overview(gp, d);
     else if (rc == EXIT_OK) kind->panel(gp, d);

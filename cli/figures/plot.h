@@ -40,6 +40,13 @@ typedef struct {
     double energy_min_J, energy_max_J;
     double resistance_loss_max_J; /* air and rolling resistance; 0 when switched off */
     int hop_count;
+
+    /* The zoom on what matters: from before the first lift-off to after the
+     * last flight's landing (plot_run.c). zoomed is 0 when nothing flies. */
+    int zoom_wanted; /* set before fig_run_prepare: forces, gap, energy panels take the zoom (overview) */
+    int zoomed;
+    double zoom_x_lo_cm, zoom_x_hi_cm; /* centre's distance down the incline */
+    double zoom_t_lo_s, zoom_t_hi_s;
 } fig_Data;
 
 /* ---- gnuplot.c: formats, the shared style, running gnuplot ---- */
@@ -93,6 +100,21 @@ void fig_uncertainty_panels(FILE *gp, const fig_Data *d);
 int fig_run_prepare(fig_Data *d, const jc_SimOptions *o, int dt_given, double max_samples);
 /* The readable name of an event ("lift-off", "ramp end"). */
 const char *fig_event_label(jc_EventKind k);
+/* "bounce ×4, touchdown": the kinds of events first..last of a run in order,
+ * repeats counted (per-kind totals when that is too long for len). */
+void fig_event_cluster_label(const jc_Run *run, int first, int last, char *out, size_t len);
+/* Whether an event starts a flight (a lift-off, or a bounce into flight). */
+int fig_event_flies(const jc_Event *e);
+/* "zoomed to x = 53.8–320 cm (t = 0.43–1.09 s), around the first lift-off
+ * and the hops": the zoom in words, for titles (d->zoomed). */
+void fig_zoom_caption(const fig_Data *d, char *out, size_t len);
+
+/* ---- plot_trajectory.c: the body's path to scale in the laboratory frame ---- */
+/* Writes the trajectory's data blocks (after fig_run_prepare). */
+int fig_trajectory_prepare(fig_Data *d);
+/* Its panels: a main one zoomed on the lift-off and the hops, the whole
+ * ramp with the zoom marked, and a close-up of the first flight's gap. */
+void fig_trajectory_panels(FILE *gp, const fig_Data *d);
 
 /* ---- plot_panels.c: the three panels drawn from a run ---- */
 void fig_forces_panel(FILE *gp, const fig_Data *d);

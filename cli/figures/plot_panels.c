@@ -21,17 +21,22 @@ static void title(FILE *gp, const fig_Data *d, const char *what)
     fprintf(gp, "set title \"%s%s%s\"\n", what, d->caption[0] ? " — " : "", d->caption);
 }
 
+/* Whether the panels show the zoom on the lift-off and hops (overview). */
+static int zoomed(const fig_Data *d) { return d->zoom_wanted && d->zoomed; }
+
 /* The horizontal axis: distance down the incline, or time when the body
  * went back and forth (plot_run.c). AX, EX, HX are the columns holding it in
  * the run, events and hops files. */
 static void x_axis(FILE *gp, const fig_Data *d)
 {
+    const char *zoom = zoomed(d) ? ", zoomed (page title)" : "";
     if (d->time_axis)
-        fputs("# The body went back and forth: against time (for distance: AX = 2; EX = 1; HX = 1)\n"
-              "AX = 1; EX = 2; HX = 2\nset xlabel 'time t (s)'\n", gp);
+        fprintf(gp, "# The body went back and forth: against time (for distance: AX = 2; EX = 1; HX = 1)\n"
+                    "AX = 1; EX = 2; HX = 2\nset xlabel 'time t (s)%s'\n", zoom);
     else
-        fputs("# Against distance (for time: AX = 1; EX = 2; HX = 2; and the xlabel and xrange)\n"
-              "AX = 2; EX = 1; HX = 1\nset xlabel 'distance of the centre down the incline x (cm)'\n", gp);
+        fprintf(gp, "# Against distance (for time: AX = 1; EX = 2; HX = 2; and the xlabel and xrange)\n"
+                    "AX = 2; EX = 1; HX = 1\nset xlabel 'distance of the centre down the incline x (cm)%s'\n", zoom);
+    if (zoomed(d)) fputs("# Zoomed on the first lift-off and the hops; the whole run: set autoscale x\n", gp);
     fprintf(gp, "set xrange [%.10g:%.10g]\n", d->axis_min, d->axis_max);
 }
 
@@ -115,9 +120,11 @@ void fig_energy_panel(FILE *gp, const fig_Data *d)
     data_var(gp, "RUN", "run");
     const double span = fmax(d->energy_max_J - d->energy_min_J, 1e-12);
     title(gp, d, "Energy");
-    fprintf(gp, "set xlabel 'time t (s)'\nset ylabel 'energy (J)'\nset xrange [0:%.10g]\nset yrange [%.10g:%.10g]\n"
+    const double t_lo = zoomed(d) ? d->zoom_t_lo_s : 0.0, t_hi = zoomed(d) ? d->zoom_t_hi_s : d->t_max_s;
+    fprintf(gp, "set xlabel 'time t (s)%s'\nset ylabel 'energy (J)'\nset xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\n"
                 "set xzeroaxis lt 1 lw 1 lc rgb C_GREY\n",
-            d->t_max_s > 0 ? d->t_max_s : 1.0, d->energy_min_J - 0.05 * span, d->energy_max_J + 0.05 * span);
+            zoomed(d) ? ", zoomed (page title)" : "", t_lo, t_hi > t_lo ? t_hi : t_lo + 1.0,
+            d->energy_min_J - 0.05 * span, d->energy_max_J + 0.05 * span);
     fputs("plot RUN using 1:8 with lines lc rgb C_BLUE lw LW title 'kinetic K', \\\n"
           "     RUN using 1:9 with lines lc rgb C_GREEN lw LW title 'potential U (from the start)', \\\n"
           "     RUN using 1:10 with lines lc rgb C_ORANGE lw LW title 'lost to friction', \\\n"

@@ -18,6 +18,11 @@
 /* Going back more than this fraction of the distance covered puts the
  * panels against time. */
 #define BACKTRACK_FRACTION 0.02
+/* The zoom starts this many rim radii before the first lift-off (the slip
+ * that leads to it is usually in view) and ends this many after the last
+ * landing. */
+#define ZOOM_BEFORE_RADII 3.0
+#define ZOOM_AFTER_RADII 1.5
 
 const char *fig_event_label(jc_EventKind k)
 {
@@ -167,7 +172,7 @@ static void kind_totals(const jc_Run *run, int first, int last, char *out, size_
 
 /* "bounce ×4, touchdown": the kinds of events first..last in order, repeats
  * counted; per-kind totals when that is longer than a label can be. */
-static void cluster_label(const jc_Run *run, int first, int last, char *out, size_t len)
+void fig_event_cluster_label(const jc_Run *run, int first, int last, char *out, size_t len)
 {
     char seq[512];
     seq[0] = '\0';
@@ -204,7 +209,7 @@ static int write_events(const fig_Data *d)
                fabs(axis_of(d, run->events[last + 1].state.x_m, run->events[last + 1].state.t_s) - at) <= tol)
             ++last;
         char label[LABEL_MAX];
-        cluster_label(run, lead, last, label, sizeof label);
+        fig_event_cluster_label(run, lead, last, label, sizeof label);
         for (int i = lead; i <= last; ++i) {
             const jc_Event *e = &run->events[i];
             fprintf(f, "%.10g %.12g %s \"%s\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind),
@@ -249,8 +254,7 @@ static int collect_hops(const fig_Data *d, fig_Hop *hops)
     int n = 0, cursor = 0;
     for (int i = 0; i < d->run.event_count; ++i) {
         const jc_Event *e = &d->run.events[i];
-        const int flies = e->kind == JC_EVENT_LIFTOFF || (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT);
-        if (flies) hops[n++] = hop_of(d, e, &cursor);
+        if (fig_event_flies(e)) hops[n++] = hop_of(d, e, &cursor);
     }
     return n;
 }
@@ -326,6 +330,65 @@ static int write_hops(fig_Data *d)
     return EXIT_OK;
 }
 
+int fig_event_flies(const jc_Event *e)
+{
+    return e->kind == JC_EVENT_LIFTOFF || (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT);
+}
+
+/* The time the centre was last at or before x_cm going back from sample i
+ * (the zoom's start in time); 0 if never. */
+static double time_back_to(const jc_Run *run, int i, double x_cm)
+{
+    for (; i >= 0; --i)
+        if (run->samples[i].state.x_m * 100 <= x_cm) return run->samples[i].state.t_s;
+    return 0.0;
+}
+
+/* The time the centre first reaches x_cm after t_s; NaN if never. */
+static double time_forward_to(const jc_Run *run, double t_s, double x_cm)
+{
+    for (int i = 0; i < run->sample_count; ++i)
+        if (run->samples[i].state.t_s >= t_s && run->samples[i].state.x_m * 100 >= x_cm) return run->samples[i].state.t_s;
+    return NAN;
+}
+
+/* The zoom: from ZOOM_BEFORE_RADII rim radii (or 15 % of the hops' span)
+ * before the first lift-off to ZOOM_AFTER_RADII radii (or 5 %) after the
+ * last flight's landing, within the run. In time, the same stretch; when
+ * the body never gets that far again (it rocks), a quarter of the stretch
+ * after the last landing. */
+static void find_zoom(fig_Data *d)
+{
+    const jc_Run *run = &d->run;
+    int first = -1, last = -1;
+    for (int i = 0; i < run->event_count; ++i)
+        if (fig_event_flies(&run->events[i])) {
+            if (first < 0) first = i;
+            last = i;
+        }
+    d->zoomed = first >= 0 && run->sample_count > 1;
+    if (!d->zoomed) return;
+    const jc_Event *a = &run->events[first], *b = &run->events[last];
+    const double r_cm = d->model->body.radius_m * 100;
+    const double start_cm = a->state.x_m * 100;
+    const double end_cm = (isnan(b->landing_x_m) ? run->final_state.x_m : b->landing_x_m) * 100;
+    const double span = fabs(end_cm - start_cm), t_end = b->state.t_s + b->flight_time_s;
+    d->zoom_x_lo_cm = fmax(fmin(start_cm, end_cm) - fmax(ZOOM_BEFORE_RADII * r_cm, 0.15 * span), d->x_min_cm);
+    d->zoom_x_hi_cm = fmin(fmax(start_cm, end_cm) + fmax(ZOOM_AFTER_RADII * r_cm, 0.05 * span), d->x_max_cm);
+    int i = 0;
+    while (i + 1 < run->sample_count && run->samples[i + 1].state.t_s <= a->state.t_s) ++i;
+    d->zoom_t_lo_s = time_back_to(run, i, d->zoom_x_lo_cm);
+    const double reached = time_forward_to(run, t_end, d->zoom_x_hi_cm);
+    d->zoom_t_hi_s = isnan(reached) || d->time_axis ? fmin(d->t_max_s, t_end + 0.25 * (t_end - d->zoom_t_lo_s)) : reached;
+    if (!(d->zoom_t_hi_s > d->zoom_t_lo_s)) d->zoom_t_hi_s = d->t_max_s;
+}
+
+void fig_zoom_caption(const fig_Data *d, char *out, size_t len)
+{
+    snprintf(out, len, "zoomed to x = %.3g–%.3g cm (t = %.3g–%.3g s), around the first lift-off and the hops",
+             d->zoom_x_lo_cm, d->zoom_x_hi_cm, d->zoom_t_lo_s, d->zoom_t_hi_s);
+}
+
 /* Distance down the incline is the natural axis, unless the body goes back
  * and forth (it rocks, or rolls back): then curves would overprint, and the
  * panels are drawn against time. */
@@ -341,6 +404,11 @@ static void choose_axis(fig_Data *d)
     d->axis_min = d->time_axis ? 0.0 : d->x_min_cm;
     d->axis_max = d->time_axis ? d->t_max_s : d->x_max_cm;
     if (!(d->axis_max > d->axis_min)) d->axis_max = d->axis_min + 1;
+    find_zoom(d);
+    if (d->zoom_wanted && d->zoomed) {
+        d->axis_min = d->time_axis ? d->zoom_t_lo_s : d->zoom_x_lo_cm;
+        d->axis_max = d->time_axis ? d->zoom_t_hi_s : d->zoom_x_hi_cm;
+    }
 }
 
 int fig_run_prepare(fig_Data *d, const jc_SimOptions *o, int dt_given, double max_samples)
