@@ -61,7 +61,7 @@ static int plot_ok(const char *args)
 
 static int test_every_kind_png(void)
 {
-    static const char *kinds[] = {"paper-criterion", "forces", "gap", "path", "energy", "overview"};
+    static const char *kinds[] = {"paper-criterion", "forces", "gap", "path", "energy", "trajectory", "overview"};
     for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i) {
         char args[2048], out[1100];
         snprintf(out, sizeof out, "%s/%s.png", dir, kinds[i]);
@@ -69,7 +69,7 @@ static int test_every_kind_png(void)
         ENSURE(plot_ok(args));
         int w, h;
         ENSURE_MSG(fig_png_size(out, &w, &h) == 0, "%s is not a PNG", out);
-        const int pages = strcmp(kinds[i], "overview") == 0 ? 2 : 1;
+        const int pages = strcmp(kinds[i], "overview") == 0 || strcmp(kinds[i], "trajectory") == 0 ? 2 : 1;
         ENSURE_MSG(w == 1200 * pages && h == 750 * pages, "%s: %dx%d", out, w, h);
         const long size = fig_file_size(out);
         ENSURE_MSG(size > 20000 && size < 5000000, "%s: %ld bytes", out, size);
@@ -334,6 +334,135 @@ static int test_run_data(void)
     return bad;
 }
 
+
+/* Geometry tolerance of the trajectory's outlines (m): the data hold 10
+ * significant digits of cm, about 1e-10 m at a few metres. */
+#define GEOMETRY_TOL_M 1e-6
+
+/* The outline drawn at the first lift-off, from the $outlines block: its
+ * contact x, centre (picture cm) and radius (cm). */
+static int first_liftoff_outline(const char *path, double *contact_cm, double *X, double *Y, double *r_cm)
+{
+    FILE *f = fopen(path, "r");
+    ENSURE(f);
+    char line[1024], kind[64];
+    double v[9];
+    int found = 0;
+    while (!found && fgets(line, sizeof line, f)) {
+        if (line[0] == '#') continue;
+        ENSURE(sscanf(line, "%lf %lf %lf %lf %lf %lf %lf %lf %lf %63s", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5],
+                      &v[6], &v[7], &v[8], kind) == 10);
+        found = strcmp(kind, "liftoff") == 0;
+    }
+    fclose(f);
+    ENSURE_MSG(found, "no lift-off outline in %s", path);
+    *contact_cm = v[0];
+    *X = v[1];
+    *Y = v[2];
+    *r_cm = v[3];
+    return 0;
+}
+
+/* Lines of the script that start with prefix. */
+static int count_lines(const char *script, const char *prefix)
+{
+    FILE *f = fopen(script, "r");
+    if (!f) return -1;
+    char line[4096];
+    int n = 0;
+    while (fgets(line, sizeof line, f)) n += strncmp(line, prefix, strlen(prefix)) == 0;
+    fclose(f);
+    return n;
+}
+
+/* The outline drawn at the first lift-off touches the incline where the
+ * run says: its centre is r from the incline line (picture: through the
+ * origin along (cos a, -sin a)) and the foot of the perpendicular is the
+ * lift-off's contact x; and every panel has equal axes. */
+static int test_trajectory_geometry(void)
+{
+    char args[2048], out[1100], script[1200], path[1200];
+    snprintf(out, sizeof out, "%s/t45.png", dir);
+    snprintf(args, sizeof args, "plot --incline 45 --what trajectory --keep-script --output '%s'", out);
+    ENSURE(plot_ok(args));
+    int w, h;
+    ENSURE(fig_png_size(out, &w, &h) == 0 && w == 2400 && h == 1500);
+    snprintf(script, sizeof script, "%s/t45.gp", dir);
+    snprintf(path, sizeof path, "%s/t45-outlines.dat", dir);
+    ENSURE(extract_block(script, "outlines", path) == 0);
+    double contact_cm, X, Y, r_cm;
+    if (first_liftoff_outline(path, &contact_cm, &X, &Y, &r_cm)) return 1;
+    jc_Model m;
+    if (init_model(&m, 45)) return 1;
+    jc_Run run;
+    char err[256];
+    const jc_SimOptions o = jc_default_sim_options();
+    const int st = jc_simulate(&m, &o, &run, err, sizeof err);
+    jc_RunSummary sum;
+    if (st == JC_OK) jc_run_summarize(&run, &sum);
+    jc_run_free(&run);
+    ENSURE_MSG(st == JC_OK && sum.first_liftoff >= 0, "%s", err);
+    const double a = m.setup.incline_rad, x_liftoff_m = sum.first_liftoff_state.x_m;
+    const double distance_m = (X * sin(a) + Y * cos(a)) / 100, foot_m = (X * cos(a) - Y * sin(a)) / 100;
+    ENSURE_MSG(fabs(r_cm / 100 - m.body.radius_m) <= GEOMETRY_TOL_M, "radius %.9g cm", r_cm);
+    ENSURE_MSG(fabs(distance_m - m.body.radius_m) <= GEOMETRY_TOL_M, "centre %.9g m from the incline, r = %.9g m",
+               distance_m, m.body.radius_m);
+    ENSURE_MSG(fabs(foot_m - x_liftoff_m) <= GEOMETRY_TOL_M, "foot at x = %.9g m, lift-off at %.9g m", foot_m,
+               x_liftoff_m);
+    ENSURE_MSG(fabs(contact_cm / 100 - x_liftoff_m) <= GEOMETRY_TOL_M, "contact x %.9g cm", contact_cm);
+    /* Equal axes: one 'set size ratio -1' for each panel's plot. */
+    const int plots = count_lines(script, "plot "), ratios = count_lines(script, "set size ratio -1");
+    ENSURE_MSG(plots == 3 && ratios == plots, "%d plots, %d 'set size ratio -1'", plots, ratios);
+    return 0;
+}
+
+/* The xrange of the first panel that sets one after the line holding
+ * marker; NaN if none. */
+static double xrange_after(const char *script, const char *marker, double *hi)
+{
+    FILE *f = fopen(script, "r");
+    if (!f) return NAN;
+    char line[4096];
+    int on = 0;
+    double lo = NAN;
+    while (fgets(line, sizeof line, f) && isnan(lo)) {
+        if (strstr(line, marker)) on = 1;
+        if (on && sscanf(line, "set xrange [%lf:%lf]", &lo, hi) != 2) lo = NAN;
+    }
+    fclose(f);
+    return lo;
+}
+
+/* The overview zooms its run panels on the first lift-off and the hops
+ * (15 degrees: lift-off at 181 cm, hops to the ramp's end) and says so;
+ * without a lift-off it shows the whole run. */
+static int test_overview_zoom(void)
+{
+    char args[2048], out[1100], script[1200];
+    snprintf(out, sizeof out, "%s/o15.png", dir);
+    snprintf(args, sizeof args, "plot --incline 15 --what overview --keep-script --output '%s'", out);
+    ENSURE(plot_ok(args));
+    snprintf(script, sizeof script, "%s/o15.gp", dir);
+    double hi = NAN;
+    const double lo = xrange_after(script, "panel: forces", &hi);
+    ENSURE_MSG(lo > 120 && lo < 180 && hi > 300, "forces xrange [%g:%g]", lo, hi);
+    ENSURE(count_lines(script, "set multiplot") == 1);
+    FILE *f = fopen(script, "r");
+    ENSURE(f);
+    char line[4096];
+    int said = 0;
+    while (fgets(line, sizeof line, f)) said += strstr(line, "set multiplot") && strstr(line, "zoomed to x =");
+    fclose(f);
+    ENSURE_MSG(said == 1, "the page title does not say it is zoomed");
+    snprintf(out, sizeof out, "%s/o5.png", dir);
+    snprintf(args, sizeof args, "plot --incline 5 --what overview --keep-script --output '%s'", out);
+    ENSURE(plot_ok(args));
+    snprintf(script, sizeof script, "%s/o5.gp", dir);
+    const double lo5 = xrange_after(script, "panel: forces", &hi);
+    ENSURE_MSG(lo5 == 0 && hi > 300, "no lift-off, yet xrange [%g:%g]", lo5, hi);
+    return 0;
+}
+
 /* The kept script renders the figure again by hand, from its directory. */
 static int test_kept_script_reruns(void)
 {
@@ -424,6 +553,8 @@ int main(int argc, char **argv)
     RUN_TEST(test_svg_and_pdf);
     RUN_TEST(test_criterion_data);
     RUN_TEST(test_run_data);
+    RUN_TEST(test_trajectory_geometry);
+    RUN_TEST(test_overview_zoom);
     RUN_TEST(test_kept_script_reruns);
     RUN_TEST(test_bad_input);
     RUN_TEST(test_missing_gnuplot);
