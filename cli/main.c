@@ -34,7 +34,7 @@ static void usage(FILE *out)
           "  predict    the paper's model, the exact rolling model and the full model's first\n"
           "             lift-off for one setup\n"
           "  simulate   the full motion: slip, lift-off, flight, landing, further hops\n"
-          "  plot       a figure (gnuplot): the paper's criterion, forces, path, energy, overview\n"
+          "  plot       a figure (gnuplot): the paper's criterion, forces, gap, energy, trajectory, overview\n"
           "  animate    a film of the motion (cairo; ffmpeg for .gif and .mp4)\n"
           "  sweep      the full model over a grid of setup values: one CSV row per case\n"
           "  mc         Monte Carlo: how sure the first lift-off is, given the inputs' uncertainties\n"
