@@ -454,16 +454,17 @@ static int overlaps(const fig_Rect *a, const fig_Rect *b)
     return a->lo_X < b->hi_X && b->lo_X < a->hi_X && a->lo_Y < b->hi_Y && b->lo_Y < a->hi_Y;
 }
 
-/* Where an outline's label goes: beyond the rim along the incline's outward
- * normal (the empty side), starting there and running right, pushed further
- * out until it clears the labels placed before it. */
+/* Where an outline's label goes: its lower left corner just beyond the rim
+ * along the incline's outward normal (the empty side), so that the text,
+ * running right and up from there, clears the rim; pushed further out until
+ * it clears the labels placed before it. */
 static fig_Rect place_label(fig_Pt c, double r_cm, double a, double w_cm, double h_cm, const fig_Rect *placed, int n)
 {
     fig_Rect box = {0, 0, 0, 0};
     for (int k = 0; k < LABEL_LEVELS * 3; ++k) {
-        const double out = r_cm + (0.6 + 1.1 * k) * h_cm;
+        const double out = r_cm + (0.3 + 1.1 * k) * h_cm;
         const double X = c.X + out * sin(a), Y = c.Y + out * cos(a);
-        box = (fig_Rect){X, X + w_cm, Y - 0.5 * h_cm, Y + 0.5 * h_cm};
+        box = (fig_Rect){X, X + w_cm, Y, Y + h_cm};
         int clear = 1;
         for (int i = 0; i < n && clear; ++i) clear = !overlaps(&box, &placed[i]);
         if (clear) break;
@@ -528,7 +529,7 @@ static fig_Box main_panel(FILE *gp, const fig_Data *d, fig_Place p, double w_px,
     plot_ramp(gp, d, view);
     plot_paths(gp, d, 1);
     plot_outlines(gp);
-    fputs(", \\\n     $labels using 1:2:3 with labels font F_SMALL textcolor rgb C_INK notitle\n", gp);
+    fputs(", \\\n     $labels using 1:2:3 with labels left font F_SMALL textcolor rgb C_INK notitle\n", gp);
     return b;
 }
 
