@@ -21,7 +21,11 @@ static int run_ok(const char *args)
     return ok;
 }
 
-/* The frames a run of the paper's cylinder on 45 degrees should give. */
+/* The film holds its last picture this long after the motion (animate.c). */
+#define HOLD_S 0.5
+
+/* The frames a run of the paper's cylinder on 45 degrees should give: one
+ * per 1/(fps slowmo) of the run (it ends at the ramp's end), then the hold. */
 static int expected_frames(double fps, double slowmo)
 {
     jc_Setup s = jc_paper_setup();
@@ -34,7 +38,7 @@ static int expected_frames(double fps, double slowmo)
     const int st = jc_simulate(&m, &o, &run, err, sizeof err);
     const double t_end = run.final_state.t_s;
     jc_run_free(&run);
-    return st == JC_OK ? (int)floor(t_end * fps * slowmo * (1 + 1e-12)) + 1 : -1;
+    return st == JC_OK ? (int)floor(t_end * fps * slowmo * (1 + 1e-12)) + 1 + (int)ceil(HOLD_S * fps - 1e-9) : -1;
 }
 
 static int test_frames_directory(void)

@@ -76,7 +76,8 @@ static int check_state(const jc_State *state, jc_Mode mode)
     cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
     cairo_t *cr = cairo_create(surface);
     const draw_TracePoint trace[2] = {{state->x_m - 0.05, state->y_m, state->t_s - 0.01}, {state->x_m, state->y_m, state->t_s}};
-    const draw_Frame frame = {&model, view, &sample, trace, 2, 0.3, 8};
+    const draw_Frame frame = {.model = &model, .view = view, .sample = &sample, .trace = trace, .trace_count = 2,
+                              .trace_fade_s = 0.3, .slowmo = 8};
     draw_frame(cr, &frame);
     cairo_surface_flush(surface);
     /* The centre of mass's direction, from the parts (the first moment). */
