@@ -634,8 +634,9 @@ static int test_budgets(void)
 {
     char dir[512], film[600], fig[600];
     ENSURE(dir_with_two(dir, "budget", film, "long.gif", fig, "fine.png") == 0);
-    /* 60 s at 30 fps x 8: 14,400 frames. */
-    const char *animate[] = {"animate", HOOP, "--output", film, NULL};
+    /* 60 s at 30 fps x 8: 14,400 frames (asked for: the film would stop a
+     * second after the hoop's last landing). */
+    const char *animate[] = {"animate", HOOP, "--t-max", "60", "--output", film, NULL};
     if (expect_error(animate, NULL, 2, "over the budget of 5000; raise it with --max-frames")) return 1;
     const char *plot[] = {"plot", "--what", "path", "--sample-dt", "1e-5", "--output", fig, NULL};
     if (expect_error(plot, NULL, 2, "over the budget of 100000; raise it with --max-samples")) return 1;

@@ -1,6 +1,8 @@
 /* jumpcyl animate: the full model's motion as a film. Frames are samples of
  * jc_simulate at dt = 1 / (fps * slowmo), drawn with cairo (draw.c) and
- * assembled with ffmpeg (video.c), or kept as numbered PNG files. */
+ * assembled with ffmpeg (video.c), or kept as numbered PNG files. The film
+ * ends when the motion does (film_end_s), then holds its last picture for
+ * FILM_HOLD_S of playback. */
 #include "draw.h"
 #include "video.h"
 
@@ -22,25 +24,44 @@
 #define DEFAULT_MAX_FRAMES 5000
 /* The trace of the centre fades over this much playback time. */
 #define TRACE_FADE_PLAYBACK_S 2.0
+/* Playback time the last picture stays after the motion ends. */
+#define FILM_HOLD_S 0.5
+/* A run that only reached the default time limit (a body rocking for ever
+ * on a floor) is filmed to this much simulated time after its last landing. */
+#define FILM_AFTER_LANDING_S 1.0
+/* A ramp longer than this many times the distance the body travels is
+ * "very long": the fixed camera shows the travel, not the whole ramp. */
+#define LONG_RAMP_FACTOR 3.0
 
 typedef struct {
-    const char *output, *size, *fps, *slowmo, *max_frames;
+    const char *output, *size, *fps, *slowmo, *max_frames, *camera;
 } animate_args;
+
+typedef enum { CAMERA_FIXED, CAMERA_FOLLOW } animate_Camera;
 
 typedef struct {
     int width, height;
     int max_frames;
     double fps, slowmo;
     vid_Format format;
+    animate_Camera camera;
+    int t_max_given; /* --t-max: film to it, even past the last landing */
     const char *output;
 } animate_opts;
 
 static void help(void)
 {
-    printf("Usage: jumpcyl animate --output FILE [--size WxH] [--fps F] [--slowmo K] [SETUP OPTIONS]\n"
-           "                       [SIMULATION OPTIONS]\n"
-           "The full motion as a film: the cylinder to scale with every body part, its centre of\n"
-           "mass, the contact point and forces, a fading trace of the centre, a clock and the mode.\n"
+    printf("Usage: jumpcyl animate --output FILE [--size WxH] [--fps F] [--slowmo K] [--camera fixed|follow]\n"
+           "                       [SETUP OPTIONS] [SIMULATION OPTIONS]\n"
+           "The full motion as a film: the cylinder to scale with every body part and its centre of\n"
+           "mass; the ramp with a distance scale from the start contact point; marks along it for\n"
+           "the model's first lift-off and, for the paper's cylinder on 15, 30 or 45 degrees, the\n"
+           "paper's printed jump point and its measured band (Table 1); the centre's whole path and\n"
+           "a fading recent trace; the normal force N and friction F at the contact to a stated scale\n"
+           "(a scale bar in newtons); readouts of t, x, theta, omega, N, |F|/N and the mode.\n"
+           "The film ends when the motion does (rest, the ramp's end, or the run's end) and holds the\n"
+           "last picture for %g s; a run that only reached the default time limit (a body rocking on\n"
+           "a floor) ends %g s of simulated time after its last landing (--t-max films to the limit).\n"
            "\n"
            "  --output FILE  .gif or .mp4 (made with ffmpeg), or a directory (a name ending in '/'\n"
            "                 or without extension) for numbered PNG frames frame-00000.png, ...\n"
@@ -49,14 +70,17 @@ static void help(void)
            "  --slowmo K     slow motion: K seconds of film per simulated second (default %g, a\n"
            "                 240 fps camera played at 30 fps; 0 < K <= %g). Frames are %s\n"
            "                 apart in simulated time: dt = 1/(F K).\n"
+           "  --camera C     fixed (default): the laboratory's view of the whole ramp (on a floor or\n"
+           "                 a very long ramp: of the way the body travels), with a close-up box\n"
+           "                 that follows the body; follow: a camera that follows the body\n"
            "  --max-frames N refuse a film of more than N frames (default %d; at most %d),\n"
-           "                 counted before any frame is drawn\n"
+           "                 counted (and the count printed) before any frame is drawn\n"
            "  -h, --help     this help\n"
            "\n"
            "Without ffmpeg (Debian: ffmpeg), a .gif or .mp4 is left as PNG frames in a directory\n"
            "beside it, and the message gives the ffmpeg command that assembles them.\n"
            "--sample-dt is set by --fps and --slowmo; --t-max limits the film.\n\n",
-           DEFAULT_SIZE, MIN_SIDE, MAX_W, MIN_SIDE, MAX_H, DEFAULT_FPS, MAX_FPS, DEFAULT_SLOWMO, MAX_SLOWMO,
+           FILM_HOLD_S, FILM_AFTER_LANDING_S, DEFAULT_SIZE, MIN_SIDE, MAX_W, MIN_SIDE, MAX_H, DEFAULT_FPS, MAX_FPS, DEFAULT_SLOWMO, MAX_SLOWMO,
            "1/(F K)", DEFAULT_MAX_FRAMES, VID_MAX_FRAMES);
 }
 
@@ -68,13 +92,15 @@ static int take(int opt, const char *arg, void *ctx)
     if (opt == 'f') return cli_take_once("animate", &a->fps, "fps", arg);
     if (opt == 'k') return cli_take_once("animate", &a->slowmo, "slowmo", arg);
     if (opt == 'm') return cli_take_once("animate", &a->max_frames, "max-frames", arg);
+    if (opt == 'c') return cli_take_once("animate", &a->camera, "camera", arg);
     return EXIT_USAGE;
 }
 
 /* The command's own options; the setup and simulation options come with cli_command_parse. */
 static const struct option own[] = {{"output", required_argument, 0, 'o'}, {"size", required_argument, 0, 's'},
                                     {"fps", required_argument, 0, 'f'},    {"slowmo", required_argument, 0, 'k'},
-                                    {"max-frames", required_argument, 0, 'm'}, {"help", no_argument, 0, 'h'}};
+                                    {"max-frames", required_argument, 0, 'm'}, {"camera", required_argument, 0, 'c'},
+                                    {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
 /* "960x540" within the allowed sizes. */
@@ -133,12 +159,21 @@ static int check_args(const animate_args *a, animate_opts *o)
         return EXIT_USAGE;
     }
     o->max_frames = (int)max_frames;
+    o->camera = CAMERA_FIXED;
+    if (a->camera && strcmp(a->camera, "fixed") != 0) {
+        if (strcmp(a->camera, "follow") != 0) {
+            cli_error("animate: --camera '%s' is not a camera (allowed: fixed, follow)", a->camera);
+            return EXIT_USAGE;
+        }
+        o->camera = CAMERA_FOLLOW;
+    }
     return 0;
 }
 
-static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, const animate_opts *o,
+static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, animate_opts *o,
                         jc_Model *model, jc_SimOptions *sim)
 {
+    o->t_max_given = cli_sim_given(sim_args, "t-max");
     if (cli_sim_given(sim_args, "sample-dt")) {
         cli_error("animate: --sample-dt is set by --fps and --slowmo (dt = 1/(fps slowmo)); leave it out");
         return EXIT_USAGE;
@@ -149,19 +184,55 @@ static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, co
     return rc;
 }
 
-/* Frame k shows the last sample at or before k dt: the regular samples, not
- * the extra ones the run records at events (those still feed the trace). */
-static int select_frames(const jc_Run *run, double dt, int **idx)
+/* When the film's motion ends, from the run's events (film_end_s). */
+typedef struct {
+    double landed_s; /* the last landing's time; NaN: none, or in flight since */
+} film_Watch;
+
+static int watch_event(void *ctx, const jc_Event *e)
+{
+    film_Watch *w = ctx;
+    if (e->kind == JC_EVENT_TOUCHDOWN) w->landed_s = e->state.t_s;
+    else if (e->kind == JC_EVENT_LIFTOFF || e->kind == JC_EVENT_BOUNCE) w->landed_s = NAN;
+    return JC_OK;
+}
+
+/* The simulated time the film shows: the whole run when it ended by itself
+ * (rest, ramp end, ...) or at a --t-max someone asked for; a run that only
+ * reached the default time limit (rocking for ever) is shown to
+ * FILM_AFTER_LANDING_S after its last landing, when it landed. */
+static double film_end_s(const jc_Run *run, const film_Watch *w, int t_max_given)
 {
     const double t_end = run->final_state.t_s;
-    const double n_real = floor(t_end / dt * (1 + 1e-12)) + 1;
-    if (n_real > VID_MAX_FRAMES) return -(int)fmin(n_real, 2e9);
-    const int n = (int)n_real;
+    if (run->termination != JC_END_TIME_LIMIT || t_max_given || !isfinite(w->landed_s)) return t_end;
+    return fmin(t_end, w->landed_s + FILM_AFTER_LANDING_S);
+}
+
+/* Frames of the motion (one per dt from t = 0 to t_end) and of the hold. */
+static double motion_frames(double t_end_s, const animate_opts *o)
+{
+    return floor(t_end_s * o->fps * o->slowmo * (1 + 1e-12)) + 1;
+}
+
+static int hold_frames(const animate_opts *o)
+{
+    return (int)ceil(FILM_HOLD_S * o->fps - 1e-9);
+}
+
+/* Frame k shows the last sample at or before k dt: the regular samples, not
+ * the extra ones the run records at events (those still feed the trace).
+ * The hold frames repeat the last one. */
+static int select_frames(const jc_Run *run, const animate_opts *o, int **idx)
+{
+    const double dt = 1.0 / (o->fps * o->slowmo);
+    const double n_motion = motion_frames(run->final_state.t_s, o);
+    if (n_motion + hold_frames(o) > VID_MAX_FRAMES) return -(int)fmin(n_motion + hold_frames(o), 2e9);
+    const int n = (int)n_motion + hold_frames(o);
     *idx = malloc(sizeof **idx * (size_t)n);
     if (!*idx) return 0;
     int j = 0;
     for (int k = 0; k < n; ++k) {
-        const double t = k * dt * (1 + 1e-12);
+        const double t = fmin(k, n_motion - 1) * dt * (1 + 1e-12);
         while (j + 1 < run->sample_count && run->samples[j + 1].state.t_s <= t) ++j;
         (*idx)[k] = j;
     }
@@ -176,12 +247,69 @@ static draw_TracePoint *make_trace(const jc_Run *run)
     return tr;
 }
 
+/* The paper's table is for the paper's cylinder (its body, its printed d,
+ * its g); friction, restitution and the start do not enter its model. */
+static int is_paper_cylinder(const jc_Setup *s)
+{
+    const jc_Setup p = jc_paper_setup();
+    if (s->body.radius_m != p.body.radius_m || s->body.part_count != p.body.part_count ||
+        s->paper_cm_offset_m != p.paper_cm_offset_m || s->gravity_mps2 != p.gravity_mps2)
+        return 0;
+    for (int i = 0; i < p.body.part_count; ++i) {
+        const jc_Part *a = &s->body.parts[i], *b = &p.body.parts[i];
+        if (a->kind != b->kind || a->mass_kg != b->mass_kg || a->offset_m != b->offset_m ||
+            a->angle_rad != b->angle_rad || a->radius_m != b->radius_m)
+            return 0;
+    }
+    return 1;
+}
+
+/* The run's first lift-off, and Table 1's printed and measured jump points
+ * for the paper's cylinder on one of its inclines. */
+static draw_Marks make_marks(const jc_Model *m, const jc_Run *run)
+{
+    draw_Marks mk = {NAN, NAN, NAN, NAN};
+    jc_RunSummary sum;
+    jc_run_summarize(run, &sum);
+    if (sum.first_liftoff >= 0) mk.model_x_m = sum.first_liftoff_state.x_m;
+    if (!is_paper_cylinder(&m->setup)) return mk;
+    const jc_PaperTableRow *rows;
+    const int n = jc_paper_table(&rows);
+    for (int i = 0; i < n; ++i)
+        if (fabs(cli_deg(m->setup.incline_rad) - rows[i].incline_deg) < 1e-9) {
+            mk.paper_x_m = rows[i].printed_x_m;
+            mk.measured_x_m = rows[i].measured_x_m;
+            mk.measured_error_m = rows[i].measured_error_m;
+        }
+    return mk;
+}
+
+/* The fixed camera: the whole ramp from above the start to its lower end
+ * (and wherever the body went), or on a floor or a very long ramp the
+ * stretch the body travels, with the air above up to its highest rim. */
+static draw_View fixed_view(const jc_Model *m, const jc_Run *run, const animate_opts *o)
+{
+    const double r = m->body.radius_m, ramp = m->setup.ramp_length_m;
+    double x_lo = 0, x_hi = 0, y_hi = r;
+    for (int i = 0; i < run->sample_count; ++i) {
+        const jc_State *s = &run->samples[i].state;
+        x_lo = fmin(x_lo, s->x_m);
+        x_hi = fmax(x_hi, s->x_m);
+        y_hi = fmax(y_hi, s->y_m);
+    }
+    const int whole_ramp = m->setup.incline_rad > 0 && ramp <= LONG_RAMP_FACTOR * fmax(x_hi - x_lo, r);
+    if (whole_ramp) x_hi = fmax(x_hi, ramp);
+    return draw_view_fixed(m, o->width, o->height, x_lo - 1.5 * r, x_hi + 1.5 * r, y_hi + 1.5 * r);
+}
+
 typedef struct {
     const jc_Model *model;
     const jc_Run *run;
     const animate_opts *opts;
     const int *frames;
     int frame_count;
+    draw_View fixed; /* the fixed camera's view (CAMERA_FIXED) */
+    draw_Marks marks;
 } animate_job;
 
 static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *job, const draw_TracePoint *trace,
@@ -192,8 +320,19 @@ static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *
     const double fade = TRACE_FADE_PLAYBACK_S / job->opts->slowmo;
     int first = i;
     while (first > 0 && trace[first - 1].t_s >= p->state.t_s - fade) --first;
-    const draw_Frame f = {job->model, draw_view_follow(job->model, job->opts->width, job->opts->height, &p->state),
-                          p, trace + first, i - first + 1, fade, job->opts->slowmo};
+    const int fixed = job->opts->camera == CAMERA_FIXED;
+    const draw_Frame f = {.model = job->model,
+                          .view = fixed ? job->fixed
+                                        : draw_view_follow(job->model, job->opts->width, job->opts->height, &p->state),
+                          .sample = p,
+                          .trace = trace + first,
+                          .trace_count = i - first + 1,
+                          .trace_fade_s = fade,
+                          .slowmo = job->opts->slowmo,
+                          .path = trace,
+                          .path_count = i + 1,
+                          .marks = &job->marks,
+                          .zoom_box = fixed};
     draw_frame(cr, &f);
     cairo_surface_flush(surface);
     char path[CLI_PATH_MAX];
@@ -279,28 +418,37 @@ static int make_film(const animate_job *job)
 
 /* A run that keeps nothing first gives the film's length, so that a film
  * past the frame budget is refused before samples are stored or a frame
- * is drawn. */
-static int check_length(const jc_Model *model, const jc_SimOptions *sim, const animate_opts *o)
+ * is drawn; the count is printed before the work. *film_end_s: the
+ * simulated time the film shows. */
+static int check_length(const jc_Model *model, const jc_SimOptions *sim, const animate_opts *o, double *film_end)
 {
     jc_SimOptions probe_opts = *sim;
     probe_opts.sample_dt_s = 0.0;
     jc_Run probe;
-    const int st = cli_simulate_probe(model, &probe_opts, &probe, "animate");
-    const double frames = floor(probe.final_state.t_s * o->fps * o->slowmo) + 1;
+    film_Watch w = {NAN};
+    const jc_Recorder rec = {&w, watch_event, NULL};
+    const int st = cli_simulate_stream(model, &probe_opts, &rec, &probe, "animate");
     if (st != JC_OK) return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
+    *film_end = film_end_s(&probe, &w, o->t_max_given);
+    const double frames = motion_frames(*film_end, o) + hold_frames(o);
     if (frames > o->max_frames) {
         cli_error("animate: the film needs %.0f frames, over the budget of %d; raise it with --max-frames N "
                   "(at most %d), or shorten the film with --t-max, --slowmo or --fps", frames, o->max_frames,
                   VID_MAX_FRAMES);
         return EXIT_USAGE;
     }
+    /* On standard output, before the work: stderr is for what went wrong. */
+    printf("Film: %.0f frames (%.1f s at %g fps): %.4g s simulated (the run: %s at %.4g s), then the last picture "
+           "held %g s\n", frames, frames / o->fps, o->fps, *film_end, jc_termination_name(probe.termination),
+           probe.final_state.t_s, FILM_HOLD_S);
+    fflush(stdout);
     return 0;
 }
 
 static int animate_run(const jc_Model *model, const jc_Run *run, const animate_opts *o)
 {
     int *frames = NULL;
-    const int n = select_frames(run, 1.0 / (o->fps * o->slowmo), &frames);
+    const int n = select_frames(run, o, &frames);
     if (n <= 0) {
         if (n < 0)
             cli_error("animate: %d frames is too many (allowed: at most %d); shorten the film with --t-max, "
@@ -308,7 +456,7 @@ static int animate_run(const jc_Model *model, const jc_Run *run, const animate_o
         else cli_error("animate: out of memory");
         return n < 0 ? EXIT_USAGE : EXIT_FAIL;
     }
-    const animate_job job = {model, run, o, frames, n};
+    const animate_job job = {model, run, o, frames, n, fixed_view(model, run, o), make_marks(model, run)};
     const int rc = make_film(&job);
     free(frames);
     if (rc == EXIT_OK)
@@ -332,7 +480,10 @@ int cmd_animate(int argc, char **argv)
     if ((o.format == VID_FRAMES ? cli_check_output_dir(o.output) : cli_output_check_target(o.output)) != 0)
         return EXIT_FAIL;
     jc_Run run;
-    if ((st = check_length(&model, &sim, &o)) != 0) return st;
+    double film_end = 0;
+    if ((st = check_length(&model, &sim, &o, &film_end)) != 0) return st;
+    /* The film's run stops where the film does: the same run up to there. */
+    sim.t_max_s = fmin(sim.t_max_s, film_end);
     sim.max_samples = (int)fmin(1e8, (double)o.max_frames + sim.max_events + 16.0);
     if ((st = cli_simulate(&model, &sim, &run, "animate")) != JC_OK) {
         jc_run_free(&run);

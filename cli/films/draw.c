@@ -9,9 +9,20 @@
 #define PI 3.14159265358979323846
 /* The camera shows this many rim radii across the frame's shorter side. */
 #define VIEW_RADII 8.0
-/* A force of M g is drawn this many rim radii long; longer arrows are clipped. */
-#define FORCE_RADII_PER_WEIGHT 1.5
-#define FORCE_MAX_RADII 3.0
+/* A force of M g is drawn this many units long (about a tenth of the frame's
+ * shorter side), in both views; arrows are cut at FORCE_MAX_WEIGHTS M g
+ * (impacts and sticking can ask for many times the weight) and then say
+ * their value. */
+#define FORCE_UNITS_PER_WEIGHT 40.0
+#define FORCE_MAX_WEIGHTS 4.0
+/* The zoom box: its share of the frame's width and height, and the rim
+ * radii across its shorter side. */
+#define ZOOM_BOX_W 0.34
+#define ZOOM_BOX_H 0.42
+#define ZOOM_RADII 6.0
+#define ZOOM_MIN 2.5
+/* ... shown only when the whole view draws the rim smaller than this many units. */
+#define ZOOM_BELOW_UNITS 30.0
 
 static void rgb_hex(cairo_t *cr, unsigned hex, double alpha)
 {
@@ -22,16 +33,29 @@ enum {
     COL_INK = 0x222222, COL_RAMP = 0xeadfcb, COL_RAMP_EDGE = 0x6b4f2a, COL_RIM = 0x333333, COL_FACE = 0xf6f6f6,
     COL_DISC = 0xdce6ef, COL_HOOP = 0x555555, COL_ROD = 0xc8962e, COL_ROD_EDGE = 0x7a5a1a, COL_POINT = 0x6a3d9a,
     COL_TRACE = 0x0072b2, COL_NORMAL = 0x0072b2, COL_FRICTION = 0xd55e00, COL_GREY = 0x777777,
-    COL_ROLLING = 0x009e73, COL_SLIDING = 0xe69f00, COL_FLIGHT = 0xd55e00
+    COL_ROLLING = 0x009e73, COL_SLIDING = 0xe69f00, COL_FLIGHT = 0xd55e00,
+    /* The marks along the incline (Okabe-Ito, apart from the forces' colours). */
+    COL_PAPER = 0xcc79a7, COL_MODEL = 0x009e73, COL_MEASURED = 0x56b4e9
 };
+
+static void hex_rgb(unsigned hex, double rgb[3])
+{
+    rgb[0] = ((hex >> 16) & 0xff) / 255.0;
+    rgb[1] = ((hex >> 8) & 0xff) / 255.0;
+    rgb[2] = (hex & 0xff) / 255.0;
+}
+
+void draw_colour_rgb(draw_Colour c, double rgb[3])
+{
+    static const unsigned hex[] = {COL_PAPER, COL_MODEL, COL_MEASURED, COL_NORMAL, COL_FRICTION, COL_INK};
+    hex_rgb(hex[c], rgb);
+}
 
 void draw_part_rgb(jc_PartKind kind, double rgb[3])
 {
     const unsigned hex = kind == JC_PART_DISC ? COL_DISC : kind == JC_PART_HOOP ? COL_HOOP
                        : kind == JC_PART_ROD ? COL_ROD : COL_POINT;
-    rgb[0] = ((hex >> 16) & 0xff) / 255.0;
-    rgb[1] = ((hex >> 8) & 0xff) / 255.0;
-    rgb[2] = (hex & 0xff) / 255.0;
+    hex_rgb(hex, rgb);
 }
 
 void draw_picture(double a, double x, double y, double *X, double *Y)
@@ -56,11 +80,29 @@ void draw_body_point(const jc_Model *m, const jc_State *s, double offset_m, doub
     *y = s->y_m + offset_m * cos(psi);
 }
 
+/* Pixels per "unit" of line width and text: relative to the frame. */
+static double frame_unit_px(int width_px, int height_px)
+{
+    const int shorter = width_px < height_px ? width_px : height_px;
+    return fmax(shorter / 360.0, 0.5);
+}
+
+static double unit_px(const draw_View *v)
+{
+    return v->unit_px;
+}
+
 draw_View draw_view_follow(const jc_Model *m, int width_px, int height_px, const jc_State *s)
 {
-    draw_View v = {width_px, height_px, 0, 0, 0, m->setup.incline_rad};
+    return draw_view_zoom(m, width_px, height_px, s, VIEW_RADII, frame_unit_px(width_px, height_px));
+}
+
+draw_View draw_view_zoom(const jc_Model *m, int width_px, int height_px, const jc_State *s, double radii,
+                         double unit)
+{
+    draw_View v = {width_px, height_px, 0, 0, 0, m->setup.incline_rad, unit};
     const int shorter = width_px < height_px ? width_px : height_px;
-    v.scale_px_per_m = shorter / (VIEW_RADII * m->body.radius_m);
+    v.scale_px_per_m = shorter / (radii * m->body.radius_m);
     /* Follow the point the centre has while in contact, a little left of and
      * above the frame's centre: more of the ramp ahead is in view. */
     double X, Y;
@@ -70,11 +112,74 @@ draw_View draw_view_follow(const jc_Model *m, int width_px, int height_px, const
     return v;
 }
 
-/* Pixels per "unit" of line width and text: relative to the frame. */
-static double unit_px(const draw_View *v)
+/* Margins of the fixed view, in units: the readouts' column keeps clear of
+ * nothing (the incline descends to the right, so the top right corner is
+ * air), the scale's labels need room under the incline's lower end. */
+#define FIXED_MARGIN_SIDE 14.0
+#define FIXED_MARGIN_TOP 14.0
+#define FIXED_MARGIN_BOTTOM 40.0
+
+draw_View draw_view_fixed(const jc_Model *m, int width_px, int height_px, double x_lo_m, double x_hi_m,
+                          double y_top_m)
 {
-    const int shorter = v->width_px < v->height_px ? v->width_px : v->height_px;
-    return fmax(shorter / 360.0, 0.5);
+    draw_View v = {width_px, height_px, 1, 0, 0, m->setup.incline_rad, frame_unit_px(width_px, height_px)};
+    const double xs[2] = {x_lo_m, x_hi_m}, ys[2] = {0.0, y_top_m};
+    double X_lo = INFINITY, X_hi = -INFINITY, Y_lo = INFINITY, Y_hi = -INFINITY;
+    for (int i = 0; i < 4; ++i) {
+        double X, Y;
+        draw_picture(v.incline_rad, xs[i % 2], ys[i / 2], &X, &Y);
+        X_lo = fmin(X_lo, X);
+        X_hi = fmax(X_hi, X);
+        Y_lo = fmin(Y_lo, Y);
+        Y_hi = fmax(Y_hi, Y);
+    }
+    const double u = v.unit_px, side = FIXED_MARGIN_SIDE * u, top = FIXED_MARGIN_TOP * u;
+    const double bottom = FIXED_MARGIN_BOTTOM * u;
+    const double room_w = fmax(width_px - 2 * side, 1.0), room_h = fmax(height_px - top - bottom, 1.0);
+    v.scale_px_per_m = fmin(room_w / fmax(X_hi - X_lo, 1e-9), room_h / fmax(Y_hi - Y_lo, 1e-9));
+    /* The box's middle goes to the middle of the room left by the margins. */
+    v.center_X_m = 0.5 * (X_lo + X_hi);
+    v.center_Y_m = 0.5 * (Y_lo + Y_hi) - 0.5 * (bottom - top) / v.scale_px_per_m;
+    return v;
+}
+
+/* How far under the incline's surface the marks' labels reach, in units. */
+#define MARK_LABELS_UNITS 80.0
+
+void draw_inset_rect(const draw_View *v, double *x_px, double *y_px, double *w_px, double *h_px)
+{
+    const double u = unit_px(v), s = v->scale_px_per_m, bottom = v->height_px - 8 * u;
+    *w_px = floor(ZOOM_BOX_W * v->width_px);
+    *x_px = floor(8 * u);
+    /* Under the incline and its marks' labels where the box's right edge is
+     * (the incline is highest there of the box's width), at least 0.2 H tall. */
+    const double X = v->center_X_m + (*x_px + *w_px - 0.5 * v->width_px) / s;
+    const double surface_py = 0.5 * v->height_px - s * (-X * tan(v->incline_rad) - v->center_Y_m);
+    const double top = fmax(surface_py + MARK_LABELS_UNITS * u, bottom - ZOOM_BOX_H * v->height_px);
+    *y_px = floor(fmin(top, bottom - 0.2 * v->height_px));
+    *h_px = floor(bottom - *y_px);
+}
+
+/* 1, 2 or 5 times a power of ten, the largest not above w (w > 0). */
+static double round_down_125(double w)
+{
+    const double p = pow(10.0, floor(log10(w)));
+    const double m = w / p;
+    return p * (m >= 5 ? 5 : m >= 2 ? 2 : 1);
+}
+
+/* The readouts' column ends this many units from the top; the scale bar sits there. */
+#define HUD_BAR_UNITS 134.0
+
+draw_ForceScale draw_force_scale(const draw_View *v, const jc_Model *m)
+{
+    const double u = unit_px(v), weight_N = m->body.mass_kg * m->setup.gravity_mps2;
+    draw_ForceScale fs;
+    fs.px_per_N = FORCE_UNITS_PER_WEIGHT * u / weight_N;
+    fs.bar_N = round_down_125(weight_N);
+    fs.bar_x_px = round(v->width_px - 10 * u - fs.bar_N * fs.px_per_N);
+    fs.bar_y_px = round(HUD_BAR_UNITS * u) + 0.5; /* a 1 px line on a pixel row */
+    return fs;
 }
 
 static void move_to(cairo_t *cr, const draw_View *v, double x, double y)
@@ -127,8 +232,9 @@ static void draw_ramp_body(cairo_t *cr, const draw_View *v, double x0, double x1
     const double a = v->incline_rad;
     move_to(cr, v, x0, 0);
     line_to(cr, v, x1, 0);
-    line_to(cr, v, x1 - depth * sin(a), -depth * cos(a)); /* straight down in the picture */
-    line_to(cr, v, x0 - depth * sin(a), -depth * cos(a));
+    /* (sin a, -cos a) in incline coordinates is straight down in the picture. */
+    line_to(cr, v, x1 + depth * sin(a), -depth * cos(a));
+    line_to(cr, v, x0 + depth * sin(a), -depth * cos(a));
     cairo_close_path(cr);
     rgb_hex(cr, COL_RAMP, 1);
     cairo_fill(cr);
@@ -163,19 +269,91 @@ static void draw_scale(cairo_t *cr, const draw_View *v, double x0, double x1)
     }
 }
 
+/* A mark: a line across the surface from just above it down to its label,
+ * which hangs level units under the surface and ends at the line. */
+static void draw_mark(cairo_t *cr, const draw_View *v, double x, double level, unsigned colour, const char *label)
+{
+    /* Without a label (the close-up) the line only crosses the surface. */
+    if (!label) level = 8;
+    if (!isfinite(x)) return;
+    const double u = unit_px(v), s = v->scale_px_per_m;
+    move_to(cr, v, x, 8 * u / s);
+    line_to(cr, v, x, -level * u / s);
+    rgb_hex(cr, colour, 1);
+    cairo_set_line_width(cr, 2 * u);
+    cairo_stroke(cr);
+    if (!label) return;
+    double px, py;
+    draw_to_pixel(v, x, -level * u / s, &px, &py);
+    cairo_set_font_size(cr, 10 * u);
+    cairo_text_extents_t te;
+    cairo_text_extents(cr, label, &te);
+    /* Right-aligned: the incline descends to the right, so the text runs
+     * away from its surface. */
+    cairo_move_to(cr, px - 3 * u - te.x_advance, py - te.y_bearing - te.height / 2);
+    cairo_show_text(cr, label);
+}
+
+/* The measured band: a thick stripe just under the surface. */
+static void draw_band(cairo_t *cr, const draw_View *v, double x, double err)
+{
+    if (!isfinite(x) || !isfinite(err)) return;
+    const double u = unit_px(v), s = v->scale_px_per_m;
+    move_to(cr, v, x - err, -3.5 * u / s);
+    line_to(cr, v, x + err, -3.5 * u / s);
+    rgb_hex(cr, COL_MEASURED, 1);
+    cairo_set_line_width(cr, 7 * u);
+    cairo_stroke(cr);
+}
+
+/* Labels hang below the scale's labels, one level each, so that marks a
+ * few pixels apart (the paper's and the model's on a whole-ramp view)
+ * still read; without labels, short lines across the surface and the band. */
+static void draw_marks(cairo_t *cr, const draw_View *v, const draw_Marks *mk, int labels)
+{
+    if (!mk) return;
+    char label[64];
+    draw_band(cr, v, mk->measured_x_m, mk->measured_error_m);
+    if (isfinite(mk->measured_x_m)) {
+        snprintf(label, sizeof label, "measured %.1f \xc2\xb1 %.1f cm", mk->measured_x_m * 100,
+                 mk->measured_error_m * 100);
+        draw_mark(cr, v, mk->measured_x_m, 68, COL_MEASURED, labels ? label : NULL);
+    }
+    snprintf(label, sizeof label, "model %.1f cm", mk->model_x_m * 100);
+    draw_mark(cr, v, mk->model_x_m, 54, COL_MODEL, labels ? label : NULL);
+    snprintf(label, sizeof label, "paper %.1f cm", mk->paper_x_m * 100);
+    draw_mark(cr, v, mk->paper_x_m, 40, COL_PAPER, labels ? label : NULL);
+}
+
 static void draw_incline(cairo_t *cr, const draw_Frame *f)
 {
     const draw_View *v = &f->view;
     double lo, hi;
     visible_x(v, &lo, &hi);
-    /* The ramp starts above the start position and ends at its lower end. */
-    const double x0 = fmax(lo, -1.0 - 2 * f->model->body.radius_m), x1 = fmin(hi, f->model->setup.ramp_length_m);
+    /* The ramp starts a little above the start position (the run ends if
+     * the centre goes uphill past it) and ends at its lower end. */
+    const double x0 = fmax(lo, -2 * f->model->body.radius_m), x1 = fmin(hi, f->model->setup.ramp_length_m);
     if (x1 <= x0) return;
     draw_ramp_body(cr, v, x0, x1);
     draw_scale(cr, v, x0, x1);
+    draw_marks(cr, v, f->marks, 0);
 }
 
 /* ---- the trace of the centre ---- */
+
+/* The whole path so far, thin and light: hops stand out against the incline. */
+static void draw_path(cairo_t *cr, const draw_Frame *f)
+{
+    const draw_View *v = &f->view;
+    if (!f->path || f->path_count < 2) return;
+    move_to(cr, v, f->path[0].x_m, f->path[0].y_m);
+    for (int i = 1; i < f->path_count; ++i) line_to(cr, v, f->path[i].x_m, f->path[i].y_m);
+    line_to(cr, v, f->sample->state.x_m, f->sample->state.y_m);
+    rgb_hex(cr, COL_TRACE, 0.45);
+    cairo_set_line_width(cr, 1.3 * unit_px(v));
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_stroke(cr);
+}
 
 static void draw_trace(cairo_t *cr, const draw_Frame *f)
 {
@@ -236,7 +414,8 @@ static void draw_cm(cairo_t *cr, const draw_Frame *f)
     double x, y, px, py;
     draw_body_point(m, &f->sample->state, m->body.cm_offset_m, m->body.cm_angle_rad, &x, &y);
     draw_to_pixel(&f->view, x, y, &px, &py);
-    const double r = 6 * unit_px(&f->view);
+    /* Never more than a third of the rim: on a whole-ramp view the body is small. */
+    const double r = fmin(6 * unit_px(&f->view), m->body.radius_m * f->view.scale_px_per_m / 3);
     cairo_arc(cr, px, py, r, 0, 2 * PI);
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_fill(cr);
@@ -301,31 +480,37 @@ static void arrow(cairo_t *cr, double x0, double y0, double x1, double y1, doubl
 }
 
 /* The force (fx along the incline, fy along its normal) acting at the
- * contact point, drawn as an arrow that ends there: the body stays in view. */
+ * contact point, drawn at the frame's px_per_N as an arrow that ends there
+ * (the body stays in view). Past FORCE_MAX_WEIGHTS M g it is cut, and its
+ * label gives its value. */
 static void force_arrow(cairo_t *cr, const draw_Frame *f, double fx, double fy, unsigned colour, const char *name)
 {
     const draw_View *v = &f->view;
     const jc_Model *m = f->model;
-    const double weight = m->body.mass_kg * m->setup.gravity_mps2, r = m->body.radius_m;
-    const double len = FORCE_RADII_PER_WEIGHT * r * hypot(fx, fy) / weight;
-    if (!(len > 0)) return;
-    const double k = FORCE_RADII_PER_WEIGHT * r / weight * fmin(len, FORCE_MAX_RADII * r) / len;
-    const double x = f->sample->state.x_m, u = unit_px(v);
-    double px0, py0, px1, py1;
-    draw_to_pixel(v, x - k * fx, -k * fy, &px0, &py0);
-    draw_to_pixel(v, x, 0, &px1, &py1);
+    const double force_N = hypot(fx, fy), a = v->incline_rad, u = unit_px(v);
+    if (!(force_N > 0)) return;
+    const draw_ForceScale fs = draw_force_scale(v, m);
+    const double cap_N = FORCE_MAX_WEIGHTS * m->body.mass_kg * m->setup.gravity_mps2;
+    const double len = fmin(force_N, cap_N) * fs.px_per_N;
+    /* The force's direction in pixels (picture Y up, pixel y down). */
+    const double dx = (fx * cos(a) + fy * sin(a)) / force_N, dy = -(-fx * sin(a) + fy * cos(a)) / force_N;
+    double px1, py1;
+    draw_to_pixel(v, f->sample->state.x_m, 0, &px1, &py1);
+    const double px0 = px1 - len * dx, py0 = py1 - len * dy;
     rgb_hex(cr, colour, 1);
     arrow(cr, px0, py0, px1, py1, u);
-    const double d = hypot(px1 - px0, py1 - py0);
-    if (d < 8 * u) return;
+    if (len < 8 * u) return;
+    char label[48];
+    if (force_N > cap_N) snprintf(label, sizeof label, "%s %.3g N", name, force_N);
+    else snprintf(label, sizeof label, "%s", name);
     /* The name beyond the tail, lifted off the incline's surface. */
     cairo_set_font_size(cr, 13 * u);
     cairo_text_extents_t te;
-    cairo_text_extents(cr, name, &te);
-    const double a = v->incline_rad, lift = fy == 0.0 ? 10 * u : 0.0;
-    const double cx = px0 - 9 * u * (px1 - px0) / d + lift * sin(a), cy = py0 - 9 * u * (py1 - py0) / d - lift * cos(a);
+    cairo_text_extents(cr, label, &te);
+    const double lift = fy == 0.0 ? 10 * u : 0.0, gap = 9 * u + 0.5 * fabs(te.width * dx);
+    const double cx = px0 - gap * dx + lift * sin(a), cy = py0 - gap * dy - lift * cos(a);
     cairo_move_to(cr, cx - te.width / 2 - te.x_bearing, cy - te.height / 2 - te.y_bearing);
-    cairo_show_text(cr, name);
+    cairo_show_text(cr, label);
 }
 
 static void draw_contact(cairo_t *cr, const draw_Frame *f)
@@ -339,7 +524,7 @@ static void draw_contact(cairo_t *cr, const draw_Frame *f)
     cairo_fill(cr);
 }
 
-/* ---- clock, mode, legend ---- */
+/* ---- readouts, legend, force scale ---- */
 
 /* Right-aligned text at (right, baseline). */
 static void text_right(cairo_t *cr, const char *s, double right, double baseline)
@@ -354,42 +539,121 @@ static void draw_mode_badge(cairo_t *cr, const draw_Frame *f, double right, doub
 {
     const jc_Mode mode = f->sample->mode;
     const char *name = jc_mode_name(mode);
-    cairo_set_font_size(cr, 14 * u);
+    cairo_set_font_size(cr, 13 * u);
     cairo_text_extents_t te;
     cairo_text_extents(cr, name, &te);
-    const double w = te.x_advance + 14 * u, h = 20 * u;
+    const double w = te.x_advance + 14 * u, h = 18 * u;
     rgb_hex(cr, mode == JC_MODE_ROLLING ? COL_ROLLING : mode == JC_MODE_SLIDING ? COL_SLIDING : COL_FLIGHT, 1);
     cairo_rectangle(cr, right - w, top, w, h);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_move_to(cr, right - w + 7 * u, top + 15 * u);
+    cairo_move_to(cr, right - w + 7 * u, top + 13.5 * u);
     cairo_show_text(cr, name);
+}
+
+/* t, x, theta, omega, N, |F|/N, one line each, right-aligned. */
+static void draw_readouts(cairo_t *cr, const draw_Frame *f, double right, double u)
+{
+    const jc_Sample *p = f->sample;
+    const jc_State *s = &p->state;
+    char line[96];
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+    cairo_set_font_size(cr, 17 * u);
+    rgb_hex(cr, COL_INK, 1);
+    snprintf(line, sizeof line, "t = %.3f s", s->t_s);
+    text_right(cr, line, right, 22 * u);
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, 11 * u);
+    rgb_hex(cr, COL_GREY, 1);
+    if (f->slowmo > 0 && f->slowmo != 1) snprintf(line, sizeof line, "slow motion \xc3\x97%g", f->slowmo);
+    else snprintf(line, sizeof line, "real time");
+    text_right(cr, line, right, 36 * u);
+    rgb_hex(cr, COL_INK, 1);
+    snprintf(line, sizeof line, "x = %.1f cm on %.4g\xc2\xb0", s->x_m * 100, f->model->setup.incline_rad * 180 / PI);
+    text_right(cr, line, right, 51 * u);
+    snprintf(line, sizeof line, "\xce\xb8 = %.0f\xc2\xb0   \xcf\x89 = %.1f rad/s", s->theta_rad * 180 / PI, s->omega_radps);
+    text_right(cr, line, right, 65 * u);
+    if (p->mode == JC_MODE_FLIGHT) snprintf(line, sizeof line, "N = 0 N   |F|/N: none");
+    else if (p->normal_N > 0)
+        snprintf(line, sizeof line, "N = %.3f N   |F|/N = %.3f", p->normal_N, fabs(p->friction_N) / p->normal_N);
+    else snprintf(line, sizeof line, "N = %.3f N", p->normal_N);
+    text_right(cr, line, right, 79 * u);
+    draw_mode_badge(cr, f, right, 85 * u, u);
+}
+
+static void draw_force_bar(cairo_t *cr, const draw_Frame *f, double u)
+{
+    const draw_ForceScale fs = draw_force_scale(&f->view, f->model);
+    const double len = fs.bar_N * fs.px_per_N;
+    rgb_hex(cr, COL_INK, 1);
+    cairo_rectangle(cr, fs.bar_x_px, fs.bar_y_px - 1.5 * u, len, 3 * u);
+    cairo_fill(cr);
+    cairo_set_line_width(cr, 1.2 * u);
+    for (int e = 0; e < 2; ++e) { /* end ticks */
+        cairo_move_to(cr, fs.bar_x_px + e * len, fs.bar_y_px - 5 * u);
+        cairo_line_to(cr, fs.bar_x_px + e * len, fs.bar_y_px + 5 * u);
+        cairo_stroke(cr);
+    }
+    char label[64];
+    snprintf(label, sizeof label, "forces: %g N", fs.bar_N);
+    cairo_set_font_size(cr, 11 * u);
+    text_right(cr, label, fs.bar_x_px - 6 * u, fs.bar_y_px + 4 * u);
 }
 
 static void draw_hud(cairo_t *cr, const draw_Frame *f)
 {
     const draw_View *v = &f->view;
     const double u = unit_px(v), right = v->width_px - 10 * u;
-    const jc_State *s = &f->sample->state;
-    char line[96];
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
-    cairo_set_font_size(cr, 18 * u);
-    rgb_hex(cr, COL_INK, 1);
-    snprintf(line, sizeof line, "t = %.3f s", s->t_s);
-    text_right(cr, line, right, 26 * u);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, 12 * u);
+    draw_readouts(cr, f, right, u);
+    cairo_set_font_size(cr, 10 * u);
     rgb_hex(cr, COL_GREY, 1);
-    if (f->slowmo > 0 && f->slowmo != 1) snprintf(line, sizeof line, "slow motion \xc3\x97%g", f->slowmo);
-    else snprintf(line, sizeof line, "real time");
-    text_right(cr, line, right, 44 * u);
-    snprintf(line, sizeof line, "x = %.1f cm, %.4g\xc2\xb0 incline", s->x_m * 100, f->model->setup.incline_rad * 180 / PI);
-    text_right(cr, line, right, 60 * u);
-    draw_mode_badge(cr, f, right, 68 * u, u);
+    text_right(cr, "arrows: N (blue), F (orange)  \xe2\x97\x90 centre of mass", right, 117 * u);
+    draw_force_bar(cr, f, u);
+}
+
+/* ---- the frame ---- */
+
+/* Everything that lives in the incline's coordinates, in f's view, but the
+ * marks' labels (draw_frame puts them over the close-up). */
+static void draw_scene(cairo_t *cr, const draw_Frame *f)
+{
+    draw_incline(cr, f);
+    draw_path(cr, f);
+    draw_trace(cr, f);
+    draw_body(cr, f);
+    draw_contact(cr, f);
+}
+
+/* The body up close in a box in the bottom left corner (under the incline,
+ * which descends to the right), with the same forces' scale. */
+static void draw_zoom_box(cairo_t *cr, const draw_Frame *f)
+{
+    double x, y, w, h;
+    draw_inset_rect(&f->view, &x, &y, &w, &h);
+    const double u = unit_px(&f->view);
+    draw_Frame g = *f;
+    /* At least ZOOM_MIN times the whole view, or the close-up shows nothing new. */
+    const double shorter = fmin(w, h), r = f->model->body.radius_m;
+    const double radii = fmin(ZOOM_RADII, shorter / (ZOOM_MIN * f->view.scale_px_per_m * r));
+    g.view = draw_view_zoom(f->model, (int)w, (int)h, &f->sample->state, radii, u);
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_rectangle(cr, 0, 0, w, h);
+    cairo_clip(cr);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    draw_scene(cr, &g);
+    char label[48];
+    snprintf(label, sizeof label, "close-up \xc3\x97%.2g", g.view.scale_px_per_m / f->view.scale_px_per_m);
     cairo_set_font_size(cr, 11 * u);
-    rgb_hex(cr, COL_GREY, 1);
-    text_right(cr, "arrows: N (blue), F (orange)", right, 106 * u);
-    text_right(cr, "\xe2\x97\x90 centre of mass", right, 121 * u);
+    rgb_hex(cr, COL_INK, 1);
+    cairo_move_to(cr, 6 * u, 14 * u);
+    cairo_show_text(cr, label);
+    cairo_restore(cr);
+    cairo_rectangle(cr, x, y, w, h);
+    rgb_hex(cr, COL_INK, 1);
+    cairo_set_line_width(cr, 1.5 * u);
+    cairo_stroke(cr);
 }
 
 void draw_frame(cairo_t *cr, const draw_Frame *f)
@@ -398,10 +662,10 @@ void draw_frame(cairo_t *cr, const draw_Frame *f)
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
     cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    draw_incline(cr, f);
-    draw_trace(cr, f);
-    draw_body(cr, f);
-    draw_contact(cr, f);
+    draw_scene(cr, f);
+    if (f->zoom_box && f->model->body.radius_m * f->view.scale_px_per_m < ZOOM_BELOW_UNITS * unit_px(&f->view))
+        draw_zoom_box(cr, f);
+    draw_marks(cr, &f->view, f->marks, 1);
     draw_hud(cr, f);
     cairo_restore(cr);
 }

@@ -12,10 +12,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* Videos hold the last frame this long, so the end can be seen (and a GIF
- * does not jump straight back to the start). */
-#define HOLD_END_S "0.5"
-
 int vid_format_from_path(const char *path, vid_Format *f)
 {
     const size_t n = strlen(path);
@@ -42,14 +38,14 @@ static int codec_args(char **argv, int n, vid_Format f)
     if (f == VID_GIF) {
         /* One palette made for the whole clip keeps the colours clean; ordered
          * (Bayer) dithering encodes about twice as fast as the default. */
-        argv[n++] = "tpad=stop_mode=clone:stop_duration=" HOLD_END_S
-                    ",split[a][b];[a]palettegen[p];[b][p]paletteuse=dither=bayer:bayer_scale=5";
+        argv[n++] = "split[a][b];[a]palettegen[p];[b][p]paletteuse=dither=bayer:bayer_scale=5";
         argv[n++] = "-f";
         argv[n++] = "gif";
         return n;
     }
-    /* H.264 in yuv420p (what players expect) needs even sizes. */
-    static char *const mp4[] = {"tpad=stop_mode=clone:stop_duration=" HOLD_END_S ",pad=ceil(iw/2)*2:ceil(ih/2)*2",
+    /* H.264 in yuv420p (what players expect) needs even sizes. The end is
+     * held by the frames themselves (animate.c), not by a filter. */
+    static char *const mp4[] = {"pad=ceil(iw/2)*2:ceil(ih/2)*2",
                                 "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "20", "-movflags", "+faststart",
                                 "-f", "mp4"};
     for (size_t i = 0; i < sizeof mp4 / sizeof mp4[0]; ++i) argv[n++] = mp4[i];

@@ -21,7 +21,11 @@ static int run_ok(const char *args)
     return ok;
 }
 
-/* The frames a run of the paper's cylinder on 45 degrees should give. */
+/* The film holds its last picture this long after the motion (animate.c). */
+#define HOLD_S 0.5
+
+/* The frames a run of the paper's cylinder on 45 degrees should give: one
+ * per 1/(fps slowmo) of the run (it ends at the ramp's end), then the hold. */
 static int expected_frames(double fps, double slowmo)
 {
     jc_Setup s = jc_paper_setup();
@@ -34,7 +38,19 @@ static int expected_frames(double fps, double slowmo)
     const int st = jc_simulate(&m, &o, &run, err, sizeof err);
     const double t_end = run.final_state.t_s;
     jc_run_free(&run);
-    return st == JC_OK ? (int)floor(t_end * fps * slowmo * (1 + 1e-12)) + 1 : -1;
+    return st == JC_OK ? (int)floor(t_end * fps * slowmo * (1 + 1e-12)) + 1 + (int)ceil(HOLD_S * fps - 1e-9) : -1;
+}
+
+/* The follow camera still works: frames of the same count. */
+static int test_follow_camera(void)
+{
+    char out[1100], args[2048];
+    snprintf(out, sizeof out, "%s/follow/", dir);
+    snprintf(args, sizeof args, "animate --incline 45 --camera follow --size 160x90 --fps 10 --slowmo 2 --output '%s'",
+             out);
+    ENSURE(run_ok(args));
+    ENSURE(fig_count_entries(out) == expected_frames(10, 2));
+    return 0;
 }
 
 static int test_frames_directory(void)
@@ -105,8 +121,51 @@ static int usage_error(const char *opts, const char *needle)
     return 0;
 }
 
+/* The hoop preset rocks on a floor until the default 60 s limit: its film
+ * stops FILM_AFTER_LANDING_S = 1 s of simulated time after its last landing
+ * (computed here from the library's events), then holds HOLD_S; the frame
+ * count printed before the work is the count made. With --t-max the film
+ * goes to the limit asked for. */
+static int test_film_ends_with_motion(void)
+{
+    jc_Setup s;
+    jc_Model m;
+    char err[256], out[1100], args[2048], want_line[64];
+    ENSURE(jc_preset_setup("hoop", &s, err, sizeof err) == JC_OK && jc_model_init(&m, &s, err, sizeof err) == JC_OK);
+    const jc_SimOptions o = jc_default_sim_options();
+    jc_Run run;
+    ENSURE(jc_simulate(&m, &o, &run, err, sizeof err) == JC_OK);
+    double landed = NAN;
+    for (int i = 0; i < run.event_count; ++i)
+        if (run.events[i].kind == JC_EVENT_TOUCHDOWN) landed = run.events[i].state.t_s;
+        else if (run.events[i].kind == JC_EVENT_LIFTOFF || run.events[i].kind == JC_EVENT_BOUNCE) landed = NAN;
+    ENSURE(run.termination == JC_END_TIME_LIMIT && isfinite(landed));
+    jc_run_free(&run);
+    const double fps = 10, slowmo = 2, film_end = landed + 1.0;
+    const int motion = (int)floor(film_end * fps * slowmo * (1 + 1e-12)) + 1, hold = (int)ceil(HOLD_S * fps - 1e-9);
+    snprintf(out, sizeof out, "%s/hoop/", dir);
+    snprintf(args, sizeof args, "animate --preset hoop --size 160x90 --fps 10 --slowmo 2 --output '%s'", out);
+    cli_result r = cli_run_line(cli, NULL, args);
+    snprintf(want_line, sizeof want_line, "Film: %d frames", motion + hold);
+    const int said = r.status == 0 && r.out && strstr(r.out, want_line);
+    if (!said) fprintf(stderr, "status %d, stdout: %s, want '%s'\n", r.status, r.out ? r.out : "?", want_line);
+    cli_result_free(&r);
+    ENSURE(said);
+    ENSURE_MSG(fig_count_entries(out) == motion + hold, "%d frames, want %d", fig_count_entries(out), motion + hold);
+    /* The last frame of the motion is within one frame of the end; the film
+     * lasts at most HOLD_S longer. */
+    ENSURE((motion - 1) / (fps * slowmo) <= film_end && film_end - (motion - 1) / (fps * slowmo) < 1 / (fps * slowmo));
+    ENSURE((motion + hold) / fps - film_end * slowmo <= HOLD_S + 1 / fps);
+    snprintf(args, sizeof args, "animate --preset hoop --t-max 2.5 --size 160x90 --fps 10 --slowmo 2 --output '%s'",
+             out);
+    ENSURE(run_ok(args));
+    ENSURE_MSG(fig_count_entries(out) == 51 + hold, "%d frames with --t-max 2.5", fig_count_entries(out));
+    return 0;
+}
+
 static int test_bad_input(void)
 {
+    if (usage_error("--camera xyz", "--camera 'xyz' is not a camera (allowed: fixed, follow)")) return 1;
     if (usage_error("--fps 0", "'0'") || usage_error("--fps 1000", "'1000'") || usage_error("--slowmo 0", "'0'") ||
         usage_error("--slowmo -2", "'-2'") || usage_error("--size 12x5", "'12x5'") ||
         usage_error("--size wide", "'wide'") || usage_error("--sample-dt 0.1", "--sample-dt"))
@@ -127,7 +186,9 @@ int main(int argc, char **argv)
     if (rc != 0) return rc;
     RUN_TEST(test_frames_directory);
     RUN_TEST(test_gif_and_mp4);
+    RUN_TEST(test_follow_camera);
     RUN_TEST(test_missing_ffmpeg);
+    RUN_TEST(test_film_ends_with_motion);
     RUN_TEST(test_bad_input);
     fig_main_end(dir);
     TEST_MAIN_END();

@@ -76,7 +76,8 @@ static int check_state(const jc_State *state, jc_Mode mode)
     cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
     cairo_t *cr = cairo_create(surface);
     const draw_TracePoint trace[2] = {{state->x_m - 0.05, state->y_m, state->t_s - 0.01}, {state->x_m, state->y_m, state->t_s}};
-    const draw_Frame frame = {&model, view, &sample, trace, 2, 0.3, 8};
+    const draw_Frame frame = {.model = &model, .view = view, .sample = &sample, .trace = trace, .trace_count = 2,
+                              .trace_fade_s = 0.3, .slowmo = 8};
     draw_frame(cr, &frame);
     cairo_surface_flush(surface);
     /* The centre of mass's direction, from the parts (the first moment). */
@@ -155,12 +156,133 @@ static int test_to_pixel(void)
     return 0;
 }
 
+/* ---- the fixed camera, the forces' scale, the marks ---- */
+
+/* The paper's 3.2 m ramp with the test body, seen whole: the ramp's two
+ * ends and the air a body radius above them are inside the frame, and
+ * the picture is not a postage stamp (one side of it fills most of the frame). */
+static int test_fixed_view_whole_ramp(void)
+{
+    const double r = model.body.radius_m, L = model.setup.ramp_length_m;
+    const draw_View v = draw_view_fixed(&model, W, H, -r, L + r, 3 * r);
+    const double xs[4] = {0, L, -r, L + r}, ys[4] = {0, 0, 3 * r, 3 * r};
+    double lo_x = W, hi_x = 0, lo_y = H, hi_y = 0;
+    for (int i = 0; i < 4; ++i) {
+        double px, py;
+        pixel_of(&v, xs[i], ys[i], &px, &py);
+        ENSURE_MSG(px >= 0 && px <= W && py >= 0 && py <= H, "point %d at (%.1f, %.1f)", i, px, py);
+        lo_x = fmin(lo_x, px), hi_x = fmax(hi_x, px), lo_y = fmin(lo_y, py), hi_y = fmax(hi_y, py);
+    }
+    ENSURE_MSG(hi_x - lo_x > 0.8 * W || hi_y - lo_y > 0.6 * H, "box %.0f x %.0f px", hi_x - lo_x, hi_y - lo_y);
+    return 0;
+}
+
+static cairo_surface_t *render(const draw_View *view, const jc_Sample *sample, const draw_Marks *marks)
+{
+    cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
+    cairo_t *cr = cairo_create(surface);
+    const draw_Frame frame = {.model = &model, .view = *view, .sample = sample, .slowmo = 8, .marks = marks,
+                              .zoom_box = 1};
+    draw_frame(cr, &frame);
+    cairo_surface_flush(surface);
+    cairo_destroy(cr);
+    return surface;
+}
+
+/* Pixels of colour rgb along the ray from (px, py) in direction (dx, dy),
+ * from the first one to the last before a gap of three (a pixel on the
+ * antialiased edge of a slanted line is not a gap): a drawn line's length. */
+static double run_length(cairo_surface_t *surface, double px, double py, double dx, double dy, const double rgb[3])
+{
+    double first = -1, last = -1, got[3];
+    for (int k = 0; k < 400; ++k) {
+        rgb_at(surface, px + k * dx, py + k * dy, got);
+        if (same_colour(got, rgb)) {
+            if (first < 0) first = k;
+            last = k;
+        } else if (first >= 0 && k - last >= 3) break;
+    }
+    return first < 0 ? -1 : last;
+}
+
+/* The scale bar is bar_N x px_per_N long, bar_N a round number (1, 2 or 5
+ * times a power of ten) not above M g; a normal force of 2 bar_N is drawn
+ * twice as long, measured on the rendered frame. */
+static int test_force_scale_bar(void)
+{
+    const double r = model.body.radius_m, L = model.setup.ramp_length_m, a = model.setup.incline_rad;
+    const draw_View view = draw_view_fixed(&model, W, H, -r, L + r, 3 * r);
+    const draw_ForceScale fs = draw_force_scale(&view, &model);
+    const double weight = model.body.mass_kg * model.setup.gravity_mps2;
+    const double mantissa = fs.bar_N / pow(10, floor(log10(fs.bar_N)));
+    ENSURE_MSG(fabs(mantissa - 1) < 1e-9 || fabs(mantissa - 2) < 1e-9 || fabs(mantissa - 5) < 1e-9, "bar %g N",
+               fs.bar_N);
+    ENSURE(fs.bar_N <= weight && fs.bar_N > weight / 2.5);
+    const jc_Sample sample = {.state = {0, 2.5, r, 1, 0, 25, 10}, .mode = JC_MODE_ROLLING, .normal_N = 2 * fs.bar_N};
+    cairo_surface_t *surface = render(&view, &sample, NULL);
+    double ink[3], blue[3];
+    draw_colour_rgb(DRAW_INK, ink);
+    draw_colour_rgb(DRAW_NORMAL, blue);
+    const double bar_px = run_length(surface, fs.bar_x_px - 3, floor(fs.bar_y_px), 1, 0, ink) - 3;
+    ENSURE_NEAR(bar_px, fs.bar_N * fs.px_per_N, 2.0);
+    /* The normal arrow ends at the contact point; its tail is under the
+     * incline along the inward normal, picture direction (-sin a, -cos a),
+     * in pixels (-sin a, +cos a). */
+    double cx, cy;
+    pixel_of(&view, 2.5, 0, &cx, &cy);
+    const double arrow_px = run_length(surface, cx, cy, -sin(a), cos(a), blue);
+    ENSURE_NEAR(arrow_px, 2 * fs.bar_N * fs.px_per_N, 2.5);
+    cairo_surface_destroy(surface);
+    return 0;
+}
+
+/* Each mark in its colour where it says, just above the incline's surface;
+ * the measured band under the surface over its whole width; white between. */
+static int test_marks(void)
+{
+    const double r = model.body.radius_m, L = model.setup.ramp_length_m;
+    const draw_View view = draw_view_fixed(&model, W, H, -r, L + r, 3 * r);
+    const draw_Marks marks = {1.6, 1.9, 2.4, 0.1};
+    const jc_Sample sample = {.state = {0, 0.3, r, 1, 0, 3, 10}, .mode = JC_MODE_ROLLING, .normal_N = 0.1};
+    cairo_surface_t *surface = render(&view, &sample, &marks);
+    const double u = view.unit_px, s = view.scale_px_per_m;
+    const struct {
+        double x_m, y_m;
+        draw_Colour colour;
+    } probes[] = {{1.6, 5 * u / s, DRAW_MARK_PAPER},     {1.9, 5 * u / s, DRAW_MARK_MODEL},
+                  {2.4, 5 * u / s, DRAW_MARK_MEASURED},  {2.31, -3.5 * u / s, DRAW_MARK_MEASURED},
+                  {2.49, -3.5 * u / s, DRAW_MARK_MEASURED}};
+    for (size_t i = 0; i < sizeof probes / sizeof probes[0]; ++i) {
+        double px, py, want[3], got[3];
+        pixel_of(&view, probes[i].x_m, probes[i].y_m, &px, &py);
+        draw_colour_rgb(probes[i].colour, want);
+        /* A 2-unit line: its colour is whole on one of the pixels next to its centre line. */
+        int found = 0;
+        for (int j = 0; j < 9 && !found; ++j) {
+            rgb_at(surface, px + j % 3 - 1, py + j / 3 - 1, got);
+            found = same_colour(got, want);
+        }
+        ENSURE_MSG(found, "probe %zu at (%.1f, %.1f): %.3f %.3f %.3f", i, px, py, got[0], got[1],
+                   got[2]);
+    }
+    const double white[3] = {1, 1, 1};
+    double px, py, got[3];
+    pixel_of(&view, 1.75, 5 * u / s, &px, &py);
+    rgb_at(surface, px, py, got);
+    ENSURE_MSG(same_colour(got, white), "between the marks: %.3f %.3f %.3f", got[0], got[1], got[2]);
+    cairo_surface_destroy(surface);
+    return 0;
+}
+
 int main(void)
 {
     if (make_model()) return 1;
     RUN_TEST(test_to_pixel);
     RUN_TEST(test_parts_in_flight);
     RUN_TEST(test_parts_rolling_other_angle);
+    RUN_TEST(test_fixed_view_whole_ramp);
+    RUN_TEST(test_force_scale_bar);
+    RUN_TEST(test_marks);
     cairo_debug_reset_static_data(); /* cairo's font caches: no false leaks under ASan */
     TEST_MAIN_END();
 }
