@@ -88,7 +88,10 @@ run: build
 	@# Figures and a film (docs/figures.md): each command prints the file it wrote.
 	@mkdir -p out
 	@for a in 15 30 45; do ./$(BUILD)/jumpcyl plot --incline $$a --what overview --output out/overview-$$a.png || exit 1; done
+	@for a in 15 30 45; do ./$(BUILD)/jumpcyl plot --incline $$a --what trajectory --output out/trajectory-$$a.png || exit 1; done
+	@./$(BUILD)/jumpcyl plot --preset hoop --what trajectory --output out/trajectory-hoop.png
 	@./$(BUILD)/jumpcyl animate --incline 45 --size 640x360 --fps 25 --slowmo 6 --output out/jump-45.gif
+	@./$(BUILD)/jumpcyl animate --preset hoop --size 640x360 --fps 25 --slowmo 6 --output out/hoop.gif
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -LE valgrind

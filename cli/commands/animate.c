@@ -438,8 +438,11 @@ static int check_length(const jc_Model *model, const jc_SimOptions *sim, const a
         return EXIT_USAGE;
     }
     /* On standard output, before the work: stderr is for what went wrong. */
-    printf("Film: %.0f frames (%.1f s at %g fps): %.4g s simulated (the run: %s at %.4g s), then the last picture "
-           "held %g s\n", frames, frames / o->fps, o->fps, *film_end, jc_termination_name(probe.termination),
+    const int cut = *film_end < probe.final_state.t_s;
+    char why[64] = "";
+    if (cut) snprintf(why, sizeof why, ", to %g s after the last landing", FILM_AFTER_LANDING_S);
+    printf("Film: %.0f frames (%.1f s at %g fps): %.4g s simulated%s (the run: %s at %.4g s), then the last "
+           "picture held %g s\n", frames, frames / o->fps, o->fps, *film_end, why, jc_termination_name(probe.termination),
            probe.final_state.t_s, FILM_HOLD_S);
     fflush(stdout);
     return 0;
