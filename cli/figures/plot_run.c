@@ -87,12 +87,10 @@ static double friction_ratio(const fig_Data *d, const jc_Sample *p)
     return p->mode != JC_MODE_FLIGHT && p->normal_N > tiny ? fabs(p->friction_N) / p->normal_N : NAN;
 }
 
-static void track_ranges(fig_Data *d, const jc_Sample *p, double n_norm, double ratio, double sum)
+/* The ranges of the panels' curves (the vertical axes). */
+static void track_values(fig_Data *d, const jc_Sample *p, double n_norm, double ratio, double sum)
 {
-    const double x = p->state.x_m * 100, speed = hypot(p->state.vx_mps, p->state.vy_mps);
-    d->x_min_cm = fmin(d->x_min_cm, x);
-    d->x_max_cm = fmax(d->x_max_cm, x);
-    d->t_max_s = fmax(d->t_max_s, p->state.t_s);
+    const double speed = hypot(p->state.vx_mps, p->state.vy_mps);
     d->n_min = fmin(d->n_min, n_norm);
     d->n_max = fmax(d->n_max, n_norm);
     if (isfinite(ratio)) d->ratio_max = fmax(d->ratio_max, ratio);
@@ -102,6 +100,37 @@ static void track_ranges(fig_Data *d, const jc_Sample *p, double n_norm, double 
     for (int k = 0; k < 5; ++k) {
         d->energy_min_J = fmin(d->energy_min_J, e[k]);
         d->energy_max_J = fmax(d->energy_max_J, e[k]);
+    }
+}
+
+static void reset_values(fig_Data *d)
+{
+    d->n_min = d->n_max = d->ratio_max = d->gap_max_mm = d->speed_max_mps = 0.0;
+    d->energy_min_J = d->energy_max_J = 0.0;
+}
+
+static void track_ranges(fig_Data *d, const jc_Sample *p, double n_norm, double ratio, double sum)
+{
+    const double x = p->state.x_m * 100;
+    d->x_min_cm = fmin(d->x_min_cm, x);
+    d->x_max_cm = fmax(d->x_max_cm, x);
+    d->t_max_s = fmax(d->t_max_s, p->state.t_s);
+    track_values(d, p, n_norm, ratio, sum);
+}
+
+/* A zoomed panel scales its vertical axis to the curves inside the zoom:
+ * a large force after it (the hoop's rocking) would squeeze them. */
+static void zoom_values(fig_Data *d)
+{
+    const jc_Model *m = d->model;
+    const double weight_n = m->body.mass_kg * m->setup.gravity_mps2 * m->cos_incline;
+    reset_values(d);
+    for (int i = 0; i < d->run.sample_count; ++i) {
+        const jc_Sample *p = &d->run.samples[i];
+        if (p->state.t_s < d->zoom_t_lo_s || p->state.t_s > d->zoom_t_hi_s) continue;
+        const double resist = p->air_loss_J + p->rolling_resistance_loss_J;
+        const double sum = p->kinetic_J + p->potential_J + p->friction_loss_J + p->impact_loss_J + resist;
+        track_values(d, p, p->normal_N / weight_n, friction_ratio(d, p), sum);
     }
 }
 
@@ -118,8 +147,8 @@ static int write_samples(fig_Data *d)
                   "# sum_J = kinetic + potential + all losses: constant up to the integration error.\n",
             d->sample_dt_s, weight_n);
     d->x_min_cm = d->x_max_cm = 0.0;
-    d->n_min = d->n_max = d->ratio_max = d->gap_max_mm = d->speed_max_mps = d->t_max_s = 0.0;
-    d->energy_min_J = d->energy_max_J = d->resistance_loss_max_J = 0.0;
+    d->t_max_s = d->resistance_loss_max_J = 0.0;
+    reset_values(d);
     for (int i = 0; i < d->run.sample_count; ++i) {
         const jc_Sample *p = &d->run.samples[i];
         const double n_norm = p->normal_N / weight_n, ratio = friction_ratio(d, p);
@@ -408,6 +437,7 @@ static void choose_axis(fig_Data *d)
     if (d->zoom_wanted && d->zoomed) {
         d->axis_min = d->time_axis ? d->zoom_t_lo_s : d->zoom_x_lo_cm;
         d->axis_max = d->time_axis ? d->zoom_t_hi_s : d->zoom_x_hi_cm;
+        zoom_values(d);
     }
 }
 
