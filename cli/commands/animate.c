@@ -247,23 +247,6 @@ static draw_TracePoint *make_trace(const jc_Run *run)
     return tr;
 }
 
-/* The paper's table is for the paper's cylinder (its body, its printed d,
- * its g); friction, restitution and the start do not enter its model. */
-static int is_paper_cylinder(const jc_Setup *s)
-{
-    const jc_Setup p = jc_paper_setup();
-    if (s->body.radius_m != p.body.radius_m || s->body.part_count != p.body.part_count ||
-        s->paper_cm_offset_m != p.paper_cm_offset_m || s->gravity_mps2 != p.gravity_mps2)
-        return 0;
-    for (int i = 0; i < p.body.part_count; ++i) {
-        const jc_Part *a = &s->body.parts[i], *b = &p.body.parts[i];
-        if (a->kind != b->kind || a->mass_kg != b->mass_kg || a->offset_m != b->offset_m ||
-            a->angle_rad != b->angle_rad || a->radius_m != b->radius_m)
-            return 0;
-    }
-    return 1;
-}
-
 /* The run's first lift-off, and Table 1's printed and measured jump points
  * for the paper's cylinder on one of its inclines. */
 static draw_Marks make_marks(const jc_Model *m, const jc_Run *run)
@@ -272,15 +255,11 @@ static draw_Marks make_marks(const jc_Model *m, const jc_Run *run)
     jc_RunSummary sum;
     jc_run_summarize(run, &sum);
     if (sum.first_liftoff >= 0) mk.model_x_m = sum.first_liftoff_state.x_m;
-    if (!is_paper_cylinder(&m->setup)) return mk;
-    const jc_PaperTableRow *rows;
-    const int n = jc_paper_table(&rows);
-    for (int i = 0; i < n; ++i)
-        if (fabs(cli_deg(m->setup.incline_rad) - rows[i].incline_deg) < 1e-9) {
-            mk.paper_x_m = rows[i].printed_x_m;
-            mk.measured_x_m = rows[i].measured_x_m;
-            mk.measured_error_m = rows[i].measured_error_m;
-        }
+    const jc_PaperTableRow *row = cli_paper_row(&m->setup);
+    if (!row) return mk;
+    mk.paper_x_m = row->printed_x_m;
+    mk.measured_x_m = row->measured_x_m;
+    mk.measured_error_m = row->measured_error_m;
     return mk;
 }
 

@@ -12,6 +12,13 @@
 #define CLI_PATH_MAX 4096
 #endif
 
+/* ---- paper_row.c: the paper's Table 1 beside the model ---- */
+
+/* The row of Table 1 for the setup: the paper's cylinder on one of the
+ * table's inclines (friction, restitution and the start may differ, as the
+ * paper's model has none of them); NULL for any other setup. */
+const jc_PaperTableRow *cli_paper_row(const jc_Setup *s);
+
 /* ---- progress.c: "frame 120/264, ETA 3 s" on stderr ---- */
 
 /* Shown only when stderr is a terminal, and only once the job has taken

@@ -12,34 +12,13 @@
  * drawn smoothly over the whole ramp (about 100 per turn on the paper's). */
 #define CRIT_POINTS 4001
 
-/* The paper's table is for the paper's cylinder: its body, its printed d and
- * its g. Friction, restitution and the start do not enter the paper's model. */
-static int is_paper_cylinder(const jc_Setup *s)
-{
-    const jc_Setup p = jc_paper_setup();
-    if (s->body.radius_m != p.body.radius_m || s->body.part_count != p.body.part_count ||
-        s->paper_cm_offset_m != p.paper_cm_offset_m || s->gravity_mps2 != p.gravity_mps2)
-        return 0;
-    for (int i = 0; i < p.body.part_count; ++i) {
-        const jc_Part *a = &s->body.parts[i], *b = &p.body.parts[i];
-        if (a->kind != b->kind || a->mass_kg != b->mass_kg || a->offset_m != b->offset_m ||
-            a->angle_rad != b->angle_rad || a->radius_m != b->radius_m)
-            return 0;
-    }
-    return 1;
-}
-
 static void find_printed(fig_Data *d)
 {
     d->printed_theta_rad = d->printed_x_m = NAN;
-    if (!is_paper_cylinder(&d->model->setup)) return;
-    const jc_PaperTableRow *rows;
-    const int n = jc_paper_table(&rows);
-    for (int i = 0; i < n; ++i)
-        if (fabs(cli_deg(d->model->setup.incline_rad) - rows[i].incline_deg) < 1e-9) {
-            d->printed_theta_rad = rows[i].printed_theta_rad;
-            d->printed_x_m = rows[i].printed_x_m;
-        }
+    const jc_PaperTableRow *row = cli_paper_row(&d->model->setup);
+    if (!row) return;
+    d->printed_theta_rad = row->printed_theta_rad;
+    d->printed_x_m = row->printed_x_m;
 }
 
 /* Both sides of the exact N = 0 condition at th, NaN where the rolling path
