@@ -312,6 +312,9 @@ enum { FW_GAP, FW_END, FW_TOP };
  * only came within the event tolerance of zero while opening (each resume
  * at least doubles the searched time or advances it by the tolerance). */
 #define FLIGHT_MAX_RESUMES 2000
+/* A gap that opens from contact more gently than this (kappa below, the
+ * cubic term's coefficient relative to d |w|^3 / 6) is searched from 1 ps. */
+#define OPENING_KAPPA_MIN 1e-2
 
 int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len)
 {
@@ -348,7 +351,34 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
     };
     jc_ScanHit hit = {.index = -1};
     double T = horizon;
-    for (int resume = 0; horizon > t_start && resume < FLIGHT_MAX_RESUMES; ++resume) {
+    int ramp_hit = 0;
+    const double kappa = f.w > 0.0 ? -f.sin0 : (f.w < 0.0 ? f.sin0 : 0.0);
+    if (from_liftoff && kappa >= OPENING_KAPPA_MIN) {
+        /* The gap opening from contact (gap, rate and acceleration >= 0):
+         * gap(t) = vy0 t + ay0 t^2/2 + d R3(th0, u), u = w t, and R3 is minus
+         * the remainder of cos(th0 + u) after its quadratic Taylor term, by
+         * Lagrange's form -sin th0 u^3/6 - cos(th0 + xi) u^4/24
+         * >= kappa |u|^3/6 - u^4/24 with kappa = -sin th0 sgn w: the gap is
+         * positive for 0 < |u| < 4 kappa. There the safe steps of the search,
+         * bounded by d |w|^3 against a gap that grows like t^3, only grow
+         * some fivefold each from 1 ps (15 to 19 steps per lift-off). So up
+         * to |u| = 2 kappa, where the gap is at least d kappa^4 2/3 (far
+         * above its rounding for kappa >= 1e-2), only the ramp's ends are
+         * searched; the gap from there on. Measured with callgrind: a paper
+         * run took 400k instructions with the crawl, 382k without. */
+        const double t_open = fmin(2.0 * kappa / fabs(f.w), horizon);
+        if (t_open > t_start) {
+            int st = jc_scan_fns_with(fns + 1, 2, t_start, t_open, tol, sim->ws->brent, &hit, err, err_len);
+            if (st != JC_OK) return st;
+            if (hit.index >= 0) {
+                hit.index += 1; /* fns + 1: FW_END, FW_TOP */
+                T = hit.theta;
+                ramp_hit = 1;
+            }
+            t_start = t_open;
+        }
+    }
+    for (int resume = 0; !ramp_hit && horizon > t_start && resume < FLIGHT_MAX_RESUMES; ++resume) {
         int st = jc_scan_fns_with(fns, 3, t_start, horizon, tol, sim->ws->brent, &hit, err, err_len);
         if (st != JC_OK) return st;
         T = hit.index >= 0 ? hit.theta : horizon;
