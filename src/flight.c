@@ -184,7 +184,7 @@ static int largest_gap(const flight *f, double T, gsl_root_fsolver *brent, doubl
     gap_eval(f, T, g);
     best = fmax(best, g[0]);
     const double d = f->m->body.cm_offset_m, w4 = f->w * f->w * f->w * f->w;
-    jc_ScanFn fn = {gap_rate_eval, f, d * w4, 0.0, 1.0, NULL, 1};
+    jc_ScanFn fn = {gap_rate_eval, f, d * w4, 0.0, 1.0, NULL, 1, 0.0};
     double t = 0.0;
     for (int pass = 0; pass < 100000 && t < T; ++pass) {
         double r[3];
@@ -345,9 +345,9 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
     const double d = sim->m->body.cm_offset_m, w3 = fabs(f.w * f.w * f.w);
     const double tol = sim->opt->event_tol_s;
     jc_ScanFn fns[3] = {
-        {gap_eval, &f, d * w3, 0.0, 1.0, NULL, 1},
-        {to_end_eval, &f, d * w3, 0.0, 1.0, NULL, 1},
-        {from_top_eval, &f, d * w3, 0.0, 1.0, NULL, 1},
+        {gap_eval, &f, d * w3, 0.0, 1.0, NULL, 1, 0.0},
+        {to_end_eval, &f, d * w3, 0.0, 1.0, NULL, 1, 0.0},
+        {from_top_eval, &f, d * w3, 0.0, 1.0, NULL, 1, 0.0},
     };
     jc_ScanHit hit = {.index = -1};
     double T = horizon;
