@@ -7,6 +7,7 @@
  */
 #include "internal.h"
 
+#include <float.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
 #include <math.h>
@@ -31,6 +32,7 @@ typedef struct {
     double sigma;        /* th = anchor + sigma u^2 */
     double sin_a, cos_a; /* of the anchor */
     double p0, p1;       /* P and sigma * P' at the anchor */
+    int linear;          /* 1: th = anchor + sigma u instead, dt/du = 1 / |w| */
 } time_integrand;
 
 static double dt_du(double u, void *params)
@@ -38,15 +40,40 @@ static double dt_du(double u, void *params)
     const time_integrand *ti = params;
     const jc_Model *m = ti->m;
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    const double delta = ti->sigma * u * u, sh = sin(0.5 * delta), ch = cos(0.5 * delta);
+    const double delta = ti->sigma * (ti->linear ? u : u * u), sh = sin(0.5 * delta), ch = cos(0.5 * delta);
     const double s_mid = ti->sin_a * ch + ti->cos_a * sh, c_mid = ti->cos_a * ch - ti->sin_a * sh;
     const double c_th = c_mid * ch - s_mid * sh; /* cos(anchor + delta) */
     const double ip = jc_rolling_inertia_p(m, c_th);
-    if (u == 0.0) return ti->p0 > 0.0 || ti->p1 <= 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
+    if (u == 0.0 && !ti->linear) return ti->p0 > 0.0 || ti->p1 <= 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
     const double dcos = -2.0 * s_mid * sh, dsin = 2.0 * c_mid * sh;
     const double du = M * m->setup.gravity_mps2 * (d * m->cos_incline * dcos - m->sin_incline * (r * delta + d * dsin));
     const double p = ti->p0 - 2.0 * du;
+    if (ti->linear) return p > 0.0 ? 1.0 / sqrt(p / ip) : 0.0;
     return p > 0.0 ? 2.0 * u / sqrt(p / ip) : 0.0;
+}
+
+/* Where neither end is near a turning point (P at each end at least a
+ * quarter of P at the other), 1/|w| is smooth in th itself: one 21-point
+ * Gauss-Kronrod rule over [th_a, th_b], accepted when its error estimate
+ * meets what gsl_integration_qng asks of the same rule (1e-13 of the
+ * result, or rounding); 1 if it did, with the time in *dt. Measured on the
+ * paper's three runs: 5 of their 8 rolling phases settle so, at 21
+ * integrand values instead of 42 (two ends of 21 points each; agreeing to
+ * 1e-16 s), one falls back (21 more); the phases from rest are not tried.
+ * Callgrind: 185 -> 164 integrand values and 321k -> 316k instructions a
+ * full run. */
+static int roll_time_one_piece(const jc_Model *m, const jc_RollingPath *path, double th_a, double p_a, double th_b,
+                               double *dt)
+{
+    const double p_b = jc_tl_value(&path->energy, th_b);
+    if (!(p_a > 0.0 && p_b > 0.0 && fmin(p_a, p_b) >= 0.25 * fmax(p_a, p_b))) return 0;
+    time_integrand ti = {m, th_b > th_a ? 1.0 : -1.0, sin(th_a), cos(th_a), p_a, 0.0, 1};
+    gsl_function fn = {dt_du, &ti};
+    double result, abserr, resabs, resasc;
+    gsl_integration_qk21(&fn, 0.0, fabs(th_b - th_a), &result, &abserr, &resabs, &resasc);
+    if (!(isfinite(result) && (abserr < 1e-13 * fabs(result) || abserr < 50.0 * DBL_EPSILON * resabs))) return 0;
+    *dt = result;
+    return 1;
 }
 
 /* Time to roll from th_a to th_b (either may be a turning point). p_a is
@@ -58,6 +85,7 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
 {
     *dt = 0.0;
     if (th_a == th_b) return JC_OK;
+    if (roll_time_one_piece(sim->m, path, th_a, p_a, th_b, dt)) return JC_OK;
     const double mid = 0.5 * (th_a + th_b);
     const double ends[2] = {th_a, th_b};
     for (int k = 0; k < 2; ++k) {
@@ -69,7 +97,7 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
          * turning point up to rounding: take P = 0 there exactly. */
         double p0 = f[0];
         if (p0 <= 1e-12 * fabs(f[1]) * fabs(mid - ends[k])) p0 = 0.0;
-        time_integrand ti = {sim->m, sigma, sin(ends[k]), cos(ends[k]), p0, sigma * f[1]};
+        time_integrand ti = {sim->m, sigma, sin(ends[k]), cos(ends[k]), p0, sigma * f[1], 0};
         gsl_function fn = {dt_du, &ti};
         double part, abserr;
         size_t evals;
