@@ -267,6 +267,17 @@ static void flight_ode_events(void *params, const double y[], double ev[])
     ev[FE_APEX] = c->apex_sign * y[JC_Y_VY];
 }
 
+/* Their rates, in closed form. */
+static void flight_ode_event_rates(void *params, const double y[], const double f[], double dev[])
+{
+    (void)y;
+    const flight_ode *c = params;
+    dev[FE_GAP] = f[JC_Y_Y];
+    dev[FE_END] = -f[JC_Y_X];
+    dev[FE_TOP] = f[JC_Y_X];
+    dev[FE_APEX] = c->apex_sign * f[JC_Y_VY];
+}
+
 static int flight_ode_sample(jc_Sim *sim, void *params, double t, const double y[])
 {
     (void)params;
@@ -283,7 +294,8 @@ static int flight_ode_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, cha
     flight_ode ctx = {sim->m, sim->s.vy_mps < 0.0 ? -1.0 : 1.0, from_liftoff ? 1e-12 : 0.0};
     sim->hop_height_m = fmax(sim->s.y_m - r, 0.0);
     for (long k = 0; k < FLIGHT_MAX_APEXES; ++k) {
-        const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx, JC_Y_DIM};
+        const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx, JC_Y_DIM,
+                                   flight_ode_event_rates};
         int which;
         int st = jc_ode_run(sim, &phase, &which, err, err_len);
         if (st != JC_OK) return st;

@@ -221,6 +221,9 @@ typedef struct {
     int (*sample)(jc_Sim *sim, void *ctx, double t, const double y[]);
     void *ctx;
     int dim; /* components integrated: the first dim; the others keep their start values */
+    /* The events' rates along the flow at y, f = f(y) given, in closed form;
+     * NULL: by a central difference of events. */
+    void (*event_rates)(void *ctx, const double y[], const double f[], double dev[]);
 } jc_OdePhase;
 void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM]);
 void jc_y_to_state(const double y[JC_Y_DIM], double t, jc_State *s);

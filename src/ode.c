@@ -56,12 +56,17 @@ static void y_to_sim(jc_Sim *sim, const double y[JC_Y_DIM], double t)
 }
 
 /* Event values and their rates along the flow, d/dt ev(y(t)) = grad ev . f,
- * by a central difference over a time step far below the rotation period:
- * accurate to ~1e-9, ample for the dip check. f = f(y) is given. */
+ * from the phase's closed form, or by a central difference over a time step
+ * far below the rotation period: accurate to ~1e-9, ample for the dip
+ * check. f = f(y) is given. */
 static void eval_events(const jc_OdePhase *p, const double y[JC_Y_DIM], const double f[JC_Y_DIM], double ev[],
                         double dev[])
 {
     p->events(p->ctx, y, ev);
+    if (p->event_rates) {
+        p->event_rates(p->ctx, y, f, dev);
+        return;
+    }
     double yp[JC_Y_DIM], ym[JC_Y_DIM], evp[JC_ODE_MAX_EVENTS], evm[JC_ODE_MAX_EVENTS];
     const double h = 1e-6 / fmax(fabs(y[JC_Y_W]), 1.0);
     for (int i = 0; i < JC_Y_DIM; ++i) {

@@ -298,7 +298,7 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
             *end = PHASE_AT_REST;
             return JC_OK;
         }
-        const jc_OdePhase phase = {roll_ode_rhs, roll_ode_events, RE_COUNT, roll_ode_sample, &ctx, JC_Y_RR + 1};
+        const jc_OdePhase phase = {roll_ode_rhs, roll_ode_events, RE_COUNT, roll_ode_sample, &ctx, JC_Y_RR + 1, NULL};
         int which;
         int st = jc_ode_run(sim, &phase, &which, err, err_len);
         if (st != JC_OK) return st;

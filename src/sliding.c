@@ -148,6 +148,26 @@ static void slide_events(void *params, const double y[], double ev[])
     ev[EV_TOP] = y[JC_Y_X] + JC_RAMP_TOP_SLACK_M;
 }
 
+/* The events' rates without loads, in closed form: with k = mu_k s (r + d
+ * cos th) + d sin th, N D = M (g cos a - d cos th w^2) and D = 1 + M d sin th
+ * k / I_G; cos th' = -w sin th, sin th' = w cos th (f carries both). They
+ * replace the central difference of ode.c (two more evaluations of the
+ * events per step), with which they agree to 1e-9 (its accuracy) on the
+ * paper's runs. Callgrind: 316k -> 311k instructions per paper run. */
+static void slide_event_rates(void *params, const double y[], const double f[], double dev[])
+{
+    const slide_ctx *c = params;
+    const jc_Model *m = c->m;
+    const double d = m->body.cm_offset_m, r = m->body.radius_m, mu_dir = m->setup.mu_kinetic * c->dir;
+    const double s = y[JC_Y_SIN], w = y[JC_Y_W], mdig = m->body.mass_kg * d * jc_model_tables(m)->inv_inertia_g;
+    const double k = mu_dir * (r + d * y[JC_Y_COS]) + d * s, dk = mu_dir * d * f[JC_Y_COS] + d * f[JC_Y_SIN];
+    dev[EV_SLIP] = c->dir * (f[JC_Y_VX] - r * f[JC_Y_W]);
+    dev[EV_LIFT] = -m->body.mass_kg * d * (f[JC_Y_COS] * w * w + 2.0 * y[JC_Y_COS] * w * f[JC_Y_W]);
+    dev[EV_PAINLEVE] = mdig * (f[JC_Y_SIN] * k + s * dk);
+    dev[EV_END] = -f[JC_Y_X];
+    dev[EV_TOP] = f[JC_Y_X];
+}
+
 static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
 {
     const slide_ctx *c = params;
@@ -162,7 +182,7 @@ int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     slide_ctx ctx = {sim->m, sim->slip_dir, jc_model_has_resistance(sim->m)};
     const jc_OdePhase phase = {ctx.loaded ? slide_rhs : slide_rhs_free, slide_events, EV_COUNT, slide_sample, &ctx,
-                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1};
+                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1, ctx.loaded ? NULL : slide_event_rates};
     int which;
     int st = jc_ode_run(sim, &phase, &which, err, err_len);
     if (st != JC_OK) return st;
