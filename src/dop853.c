@@ -282,7 +282,11 @@ static double step_error(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)
     for (int i = 0; i < n; ++i) {
         d->y1[i] = d->y0[i] + h * inc[i];
         const double e3 = inc[i] - BHH[0] * d->f0[i] - BHH[1] * d->k[9][i] - BHH[2] * d->k[12][i];
-        const double sk = d->atol + d->rtol * fmax(fabs(d->y0[i]), fabs(d->y1[i]));
+        /* The larger magnitude by a comparison, not fmax (a call into libm
+         * per component, which GCC does not inline for its NaN rule; a NaN
+         * y1 makes the error NaN either way, a rejected step). */
+        const double a0 = fabs(d->y0[i]), a1 = fabs(d->y1[i]);
+        const double sk = d->atol + d->rtol * (a1 > a0 ? a1 : a0);
         err5 += (e5[i] / sk) * (e5[i] / sk);
         err3 += (e3 / sk) * (e3 / sk);
     }
