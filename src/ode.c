@@ -97,7 +97,13 @@ static double locate_dense(const jc_Sim *sim, const jc_OdePhase *p, int k, doubl
     double a = 0.0, fa = fmax(f0, 0.0), b = hi, fb = dense_event(sim, p, k, hi);
     int side = 0;
     for (int it = 0; it < 200 && b - a > tol && fb < 0.0; ++it) {
-        double c = fa - fb != 0.0 ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
+        /* fa = 0 only at the start, where the event function starts at zero
+         * (a sliding phase from a slip onset): the secant through that zero
+         * returns the start itself, or, rounded, a point a few ulps past it
+         * where the function is still zero, which would end the phase
+         * without advancing it (found: 41000 phases at one instant in a
+         * random setup). Bisect instead. */
+        double c = fa > 0.0 && fa - fb != 0.0 ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
         if (!(c > a && c < b)) c = 0.5 * (a + b);
         const double fc = dense_event(sim, p, k, c);
         if (fc > 0.0) {
