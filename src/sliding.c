@@ -64,10 +64,17 @@ void jc_sliding_at(const jc_Model *m, const jc_State *s, int dir, jc_SlidingForc
     if (loads) *loads = l;
 }
 
+/* Without loads, the phase's constants of slide_rhs_free: k = a + b cos th +
+ * d sin th, D = 1 + mdig sin th k, N D = mgc - md cos th w^2. */
+typedef struct {
+    double a, b, d, mdig, mgc, md, inv_ig, gs, fm, mu_dir, r;
+} slide_consts;
+
 typedef struct {
     const jc_Model *m;
     int dir;
     int loaded; /* air or rolling resistance on */
+    slide_consts q;
 } slide_ctx;
 
 /* Forces at a state vector, with th's sine and cosine taken from it. */
@@ -109,28 +116,34 @@ static int slide_rhs(double t, const double y[], double dydt[], void *params)
     return 0;
 }
 
-/* The same without air or rolling resistance: no loads to compute or carry
- * (zero loads give the same numbers bit for bit). Measured with callgrind on
- * the paper's three runs: the right-hand side took 153 instructions a call
- * with the zero loads built and passed, 78 without (a run: 431k -> 402k). */
+/* The same without air or rolling resistance, written for the shortest
+ * chain of dependent operations (each stage of a step waits for the last
+ * one's rates; the division by D is on that chain whatever the order):
+ * th'' = N (k / I_G), x'' = (g sin a + d sin th w^2) - mu_k s N / M - d cos th
+ * th'', the phase's products folded into constants. The same equations as
+ * jc_sliding_accel, rounded in another order. Measured: a paper run
+ * 300k -> 290k instructions (callgrind), 5-6 % less time (task-clock). */
 static int slide_rhs_free(double t, const double y[], double dydt[], void *params)
 {
     (void)t;
     const slide_ctx *c = params;
-    jc_SlidingForces f;
-    sliding_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, NULL, &f);
-    const double slip = y[JC_Y_VX] - c->m->body.radius_m * y[JC_Y_W];
+    const slide_consts *q = &c->q;
+    const double cs = y[JC_Y_COS], sn = y[JC_Y_SIN], w = y[JC_Y_W], w2 = w * w;
+    const double k = q->a + q->b * cs + q->d * sn;
+    const double den = 1.0 + q->mdig * sn * k;
+    const double n = (q->mgc - q->md * cs * w2) / den;
+    const double thdd = n * (k * q->inv_ig);
     dydt[JC_Y_X] = y[JC_Y_VX];
     dydt[JC_Y_Y] = 0.0;
-    dydt[JC_Y_TH] = y[JC_Y_W];
-    dydt[JC_Y_VX] = f.x_acc;
+    dydt[JC_Y_TH] = w;
+    dydt[JC_Y_VX] = (q->gs + q->d * sn * w2) - q->fm * n - q->d * cs * thdd;
     dydt[JC_Y_VY] = 0.0;
-    dydt[JC_Y_W] = f.theta_acc;
-    dydt[JC_Y_FRICTION] = c->m->setup.mu_kinetic * f.normal_N * c->dir * slip;
+    dydt[JC_Y_W] = thdd;
+    dydt[JC_Y_FRICTION] = q->mu_dir * n * (y[JC_Y_VX] - q->r * w);
     dydt[JC_Y_AIR] = 0.0;
     dydt[JC_Y_RR] = 0.0;
-    dydt[JC_Y_COS] = -y[JC_Y_W] * y[JC_Y_SIN];
-    dydt[JC_Y_SIN] = y[JC_Y_W] * y[JC_Y_COS];
+    dydt[JC_Y_COS] = -w * sn;
+    dydt[JC_Y_SIN] = w * cs;
     return 0;
 }
 
@@ -180,7 +193,14 @@ static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
 
 int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
-    slide_ctx ctx = {sim->m, sim->slip_dir, jc_model_has_resistance(sim->m)};
+    const jc_Model *m = sim->m;
+    const double mu_dir = m->setup.mu_kinetic * sim->slip_dir, d = m->body.cm_offset_m, M = m->body.mass_kg;
+    const jc_ModelTables *tb = jc_model_tables(m);
+    slide_ctx ctx = {m, sim->slip_dir, jc_model_has_resistance(m),
+                     {mu_dir * m->body.radius_m, mu_dir * d, d, M * d * tb->inv_inertia_g,
+                      M * m->setup.gravity_mps2 * m->cos_incline, M * d, tb->inv_inertia_g,
+                      m->setup.gravity_mps2 * m->sin_incline, mu_dir * tb->inv_mass_per_kg, mu_dir,
+                      m->body.radius_m}};
     const jc_OdePhase phase = {ctx.loaded ? slide_rhs : slide_rhs_free, slide_events, EV_COUNT, slide_sample, &ctx,
                                ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1, ctx.loaded ? NULL : slide_event_rates};
     int which;
