@@ -23,8 +23,6 @@
  * per-phase bound (a flight's apexes, rolling turns, many events) would
  * multiply it into hours. A run that reaches it ends with step_limit. */
 #define ODE_MAX_STEPS 10000000L
-/* s: the first step of a run; later phases start from the last accepted step. */
-#define ODE_FIRST_STEP_S 1e-4
 
 void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM])
 {
@@ -223,7 +221,9 @@ int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t 
     jc_dop853_init(d, p->dim, JC_Y_DIM, sim->opt->ode_rtol, sim->opt->ode_atol);
     if (jc_dop853_start(d, p->rhs, p->ctx, sim->s.t_s, y) != 0)
         return jc_fail(err, err_len, JC_ENUMERIC, "integration failed at t = %.9g s", sim->s.t_s);
-    double h = sim->ode_h_s > 0.0 ? sim->ode_h_s : ODE_FIRST_STEP_S;
+    double h = sim->ode_h_s;
+    if (!(h > 0.0))
+        h = jc_dop853_initial_step(d, p->rhs, p->ctx, MAX_ROTATION_PER_STEP / fmax(fabs(d->y0[JC_Y_W]), 1e-3));
     double ev0[JC_ODE_MAX_EVENTS], dev0[JC_ODE_MAX_EVENTS];
     eval_events(p, d->y0, d->f0, ev0, dev0);
     *which = JC_ODE_TIME_LIMIT;
