@@ -22,6 +22,8 @@
 #include <gsl/gsl_poly.h>
 #include <gsl/gsl_roots.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 /* Enough for ~1e5 turns of the rim with room for slow grazing approaches. */
 #define SCAN_MAX_STEPS 20000000L
@@ -46,9 +48,33 @@ static double fn_value(double u, void *params)
     return fn->sign * d[0];
 }
 
+/* The cube root of x >= 0: a first guess from the exponent bits (within a
+ * few per cent), then Halley's iteration, cubically convergent: three steps
+ * reach rounding (at most 4 ulps from libm's over 2e7 values from 1e-290 to
+ * 1e290; the safe step shades its root by 1e-12, and tests/test_scan.c
+ * holds the cubic's root to GSL's). libm's cbrt splits and rebuilds the
+ * exponent by function calls (frexp, ldexp): measured with perf, it and
+ * they were 11 % of a rolling prediction's time; with this one the
+ * prediction takes 3-6 % less (callgrind: 31.0k -> 29.6k instructions).
+ * Outside [1e-290, 1e290], where y^3 could leave the normal range: libm. */
+static double cube_root(double x)
+{
+    if (!(x >= 1e-290 && x <= 1e290)) return cbrt(x);
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    bits = bits / 3 + UINT64_C(0x2a9f7893782da1ce);
+    double y;
+    memcpy(&y, &bits, sizeof y);
+    for (int i = 0; i < 3; ++i) {
+        const double y3 = y * y * y;
+        y -= y * ((y3 - x) / (2.0 * y3 + x));
+    }
+    return y;
+}
+
 double jc_cubic_first_positive(double a, double b, double c)
 {
-    /* GSL's gsl_poly_solve_cubic, term for term, with cbrt for its
+    /* GSL's gsl_poly_solve_cubic, term for term, with a cube root for its
      * pow(x, 1/3) and one sincos for its three cosines, and only the
      * smallest positive root kept (measured: pow and the three cosines were
      * 8 % of a full run's time; tests/test_scan.c compares the two). */
@@ -72,7 +98,7 @@ double jc_cubic_first_positive(double a, double b, double c)
         x[1] = norm * (-0.5 * ct - half_sqrt3 * st) - shift; /* cos(third + 2 pi/3) */
         x[2] = norm * (-0.5 * ct + half_sqrt3 * st) - shift; /* cos(third - 2 pi/3) */
     } else {
-        const double A = -(R >= 0.0 ? 1.0 : -1.0) * cbrt(fabs(R) + sqrt(R2 - Q3));
+        const double A = -(R >= 0.0 ? 1.0 : -1.0) * cube_root(fabs(R) + sqrt(R2 - Q3));
         x[0] = A + Q / A - shift;
         n = 1;
     }
