@@ -33,8 +33,12 @@ void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, double vx, dou
     const jc_Setup *s = &m->setup;
     const double d = m->body.cm_offset_m;
     /* Not hypot: velocities here are far from overflow, and hypot was 1 % of
-     * a drag run's time (measured). */
-    const double speed = sqrt(vx * vx + vy * vy);
+     * a drag run's time (measured). In contact (vy = 0) no square root at
+     * all: sqrt(vx^2) is |vx| to the last bit (unless vx^2 underflows, below
+     * 1e-154 m/s), and the root's latency held up every stage of the
+     * rolling and sliding phases with drag (measured: a drag run 3-4 % less
+     * time, the same numbers). */
+    const double speed = vy == 0.0 ? fabs(vx) : sqrt(vx * vx + vy * vy);
     const double r = m->body.radius_m;
     const double cd = s->drag_coefficient, cl = s->lift_coefficient;
     /* spin ratio r w / |v| clamped to [-1, 1] (0 when the centre is at rest);
