@@ -282,7 +282,11 @@ static double step_error(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)
     for (int i = 0; i < n; ++i) {
         d->y1[i] = d->y0[i] + h * inc[i];
         const double e3 = inc[i] - BHH[0] * d->f0[i] - BHH[1] * d->k[9][i] - BHH[2] * d->k[12][i];
-        const double sk = d->atol + d->rtol * fmax(fabs(d->y0[i]), fabs(d->y1[i]));
+        /* The larger magnitude by a comparison, not fmax (a call into libm
+         * per component, which GCC does not inline for its NaN rule; a NaN
+         * y1 makes the error NaN either way, a rejected step). */
+        const double a0 = fabs(d->y0[i]), a1 = fabs(d->y1[i]);
+        const double sk = d->atol + d->rtol * (a1 > a0 ? a1 : a0);
         err5 += (e5[i] / sk) * (e5[i] / sk);
         err3 += (e3 / sk) * (e3 / sk);
     }
@@ -323,6 +327,36 @@ double jc_dop853_try(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h, double *h
         d->rejected_last = 1;
     }
     return err;
+}
+
+double jc_dop853_initial_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h_max)
+{
+    /* Hairer, Norsett, Wanner, section II.4, and HINIT of their dop853.f. */
+    const int n = d->dim;
+    double dnf = 0.0, dny = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double sk = d->atol + d->rtol * fabs(d->y0[i]);
+        dnf += (d->f0[i] / sk) * (d->f0[i] / sk);
+        dny += (d->y0[i] / sk) * (d->y0[i] / sk);
+    }
+    double h = dnf <= 1e-10 || dny <= 1e-10 ? 1e-6 : 0.01 * sqrt(dny / dnf);
+    h = fmin(h, h_max);
+    /* An explicit Euler step; its rate change estimates the second derivative. */
+    double y[JC_DOP_MAX_DIM];
+    for (int i = 0; i < n; ++i) y[i] = d->y0[i] + h * d->f0[i];
+    for (int i = n; i < d->full_dim; ++i) y[i] = d->y0[i];
+    double *f1 = d->k[2];
+    if (rhs(d->t0 + h, y, f1, ctx) != 0) return h;
+    double der2 = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double sk = d->atol + d->rtol * fabs(d->y0[i]);
+        der2 += ((f1[i] - d->f0[i]) / sk) * ((f1[i] - d->f0[i]) / sk);
+    }
+    der2 = sqrt(der2) / h;
+    const double der12 = fmax(fabs(der2), sqrt(dnf));
+    const double h1 = der12 <= 1e-15 ? fmax(1e-6, h * 1e-3) : pow(0.01 / der12, 1.0 / 8.0);
+    const double h_new = fmin(fmin(100.0 * h, h1), h_max);
+    return isfinite(h_new) && h_new > 0.0 ? h_new : h;
 }
 
 int jc_dop853_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)

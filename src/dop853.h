@@ -53,6 +53,10 @@ double jc_dop853_try(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h, double *h
 /* One step of size h with no error control (y1, f1 at t0 + h): for a step
  * no longer than an accepted one. 0, or -1 if it is not finite. */
 int jc_dop853_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h);
+/* A first step for the current start (after jc_dop853_start), by Hairer's
+ * HINIT: the step whose Euler-step error estimate meets the tolerances,
+ * no longer than h_max. One evaluation of rhs. */
+double jc_dop853_initial_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h_max);
 /* Moves the start to the end of the accepted step. */
 void jc_dop853_advance(jc_Dop853 *d);
 /* Prepares the continuous extension of the last accepted step (3 stages). */

@@ -184,7 +184,7 @@ static int largest_gap(const flight *f, double T, gsl_root_fsolver *brent, doubl
     gap_eval(f, T, g);
     best = fmax(best, g[0]);
     const double d = f->m->body.cm_offset_m, w4 = f->w * f->w * f->w * f->w;
-    jc_ScanFn fn = {gap_rate_eval, f, d * w4, 0.0, 1.0, NULL, 1};
+    jc_ScanFn fn = {gap_rate_eval, f, d * w4, 0.0, 1.0, NULL, 1, 0.0};
     double t = 0.0;
     for (int pass = 0; pass < 100000 && t < T; ++pass) {
         double r[3];
@@ -267,6 +267,17 @@ static void flight_ode_events(void *params, const double y[], double ev[])
     ev[FE_APEX] = c->apex_sign * y[JC_Y_VY];
 }
 
+/* Their rates, in closed form. */
+static void flight_ode_event_rates(void *params, const double y[], const double f[], double dev[])
+{
+    (void)y;
+    const flight_ode *c = params;
+    dev[FE_GAP] = f[JC_Y_Y];
+    dev[FE_END] = -f[JC_Y_X];
+    dev[FE_TOP] = f[JC_Y_X];
+    dev[FE_APEX] = c->apex_sign * f[JC_Y_VY];
+}
+
 static int flight_ode_sample(jc_Sim *sim, void *params, double t, const double y[])
 {
     (void)params;
@@ -283,7 +294,8 @@ static int flight_ode_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, cha
     flight_ode ctx = {sim->m, sim->s.vy_mps < 0.0 ? -1.0 : 1.0, from_liftoff ? 1e-12 : 0.0};
     sim->hop_height_m = fmax(sim->s.y_m - r, 0.0);
     for (long k = 0; k < FLIGHT_MAX_APEXES; ++k) {
-        const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx, JC_Y_DIM};
+        const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx, JC_Y_DIM,
+                                   flight_ode_event_rates};
         int which;
         int st = jc_ode_run(sim, &phase, &which, err, err_len);
         if (st != JC_OK) return st;
@@ -312,6 +324,9 @@ enum { FW_GAP, FW_END, FW_TOP };
  * only came within the event tolerance of zero while opening (each resume
  * at least doubles the searched time or advances it by the tolerance). */
 #define FLIGHT_MAX_RESUMES 2000
+/* A gap that opens from contact more gently than this (kappa below, the
+ * cubic term's coefficient relative to d |w|^3 / 6) is searched from 1 ps. */
+#define OPENING_KAPPA_MIN 1e-2
 
 int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len)
 {
@@ -342,13 +357,40 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
     const double d = sim->m->body.cm_offset_m, w3 = fabs(f.w * f.w * f.w);
     const double tol = sim->opt->event_tol_s;
     jc_ScanFn fns[3] = {
-        {gap_eval, &f, d * w3, 0.0, 1.0, NULL, 1},
-        {to_end_eval, &f, d * w3, 0.0, 1.0, NULL, 1},
-        {from_top_eval, &f, d * w3, 0.0, 1.0, NULL, 1},
+        {gap_eval, &f, d * w3, 0.0, 1.0, NULL, 1, 0.0},
+        {to_end_eval, &f, d * w3, 0.0, 1.0, NULL, 1, 0.0},
+        {from_top_eval, &f, d * w3, 0.0, 1.0, NULL, 1, 0.0},
     };
     jc_ScanHit hit = {.index = -1};
     double T = horizon;
-    for (int resume = 0; horizon > t_start && resume < FLIGHT_MAX_RESUMES; ++resume) {
+    int ramp_hit = 0;
+    const double kappa = f.w > 0.0 ? -f.sin0 : (f.w < 0.0 ? f.sin0 : 0.0);
+    if (from_liftoff && kappa >= OPENING_KAPPA_MIN) {
+        /* The gap opening from contact (gap, rate and acceleration >= 0):
+         * gap(t) = vy0 t + ay0 t^2/2 + d R3(th0, u), u = w t, and R3 is minus
+         * the remainder of cos(th0 + u) after its quadratic Taylor term, by
+         * Lagrange's form -sin th0 u^3/6 - cos(th0 + xi) u^4/24
+         * >= kappa |u|^3/6 - u^4/24 with kappa = -sin th0 sgn w: the gap is
+         * positive for 0 < |u| < 4 kappa. There the safe steps of the search,
+         * bounded by d |w|^3 against a gap that grows like t^3, only grow
+         * some fivefold each from 1 ps (15 to 19 steps per lift-off). So up
+         * to |u| = 2 kappa, where the gap is at least d kappa^4 2/3 (far
+         * above its rounding for kappa >= 1e-2), only the ramp's ends are
+         * searched; the gap from there on. Measured with callgrind: a paper
+         * run took 400k instructions with the crawl, 382k without. */
+        const double t_open = fmin(2.0 * kappa / fabs(f.w), horizon);
+        if (t_open > t_start) {
+            int st = jc_scan_fns_with(fns + 1, 2, t_start, t_open, tol, sim->ws->brent, &hit, err, err_len);
+            if (st != JC_OK) return st;
+            if (hit.index >= 0) {
+                hit.index += 1; /* fns + 1: FW_END, FW_TOP */
+                T = hit.theta;
+                ramp_hit = 1;
+            }
+            t_start = t_open;
+        }
+    }
+    for (int resume = 0; !ramp_hit && horizon > t_start && resume < FLIGHT_MAX_RESUMES; ++resume) {
         int st = jc_scan_fns_with(fns, 3, t_start, horizon, tol, sim->ws->brent, &hit, err, err_len);
         if (st != JC_OK) return st;
         T = hit.index >= 0 ? hit.theta : horizon;

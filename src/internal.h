@@ -72,6 +72,9 @@ int jc_tl_degree(const jc_TrigLin *p);
 void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3]);
 /* A bound on |f'''| for |th| <= th_abs_max. */
 double jc_tl_third_bound(const jc_TrigLin *p, double th_abs_max);
+/* How that bound grows with th_abs_max: |f'''| <= jc_tl_third_bound(p, 0)
+ * + jc_tl_third_slope(p) |th| at every th. */
+double jc_tl_third_slope(const jc_TrigLin *p);
 /* Value and derivative at th. */
 void jc_tl_eval(const jc_TrigLin *p, double th, double *f, double *df);
 double jc_tl_value(const jc_TrigLin *p, double th);
@@ -99,6 +102,10 @@ typedef struct {
     /* 1: polish a root by Newton's iteration on eval's f' inside the
      * bracket, not by Brent's method on f. */
     int newton;
+    /* > 0: third_bound + third_slope |u| bounds |f'''| at u (third_bound
+     * alone then bounds it only at u = 0); the search bounds it over each
+     * step's window, not over the whole range. */
+    double third_slope;
 } jc_ScanFn;
 
 typedef struct {
@@ -214,6 +221,9 @@ typedef struct {
     int (*sample)(jc_Sim *sim, void *ctx, double t, const double y[]);
     void *ctx;
     int dim; /* components integrated: the first dim; the others keep their start values */
+    /* The events' rates along the flow at y, f = f(y) given, in closed form;
+     * NULL: by a central difference of events. */
+    void (*event_rates)(void *ctx, const double y[], const double f[], double dev[]);
 } jc_OdePhase;
 void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM]);
 void jc_y_to_state(const double y[JC_Y_DIM], double t, jc_State *s);

@@ -23,8 +23,6 @@
  * per-phase bound (a flight's apexes, rolling turns, many events) would
  * multiply it into hours. A run that reaches it ends with step_limit. */
 #define ODE_MAX_STEPS 10000000L
-/* s: the first step of a run; later phases start from the last accepted step. */
-#define ODE_FIRST_STEP_S 1e-4
 
 void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM])
 {
@@ -56,12 +54,17 @@ static void y_to_sim(jc_Sim *sim, const double y[JC_Y_DIM], double t)
 }
 
 /* Event values and their rates along the flow, d/dt ev(y(t)) = grad ev . f,
- * by a central difference over a time step far below the rotation period:
- * accurate to ~1e-9, ample for the dip check. f = f(y) is given. */
+ * from the phase's closed form, or by a central difference over a time step
+ * far below the rotation period: accurate to ~1e-9, ample for the dip
+ * check. f = f(y) is given. */
 static void eval_events(const jc_OdePhase *p, const double y[JC_Y_DIM], const double f[JC_Y_DIM], double ev[],
                         double dev[])
 {
     p->events(p->ctx, y, ev);
+    if (p->event_rates) {
+        p->event_rates(p->ctx, y, f, dev);
+        return;
+    }
     double yp[JC_Y_DIM], ym[JC_Y_DIM], evp[JC_ODE_MAX_EVENTS], evm[JC_ODE_MAX_EVENTS];
     const double h = 1e-6 / fmax(fabs(y[JC_Y_W]), 1.0);
     for (int i = 0; i < JC_Y_DIM; ++i) {
@@ -92,7 +95,13 @@ static double locate_dense(const jc_Sim *sim, const jc_OdePhase *p, int k, doubl
     double a = 0.0, fa = fmax(f0, 0.0), b = hi, fb = dense_event(sim, p, k, hi);
     int side = 0;
     for (int it = 0; it < 200 && b - a > tol && fb < 0.0; ++it) {
-        double c = fa - fb != 0.0 ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
+        /* fa = 0 only at the start, where the event function starts at zero
+         * (a sliding phase from a slip onset): the secant through that zero
+         * returns the start itself, or, rounded, a point a few ulps past it
+         * where the function is still zero, which would end the phase
+         * without advancing it (found: 41000 phases at one instant in a
+         * random setup). Bisect instead. */
+        double c = fa > 0.0 && fa - fb != 0.0 ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
         if (!(c > a && c < b)) c = 0.5 * (a + b);
         const double fc = dense_event(sim, p, k, c);
         if (fc > 0.0) {
@@ -212,7 +221,9 @@ int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t 
     jc_dop853_init(d, p->dim, JC_Y_DIM, sim->opt->ode_rtol, sim->opt->ode_atol);
     if (jc_dop853_start(d, p->rhs, p->ctx, sim->s.t_s, y) != 0)
         return jc_fail(err, err_len, JC_ENUMERIC, "integration failed at t = %.9g s", sim->s.t_s);
-    double h = sim->ode_h_s > 0.0 ? sim->ode_h_s : ODE_FIRST_STEP_S;
+    double h = sim->ode_h_s;
+    if (!(h > 0.0))
+        h = jc_dop853_initial_step(d, p->rhs, p->ctx, MAX_ROTATION_PER_STEP / fmax(fabs(d->y0[JC_Y_W]), 1e-3));
     double ev0[JC_ODE_MAX_EVENTS], dev0[JC_ODE_MAX_EVENTS];
     eval_events(p, d->y0, d->f0, ev0, dev0);
     *which = JC_ODE_TIME_LIMIT;

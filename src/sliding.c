@@ -24,7 +24,9 @@
  * tests/sim/test_random_setups.c all close to 2e-10.) */
 #define PAINLEVE_D_MIN 1e-3
 
-void jc_sliding_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l, jc_SlidingForces *f)
+/* The body of jc_sliding_accel, inlined into the right-hand sides. */
+static inline void sliding_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l,
+                                 jc_SlidingForces *f)
 {
     /* Reciprocals from the model: this runs at every stage of every step,
      * and its four divisions were its largest cost (measured). */
@@ -42,6 +44,11 @@ void jc_sliding_accel(const jc_Model *m, double s, double c, double w, int dir, 
     f->x_acc = g * m->sin_incline + (f->friction_N + fx) * inv_m - d * c * f->theta_acc + d * s * w2;
 }
 
+void jc_sliding_accel(const jc_Model *m, double s, double c, double w, int dir, const jc_Loads *l, jc_SlidingForces *f)
+{
+    sliding_accel(m, s, c, w, dir, l, f);
+}
+
 void jc_sliding_forces(const jc_Model *m, double th, double w, int dir, jc_SlidingForces *f)
 {
     jc_sliding_accel(m, sin(th), cos(th), w, dir, NULL, f);
@@ -57,20 +64,31 @@ void jc_sliding_at(const jc_Model *m, const jc_State *s, int dir, jc_SlidingForc
     if (loads) *loads = l;
 }
 
+/* Without loads, the phase's constants of slide_rhs_free: k = a + b cos th +
+ * d sin th, D = 1 + mdig sin th k, N D = mgc - md cos th w^2. */
+typedef struct {
+    double a, b, d, mdig, mgc, md, inv_ig, gs, fm, mu_dir, r;
+} slide_consts;
+
 typedef struct {
     const jc_Model *m;
     int dir;
     int loaded; /* air or rolling resistance on */
+    slide_consts q;
 } slide_ctx;
 
 /* Forces at a state vector, with th's sine and cosine taken from it. */
 static void forces_y(const slide_ctx *c, const double y[], jc_SlidingForces *f, jc_Loads *l)
 {
+    if (!c->loaded) {
+        if (l) *l = (jc_Loads){0};
+        sliding_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, NULL, f);
+        return;
+    }
     jc_Loads none = {0};
     if (!l) l = &none;
-    if (c->loaded) jc_loads_at(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_VX], 0.0, y[JC_Y_W], l);
-    else *l = none;
-    jc_sliding_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, l, f);
+    jc_loads_at(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_VX], 0.0, y[JC_Y_W], l);
+    sliding_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, l, f);
 }
 
 static int slide_rhs(double t, const double y[], double dydt[], void *params)
@@ -98,6 +116,37 @@ static int slide_rhs(double t, const double y[], double dydt[], void *params)
     return 0;
 }
 
+/* The same without air or rolling resistance, written for the shortest
+ * chain of dependent operations (each stage of a step waits for the last
+ * one's rates; the division by D is on that chain whatever the order):
+ * th'' = N (k / I_G), x'' = (g sin a + d sin th w^2) - mu_k s N / M - d cos th
+ * th'', the phase's products folded into constants. The same equations as
+ * jc_sliding_accel, rounded in another order. Measured: a paper run
+ * 300k -> 290k instructions (callgrind), 5-6 % less time (task-clock). */
+static int slide_rhs_free(double t, const double y[], double dydt[], void *params)
+{
+    (void)t;
+    const slide_ctx *c = params;
+    const slide_consts *q = &c->q;
+    const double cs = y[JC_Y_COS], sn = y[JC_Y_SIN], w = y[JC_Y_W], w2 = w * w;
+    const double k = q->a + q->b * cs + q->d * sn;
+    const double den = 1.0 + q->mdig * sn * k;
+    const double n = (q->mgc - q->md * cs * w2) / den;
+    const double thdd = n * (k * q->inv_ig);
+    dydt[JC_Y_X] = y[JC_Y_VX];
+    dydt[JC_Y_Y] = 0.0;
+    dydt[JC_Y_TH] = w;
+    dydt[JC_Y_VX] = (q->gs + q->d * sn * w2) - q->fm * n - q->d * cs * thdd;
+    dydt[JC_Y_VY] = 0.0;
+    dydt[JC_Y_W] = thdd;
+    dydt[JC_Y_FRICTION] = q->mu_dir * n * (y[JC_Y_VX] - q->r * w);
+    dydt[JC_Y_AIR] = 0.0;
+    dydt[JC_Y_RR] = 0.0;
+    dydt[JC_Y_COS] = -w * sn;
+    dydt[JC_Y_SIN] = w * cs;
+    return 0;
+}
+
 enum { EV_SLIP, EV_LIFT, EV_PAINLEVE, EV_END, EV_TOP, EV_COUNT };
 
 static void slide_events(void *params, const double y[], double ev[])
@@ -112,6 +161,26 @@ static void slide_events(void *params, const double y[], double ev[])
     ev[EV_TOP] = y[JC_Y_X] + JC_RAMP_TOP_SLACK_M;
 }
 
+/* The events' rates without loads, in closed form: with k = mu_k s (r + d
+ * cos th) + d sin th, N D = M (g cos a - d cos th w^2) and D = 1 + M d sin th
+ * k / I_G; cos th' = -w sin th, sin th' = w cos th (f carries both). They
+ * replace the central difference of ode.c (two more evaluations of the
+ * events per step), with which they agree to 1e-9 (its accuracy) on the
+ * paper's runs. Callgrind: 316k -> 311k instructions per paper run. */
+static void slide_event_rates(void *params, const double y[], const double f[], double dev[])
+{
+    const slide_ctx *c = params;
+    const jc_Model *m = c->m;
+    const double d = m->body.cm_offset_m, r = m->body.radius_m, mu_dir = m->setup.mu_kinetic * c->dir;
+    const double s = y[JC_Y_SIN], w = y[JC_Y_W], mdig = m->body.mass_kg * d * jc_model_tables(m)->inv_inertia_g;
+    const double k = mu_dir * (r + d * y[JC_Y_COS]) + d * s, dk = mu_dir * d * f[JC_Y_COS] + d * f[JC_Y_SIN];
+    dev[EV_SLIP] = c->dir * (f[JC_Y_VX] - r * f[JC_Y_W]);
+    dev[EV_LIFT] = -m->body.mass_kg * d * (f[JC_Y_COS] * w * w + 2.0 * y[JC_Y_COS] * w * f[JC_Y_W]);
+    dev[EV_PAINLEVE] = mdig * (f[JC_Y_SIN] * k + s * dk);
+    dev[EV_END] = -f[JC_Y_X];
+    dev[EV_TOP] = f[JC_Y_X];
+}
+
 static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
 {
     const slide_ctx *c = params;
@@ -124,9 +193,16 @@ static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
 
 int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
-    slide_ctx ctx = {sim->m, sim->slip_dir, jc_model_has_resistance(sim->m)};
-    const jc_OdePhase phase = {slide_rhs, slide_events, EV_COUNT, slide_sample, &ctx,
-                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1};
+    const jc_Model *m = sim->m;
+    const double mu_dir = m->setup.mu_kinetic * sim->slip_dir, d = m->body.cm_offset_m, M = m->body.mass_kg;
+    const jc_ModelTables *tb = jc_model_tables(m);
+    slide_ctx ctx = {m, sim->slip_dir, jc_model_has_resistance(m),
+                     {mu_dir * m->body.radius_m, mu_dir * d, d, M * d * tb->inv_inertia_g,
+                      M * m->setup.gravity_mps2 * m->cos_incline, M * d, tb->inv_inertia_g,
+                      m->setup.gravity_mps2 * m->sin_incline, mu_dir * tb->inv_mass_per_kg, mu_dir,
+                      m->body.radius_m}};
+    const jc_OdePhase phase = {ctx.loaded ? slide_rhs : slide_rhs_free, slide_events, EV_COUNT, slide_sample, &ctx,
+                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1, ctx.loaded ? NULL : slide_event_rates};
     int which;
     int st = jc_ode_run(sim, &phase, &which, err, err_len);
     if (st != JC_OK) return st;

@@ -206,3 +206,11 @@ double jc_tl_third_bound(const jc_TrigLin *p, double th_abs_max)
     }
     return (b0 + 3.0 * b1 + th_abs_max * b2) * (1.0 + 1e-12);
 }
+
+double jc_tl_third_slope(const jc_TrigLin *p)
+{
+    double b2 = 0.0;
+    for (int k = 1; k <= JC_TRIG_DEGREE; ++k)
+        b2 += (double)k * k * k * (fabs(p->c1[k]) + fabs(p->s1[k]));
+    return b2 * (1.0 + 1e-12);
+}

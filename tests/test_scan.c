@@ -208,7 +208,7 @@ static int test_scan_fns_callback(void)
         const parabola p = {3.0, halves[i % 3]};
         /* f''' = 0 exactly: third bound 0; rounding of f ~ a few eps * centre^2. */
         const double noise = 16 * EPS * 9.0;
-        const jc_ScanFn fn = {parabola_eval, &p, 0.0, noise, 1.0, NULL, i / 3};
+        const jc_ScanFn fn = {parabola_eval, &p, 0.0, noise, 1.0, NULL, i / 3, 0.0};
         jc_ScanHit hit;
         char err[256] = "";
         ENSURE_OK(jc_scan_fns(&fn, 1, 0.0, 10.0, 1e-14, &hit, err, sizeof err), err);

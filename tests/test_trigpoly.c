@@ -237,6 +237,38 @@ static int test_third_bound_bounds(void)
     return 0;
 }
 
+/* The bound split in its constant part and its growth with |th| (the crossing
+ * search takes it over each step's window): pointwise at least |f'''|, and
+ * the same as jc_tl_third_bound at th_abs_max = T up to its rounding. */
+static int test_third_slope_bounds(void)
+{
+    const double h = 1e-3;
+    for (int trial = 0; trial < 200; ++trial) {
+        jc_TrigLin p = random_poly(1 + trial % K_MAX, trial % 3 != 0);
+        const double T = uniform(0.5, 40);
+        const double K0 = jc_tl_third_bound(&p, 0.0), S = jc_tl_third_slope(&p);
+        ENSURE_REL(K0 + S * T, jc_tl_third_bound(&p, T), 4e-16 * (1 + T));
+        for (int i = 0; i < 200; ++i) {
+            const double th = uniform(-T + 2 * h, T - 2 * h);
+            const double f3 = (trig_direct(&p, th + 2 * h) - 2 * trig_direct(&p, th + h) + 2 * trig_direct(&p, th - h) -
+                               trig_direct(&p, th - 2 * h)) / (2 * h * h * h);
+            const double slack = h * h / 4 * deriv_bound(&p, 5, T) + 3 * EVAL_ROUND * deriv_bound(&p, 0, T) / (h * h * h);
+            ENSURE_MSG(fabs(f3) <= K0 + S * fabs(th) + slack,
+                       "trial %d th %.17g: third derivative ~ %.17g > bound %.17g (+%.3g)", trial, th, fabs(f3),
+                       K0 + S * fabs(th), slack);
+        }
+    }
+    /* th cos(k th): f''' = -3k^2 cos + k^3 th sin, slope k^3. */
+    for (int k = 1; k <= K_MAX; ++k) {
+        jc_TrigLin p;
+        jc_tl_zero(&p);
+        jc_tl_add_cos(&p, 1, k, -1.0);
+        ENSURE_REL(jc_tl_third_slope(&p), (double)k * k * k, 2e-12);
+        ENSURE_REL(jc_tl_third_bound(&p, 0.0), 3.0 * k * k, 2e-12);
+    }
+    return 0;
+}
+
 int main(void)
 {
     RUN_TEST(test_mul_matches_product);
@@ -246,5 +278,6 @@ int main(void)
     RUN_TEST(test_curvature_bound_bounds);
     RUN_TEST(test_eval3_second_derivative);
     RUN_TEST(test_third_bound_bounds);
+    RUN_TEST(test_third_slope_bounds);
     TEST_MAIN_END();
 }

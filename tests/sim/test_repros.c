@@ -431,6 +431,43 @@ static int test_rocking_hoop_periodic(void)
     return 0;
 }
 
+/* 7. tests/sim/test_random_setups.c run 8524 (seed 20261124): a light hoop
+ * with 1 kg on its rim on a floor. After a slip reversal the new sliding
+ * phase starts at zero slip and its slip returns to zero within the first
+ * step; the event search's secant through the start's zero landed a few
+ * ulps past it, where the slip was still zero, and the phase ended there:
+ * 41000 phases at one instant, ended as step_limit. The slip returns
+ * 4.8 ms later (a stick), and the run reaches the ramp's end. */
+static int test_slip_excursion_from_zero(void)
+{
+    jc_Setup s = jc_paper_setup();
+    s.body.radius_m = 0.068180221248578823;
+    s.body.part_count = 2;
+    s.body.parts[0] = (jc_Part){JC_PART_HOOP, 0.1, 0.0, 0.0, s.body.radius_m};
+    s.body.parts[1] = (jc_Part){JC_PART_POINT, 1.0, s.body.radius_m, 0.0, 0.0};
+    s.incline_rad = 0.0;
+    s.mu_static = s.mu_kinetic = 0.42034053811407923;
+    s.restitution = 0.22581833324179779;
+    s.theta0_rad = -0.83424187080428069;
+    s.omega0_radps = 6.574270047311586;
+    s.ramp_length_m = 0.46052708505933537;
+    s.paper_cm_offset_m = 0.0;
+    jc_Model m;
+    jc_Run run;
+    if (run_setup(&s, &m, &run)) return 1;
+    const jc_Termination t = run.termination;
+    int reversal = -1;
+    for (int k = 0; k < run.event_count && reversal < 0; ++k)
+        if (run.events[k].kind == JC_EVENT_SLIP_REVERSAL) reversal = k;
+    const int next_stick = reversal >= 0 && reversal + 1 < run.event_count &&
+                           run.events[reversal + 1].kind == JC_EVENT_STICK;
+    const double gap = next_stick ? run.events[reversal + 1].state.t_s - run.events[reversal].state.t_s : 0.0;
+    jc_run_free(&run);
+    ENSURE_MSG(t == JC_END_RAMP_END, "ended %s", jc_termination_name(t));
+    ENSURE_MSG(next_stick && gap > 1e-3, "after the slip reversal: stick %d, %.3g s later", next_stick, gap);
+    return 0;
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -443,5 +480,6 @@ int main(void)
     RUN_TEST(test_rest_under_rolling_resistance);
     RUN_TEST(test_rocking_hoop_goes_on);
     RUN_TEST(test_rocking_hoop_periodic);
+    RUN_TEST(test_slip_excursion_from_zero);
     TEST_MAIN_END();
 }
