@@ -86,6 +86,54 @@ for (const c of cases) {
   });
 }
 
+// Random setups (a fixed seed), each run by both: the same answer or the
+// same refusal, never an abort. Keeps the runs short (t-max 2 s).
+test('random setups: the wasm and the native tool agree, and nothing aborts', () => {
+  let seed = 20261125;
+  const rnd = () => (seed = (seed * 1103515245 + 12345) % 2147483648) / 2147483648;
+  const ranges = {
+    incline: [0, 89], mu: [0, 1.5], restitution: [0, 1], theta0: [-180, 180], omega0: [-30, 30],
+    'rod-mass': [0.001, 0.2], 'rod-offset': [0, 0.09], 'ramp-length': [0.2, 4],
+    'drag-coefficient': [0, 1.5], 'rolling-resistance': [0, 0.005], g: [1, 25],
+  };
+  const presets = ['paper', 'hoop', 'rocking-hoop', 'disc'];
+  let compared = 0, refused = 0, worst = 0;
+  for (let i = 0; i < 30; ++i) {
+    const request = { 't-max': 2 };
+    if (rnd() < 0.3) request.preset = presets[Math.floor(rnd() * presets.length)];
+    if (rnd() < 0.2) request['impact-law'] = ['poisson', 'newton'][Math.floor(rnd() * 2)];
+    for (const [k, [a, b]] of Object.entries(ranges)) if (rnd() < 0.35) request[k] = a + (b - a) * rnd();
+    const args = ['simulate', '--json', ...Object.entries(request).flatMap(([k, v]) => [`--${k}`, String(v)])];
+    let native = null;
+    try {
+      native = JSON.parse(execFileSync(nativeTool, args, { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }));
+    } catch (err) {
+      native = null; // refused (exit 2) or failed (exit 1): the wasm must refuse too
+    }
+    const web = simulate(jc, request);
+    const label = JSON.stringify(request);
+    if (!native) {
+      assert.equal(web.ok, false, `${label}: the native tool refused it`);
+      ++refused;
+      continue;
+    }
+    assert.equal(web.ok, true, `${label}: ${web.error}`);
+    assert.deepEqual(web.events.map((e) => e.kind), native.events.map((e) => e.kind), label);
+    assert.equal(web.termination, native.termination, label);
+    web.events.forEach((e, j) => {
+      for (const k of ['t', 'x', 'theta']) worst = Math.max(worst, rel(e[k], native.events[j][k]));
+    });
+    if (web.first_liftoff) {
+      assert.ok(rel(web.first_liftoff.x, native.summary.first_liftoff_x) <= REL_TOL, label);
+    } else {
+      assert.equal(native.summary.first_liftoff_x, null, label);
+    }
+    ++compared;
+  }
+  report.push({ case: `30 random setups: ${compared} compared, ${refused} refused by both`, 'worst event rel': worst });
+  assert.ok(worst <= REL_TOL, `worst relative difference over the events: ${worst}`);
+});
+
 test('a bad setup is a one-line error, and the module goes on working', () => {
   for (const [request, word] of [
     [{ incline: 95 }, 'incline'],
