@@ -9,7 +9,8 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { createRequire } from 'node:module';
-import { readFileSync, statSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { performance } from 'node:perf_hooks';
 
@@ -170,6 +171,54 @@ test('the sampled trajectory comes at the requested spacing', () => {
   assert.ok(fixed.length >= Math.floor(web.t_end / 0.01), `${fixed.length} fixed samples up to ${web.t_end} s`);
   // Sampling does not change the events.
   assert.deepEqual(web.events, simulate(jc, { incline: 30 }).events);
+});
+
+// The samples against the tool's --csv, which prints 12 significant digits
+// (9 for forces, slip, gap and losses): every value within half a unit of
+// the CSV's last digit plus 1e-9 of its column's largest value; the modes equal.
+// Half a unit in the last digit of a number printed with %g ("1.5e-05", "0.125").
+function halfLastDigit(text) {
+  const [mantissa, exponent = '0'] = text.toLowerCase().split('e');
+  const decimals = mantissa.includes('.') ? mantissa.split('.')[1].length : 0;
+  return 0.5 * 10 ** (Number(exponent) - decimals);
+}
+
+test('the samples equal the native tool\'s CSV', () => {
+  const dir = mkdtempSync(path.join(tmpdir(), 'jc-web-'));
+  try {
+    for (const [request, args] of [
+      [{ incline: 45, 'sample-dt': 0.01 }, ['--incline', '45']],
+      [{ preset: 'hoop', 'sample-dt': 0.05, 't-max': 5 }, ['--preset', 'hoop', '--t-max', '5']],
+    ]) {
+      const csv = path.join(dir, 'run.csv');
+      execFileSync(nativeTool, ['simulate', ...args, '--sample-dt', String(request['sample-dt']), '--csv', csv],
+        { stdio: 'ignore' });
+      const [head, ...rows] = readFileSync(csv, 'utf8').trim().split('\n').map((l) => l.split(','));
+      const web = simulate(jc, request);
+      assert.equal(web.ok, true, web.error);
+      assert.equal(web.samples.count, rows.length, 'sample count');
+      let worst = 0;
+      head.forEach((name, j) => {
+        const key = name.replace(/_(s|m|mps|rad|radps|N|J)$/, '');
+        const col = web.samples[key];
+        assert.ok(col, `column ${name}`);
+        if (key === 'mode') {
+          assert.deepEqual(col, rows.map((r) => r[j]));
+          return;
+        }
+        const scale = Math.max(...col.map(Math.abs), 1e-300);
+        col.forEach((v, i) => {
+          const text = rows[i][j];
+          const excess = Math.abs(v - Number(text)) - halfLastDigit(text);
+          worst = Math.max(worst, excess / scale);
+        });
+      });
+      report.push({ case: `samples ${JSON.stringify(args)}: beyond the CSV's rounding / column scale`, samples: rows.length, 'worst event rel': worst });
+      assert.ok(worst <= REL_TOL, `${JSON.stringify(request)}: worst difference / column scale ${worst}`);
+    }
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
 });
 
 test('the one-file build answers as the two-file one', async () => {
