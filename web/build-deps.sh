@@ -10,6 +10,8 @@
 #                        include/gsl/*.h, lib/libgsl.a
 # BUILD_DIR/cjson-wasm/  cJSON (Debian's patched cJSON.c): include/cjson/cJSON.h,
 #                        lib/libcjson.a
+# BUILD_DIR/inih-wasm/   inih (Debian's libinih ini.c): include/ini.h, lib/libinih.a
+#                        (the tool's experiment-file reader, cli/commands/config.c)
 # BUILD_DIR/deps-src/    the unpacked source packages (scratch; may be removed)
 #
 # Needs emcc/emar (Debian 'emscripten'), dpkg-dev (apt-get source),
@@ -114,4 +116,25 @@ else
     rm -rf "$cjson"
     mv "$cjson.tmp" "$cjson"
     echo "build-deps: $(cat "$cjson/.built")"
+fi
+
+# ---- inih ----
+# As Debian builds it (meson defaults: the macros of ini.h as they are).
+inih="$build/inih-wasm"
+if [ -f "$inih/.built" ]; then
+    echo "build-deps: $inih is there ($(cat "$inih/.built"))"
+else
+    start=$(date +%s)
+    dir=$(fetch_source libinih)
+    rm -rf "$inih.tmp"
+    mkdir -p "$inih.tmp/include" "$inih.tmp/lib"
+    cp "$dir/ini.h" "$inih.tmp/include/"
+    emcc -O2 -c "$dir/ini.c" -o "$inih.tmp/ini.o"
+    emar rcs "$inih.tmp/lib/libinih.a" "$inih.tmp/ini.o"
+    rm -f "$inih.tmp/ini.o"
+    end=$(date +%s)
+    echo "inih $(basename "$dir") for wasm32, built in $((end - start)) s on $(date -u +%Y-%m-%d)" >"$inih.tmp/.built"
+    rm -rf "$inih"
+    mv "$inih.tmp" "$inih"
+    echo "build-deps: $(cat "$inih/.built")"
 fi
