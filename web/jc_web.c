@@ -1,14 +1,14 @@
 /*
  * The WebAssembly entry point: one setup in (a JSON object whose keys are
- * the command line's option names), one run out (a JSON document with the
- * events, the sampled trajectory, the termination and the first lift-off).
- * A thin client of the public API (include/jumpcyl/jumpcyl.h): it builds a
- * jc_Setup the way the jumpcyl tool does (cli/commands/options.c), then
- * jc_model_init, jc_simulate (as `jumpcyl simulate`), jc_run_summarize.
+ * the command line's option names and whose values are read as the command
+ * line reads them), one run out (`jumpcyl simulate --json`'s document plus
+ * the sampled trajectory as columns and the first lift-off).
  *
- * Numbers are the command line's plain numbers: SI units, angles in
- * degrees (incline, theta0, a part's angle), omega0 in rad/s. Unit strings
- * ("10cm") are not read here: the page converts. docs/web.md lists the keys.
+ * A thin client of the tool's own code, compiled into the wasm too: the
+ * options are collected with cli_setup_take / cli_sim_take and built with
+ * cli_setup_build / cli_sim_build (cli/commands/options.c, units.c), the
+ * document is cli_sim_json_doc's (cli/outputs/sim_json.c, report.c). The
+ * page and the tool cannot disagree on a setup or on a field.
  *
  * Every returned string is malloc'd and owned by the caller: free it with
  * jc_web_free. A bad request gives {"ok": false, "error": "..."} (one
@@ -17,6 +17,8 @@
  * No global mutable state; the only process-wide setting touched is GSL's
  * error handler, switched off as the library's header asks.
  */
+#include "cli.h"
+
 #include <cjson/cJSON.h>
 #include <gsl/gsl_errno.h>
 #include <jumpcyl/jumpcyl.h>
@@ -39,341 +41,108 @@ JC_WEB_EXPORT char *jc_web_presets(void);
 JC_WEB_EXPORT const char *jc_web_version(void);
 JC_WEB_EXPORT void jc_web_free(char *text);
 
-#define WEB_PI 3.14159265358979323846 /* the tool's CLI_PI: degrees convert exactly as there */
 #define WEB_DEFAULT_MAX_SAMPLES 100000 /* the library's default is 10^6: too much JSON for a page */
 #define ERR_LEN 512
+#define NUM_LEN 32
 
 /* ---- the request ---- */
 
-/* The scalar setup options, as in the tool's table (options.c "scalars"). */
+/* The parsed request and the texts the option collectors point into: the
+ * cJSON tree (strings as they are) and one slot per member for a number
+ * printed with %.17g (reads back to the same double). Kept until the
+ * setup and the options are built. */
 typedef struct {
-    const char *name;
-    size_t field;
-} scalar_opt;
+    cli_SetupArgs setup;
+    cli_SimArgs sim;
+    const char *max_samples;
+    char (*numbers)[NUM_LEN];
+} request_args;
 
-static const scalar_opt scalars[] = {
-    {"incline", offsetof(jc_Setup, incline_rad)},
-    {"g", offsetof(jc_Setup, gravity_mps2)},
-    {"mu", offsetof(jc_Setup, mu_static)},
-    {"mu-s", offsetof(jc_Setup, mu_static)},
-    {"mu-k", offsetof(jc_Setup, mu_kinetic)},
-    {"restitution", offsetof(jc_Setup, restitution)},
-    {"theta0", offsetof(jc_Setup, theta0_rad)},
-    {"omega0", offsetof(jc_Setup, omega0_radps)},
-    {"ramp-length", offsetof(jc_Setup, ramp_length_m)},
-    {"paper-d", offsetof(jc_Setup, paper_cm_offset_m)},
-    {"length", offsetof(jc_Setup, length_m)},
-    {"air-density", offsetof(jc_Setup, air_density_kgpm3)},
-    {"drag-coefficient", offsetof(jc_Setup, drag_coefficient)},
-    {"lift-coefficient", offsetof(jc_Setup, lift_coefficient)},
-    {"spin-drag", offsetof(jc_Setup, spin_drag_Nms2)},
-    {"rolling-resistance", offsetof(jc_Setup, rolling_resistance_m)},
-};
-
-/* Every key a request may hold; anything else is refused by name. */
-static const char *const known_keys[] = {
-    "preset", "part", "radius", "disc-mass", "rod-mass", "rod-offset", "rod-radius", "impact-law",
-    "incline", "g", "mu", "mu-s", "mu-k", "restitution", "theta0", "omega0", "ramp-length", "paper-d",
-    "length", "air-density", "drag-coefficient", "lift-coefficient", "spin-drag", "rolling-resistance",
-    "t-max", "max-events", "sample-dt", "max-samples", "rtol", "atol", "event-tol", "contact-height"};
-
-static int is_angle(const char *name)
+/* A member's value as the command line's text: a string as it is ("10cm",
+ * "15deg"), a number printed with %.17g. NULL with a message otherwise. */
+static const char *value_text(const cJSON *v, const char *key, char *slot, char *err, size_t err_len)
 {
-    return strcmp(name, "incline") == 0 || strcmp(name, "theta0") == 0;
-}
-
-/* A number member: 0 absent, 1 read into *out, -1 not a finite number. */
-static int get_number(const cJSON *req, const char *name, double *out, char *err, size_t err_len)
-{
-    const cJSON *item = cJSON_GetObjectItemCaseSensitive(req, name);
-    if (!item) return 0;
-    if (!cJSON_IsNumber(item) || !isfinite(item->valuedouble)) {
-        snprintf(err, err_len, "'%s' must be a number", name);
-        return -1;
+    if (cJSON_IsString(v)) return v->valuestring;
+    if (cJSON_IsNumber(v) && isfinite(v->valuedouble)) {
+        snprintf(slot, NUM_LEN, "%.17g", v->valuedouble);
+        return slot;
     }
-    *out = item->valuedouble;
-    return 1;
-}
-
-static int get_string(const cJSON *req, const char *name, const char **out, char *err, size_t err_len)
-{
-    const cJSON *item = cJSON_GetObjectItemCaseSensitive(req, name);
-    if (!item) return 0;
-    if (!cJSON_IsString(item)) {
-        snprintf(err, err_len, "'%s' must be a string", name);
-        return -1;
-    }
-    *out = item->valuestring;
-    return 1;
-}
-
-static int check_keys(const cJSON *req, char *err, size_t err_len)
-{
-    for (const cJSON *it = req->child; it; it = it->next) {
-        size_t k = 0;
-        const size_t n = sizeof known_keys / sizeof known_keys[0];
-        while (k < n && strcmp(it->string, known_keys[k]) != 0) ++k;
-        if (k == n) {
-            snprintf(err, err_len, "unknown option '%.60s' (the keys are the command line's option names, docs/web.md)",
-                     it->string);
-            return -1;
-        }
-        for (const cJSON *jt = it->next; jt; jt = jt->next)
-            if (strcmp(it->string, jt->string) == 0) {
-                snprintf(err, err_len, "'%s' given twice", it->string);
-                return -1;
-            }
-    }
-    return 0;
-}
-
-static int parse_kind(const char *name, jc_PartKind *kind)
-{
-    static const jc_PartKind kinds[] = {JC_PART_DISC, JC_PART_HOOP, JC_PART_ROD, JC_PART_POINT};
-    for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; ++k)
-        if (strcmp(name, jc_part_kind_name(kinds[k])) == 0) {
-            *kind = kinds[k];
-            return 0;
-        }
-    return -1;
-}
-
-/* {"kind": "rod", "mass": 0.0321, "offset": 0.055, "radius": 0.00475, "angle": 0}
- * as the tool's --part rod:mass=...: mass required, disc and hoop radius
- * defaulting to the rim, angle in degrees. */
-static int parse_part(const cJSON *o, int i, double rim_m, jc_Part *p, char *err, size_t err_len)
-{
-    const cJSON *kind = cJSON_GetObjectItemCaseSensitive(o, "kind");
-    if (!cJSON_IsObject(o) || !cJSON_IsString(kind) || parse_kind(kind->valuestring, &p->kind) != 0) {
-        snprintf(err, err_len, "part %d: needs \"kind\": disc, hoop, rod or point", i + 1);
-        return -1;
-    }
-    *p = (jc_Part){p->kind, 0.0, 0.0, 0.0, 0.0};
-    if (p->kind == JC_PART_DISC || p->kind == JC_PART_HOOP) p->radius_m = rim_m;
-    static const char *const keys[] = {"kind", "mass", "offset", "radius", "angle"};
-    for (const cJSON *it = o->child; it; it = it->next) {
-        size_t k = 0;
-        while (k < 5 && strcmp(it->string, keys[k]) != 0) ++k;
-        if (k == 5) {
-            snprintf(err, err_len, "part %d: unknown key '%.40s' (allowed: kind, mass, offset, radius, angle)", i + 1,
-                     it->string);
-            return -1;
-        }
-        if (k == 0) continue;
-        if (!cJSON_IsNumber(it) || !isfinite(it->valuedouble)) {
-            snprintf(err, err_len, "part %d: '%s' must be a number", i + 1, keys[k]);
-            return -1;
-        }
-        const double v = it->valuedouble;
-        if (k == 1) p->mass_kg = v;
-        else if (k == 2) p->offset_m = v;
-        else if (k == 3) p->radius_m = v;
-        else p->angle_rad = v * (WEB_PI / 180.0);
-    }
-    if (!cJSON_GetObjectItemCaseSensitive(o, "mass")) {
-        snprintf(err, err_len, "part %d: mass is required", i + 1);
-        return -1;
-    }
-    return 0;
-}
-
-static jc_Part *find_part(jc_BodyDef *b, jc_PartKind kind)
-{
-    for (int i = 0; i < b->part_count; ++i)
-        if (b->parts[i].kind == kind) return &b->parts[i];
+    snprintf(err, err_len, "'%.60s' must be a number or a string (as on the command line: \"10cm\", \"15deg\")",
+             key);
     return NULL;
 }
 
-/* The body: preset, then parts, then the radius and disc+rod shortcuts. */
-static int build_body(const cJSON *req, jc_Setup *s, int *body_changed, char *err, size_t err_len)
+/* One member: a simulation option, max-samples, or a setup option. */
+static int take_member(request_args *a, const cJSON *it, char *slot, char *err, size_t err_len)
 {
-    double r = s->body.radius_m, v;
-    int have_r = get_number(req, "radius", &r, err, err_len);
-    if (have_r < 0) return -1;
-    const cJSON *parts = cJSON_GetObjectItemCaseSensitive(req, "part");
-    int part_count = 0;
-    if (parts) {
-        part_count = cJSON_GetArraySize(parts);
-        if (!cJSON_IsArray(parts) || part_count < 1 || part_count > JC_MAX_PARTS) {
-            snprintf(err, err_len, "'part' must be an array of 1 to %d part objects", JC_MAX_PARTS);
-            return -1;
+    const char *key = it->string;
+    if (strcmp(key, "config") == 0 || strcmp(key, "dump-config") == 0) {
+        snprintf(err, err_len, "'%s' is not available in the browser (no files): give the options themselves", key);
+        return -1;
+    }
+    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
+        if (strcmp(key, cli_sim_options[i].name) == 0) {
+            const char *text = value_text(it, key, slot, err, err_len);
+            return !text || cli_sim_take(&a->sim, cli_sim_options[i].val, text, err, err_len) < 0 ? -1 : 0;
         }
-        int i = 0;
-        for (const cJSON *o = parts->child; o; o = o->next, ++i)
-            if (parse_part(o, i, r, &s->body.parts[i], err, err_len)) return -1;
-        s->body.part_count = part_count;
+    if (strcmp(key, "max-samples") == 0) { /* the page's own: the tool keeps every sample */
+        a->max_samples = value_text(it, key, slot, err, err_len);
+        return a->max_samples ? 0 : -1;
     }
-    if (have_r) {
-        jc_Part *disc = part_count == 0 ? find_part(&s->body, JC_PART_DISC) : NULL;
-        if (disc && disc->radius_m == s->body.radius_m) disc->radius_m = r;
-        s->body.radius_m = r;
+    const int idx = cli_setup_option_index(key);
+    if (idx < 0) {
+        snprintf(err, err_len, "unknown option '%.60s' (the keys are the command line's option names, docs/web.md)",
+                 key);
+        return -1;
     }
-    static const struct { const char *name; jc_PartKind kind; int field; } shortcut[] = {
-        {"disc-mass", JC_PART_DISC, 0}, {"rod-mass", JC_PART_ROD, 0},
-        {"rod-offset", JC_PART_ROD, 1}, {"rod-radius", JC_PART_ROD, 2}};
-    int shortcuts = 0;
-    for (size_t k = 0; k < sizeof shortcut / sizeof shortcut[0]; ++k) {
-        const int got = get_number(req, shortcut[k].name, &v, err, err_len);
-        if (got < 0) return -1;
-        if (!got) continue;
-        ++shortcuts;
-        jc_Part *p = find_part(&s->body, shortcut[k].kind);
-        if (!p) {
-            snprintf(err, err_len, "'%s' needs a body with a %s part (the paper or disc preset); with 'part', set it in the part",
-                     shortcut[k].name, jc_part_kind_name(shortcut[k].kind));
-            return -1;
+    const int val = cli_setup_options[idx].val;
+    if (strcmp(key, "part") == 0 && cJSON_IsArray(it)) { /* --part, once per string */
+        for (const cJSON *p = it->child; p; p = p->next) {
+            if (!cJSON_IsString(p)) {
+                snprintf(err, err_len, "'part' must be a string or an array of strings (\"rod:mass=32.1g,offset=5.5cm\")");
+                return -1;
+            }
+            if (cli_setup_take(&a->setup, val, p->valuestring, err, err_len) < 0) return -1;
         }
-        *(shortcut[k].field == 0 ? &p->mass_kg : shortcut[k].field == 1 ? &p->offset_m : &p->radius_m) = v;
+        return 0;
     }
-    *body_changed = part_count > 0 || have_r || shortcuts > 0;
-    return 0;
+    const char *text = value_text(it, key, slot, err, err_len);
+    return !text || cli_setup_take(&a->setup, val, text, err, err_len) < 0 ? -1 : 0;
 }
 
-static int build_setup(const cJSON *req, jc_Setup *s, char *err, size_t err_len)
+static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, char *err, size_t err_len)
 {
-    char msg[256];
-    const char *text = NULL;
-    *s = jc_paper_setup();
-    int got = get_string(req, "preset", &text, err, err_len);
-    if (got < 0) return -1;
-    if (got && jc_preset_setup(text, s, msg, sizeof msg) != JC_OK) {
-        snprintf(err, err_len, "preset: %s", msg);
+    request_args a;
+    memset(&a, 0, sizeof a);
+    const int members = cJSON_GetArraySize(req);
+    a.numbers = calloc((size_t)(members > 0 ? members : 1), sizeof *a.numbers);
+    if (!a.numbers) {
+        snprintf(err, err_len, "out of memory");
         return -1;
     }
-    int body_changed = 0;
-    if (build_body(req, s, &body_changed, err, err_len)) return -1;
-    if (body_changed) s->paper_cm_offset_m = 0.0; /* the printed d was for the paper's body */
-    for (size_t k = 0; k < sizeof scalars / sizeof scalars[0]; ++k) {
-        double v;
-        got = get_number(req, scalars[k].name, &v, err, err_len);
-        if (got < 0) return -1;
-        if (!got) continue;
-        if (is_angle(scalars[k].name)) v *= WEB_PI / 180.0;
-        memcpy((char *)s + scalars[k].field, &v, sizeof v);
-        if (strcmp(scalars[k].name, "mu") == 0) s->mu_kinetic = v;
-    }
-    got = get_string(req, "impact-law", &text, err, err_len);
-    if (got < 0) return -1;
-    if (got && jc_impact_law_parse(text, &s->impact_law) != JC_OK) {
-        snprintf(err, err_len, "impact-law: unknown law '%.40s' (allowed: stronge, poisson, newton)", text);
-        return -1;
-    }
-    if (cJSON_HasObjectItem(req, "mu") && (cJSON_HasObjectItem(req, "mu-s") || cJSON_HasObjectItem(req, "mu-k"))) {
-        snprintf(err, err_len, "'mu' sets both coefficients; give either 'mu' or 'mu-s'/'mu-k'");
-        return -1;
-    }
-    if (jc_setup_validate(s, msg, sizeof msg) != JC_OK) {
-        snprintf(err, err_len, "invalid setup: %s", msg);
-        return -1;
-    }
-    return 0;
-}
-
-static int build_options(const cJSON *req, jc_SimOptions *o, char *err, size_t err_len)
-{
-    char msg[256];
-    *o = jc_default_sim_options();
-    o->max_samples = WEB_DEFAULT_MAX_SAMPLES;
-    static const struct { const char *name; int integer; } keys[] = {
-        {"t-max", 0}, {"sample-dt", 0}, {"rtol", 0}, {"atol", 0}, {"event-tol", 0}, {"contact-height", 0},
-        {"max-events", 1}, {"max-samples", 1}};
-    double *dst[] = {&o->t_max_s, &o->sample_dt_s, &o->ode_rtol, &o->ode_atol, &o->event_tol_s, &o->contact_height_m};
-    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; ++k) {
-        double v;
-        const int got = get_number(req, keys[k].name, &v, err, err_len);
-        if (got < 0) return -1;
-        if (!got) continue;
-        if (!keys[k].integer) {
-            *dst[k] = v;
-            continue;
+    int rc = 0, k = 0;
+    for (const cJSON *it = req->child; !rc && it; it = it->next, ++k)
+        rc = take_member(&a, it, a.numbers[k], err, err_len);
+    if (!rc) rc = cli_setup_build(&a.setup, setup, err, err_len) || cli_sim_build(&a.sim, o, err, err_len);
+    if (!rc) {
+        double v = WEB_DEFAULT_MAX_SAMPLES;
+        char msg[256];
+        if (a.max_samples && (cli_parse_quantity(a.max_samples, Q_NUMBER, &v, msg, sizeof msg) != 0 ||
+                              v != floor(v) || v < 1 || v > 1e7)) {
+            snprintf(err, err_len, "max-samples: '%.40s' is not a whole number from 1 to 10000000", a.max_samples);
+            rc = -1;
         }
-        if (v != floor(v) || v < 1 || v > 1e7) {
-            snprintf(err, err_len, "'%s' must be a whole number from 1 to 10000000", keys[k].name);
-            return -1;
+        o->max_samples = (int)v;
+        if (!rc && jc_sim_options_validate(o, msg, sizeof msg) != JC_OK) {
+            snprintf(err, err_len, "invalid simulation options: %s", msg);
+            rc = -1;
         }
-        *(strcmp(keys[k].name, "max-events") == 0 ? &o->max_events : &o->max_samples) = (int)v;
     }
-    if (jc_sim_options_validate(o, msg, sizeof msg) != JC_OK) {
-        snprintf(err, err_len, "invalid simulation options: %s", msg);
-        return -1;
-    }
-    return 0;
+    free(a.numbers);
+    return rc ? -1 : 0;
 }
 
 /* ---- the answer ---- */
-
-static cJSON *setup_json(const jc_Model *m)
-{
-    const jc_Setup *s = &m->setup;
-    cJSON *o = cJSON_CreateObject();
-    cJSON *body = cJSON_AddObjectToObject(o, "body");
-    cJSON_AddNumberToObject(body, "radius", m->body.radius_m);
-    cJSON_AddNumberToObject(body, "mass", m->body.mass_kg);
-    cJSON_AddNumberToObject(body, "cm_offset", m->body.cm_offset_m);
-    cJSON_AddNumberToObject(body, "cm_angle", m->body.cm_angle_rad);
-    cJSON_AddNumberToObject(body, "inertia_c", m->body.inertia_c_kgm2);
-    cJSON_AddNumberToObject(body, "inertia_g", m->body.inertia_g_kgm2);
-    cJSON *parts = cJSON_AddArrayToObject(body, "parts");
-    for (int i = 0; i < s->body.part_count; ++i) {
-        const jc_Part *p = &s->body.parts[i];
-        cJSON *q = cJSON_CreateObject();
-        cJSON_AddStringToObject(q, "kind", jc_part_kind_name(p->kind));
-        cJSON_AddNumberToObject(q, "mass", p->mass_kg);
-        cJSON_AddNumberToObject(q, "offset", p->offset_m);
-        cJSON_AddNumberToObject(q, "angle", p->angle_rad);
-        cJSON_AddNumberToObject(q, "radius", p->radius_m);
-        cJSON_AddItemToArray(parts, q);
-    }
-    cJSON_AddNumberToObject(o, "incline", s->incline_rad);
-    cJSON_AddNumberToObject(o, "g", s->gravity_mps2);
-    cJSON_AddNumberToObject(o, "mu_s", s->mu_static);
-    cJSON_AddNumberToObject(o, "mu_k", s->mu_kinetic);
-    cJSON_AddNumberToObject(o, "restitution", s->restitution);
-    cJSON_AddStringToObject(o, "impact_law", jc_impact_law_name(s->impact_law));
-    cJSON_AddNumberToObject(o, "theta0", s->theta0_rad);
-    cJSON_AddNumberToObject(o, "omega0", s->omega0_radps);
-    cJSON_AddNumberToObject(o, "ramp_length", s->ramp_length_m);
-    cJSON_AddNumberToObject(o, "theta_end", m->theta_end_rad);
-    cJSON_AddNumberToObject(o, "paper_d", m->paper_d_m);
-    cJSON_AddNumberToObject(o, "length", s->length_m);
-    cJSON_AddNumberToObject(o, "air_density", s->air_density_kgpm3);
-    cJSON_AddNumberToObject(o, "drag_coefficient", s->drag_coefficient);
-    cJSON_AddNumberToObject(o, "lift_coefficient", s->lift_coefficient);
-    cJSON_AddNumberToObject(o, "spin_drag", s->spin_drag_Nms2);
-    cJSON_AddNumberToObject(o, "rolling_resistance", s->rolling_resistance_m);
-    return o;
-}
-
-/* The names and fields of `jumpcyl simulate --json` (cli/outputs/report.c). */
-static cJSON *event_json(const jc_Event *e)
-{
-    cJSON *o = cJSON_CreateObject();
-    cJSON_AddStringToObject(o, "kind", jc_event_name(e->kind));
-    cJSON_AddStringToObject(o, "mode_before", jc_mode_name(e->mode_before));
-    cJSON_AddStringToObject(o, "mode_after", jc_mode_name(e->mode_after));
-    cJSON_AddNumberToObject(o, "t", e->state.t_s);
-    cJSON_AddNumberToObject(o, "x", e->state.x_m);
-    cJSON_AddNumberToObject(o, "y", e->state.y_m);
-    cJSON_AddNumberToObject(o, "theta", e->state.theta_rad);
-    cJSON_AddNumberToObject(o, "omega", e->state.omega_radps);
-    cJSON_AddNumberToObject(o, "vx", e->state.vx_mps);
-    cJSON_AddNumberToObject(o, "vy", e->state.vy_mps);
-    cJSON_AddNumberToObject(o, "slip", e->slip_mps);
-    cJSON_AddNumberToObject(o, "normal", e->normal_N);
-    cJSON_AddNumberToObject(o, "friction", e->friction_N);
-    if (e->kind == JC_EVENT_LIFTOFF || (e->kind == JC_EVENT_BOUNCE && e->mode_after == JC_MODE_FLIGHT)) {
-        cJSON_AddNumberToObject(o, "flight_time", e->flight_time_s);
-        cJSON_AddNumberToObject(o, "hop_height", e->hop_height_m);
-        if (isnan(e->landing_x_m)) cJSON_AddNullToObject(o, "landing_x");
-        else cJSON_AddNumberToObject(o, "landing_x", e->landing_x_m);
-    }
-    if (e->kind == JC_EVENT_TOUCHDOWN || e->kind == JC_EVENT_BOUNCE) {
-        cJSON_AddNumberToObject(o, "impact_speed", e->impact_speed_mps);
-        cJSON_AddNumberToObject(o, "impulse_normal", e->impulse_normal_Ns);
-        cJSON_AddNumberToObject(o, "impulse_tangent", e->impulse_tangent_Ns);
-    }
-    return o;
-}
 
 /* The samples as columns (one array per quantity), ready for plotting. */
 enum { C_T, C_X, C_Y, C_VX, C_VY, C_THETA, C_OMEGA, C_CM_X, C_CM_Y, C_NORMAL, C_FRICTION, C_SLIP, C_GAP,
@@ -480,19 +249,6 @@ static cJSON *samples_json(const jc_Run *run)
     return raw;
 }
 
-static cJSON *energy_json(const jc_EnergyReport *e)
-{
-    cJSON *o = cJSON_CreateObject();
-    cJSON_AddNumberToObject(o, "kinetic", e->kinetic_J);
-    cJSON_AddNumberToObject(o, "potential", e->potential_J);
-    cJSON_AddNumberToObject(o, "friction_loss", e->friction_loss_J);
-    cJSON_AddNumberToObject(o, "impact_loss", e->impact_loss_J);
-    cJSON_AddNumberToObject(o, "air_loss", e->air_loss_J);
-    cJSON_AddNumberToObject(o, "rolling_resistance_loss", e->rolling_resistance_loss_J);
-    cJSON_AddNumberToObject(o, "balance_error", e->balance_error_J);
-    return o;
-}
-
 static void add_state(cJSON *o, const jc_State *st)
 {
     cJSON_AddNumberToObject(o, "t", st->t_s);
@@ -504,32 +260,34 @@ static void add_state(cJSON *o, const jc_State *st)
     cJSON_AddNumberToObject(o, "vy", st->vy_mps);
 }
 
+/* {"ok": true, "version"} + `simulate --json`'s members (cli_sim_json_doc),
+ * with the samples after the events, then the page's extras. */
 static cJSON *run_json(const jc_Model *m, const jc_Run *run)
 {
-    jc_RunSummary sum;
-    jc_run_summarize(run, &sum);
-    cJSON *doc = cJSON_CreateObject();
-    if (!doc) return NULL;
-    cJSON_AddTrueToObject(doc, "ok");
-    cJSON_AddStringToObject(doc, "version", jc_version());
-    cJSON_AddItemToObject(doc, "setup", setup_json(m));
-    cJSON *ev = cJSON_AddArrayToObject(doc, "events");
-    for (int i = 0; ev && i < run->event_count; ++i) cJSON_AddItemToArray(ev, event_json(&run->events[i]));
+    cJSON *sim = cli_sim_json_doc(m, run);
     cJSON *samples = samples_json(run);
-    if (!samples) {
+    cJSON *doc = cJSON_CreateObject();
+    if (!sim || !samples || !doc) {
+        cJSON_Delete(sim);
+        cJSON_Delete(samples);
         cJSON_Delete(doc);
         return NULL;
     }
-    cJSON_AddItemToObject(doc, "samples", samples);
-    cJSON_AddStringToObject(doc, "termination", jc_termination_name(run->termination));
-    cJSON_AddStringToObject(doc, "termination_detail", run->termination_detail);
-    cJSON_AddNumberToObject(doc, "t_end", run->final_state.t_s);
+    cJSON_AddTrueToObject(doc, "ok");
+    cJSON_AddStringToObject(doc, "version", jc_version());
+    for (cJSON *it = sim->child; it; it = sim->child) {
+        cJSON_DetachItemViaPointer(sim, it);
+        cJSON_AddItemToObject(doc, it->string, it);
+        if (strcmp(it->string, "events") == 0) {
+            cJSON_AddItemToObject(doc, "samples", samples);
+            samples = NULL;
+        }
+    }
+    cJSON_Delete(sim);
+    if (samples) cJSON_AddItemToObject(doc, "samples", samples);
+    jc_RunSummary sum;
+    jc_run_summarize(run, &sum);
     cJSON_AddStringToObject(doc, "final_mode", jc_mode_name(run->final_mode));
-    cJSON_AddItemToObject(doc, "energy", energy_json(&run->energy));
-    cJSON_AddNumberToObject(doc, "energy_gaining_impacts", run->energy_gaining_impacts);
-    cJSON_AddNumberToObject(doc, "largest_impact_gain_J", run->largest_impact_gain_J);
-    cJSON_AddNumberToObject(doc, "micro_slips", (double)run->micro_slips);
-    cJSON_AddNumberToObject(doc, "rocking_period_s", run->rocking_period_s);
     cJSON_AddNumberToObject(doc, "ode_steps", (double)run->ode_steps);
     if (sum.first_liftoff >= 0) {
         cJSON *fl = cJSON_AddObjectToObject(doc, "first_liftoff");
@@ -538,12 +296,6 @@ static cJSON *run_json(const jc_Model *m, const jc_Run *run)
     } else {
         cJSON_AddNullToObject(doc, "first_liftoff");
     }
-    cJSON *s = cJSON_AddObjectToObject(doc, "summary");
-    cJSON_AddNumberToObject(s, "liftoffs", sum.liftoffs);
-    cJSON_AddNumberToObject(s, "bounces", sum.bounces);
-    cJSON_AddNumberToObject(s, "largest_hop", sum.largest_hop_m);
-    cJSON_AddNumberToObject(s, "flight_time", sum.flight_time_s);
-    cJSON_AddNumberToObject(s, "first_slip", sum.first_slip);
     return doc;
 }
 
@@ -582,8 +334,7 @@ JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
     }
     jc_Setup setup;
     jc_SimOptions options;
-    if (check_keys(req, err, sizeof err) || build_setup(req, &setup, err, sizeof err) ||
-        build_options(req, &options, err, sizeof err)) {
+    if (build_request(req, &setup, &options, err, sizeof err)) {
         cJSON_Delete(req);
         return error_text(err);
     }

@@ -138,11 +138,15 @@ test('random setups: the wasm and the native tool agree, and nothing aborts', ()
 test('a bad setup is a one-line error, and the module goes on working', () => {
   for (const [request, word] of [
     [{ incline: 95 }, 'incline'],
-    [{ incline: '30' }, 'incline'],
+    [{ incline: true }, 'incline'],
+    [{ incline: '30furlongs' }, 'incline'],
     [{ inclin: 30 }, 'inclin'],
+    [{ config: 'experiment.ini' }, 'config'],
+    [{ 'dump-config': true }, 'dump-config'],
+    [{ part: [1] }, 'part'],
     [{ preset: 'nope' }, 'preset'],
     [{ mu: 0.5, 'mu-s': 0.6 }, 'mu'],
-    [{ part: [{ kind: 'rod' }] }, 'mass'],
+    [{ part: ['rod:offset=1cm'] }, 'mass'],
     [{ 'sample-dt': -1 }, 'sample'],
   ]) {
     const out = simulate(jc, request);
@@ -156,6 +160,42 @@ test('a bad setup is a one-line error, and the module goes on working', () => {
   assert.equal(JSON.parse(jc.UTF8ToString(notJson)).ok, false);
   jc.ccall('jc_web_free', null, ['number'], [notJson]);
   assert.equal(simulate(jc, {}).ok, true);
+});
+
+// Values are read as the command line reads them (cli/commands/units.c):
+// a unit string is the same run as its SI number, and as the tool's option.
+test('values with units read as on the command line', () => {
+  for (const [withUnit, plain, args] of [
+    [{ 'rod-offset': '5.5cm' }, { 'rod-offset': 0.055 }, ['--rod-offset', '5.5cm']],
+    [{ incline: '15deg', 'rod-mass': '32.1g' }, { incline: 15, 'rod-mass': 0.0321 }, ['--incline', '15deg', '--rod-mass', '32.1g']],
+    [{ part: ['disc:mass=0.3kg', 'rod:mass=32.1g,offset=5.5cm,radius=4.75mm'], radius: '10cm' },
+      { part: ['disc:mass=0.3', 'rod:mass=0.0321,offset=0.055,radius=0.00475'], radius: 0.1 },
+      ['--part', 'disc:mass=0.3kg', '--part', 'rod:mass=32.1g,offset=5.5cm,radius=4.75mm', '--radius', '10cm']],
+  ]) {
+    const a = simulate(jc, withUnit), b = simulate(jc, plain);
+    assert.equal(a.ok, true, a.error);
+    assert.deepEqual(a, b, JSON.stringify(withUnit));
+    const native = nativeRun(args);
+    assert.deepEqual(a.setup, native.setup, JSON.stringify(args));
+    assert.deepEqual(a.events.map((e) => e.kind), native.events.map((e) => e.kind), JSON.stringify(args));
+  }
+});
+
+test('an unknown key is refused by its name', () => {
+  const out = simulate(jc, { incline: 30, 'rod-ofset': 0.05 });
+  assert.equal(out.ok, false);
+  assert.ok(out.error.includes('rod-ofset'), out.error);
+});
+
+// The answer is `simulate --json`'s document with the page's extras.
+test('the answer has simulate --json\'s fields, plus samples and first_liftoff', () => {
+  const web = simulate(jc, { incline: 30 });
+  const native = nativeRun(['--incline', '30']);
+  const extras = ['ok', 'version', 'samples', 'final_mode', 'ode_steps', 'first_liftoff'];
+  assert.deepEqual(Object.keys(web).filter((k) => !extras.includes(k)), Object.keys(native));
+  assert.deepEqual(Object.keys(web.setup), Object.keys(native.setup));
+  assert.deepEqual(Object.keys(web.summary), Object.keys(native.summary));
+  web.events.forEach((e, j) => assert.deepEqual(Object.keys(e), Object.keys(native.events[j])));
 });
 
 test('the sampled trajectory comes at the requested spacing', () => {
