@@ -99,42 +99,29 @@ else
     echo "build-deps: $(cat "$gsl/.built")"
 fi
 
-# ---- cJSON ----
-if [ -f "$cjson/.built" ]; then
-    echo "build-deps: $cjson is there ($(cat "$cjson/.built"))"
-else
+# ---- one-file libraries: cJSON, inih ----
+# one_file LABEL PACKAGE OUT HEADER_DIR NAME LIB: OUT/include/HEADER_DIR/NAME.h
+# and OUT/lib/libLIB.a from the source package's NAME.c compiled with emcc -O2.
+one_file() {
+    label=$1 package=$2 out=$3 hdir=$4 name=$5 lib=$6
+    if [ -f "$out/.built" ]; then
+        echo "build-deps: $out is there ($(cat "$out/.built"))"
+        return
+    fi
     start=$(date +%s)
-    dir=$(fetch_source cjson)
-    rm -rf "$cjson.tmp"
-    mkdir -p "$cjson.tmp/include/cjson" "$cjson.tmp/lib"
-    cp "$dir/cJSON.h" "$cjson.tmp/include/cjson/"
-    emcc -O2 -c "$dir/cJSON.c" -o "$cjson.tmp/cJSON.o"
-    emar rcs "$cjson.tmp/lib/libcjson.a" "$cjson.tmp/cJSON.o"
-    rm -f "$cjson.tmp/cJSON.o"
+    dir=$(fetch_source "$package")
+    rm -rf "$out.tmp"
+    mkdir -p "$out.tmp/include/$hdir" "$out.tmp/lib"
+    cp "$dir/$name.h" "$out.tmp/include/$hdir/"
+    emcc -O2 -c "$dir/$name.c" -o "$out.tmp/$name.o"
+    emar rcs "$out.tmp/lib/lib$lib.a" "$out.tmp/$name.o"
+    rm -f "$out.tmp/$name.o"
     end=$(date +%s)
-    echo "cJSON $(basename "$dir") for wasm32, built in $((end - start)) s on $(date -u +%Y-%m-%d)" >"$cjson.tmp/.built"
-    rm -rf "$cjson"
-    mv "$cjson.tmp" "$cjson"
-    echo "build-deps: $(cat "$cjson/.built")"
-fi
-
-# ---- inih ----
-# As Debian builds it (meson defaults: the macros of ini.h as they are).
-inih="$build/inih-wasm"
-if [ -f "$inih/.built" ]; then
-    echo "build-deps: $inih is there ($(cat "$inih/.built"))"
-else
-    start=$(date +%s)
-    dir=$(fetch_source libinih)
-    rm -rf "$inih.tmp"
-    mkdir -p "$inih.tmp/include" "$inih.tmp/lib"
-    cp "$dir/ini.h" "$inih.tmp/include/"
-    emcc -O2 -c "$dir/ini.c" -o "$inih.tmp/ini.o"
-    emar rcs "$inih.tmp/lib/libinih.a" "$inih.tmp/ini.o"
-    rm -f "$inih.tmp/ini.o"
-    end=$(date +%s)
-    echo "inih $(basename "$dir") for wasm32, built in $((end - start)) s on $(date -u +%Y-%m-%d)" >"$inih.tmp/.built"
-    rm -rf "$inih"
-    mv "$inih.tmp" "$inih"
-    echo "build-deps: $(cat "$inih/.built")"
-fi
+    echo "$label $(basename "$dir") for wasm32, built in $((end - start)) s on $(date -u +%Y-%m-%d)" >"$out.tmp/.built"
+    rm -rf "$out"
+    mv "$out.tmp" "$out"
+    echo "build-deps: $(cat "$out/.built")"
+}
+one_file cJSON cjson "$cjson" cjson cJSON cjson
+# inih as Debian builds it (meson defaults: the macros of ini.h as they are).
+one_file inih libinih "$build/inih-wasm" . ini inih
