@@ -170,3 +170,33 @@ install-check: build
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(MPI_BUILD)
+
+# ---- WebAssembly (docs/web.md) ----
+# make web: the library and its browser entry point (web/jc_web.c) compiled
+# with Emscripten into $(WEB_OUT): jumpcyl.js + jumpcyl.wasm, the one-file
+# jumpcyl-single.js, and the engine check page index.html. GSL and cJSON are
+# built for wasm32 from Debian's source packages once, into $(WEB_BUILD)
+# (web/build-deps.sh). make test-web: the wasm against the native tool.
+WEB_BUILD    ?= build-web
+WEB_OUT      ?= out/web
+WEB_PACKAGES := emscripten dpkg-dev autotools-dev nodejs
+# Debian's emscripten finds its node modules (acorn, ...) there.
+WEB_ENV      := NODE_PATH=/usr/share/nodejs
+.PHONY: deps-web web test-web clean-web
+
+deps-web:
+	@$(call need,$(WEB_PACKAGES))
+	@web/apt-sources.sh
+
+web: deps-web
+	$(WEB_ENV) JOBS=$(JOBS) web/build-deps.sh $(WEB_BUILD)
+	$(WEB_ENV) emcmake cmake -S web -B $(WEB_BUILD)/wasm -DJC_WEB_DEPS=$(CURDIR)/$(WEB_BUILD) \
+	  -DJC_WEB_OUT=$(CURDIR)/$(WEB_OUT)
+	$(WEB_ENV) cmake --build $(WEB_BUILD)/wasm -j $(JOBS)
+	@ls -l $(WEB_OUT)
+
+test-web: web build
+	node web/test_web.mjs --native ./$(BUILD)/jumpcyl --web $(WEB_OUT)
+
+clean-web:
+	rm -rf $(WEB_BUILD)/wasm $(WEB_OUT)

@@ -1,0 +1,384 @@
+/*
+ * The WebAssembly entry point: one setup in (a JSON object whose keys are
+ * the command line's option names and whose values are read as the command
+ * line reads them), one run out (`jumpcyl simulate --json`'s document plus
+ * the sampled trajectory as columns and the first lift-off).
+ *
+ * A thin client of the tool's own code, compiled into the wasm too: the
+ * options are collected with cli_setup_take / cli_sim_take and built with
+ * cli_setup_build / cli_sim_build (cli/commands/options.c, units.c), the
+ * document is cli_sim_json_doc's (cli/outputs/sim_json.c, report.c). The
+ * page and the tool cannot disagree on a setup or on a field.
+ *
+ * Every returned string is malloc'd and owned by the caller: free it with
+ * jc_web_free. A bad request gives {"ok": false, "error": "..."} (one
+ * line), never an abort. NULL only when memory ran out.
+ *
+ * No global mutable state; the only process-wide setting touched is GSL's
+ * error handler, switched off as the library's header asks.
+ */
+#include "cli.h"
+
+#include <cjson/cJSON.h>
+#include <gsl/gsl_errno.h>
+#include <jumpcyl/jumpcyl.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef __EMSCRIPTEN__
+#include <emscripten/emscripten.h>
+#define JC_WEB_EXPORT EMSCRIPTEN_KEEPALIVE
+#else
+#define JC_WEB_EXPORT
+#endif
+
+/* The declarations, for -Wmissing-prototypes (the JS side calls these). */
+JC_WEB_EXPORT char *jc_web_simulate(const char *request_json);
+JC_WEB_EXPORT char *jc_web_presets(void);
+JC_WEB_EXPORT const char *jc_web_version(void);
+JC_WEB_EXPORT void jc_web_free(char *text);
+
+#define WEB_DEFAULT_MAX_SAMPLES 100000 /* the library's default is 10^6: too much JSON for a page */
+#define ERR_LEN 512
+#define NUM_LEN 32
+
+/* ---- the request ---- */
+
+/* The parsed request and the texts the option collectors point into: the
+ * cJSON tree (strings as they are) and one slot per member for a number
+ * printed with %.17g (reads back to the same double). Kept until the
+ * setup and the options are built. */
+typedef struct {
+    cli_SetupArgs setup;
+    cli_SimArgs sim;
+    const char *max_samples;
+    char (*numbers)[NUM_LEN];
+} request_args;
+
+/* A member's value as the command line's text: a string as it is ("10cm",
+ * "15deg"), a number printed with %.17g. NULL with a message otherwise. */
+static const char *value_text(const cJSON *v, const char *key, char *slot, char *err, size_t err_len)
+{
+    if (cJSON_IsString(v)) return v->valuestring;
+    if (cJSON_IsNumber(v) && isfinite(v->valuedouble)) {
+        snprintf(slot, NUM_LEN, "%.17g", v->valuedouble);
+        return slot;
+    }
+    snprintf(err, err_len, "'%.60s' must be a number or a string (as on the command line: \"10cm\", \"15deg\")",
+             key);
+    return NULL;
+}
+
+/* One member: a simulation option, max-samples, or a setup option. */
+static int take_member(request_args *a, const cJSON *it, char *slot, char *err, size_t err_len)
+{
+    const char *key = it->string;
+    if (strcmp(key, "config") == 0 || strcmp(key, "dump-config") == 0) {
+        snprintf(err, err_len, "'%s' is not available in the browser (no files): give the options themselves", key);
+        return -1;
+    }
+    for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
+        if (strcmp(key, cli_sim_options[i].name) == 0) {
+            const char *text = value_text(it, key, slot, err, err_len);
+            return !text || cli_sim_take(&a->sim, cli_sim_options[i].val, text, err, err_len) < 0 ? -1 : 0;
+        }
+    if (strcmp(key, "max-samples") == 0) { /* the page's own: the tool keeps every sample */
+        a->max_samples = value_text(it, key, slot, err, err_len);
+        return a->max_samples ? 0 : -1;
+    }
+    const int idx = cli_setup_option_index(key);
+    if (idx < 0) {
+        snprintf(err, err_len, "unknown option '%.60s' (the keys are the command line's option names, docs/web.md)",
+                 key);
+        return -1;
+    }
+    const int val = cli_setup_options[idx].val;
+    if (strcmp(key, "part") == 0 && cJSON_IsArray(it)) { /* --part, once per string */
+        for (const cJSON *p = it->child; p; p = p->next) {
+            if (!cJSON_IsString(p)) {
+                snprintf(err, err_len, "'part' must be a string or an array of strings (\"rod:mass=32.1g,offset=5.5cm\")");
+                return -1;
+            }
+            if (cli_setup_take(&a->setup, val, p->valuestring, err, err_len) < 0) return -1;
+        }
+        return 0;
+    }
+    const char *text = value_text(it, key, slot, err, err_len);
+    return !text || cli_setup_take(&a->setup, val, text, err, err_len) < 0 ? -1 : 0;
+}
+
+static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, char *err, size_t err_len)
+{
+    request_args a;
+    memset(&a, 0, sizeof a);
+    const int members = cJSON_GetArraySize(req);
+    a.numbers = calloc((size_t)(members > 0 ? members : 1), sizeof *a.numbers);
+    if (!a.numbers) {
+        snprintf(err, err_len, "out of memory");
+        return -1;
+    }
+    int rc = 0, k = 0;
+    for (const cJSON *it = req->child; !rc && it; it = it->next, ++k)
+        rc = take_member(&a, it, a.numbers[k], err, err_len);
+    if (!rc) rc = cli_setup_build(&a.setup, setup, err, err_len) || cli_sim_build(&a.sim, o, err, err_len);
+    if (!rc) {
+        double v = WEB_DEFAULT_MAX_SAMPLES;
+        char msg[256];
+        if (a.max_samples && (cli_parse_quantity(a.max_samples, Q_NUMBER, &v, msg, sizeof msg) != 0 ||
+                              v != floor(v) || v < 1 || v > 1e7)) {
+            snprintf(err, err_len, "max-samples: '%.40s' is not a whole number from 1 to 10000000", a.max_samples);
+            rc = -1;
+        }
+        o->max_samples = (int)v;
+        if (!rc && jc_sim_options_validate(o, msg, sizeof msg) != JC_OK) {
+            snprintf(err, err_len, "invalid simulation options: %s", msg);
+            rc = -1;
+        }
+    }
+    free(a.numbers);
+    return rc ? -1 : 0;
+}
+
+/* ---- the answer ---- */
+
+/* The samples as columns (one array per quantity), ready for plotting. */
+enum { C_T, C_X, C_Y, C_VX, C_VY, C_THETA, C_OMEGA, C_CM_X, C_CM_Y, C_NORMAL, C_FRICTION, C_SLIP, C_GAP,
+       C_KINETIC, C_POTENTIAL, C_FRICTION_LOSS, C_IMPACT_LOSS, C_AIR_LOSS, C_RR_LOSS, C_COUNT };
+
+static double column_value(const jc_Sample *s, int c)
+{
+    switch (c) {
+    case C_T: return s->state.t_s;
+    case C_X: return s->state.x_m;
+    case C_Y: return s->state.y_m;
+    case C_VX: return s->state.vx_mps;
+    case C_VY: return s->state.vy_mps;
+    case C_THETA: return s->state.theta_rad;
+    case C_OMEGA: return s->state.omega_radps;
+    case C_CM_X: return s->cm_x_m;
+    case C_CM_Y: return s->cm_y_m;
+    case C_NORMAL: return s->normal_N;
+    case C_FRICTION: return s->friction_N;
+    case C_SLIP: return s->slip_mps;
+    case C_GAP: return s->gap_m;
+    case C_KINETIC: return s->kinetic_J;
+    case C_POTENTIAL: return s->potential_J;
+    case C_FRICTION_LOSS: return s->friction_loss_J;
+    case C_IMPACT_LOSS: return s->impact_loss_J;
+    case C_AIR_LOSS: return s->air_loss_J;
+    default: return s->rolling_resistance_loss_J;
+    }
+}
+
+/* A growing text, for the sample columns: printed straight, not through a
+ * cJSON node per number. */
+typedef struct {
+    char *text;
+    size_t len, cap;
+    int failed;
+} text_buf;
+
+static void put(text_buf *b, const char *s, size_t n)
+{
+    if (b->failed) return;
+    if (b->len + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 4096;
+        while (cap < b->len + n + 1) cap *= 2;
+        char *p = realloc(b->text, cap);
+        if (!p) {
+            b->failed = 1;
+            return;
+        }
+        b->text = p;
+        b->cap = cap;
+    }
+    memcpy(b->text + b->len, s, n);
+    b->len += n;
+    b->text[b->len] = '\0';
+}
+
+/* %.17g: always reads back to the same double, with one printf. cJSON's
+ * way (%.15g, read back, %.17g if that differs) costs two or three calls,
+ * and printf of a double is what dominates the answer's time in wasm
+ * (musl): the samples printed this way take half the time. null for NaN
+ * and infinities. */
+static void put_number(text_buf *b, double v)
+{
+    char tmp[32];
+    if (!isfinite(v)) {
+        put(b, "null", 4);
+        return;
+    }
+    const int n = snprintf(tmp, sizeof tmp, "%.17g", v);
+    put(b, tmp, (size_t)n);
+}
+
+/* {"count": N, "mode": [...], "t": [...], ...} as raw JSON. */
+static cJSON *samples_json(const jc_Run *run)
+{
+    static const char *const names[C_COUNT] = {
+        "t", "x", "y", "vx", "vy", "theta", "omega", "cm_x", "cm_y", "normal", "friction", "slip", "gap",
+        "kinetic", "potential", "friction_loss", "impact_loss", "air_loss", "rolling_resistance_loss"};
+    text_buf b = {NULL, 0, 0, 0};
+    char head[64];
+    put(&b, head, (size_t)snprintf(head, sizeof head, "{\"count\":%d,\"mode\":[", run->sample_count));
+    for (int i = 0; i < run->sample_count; ++i) {
+        const char *m = jc_mode_name(run->samples[i].mode);
+        if (i) put(&b, ",", 1);
+        put(&b, "\"", 1);
+        put(&b, m, strlen(m));
+        put(&b, "\"", 1);
+    }
+    put(&b, "]", 1);
+    for (int c = 0; c < C_COUNT; ++c) {
+        put(&b, ",\"", 2);
+        put(&b, names[c], strlen(names[c]));
+        put(&b, "\":[", 3);
+        for (int i = 0; i < run->sample_count; ++i) {
+            if (i) put(&b, ",", 1);
+            put_number(&b, column_value(&run->samples[i], c));
+        }
+        put(&b, "]", 1);
+    }
+    put(&b, "}", 1);
+    cJSON *raw = b.failed ? NULL : cJSON_CreateRaw(b.text);
+    free(b.text);
+    return raw;
+}
+
+static void add_state(cJSON *o, const jc_State *st)
+{
+    cJSON_AddNumberToObject(o, "t", st->t_s);
+    cJSON_AddNumberToObject(o, "x", st->x_m);
+    cJSON_AddNumberToObject(o, "y", st->y_m);
+    cJSON_AddNumberToObject(o, "theta", st->theta_rad);
+    cJSON_AddNumberToObject(o, "omega", st->omega_radps);
+    cJSON_AddNumberToObject(o, "vx", st->vx_mps);
+    cJSON_AddNumberToObject(o, "vy", st->vy_mps);
+}
+
+/* {"ok": true, "version"} + `simulate --json`'s members (cli_sim_json_doc),
+ * with the samples after the events, then the page's extras. */
+static cJSON *run_json(const jc_Model *m, const jc_Run *run)
+{
+    cJSON *sim = cli_sim_json_doc(m, run);
+    cJSON *samples = samples_json(run);
+    cJSON *doc = cJSON_CreateObject();
+    if (!sim || !samples || !doc) {
+        cJSON_Delete(sim);
+        cJSON_Delete(samples);
+        cJSON_Delete(doc);
+        return NULL;
+    }
+    cJSON_AddTrueToObject(doc, "ok");
+    cJSON_AddStringToObject(doc, "version", jc_version());
+    for (cJSON *it = sim->child; it; it = sim->child) {
+        cJSON_DetachItemViaPointer(sim, it);
+        cJSON_AddItemToObject(doc, it->string, it);
+        if (strcmp(it->string, "events") == 0) {
+            cJSON_AddItemToObject(doc, "samples", samples);
+            samples = NULL;
+        }
+    }
+    cJSON_Delete(sim);
+    if (samples) cJSON_AddItemToObject(doc, "samples", samples);
+    jc_RunSummary sum;
+    jc_run_summarize(run, &sum);
+    cJSON_AddStringToObject(doc, "final_mode", jc_mode_name(run->final_mode));
+    cJSON_AddNumberToObject(doc, "ode_steps", (double)run->ode_steps);
+    if (sum.first_liftoff >= 0) {
+        cJSON *fl = cJSON_AddObjectToObject(doc, "first_liftoff");
+        cJSON_AddNumberToObject(fl, "event", sum.first_liftoff);
+        add_state(fl, &sum.first_liftoff_state);
+    } else {
+        cJSON_AddNullToObject(doc, "first_liftoff");
+    }
+    return doc;
+}
+
+/* {"ok": false, "error": "..."}: the message on one line. */
+static char *error_text(const char *msg)
+{
+    char line[ERR_LEN];
+    snprintf(line, sizeof line, "%s", msg);
+    for (char *c = line; *c; ++c)
+        if (*c == '\n' || *c == '\r') *c = ' ';
+    cJSON *doc = cJSON_CreateObject();
+    cJSON_AddFalseToObject(doc, "ok");
+    cJSON_AddStringToObject(doc, "error", line);
+    char *text = doc ? cJSON_PrintUnformatted(doc) : NULL;
+    cJSON_Delete(doc);
+    return text;
+}
+
+static char *print_or_fail(cJSON *doc)
+{
+    char *text = doc ? cJSON_PrintUnformatted(doc) : NULL;
+    cJSON_Delete(doc);
+    return text ? text : error_text("out of memory for the answer");
+}
+
+/* ---- exported ---- */
+
+JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
+{
+    char err[ERR_LEN];
+    gsl_set_error_handler_off(); /* GSL reports failures as status codes, never aborts */
+    cJSON *req = request_json ? cJSON_Parse(request_json) : NULL;
+    if (!cJSON_IsObject(req)) {
+        cJSON_Delete(req);
+        return error_text("the request is not a JSON object (e.g. {\"incline\": 30})");
+    }
+    jc_Setup setup;
+    jc_SimOptions options;
+    if (build_request(req, &setup, &options, err, sizeof err)) {
+        cJSON_Delete(req);
+        return error_text(err);
+    }
+    cJSON_Delete(req);
+
+    jc_Model *model = malloc(sizeof *model);
+    if (!model) return NULL;
+    if (jc_model_init(model, &setup, err, sizeof err) != JC_OK) {
+        free(model);
+        return error_text(err);
+    }
+    jc_Run run = {0};
+    const int st = jc_simulate(model, &options, &run, err, sizeof err);
+    char *text;
+    if (st != JC_OK) {
+        char msg[ERR_LEN + 40];
+        snprintf(msg, sizeof msg, "simulation failed (%s): %s", jc_status_text(st), err);
+        text = error_text(msg);
+    } else {
+        text = print_or_fail(run_json(model, &run));
+    }
+    jc_run_free(&run);
+    free(model);
+    return text;
+}
+
+JC_WEB_EXPORT char *jc_web_presets(void)
+{
+    cJSON *arr = cJSON_CreateArray();
+    for (int i = 0; arr && jc_preset_name(i); ++i) {
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "name", jc_preset_name(i));
+        cJSON_AddStringToObject(o, "description", jc_preset_description(i));
+        cJSON_AddItemToArray(arr, o);
+    }
+    return print_or_fail(arr);
+}
+
+JC_WEB_EXPORT const char *jc_web_version(void)
+{
+    return jc_version();
+}
+
+JC_WEB_EXPORT void jc_web_free(char *text)
+{
+    free(text);
+}

@@ -1,0 +1,302 @@
+// The WebAssembly build against the native tool (make test-web):
+//   node web/test_web.mjs --native build/jumpcyl --web out/web
+// For the paper cylinder on 15, 30 and 45 degrees and the hoop preset, the
+// wasm's first lift-off (x and t) equals `jumpcyl simulate --json`'s to
+// REL_TOL, and the events match in count and kinds; a bad setup is a one-line
+// error, not a crash; the one-file build answers the same as the two-file one.
+// Prints the agreement it found, the time of a recompute and the file sizes.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { createRequire } from 'node:module';
+import { mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { performance } from 'node:perf_hooks';
+
+const REL_TOL = 1e-9;
+
+function arg(name, fallback) {
+  const i = process.argv.indexOf(name);
+  return i >= 0 && i + 1 < process.argv.length ? process.argv[i + 1] : fallback;
+}
+const nativeTool = path.resolve(arg('--native', 'build/jumpcyl'));
+const webDir = path.resolve(arg('--web', 'out/web'));
+const require = createRequire(import.meta.url);
+
+// Node has fetch(), which cannot read a file path: hand the module its
+// bytes (a browser fetches jumpcyl.wasm beside jumpcyl.js itself).
+async function loadModule(file) {
+  const factory = require(path.join(webDir, file));
+  const options = file === 'jumpcyl.js' ? { wasmBinary: readFileSync(path.join(webDir, 'jumpcyl.wasm')) } : {};
+  return factory(options);
+}
+
+// The entry point's answer as text, the returned string freed.
+function call(jc, request) {
+  const ptr = jc.ccall('jc_web_simulate', 'number', ['string'], [JSON.stringify(request)]);
+  assert.notEqual(ptr, 0, 'jc_web_simulate returned NULL');
+  const text = jc.UTF8ToString(ptr);
+  jc.ccall('jc_web_free', null, ['number'], [ptr]);
+  return text;
+}
+const simulate = (jc, request) => JSON.parse(call(jc, request));
+
+function nativeRun(args) {
+  return JSON.parse(execFileSync(nativeTool, ['simulate', '--json', ...args], { encoding: 'utf8' }));
+}
+
+const rel = (a, b) => (a === b ? 0 : Math.abs(a - b) / Math.max(Math.abs(a), Math.abs(b)));
+
+const cases = [
+  { name: 'paper 15 deg', request: { incline: 15 }, args: ['--incline', '15'] },
+  { name: 'paper 30 deg', request: { incline: 30 }, args: ['--incline', '30'] },
+  { name: 'paper 45 deg', request: { incline: 45 }, args: ['--incline', '45'] },
+  { name: 'hoop', request: { preset: 'hoop' }, args: ['--preset', 'hoop'] },
+];
+
+const jc = await loadModule('jumpcyl.js');
+const report = [];
+
+for (const c of cases) {
+  test(`${c.name}: first lift-off and events equal the native tool's`, () => {
+    const native = nativeRun(c.args);
+    const web = simulate(jc, c.request);
+    assert.equal(web.ok, true, web.error);
+    const nFirst = native.events.find((e) => e.kind === 'liftoff');
+    assert.ok(nFirst, 'the native run lifts off');
+    assert.ok(web.first_liftoff, 'the wasm run lifts off');
+    assert.equal(web.events[web.first_liftoff.event].kind, 'liftoff');
+    const dx = rel(web.first_liftoff.x, native.summary.first_liftoff_x);
+    const dt = rel(web.first_liftoff.t, nFirst.t);
+    assert.equal(web.events.length, native.events.length, 'event count');
+    assert.deepEqual(web.events.map((e) => e.kind), native.events.map((e) => e.kind), 'event kinds');
+    assert.equal(web.termination, native.termination);
+    // The largest difference over every event's t, x, theta (informative).
+    let worst = 0;
+    web.events.forEach((e, i) => {
+      for (const k of ['t', 'x', 'theta']) worst = Math.max(worst, rel(e[k], native.events[i][k]));
+    });
+    report.push({
+      case: c.name, events: web.events.length,
+      'x (cm)': (web.first_liftoff.x * 100).toFixed(6), 't (s)': web.first_liftoff.t.toFixed(9),
+      'rel dx': dx, 'rel dt': dt, 'worst event rel': worst,
+    });
+    assert.ok(dx <= REL_TOL, `first lift-off x: wasm ${web.first_liftoff.x}, native ${native.summary.first_liftoff_x}`);
+    assert.ok(dt <= REL_TOL, `first lift-off t: wasm ${web.first_liftoff.t}, native ${nFirst.t}`);
+  });
+}
+
+// Random setups (a fixed seed), each run by both: the same answer or the
+// same refusal, never an abort. Keeps the runs short (t-max 2 s).
+test('random setups: the wasm and the native tool agree, and nothing aborts', () => {
+  let seed = 20261125;
+  const rnd = () => (seed = (seed * 1103515245 + 12345) % 2147483648) / 2147483648;
+  const ranges = {
+    incline: [0, 89], mu: [0, 1.5], restitution: [0, 1], theta0: [-180, 180], omega0: [-30, 30],
+    'rod-mass': [0.001, 0.2], 'rod-offset': [0, 0.09], 'ramp-length': [0.2, 4],
+    'drag-coefficient': [0, 1.5], 'rolling-resistance': [0, 0.005], g: [1, 25],
+  };
+  const presets = ['paper', 'hoop', 'rocking-hoop', 'disc'];
+  let compared = 0, refused = 0, worst = 0;
+  for (let i = 0; i < 30; ++i) {
+    const request = { 't-max': 2 };
+    if (rnd() < 0.3) request.preset = presets[Math.floor(rnd() * presets.length)];
+    if (rnd() < 0.2) request['impact-law'] = ['poisson', 'newton'][Math.floor(rnd() * 2)];
+    for (const [k, [a, b]] of Object.entries(ranges)) if (rnd() < 0.35) request[k] = a + (b - a) * rnd();
+    const args = ['simulate', '--json', ...Object.entries(request).flatMap(([k, v]) => [`--${k}`, String(v)])];
+    let native = null;
+    try {
+      native = JSON.parse(execFileSync(nativeTool, args, { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }));
+    } catch (err) {
+      native = null; // refused (exit 2) or failed (exit 1): the wasm must refuse too
+    }
+    const web = simulate(jc, request);
+    const label = JSON.stringify(request);
+    if (!native) {
+      assert.equal(web.ok, false, `${label}: the native tool refused it`);
+      ++refused;
+      continue;
+    }
+    assert.equal(web.ok, true, `${label}: ${web.error}`);
+    assert.deepEqual(web.events.map((e) => e.kind), native.events.map((e) => e.kind), label);
+    assert.equal(web.termination, native.termination, label);
+    web.events.forEach((e, j) => {
+      for (const k of ['t', 'x', 'theta']) worst = Math.max(worst, rel(e[k], native.events[j][k]));
+    });
+    if (web.first_liftoff) {
+      assert.ok(rel(web.first_liftoff.x, native.summary.first_liftoff_x) <= REL_TOL, label);
+    } else {
+      assert.equal(native.summary.first_liftoff_x, null, label);
+    }
+    ++compared;
+  }
+  report.push({ case: `30 random setups: ${compared} compared, ${refused} refused by both`, 'worst event rel': worst });
+  assert.ok(worst <= REL_TOL, `worst relative difference over the events: ${worst}`);
+});
+
+test('a bad setup is a one-line error, and the module goes on working', () => {
+  for (const [request, word] of [
+    [{ incline: 95 }, 'incline'],
+    [{ incline: true }, 'incline'],
+    [{ incline: '30furlongs' }, 'incline'],
+    [{ inclin: 30 }, 'inclin'],
+    [{ config: 'experiment.ini' }, 'config'],
+    [{ 'dump-config': true }, 'dump-config'],
+    [{ part: [1] }, 'part'],
+    [{ preset: 'nope' }, 'preset'],
+    [{ mu: 0.5, 'mu-s': 0.6 }, 'mu'],
+    [{ part: ['rod:offset=1cm'] }, 'mass'],
+    [{ 'sample-dt': -1 }, 'sample'],
+  ]) {
+    const out = simulate(jc, request);
+    assert.equal(out.ok, false, JSON.stringify(request));
+    assert.equal(typeof out.error, 'string');
+    assert.ok(out.error.length > 0 && !out.error.includes('\n'), out.error);
+    assert.ok(out.error.includes(word), `${JSON.stringify(request)}: ${out.error}`);
+    if (request.incline === 95) report.push({ case: 'incline 95', error: out.error });
+  }
+  const notJson = jc.ccall('jc_web_simulate', 'number', ['string'], ['{incline: 30']);
+  assert.equal(JSON.parse(jc.UTF8ToString(notJson)).ok, false);
+  jc.ccall('jc_web_free', null, ['number'], [notJson]);
+  assert.equal(simulate(jc, {}).ok, true);
+});
+
+// Values are read as the command line reads them (cli/commands/units.c):
+// a unit string is the same run as its SI number, and as the tool's option.
+test('values with units read as on the command line', () => {
+  for (const [withUnit, plain, args] of [
+    [{ 'rod-offset': '5.5cm' }, { 'rod-offset': 0.055 }, ['--rod-offset', '5.5cm']],
+    [{ incline: '15deg', 'rod-mass': '32.1g' }, { incline: 15, 'rod-mass': 0.0321 }, ['--incline', '15deg', '--rod-mass', '32.1g']],
+    [{ part: ['disc:mass=0.3kg', 'rod:mass=32.1g,offset=5.5cm,radius=4.75mm'], radius: '10cm' },
+      { part: ['disc:mass=0.3', 'rod:mass=0.0321,offset=0.055,radius=0.00475'], radius: 0.1 },
+      ['--part', 'disc:mass=0.3kg', '--part', 'rod:mass=32.1g,offset=5.5cm,radius=4.75mm', '--radius', '10cm']],
+  ]) {
+    const a = simulate(jc, withUnit), b = simulate(jc, plain);
+    assert.equal(a.ok, true, a.error);
+    assert.deepEqual(a, b, JSON.stringify(withUnit));
+    const native = nativeRun(args);
+    assert.deepEqual(a.setup, native.setup, JSON.stringify(args));
+    assert.deepEqual(a.events.map((e) => e.kind), native.events.map((e) => e.kind), JSON.stringify(args));
+  }
+});
+
+test('an unknown key is refused by its name', () => {
+  const out = simulate(jc, { incline: 30, 'rod-ofset': 0.05 });
+  assert.equal(out.ok, false);
+  assert.ok(out.error.includes('rod-ofset'), out.error);
+});
+
+// The answer is `simulate --json`'s document with the page's extras.
+test('the answer has simulate --json\'s fields, plus samples and first_liftoff', () => {
+  const web = simulate(jc, { incline: 30 });
+  const native = nativeRun(['--incline', '30']);
+  const extras = ['ok', 'version', 'samples', 'final_mode', 'ode_steps', 'first_liftoff'];
+  assert.deepEqual(Object.keys(web).filter((k) => !extras.includes(k)), Object.keys(native));
+  assert.deepEqual(Object.keys(web.setup), Object.keys(native.setup));
+  assert.deepEqual(Object.keys(web.summary), Object.keys(native.summary));
+  web.events.forEach((e, j) => assert.deepEqual(Object.keys(e), Object.keys(native.events[j])));
+});
+
+test('the sampled trajectory comes at the requested spacing', () => {
+  const web = simulate(jc, { incline: 30, 'sample-dt': 0.01 });
+  assert.equal(web.ok, true, web.error);
+  const s = web.samples;
+  assert.ok(s.count > 10);
+  for (const k of ['t', 'x', 'y', 'theta', 'mode', 'normal', 'friction', 'gap', 'kinetic', 'potential'])
+    assert.equal(s[k].length, s.count, k);
+  assert.ok(s.mode.includes('flight') && s.mode.includes('rolling'));
+  // Fixed samples at k * 0.01 s, with the events' samples between them.
+  const fixed = s.t.filter((t) => Math.abs(t / 0.01 - Math.round(t / 0.01)) < 1e-9);
+  assert.ok(fixed.length >= Math.floor(web.t_end / 0.01), `${fixed.length} fixed samples up to ${web.t_end} s`);
+  // Sampling does not change the events.
+  assert.deepEqual(web.events, simulate(jc, { incline: 30 }).events);
+});
+
+// The samples against the tool's --csv, which prints 12 significant digits
+// (9 for forces, slip, gap and losses): every value within half a unit of
+// the CSV's last digit plus 1e-9 of its column's largest value; the modes equal.
+// Half a unit in the last digit of a number printed with %g ("1.5e-05", "0.125").
+function halfLastDigit(text) {
+  const [mantissa, exponent = '0'] = text.toLowerCase().split('e');
+  const decimals = mantissa.includes('.') ? mantissa.split('.')[1].length : 0;
+  return 0.5 * 10 ** (Number(exponent) - decimals);
+}
+
+test('the samples equal the native tool\'s CSV', () => {
+  const dir = mkdtempSync(path.join(tmpdir(), 'jc-web-'));
+  try {
+    for (const [request, args] of [
+      [{ incline: 45, 'sample-dt': 0.01 }, ['--incline', '45']],
+      [{ preset: 'hoop', 'sample-dt': 0.05, 't-max': 5 }, ['--preset', 'hoop', '--t-max', '5']],
+    ]) {
+      const csv = path.join(dir, 'run.csv');
+      execFileSync(nativeTool, ['simulate', ...args, '--sample-dt', String(request['sample-dt']), '--csv', csv],
+        { stdio: 'ignore' });
+      const [head, ...rows] = readFileSync(csv, 'utf8').trim().split('\n').map((l) => l.split(','));
+      const web = simulate(jc, request);
+      assert.equal(web.ok, true, web.error);
+      assert.equal(web.samples.count, rows.length, 'sample count');
+      let worst = 0;
+      head.forEach((name, j) => {
+        const key = name.replace(/_(s|m|mps|rad|radps|N|J)$/, '');
+        const col = web.samples[key];
+        assert.ok(col, `column ${name}`);
+        if (key === 'mode') {
+          assert.deepEqual(col, rows.map((r) => r[j]));
+          return;
+        }
+        const scale = Math.max(...col.map(Math.abs), 1e-300);
+        col.forEach((v, i) => {
+          const text = rows[i][j];
+          const excess = Math.abs(v - Number(text)) - halfLastDigit(text);
+          worst = Math.max(worst, excess / scale);
+        });
+      });
+      report.push({ case: `samples ${JSON.stringify(args)}: beyond the CSV's rounding / column scale`, samples: rows.length, 'worst event rel': worst });
+      assert.ok(worst <= REL_TOL, `${JSON.stringify(request)}: worst difference / column scale ${worst}`);
+    }
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test('the one-file build answers as the two-file one', async () => {
+  const single = await loadModule('jumpcyl-single.js');
+  for (const request of [{}, { preset: 'hoop', 'sample-dt': 0.05 }, { incline: 95 }])
+    assert.equal(call(single, request), call(jc, request));
+  const presets = JSON.parse(jc.UTF8ToString(jc.ccall('jc_web_presets', 'number', [], [])));
+  assert.ok(presets.some((p) => p.name === 'hoop'));
+});
+
+test('recompute time and sizes (measured, printed)', () => {
+  const times = {};
+  for (const [label, request] of [
+    ['paper 30 deg, events only', { incline: 30 }],
+    ['paper 30 deg, sample-dt 10 ms', { incline: 30, 'sample-dt': 0.01 }],
+    ['paper 30 deg, sample-dt 1 ms', { incline: 30, 'sample-dt': 0.001 }],
+    ['hoop (60 s), sample-dt 10 ms', { preset: 'hoop', 'sample-dt': 0.01 }],
+  ]) {
+    simulate(jc, request); // warm-up
+    const ms = [];
+    let bytes = 0;
+    for (let i = 0; i < 15; ++i) {
+      const t0 = performance.now();
+      const text = call(jc, request);
+      JSON.parse(text);
+      ms.push(performance.now() - t0);
+      bytes = text.length;
+    }
+    ms.sort((a, b) => a - b);
+    times[label] = { 'median ms': +ms[7].toFixed(2), 'min ms': +ms[0].toFixed(2), 'answer kB': +(bytes / 1024).toFixed(1) };
+  }
+  console.log('\nRecompute (jc_web_simulate + text + JSON.parse), 15 runs:');
+  console.table(times);
+  const sizes = {};
+  for (const f of ['jumpcyl.wasm', 'jumpcyl.js', 'jumpcyl-single.js', 'index.html'])
+    sizes[f] = { bytes: statSync(path.join(webDir, f)).size };
+  console.log('Sizes:');
+  console.table(sizes);
+  console.log('Agreement with the native tool (relative differences):');
+  console.table(report);
+});
