@@ -182,7 +182,7 @@ WEB_OUT      ?= out/web
 WEB_PACKAGES := emscripten dpkg-dev autotools-dev nodejs
 # Debian's emscripten finds its node modules (acorn, ...) there.
 WEB_ENV      := NODE_PATH=/usr/share/nodejs
-.PHONY: deps-web web test-web clean-web
+.PHONY: deps-web web test-web test-page clean-web
 
 deps-web:
 	@$(call need,$(WEB_PACKAGES))
@@ -197,6 +197,14 @@ web: deps-web
 
 test-web: web build
 	node web/test_web.mjs --native ./$(BUILD)/jumpcyl --web $(WEB_OUT)
+
+# make test-page: the page in headless Chromium (playwright-core, installed
+# with npm into $(WEB_BUILD)/node_modules, not into the repository), against
+# the native tool; screenshots in $(WEB_OUT)/screenshots/.
+test-page: web build
+	@test -d $(WEB_BUILD)/node_modules/playwright-core || npm install --no-save --prefix $(WEB_BUILD) playwright-core
+	node web/test_page.mjs --native ./$(BUILD)/jumpcyl --web $(WEB_OUT) \
+	  --modules $(WEB_BUILD)/node_modules
 
 clean-web:
 	rm -rf $(WEB_BUILD)/wasm $(WEB_OUT)

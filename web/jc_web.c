@@ -18,6 +18,7 @@
  * error handler, switched off as the library's header asks.
  */
 #include "cli.h"
+#include "figures.h" /* cli_paper_row (cli/figures/paper_row.c) */
 
 #include <cjson/cJSON.h>
 #include <gsl/gsl_errno.h>
@@ -40,6 +41,7 @@ JC_WEB_EXPORT char *jc_web_simulate(const char *request_json);
 JC_WEB_EXPORT char *jc_web_presets(void);
 JC_WEB_EXPORT const char *jc_web_version(void);
 JC_WEB_EXPORT void jc_web_free(char *text);
+JC_WEB_EXPORT char *jc_web_config(const char *request_json);
 
 #define WEB_DEFAULT_MAX_SAMPLES 100000 /* the library's default is 10^6: too much JSON for a page */
 #define ERR_LEN 512
@@ -296,6 +298,19 @@ static cJSON *run_json(const jc_Model *m, const jc_Run *run)
     } else {
         cJSON_AddNullToObject(doc, "first_liftoff");
     }
+    /* Table 1's row when the setup is the paper's cylinder on one of its
+     * inclines (cli_paper_row: what `jumpcyl animate` marks), else null. */
+    const jc_PaperTableRow *row = cli_paper_row(&m->setup);
+    if (row) {
+        cJSON *pr = cJSON_AddObjectToObject(doc, "paper_row");
+        cJSON_AddNumberToObject(pr, "incline_deg", row->incline_deg);
+        cJSON_AddNumberToObject(pr, "printed_theta_rad", row->printed_theta_rad);
+        cJSON_AddNumberToObject(pr, "printed_x_m", row->printed_x_m);
+        cJSON_AddNumberToObject(pr, "measured_x_m", row->measured_x_m);
+        cJSON_AddNumberToObject(pr, "measured_error_m", row->measured_error_m);
+    } else {
+        cJSON_AddNullToObject(doc, "paper_row");
+    }
     return doc;
 }
 
@@ -381,4 +396,38 @@ JC_WEB_EXPORT const char *jc_web_version(void)
 JC_WEB_EXPORT void jc_web_free(char *text)
 {
     free(text);
+}
+
+/* The request's setup as an experiment file (`jumpcyl --config`'s format,
+ * cli_config_write: what `simulate --dump-config` prints), as
+ * {"ok": true, "config": "..."}; simulation options are read and checked
+ * but not written (the file holds the setup only). */
+JC_WEB_EXPORT char *jc_web_config(const char *request_json)
+{
+    char err[ERR_LEN];
+    gsl_set_error_handler_off();
+    cJSON *req = request_json ? cJSON_Parse(request_json) : NULL;
+    if (!cJSON_IsObject(req)) {
+        cJSON_Delete(req);
+        return error_text("the request is not a JSON object (e.g. {\"incline\": 30})");
+    }
+    jc_Setup setup;
+    jc_SimOptions options;
+    const int rc = build_request(req, &setup, &options, err, sizeof err);
+    cJSON_Delete(req);
+    if (rc) return error_text(err);
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    if (!f) return error_text("out of memory");
+    const int wr = cli_config_write(f, &setup);
+    if (fclose(f) != 0 || wr != 0 || !text) {
+        free(text);
+        return error_text("could not write the experiment file");
+    }
+    cJSON *doc = cJSON_CreateObject();
+    cJSON_AddTrueToObject(doc, "ok");
+    cJSON_AddStringToObject(doc, "config", text);
+    free(text);
+    return print_or_fail(doc);
 }

@@ -1,0 +1,679 @@
+// The jumping-cylinder page: controls, the run (jc_web_simulate, the jumpcyl
+// library compiled to WebAssembly), the animation to scale, live graphs, the
+// event table, the setup in the URL and downloads. docs/web.md.
+'use strict';
+(() => {
+const $ = (sel) => document.querySelector(sel);
+const tid = (id) => document.querySelector(`[data-testid="${id}"]`);
+const DEG = Math.PI / 180;
+const PRESETS = ['paper', 'hoop', 'rocking-hoop', 'disc'];
+const IMPACT_LAWS = ['stronge', 'poisson', 'newton'];
+// Samples per run for the animation and graphs: sample-dt = t_end / this
+// (at least 1 ms); events are always sampled too.
+const TARGET_SAMPLES = 2000;
+
+// The sliders. key: the tool's option name (request and URL key); value in
+// the unit shown; suffix: the unit appended for the request ("10cm"), so
+// that the request is exactly the command line's text.
+const rodPart = (s) => s.body.parts.find((p) => p.kind === 'rod') || s.body.parts.find((p) => p.kind === 'point');
+const CONTROLS = [
+  { key: 'incline', label: 'Incline', unit: 'deg', suffix: 'deg', min: 0, max: 60, step: 0.5,
+    get: (s) => s.incline_deg },
+  { key: 'rod-mass', label: 'Rod mass', unit: 'g', suffix: 'g', min: 0, max: 200, step: 0.1,
+    get: (s) => { const p = rodPart(s); return p ? p.mass * 1000 : 0; } },
+  { key: 'rod-offset', label: 'Rod offset', unit: 'cm', suffix: 'cm', min: 0, max: 15, step: 0.05,
+    get: (s) => { const p = rodPart(s); return p ? p.offset * 100 : 0; } },
+  { key: 'radius', label: 'Radius', unit: 'cm', suffix: 'cm', min: 2, max: 30, step: 0.1,
+    get: (s) => s.body.radius * 100 },
+  { key: 'mu-s', label: 'μs (static)', unit: '', suffix: '', min: 0, max: 1.5, step: 0.01, get: (s) => s.mu_s },
+  { key: 'mu-k', label: 'μk (kinetic)', unit: '', suffix: '', min: 0, max: 1.5, step: 0.01, get: (s) => s.mu_k },
+  { key: 'restitution', label: 'Restitution', unit: '', suffix: '', min: 0, max: 1, step: 0.01,
+    get: (s) => s.restitution },
+  { key: 'theta0', label: 'θ0 (start)', unit: 'deg', suffix: 'deg', min: -180, max: 180, step: 1,
+    get: (s) => s.theta0 / DEG },
+  { key: 'omega0', label: 'ω0 (start)', unit: 'rad/s', suffix: 'rad/s', min: -30, max: 30, step: 0.1,
+    get: (s) => s.omega0 },
+  { key: 'ramp-length', label: 'Ramp length', unit: 'cm', suffix: 'cm', min: 20, max: 1000, step: 1,
+    get: (s) => s.ramp_length * 100 },
+  { key: 'drag-coefficient', label: 'Air drag Cd', unit: '', suffix: '', min: 0, max: 3, step: 0.05,
+    get: (s) => s.drag_coefficient },
+];
+const BY_KEY = Object.fromEntries(CONTROLS.map((c) => [c.key, c]));
+
+const state = {
+  jc: null, preset: 'paper', overrides: {}, impactLaw: null, presetSetups: {}, presetLaws: {},
+  run: null, request: null, t: 0, playing: false, speed: 4, lastFrame: 0, view: null,
+};
+
+// ---- the engine ----
+function call(fn, request) {
+  const ptr = state.jc.ccall(fn, 'number', ['string'], [JSON.stringify(request)]);
+  if (!ptr) throw new Error('out of memory');
+  const text = state.jc.UTF8ToString(ptr);
+  state.jc.ccall('jc_web_free', null, ['number'], [ptr]);
+  return text;
+}
+const simulate = (request) => JSON.parse(call('jc_web_simulate', request));
+
+// A number as the request's text: shortest form that reads back the same.
+const num = (v) => String(+v);
+
+// The request: the preset and what the user changed, with units, as the
+// command line would give them. For the hoop presets (a point mass, no rod)
+// the "rod" sliders rewrite the body as --part strings.
+function buildRequest() {
+  const req = { preset: state.preset };
+  const base = state.presetSetups[state.preset];
+  const hasRod = base && base.body.parts.some((p) => p.kind === 'rod');
+  let partsChanged = false;
+  for (const [key, v] of Object.entries(state.overrides)) {
+    const c = BY_KEY[key];
+    if (!hasRod && (key === 'rod-mass' || key === 'rod-offset')) { partsChanged = true; continue; }
+    req[key] = num(v) + c.suffix;
+  }
+  if (partsChanged && base) {
+    req.part = base.body.parts.map((p) => {
+      let mass = p.mass * 1000, offset = p.offset * 100;
+      if (p === rodPart(base)) {
+        if ('rod-mass' in state.overrides) mass = state.overrides['rod-mass'];
+        if ('rod-offset' in state.overrides) offset = state.overrides['rod-offset'];
+      }
+      let text = `${p.kind}:mass=${num(mass)}g`;
+      if (offset) text += `,offset=${num(offset)}cm`;
+      if ((p.kind === 'rod' || p.kind === 'point') && p.radius) text += `,radius=${num(p.radius * 100)}cm`;
+      if (p.angle) text += `,angle=${num(p.angle / DEG)}deg`;
+      return text;
+    });
+  }
+  if (state.impactLaw) req['impact-law'] = state.impactLaw;
+  return req;
+}
+
+function recompute() {
+  const t0 = performance.now();
+  const req = buildRequest();
+  let run = simulate(req);
+  if (run.ok) {
+    // The same run sampled for the animation (sampling never changes the events).
+    const dt = Math.max(1e-3, run.t_end / TARGET_SAMPLES);
+    const dtMs = Number((dt * 1000).toPrecision(3));
+    run = simulate({ ...req, 'sample-dt': `${dtMs}ms` });
+  }
+  const ms = performance.now() - t0;
+  tid('recompute-ms').textContent = ms.toFixed(ms < 10 ? 1 : 0);
+  document.body.dataset.recomputeMs = ms.toFixed(2);
+  const err = tid('error');
+  if (!run.ok) {
+    err.textContent = run.error;
+    err.hidden = false;
+    return false;
+  }
+  err.hidden = true;
+  state.request = req;
+  state.run = run;
+  prepareRun(run);
+  state.t = Math.min(state.t, run.t_end);
+  showSummary(run);
+  showEvents(run);
+  updateUrl();
+  draw();
+  return true;
+}
+
+// ---- derived data for drawing ----
+function prepareRun(run) {
+  const s = run.setup, S = run.samples;
+  const a = s.incline_deg * DEG;
+  const Mg = s.body.mass * s.g;
+  const n = S.count;
+  const ratioN = new Float64Array(n), ratioF = new Float64Array(n), gapMm = new Float64Array(n);
+  const K = new Float64Array(n), U = new Float64Array(n), L = new Float64Array(n), E = new Float64Array(n);
+  for (let i = 0; i < n; ++i) {
+    const contact = S.mode[i] !== 'flight';
+    ratioN[i] = S.normal[i] / (Mg * Math.cos(a));
+    ratioF[i] = contact && S.normal[i] > 1e-9 * Mg ? Math.abs(S.friction[i]) / S.normal[i] : NaN;
+    gapMm[i] = S.gap[i] * 1000;
+    K[i] = S.kinetic[i] * 1000;
+    U[i] = S.potential[i] * 1000;
+    L[i] = (S.friction_loss[i] + S.impact_loss[i] + S.air_loss[i] + S.rolling_resistance_loss[i]) * 1000;
+    E[i] = K[i] + U[i] + L[i];
+  }
+  // The body's CM direction in the body (angle of the mass-weighted offsets).
+  let sx = 0, sy = 0;
+  for (const p of s.body.parts) { sx += p.mass * p.offset * Math.sin(p.angle); sy += p.mass * p.offset * Math.cos(p.angle); }
+  run.derived = { a, Mg, ratioN, ratioF, gapMm, K, U, L, E, cmAngle: Math.atan2(sx, sy) };
+  run.view = null;
+}
+
+// Index i with t[i] <= t < t[i+1] (binary search).
+function sampleAt(t) {
+  const T = state.run.samples.t;
+  let lo = 0, hi = T.length - 1;
+  if (t <= T[0]) return 0;
+  if (t >= T[hi]) return hi;
+  while (hi - lo > 1) { const m = (lo + hi) >> 1; if (T[m] <= t) lo = m; else hi = m; }
+  return lo;
+}
+// The state at time t, interpolated linearly between samples.
+function stateAt(t) {
+  const S = state.run.samples, i = sampleAt(t), j = Math.min(i + 1, S.count - 1);
+  const span = S.t[j] - S.t[i];
+  const f = span > 0 ? Math.min(1, Math.max(0, (t - S.t[i]) / span)) : 0;
+  const lerp = (c) => S[c][i] + f * (S[c][j] - S[c][i]);
+  return { i, x: lerp('x'), y: lerp('y'), theta: lerp('theta'), normal: S.normal[f < 0.5 ? i : j],
+           friction: S.friction[f < 0.5 ? i : j], mode: S.mode[f < 0.5 ? i : j] };
+}
+
+// ---- the scene ----
+function fitCanvas(canvas) {
+  const dpr = window.devicePixelRatio || 1;
+  const w = canvas.clientWidth || canvas.width;
+  const h = Math.round(w * (canvas.dataset.aspect ? +canvas.dataset.aspect : canvas.height / canvas.width));
+  if (canvas.width !== Math.round(w * dpr) || canvas.height !== Math.round(h * dpr)) {
+    canvas.width = Math.round(w * dpr);
+    canvas.height = Math.round(h * dpr);
+  }
+  const ctx = canvas.getContext('2d');
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  return { ctx, w, h };
+}
+
+// Picture coordinates (cli/films/draw.h): X = x cos a + y sin a, Y = -x sin a + y cos a.
+function picture(a, x, y) { return [x * Math.cos(a) + y * Math.sin(a), -x * Math.sin(a) + y * Math.cos(a)]; }
+
+function sceneView(w, h) {
+  const run = state.run, s = run.setup, S = run.samples, a = run.derived.a, r = s.body.radius;
+  let xlo = 0, xhi = s.ramp_length, yhi = 2 * r;
+  for (let i = 0; i < S.count; ++i) { xlo = Math.min(xlo, S.x[i]); xhi = Math.max(xhi, S.x[i]); yhi = Math.max(yhi, S.y[i] + r); }
+  const pts = [[xlo - 1.5 * r, 0], [xhi + 1.5 * r, 0], [xlo - 1.5 * r, yhi + r], [xhi + 1.5 * r, yhi + r],
+               [xlo - 1.5 * r, -0.04], [xhi + 1.5 * r, -0.04]];
+  let Xlo = Infinity, Xhi = -Infinity, Ylo = Infinity, Yhi = -Infinity;
+  for (const [x, y] of pts) { const [X, Y] = picture(a, x, y); Xlo = Math.min(Xlo, X); Xhi = Math.max(Xhi, X); Ylo = Math.min(Ylo, Y); Yhi = Math.max(Yhi, Y); }
+  const pad = 14;
+  const scale = Math.min((w - 2 * pad) / (Xhi - Xlo), (h - 2 * pad - 18) / (Yhi - Ylo));
+  const ox = pad + ((w - 2 * pad) - scale * (Xhi - Xlo)) / 2 - scale * Xlo;
+  const oy = pad + ((h - 2 * pad - 18) - scale * (Yhi - Ylo)) / 2 + scale * Yhi;
+  const px = (x, y) => { const [X, Y] = picture(a, x, y); return [ox + scale * X, oy - scale * Y]; };
+  return { scale, px, xlo: xlo - 1.5 * r, xhi: Math.max(xhi, s.ramp_length) };
+}
+
+function arrow(ctx, x0, y0, x1, y1, color, label) {
+  const dx = x1 - x0, dy = y1 - y0, len = Math.hypot(dx, dy);
+  if (len < 2) return;
+  const ux = dx / len, uy = dy / len, hs = Math.min(9, len * 0.4);
+  ctx.strokeStyle = ctx.fillStyle = color;
+  ctx.lineWidth = 2.5;
+  ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1 - ux * hs, y1 - uy * hs); ctx.stroke();
+  ctx.beginPath(); ctx.moveTo(x1, y1); ctx.lineTo(x1 - ux * hs - uy * hs * 0.5, y1 - uy * hs + ux * hs * 0.5);
+  ctx.lineTo(x1 - ux * hs + uy * hs * 0.5, y1 - uy * hs - ux * hs * 0.5); ctx.closePath(); ctx.fill();
+  if (label) { ctx.font = 'bold 13px system-ui, sans-serif'; ctx.fillText(label, x1 + ux * 4 + 3, y1 + uy * 4 - 3); }
+}
+
+function drawScene() {
+  const canvas = $('#scene');
+  canvas.dataset.aspect = window.innerWidth < 760 ? '0.75' : '0.5';
+  const { ctx, w, h } = fitCanvas(canvas);
+  ctx.clearRect(0, 0, w, h);
+  const run = state.run;
+  if (!run) return;
+  const s = run.setup, S = run.samples, d = run.derived, r = s.body.radius, a = d.a;
+  const v = sceneView(w, h);
+  const { px, scale } = v;
+  // The ground under the ramp.
+  const rampEnd = s.ramp_length;
+  const [gx0, gy0] = px(v.xlo, 0), [gx1, gy1] = px(rampEnd, 0);
+  ctx.fillStyle = '#e6e1d6';
+  ctx.beginPath(); ctx.moveTo(gx0, gy0); ctx.lineTo(gx1, gy1); ctx.lineTo(gx1, h); ctx.lineTo(gx0, h); ctx.closePath(); ctx.fill();
+  ctx.strokeStyle = '#5a5347'; ctx.lineWidth = 2;
+  ctx.beginPath(); ctx.moveTo(gx0, gy0); ctx.lineTo(gx1, gy1); ctx.stroke();
+  // The cm scale along the ramp: a tick every 1, 5, 10 or 50 cm, labels every 5 ticks or so.
+  const pxPerCm = scale / 100;
+  const tick = [1, 2, 5, 10, 20, 50, 100].find((c) => c * pxPerCm >= 6) || 100;
+  const labelEvery = [5, 10, 20, 50, 100, 200, 500].find((c) => c % tick === 0 && c * pxPerCm >= 46) || 500;
+  ctx.fillStyle = '#3b3630'; ctx.strokeStyle = '#3b3630'; ctx.lineWidth = 1;
+  ctx.font = '11px system-ui, sans-serif'; ctx.textAlign = 'center';
+  const nx = Math.sin(a), ny = Math.cos(a); // the outward normal on screen: (sin a, -cos a) in pixels
+  for (let c = 0; c <= rampEnd * 100 + 1e-9; c += tick) {
+    const [tx, ty] = px(c / 100, 0);
+    const big = Math.abs(c % labelEvery) < 1e-9;
+    const len = big ? 9 : 5;
+    ctx.beginPath(); ctx.moveTo(tx, ty); ctx.lineTo(tx - nx * -len, ty + ny * len); ctx.stroke();
+    if (big) ctx.fillText(`${Math.round(c)}`, tx + nx * 16, ty + ny * 20);
+  }
+  {
+    const [tx, ty] = px(rampEnd, 0);
+    ctx.textAlign = 'right'; ctx.fillText('cm', tx - 4, ty + ny * 34 + 2);
+  }
+  ctx.textAlign = 'left';
+  // Marks on the ramp: the paper's measured band, its printed point, our first lift-off.
+  const mark = (x, color, label, up) => {
+    const [mx, my] = px(x, 0), [mx2, my2] = px(x, up);
+    ctx.strokeStyle = ctx.fillStyle = color; ctx.lineWidth = 2;
+    ctx.setLineDash([5, 3]); ctx.beginPath(); ctx.moveTo(mx, my); ctx.lineTo(mx2, my2); ctx.stroke(); ctx.setLineDash([]);
+    ctx.font = 'bold 12px system-ui, sans-serif'; ctx.fillText(label, mx2 + 3, my2 - 2);
+  };
+  const pr = run.paper_row;
+  if (pr) {
+    const [b0x, b0y] = px(pr.measured_x_m - pr.measured_error_m, 0), [b1x, b1y] = px(pr.measured_x_m + pr.measured_error_m, 0);
+    ctx.strokeStyle = 'rgba(39,160,80,.55)'; ctx.lineWidth = 10;
+    ctx.beginPath(); ctx.moveTo(b0x, b0y); ctx.lineTo(b1x, b1y); ctx.stroke();
+    mark(pr.printed_x_m, '#1f5fbf', 'paper', 3.2 * r);
+  }
+  if (run.first_liftoff) mark(run.first_liftoff.x, '#c0392b', 'lift-off', 2.4 * r);
+  // The centre's path: all of it faint, up to now strong.
+  const now = stateAt(state.t);
+  ctx.lineWidth = 1; ctx.strokeStyle = 'rgba(142,68,173,.25)';
+  ctx.beginPath();
+  for (let i = 0; i < S.count; ++i) { const [cx, cy] = px(S.x[i], S.y[i]); if (i) ctx.lineTo(cx, cy); else ctx.moveTo(cx, cy); }
+  ctx.stroke();
+  ctx.lineWidth = 2; ctx.strokeStyle = '#8e44ad';
+  ctx.beginPath();
+  for (let i = 0; i <= now.i; ++i) { const [cx, cy] = px(S.x[i], S.y[i]); if (i) ctx.lineTo(cx, cy); else ctx.moveTo(cx, cy); }
+  { const [cx, cy] = px(now.x, now.y); ctx.lineTo(cx, cy); }
+  ctx.stroke();
+  // The body: rim, disc, parts, spoke, CM.
+  const [cx, cy] = px(now.x, now.y);
+  const R = r * scale;
+  for (const p of s.body.parts) {
+    if (p.kind === 'disc' && p.offset === 0) {
+      ctx.fillStyle = 'rgba(170,190,215,.55)';
+      ctx.beginPath(); ctx.arc(cx, cy, p.radius * scale, 0, 2 * Math.PI); ctx.fill();
+    }
+  }
+  ctx.strokeStyle = '#1a1a1a'; ctx.lineWidth = 2.5;
+  ctx.beginPath(); ctx.arc(cx, cy, R, 0, 2 * Math.PI); ctx.stroke();
+  const partPoint = (offset, angle) => {
+    const psi = now.theta - d.cmAngle + angle;
+    return px(now.x + offset * Math.sin(psi), now.y + offset * Math.cos(psi));
+  };
+  // A spoke, to see the turning.
+  {
+    const [sx, sy] = partPoint(r, Math.PI);
+    ctx.strokeStyle = '#7a7f88'; ctx.lineWidth = 1.5;
+    ctx.beginPath(); ctx.moveTo(cx, cy); ctx.lineTo(sx, sy); ctx.stroke();
+  }
+  for (const p of s.body.parts) {
+    if (p.kind === 'rod' || p.kind === 'point') {
+      const [rx, ry] = partPoint(p.offset, p.angle);
+      ctx.strokeStyle = '#7a7f88'; ctx.lineWidth = 1.5;
+      ctx.beginPath(); ctx.moveTo(cx, cy); ctx.lineTo(rx, ry); ctx.stroke();
+      ctx.fillStyle = p.kind === 'rod' ? '#b8860b' : '#333';
+      ctx.beginPath(); ctx.arc(rx, ry, Math.max(3.5, p.radius * scale), 0, 2 * Math.PI); ctx.fill();
+    } else if (p.kind === 'hoop' && p.radius < r - 1e-9) {
+      ctx.strokeStyle = '#555'; ctx.lineWidth = 1.5;
+      ctx.beginPath(); ctx.arc(cx, cy, p.radius * scale, 0, 2 * Math.PI); ctx.stroke();
+    }
+  }
+  ctx.fillStyle = '#1a1a1a';
+  ctx.beginPath(); ctx.arc(cx, cy, 2.5, 0, 2 * Math.PI); ctx.fill();
+  {
+    const [gx, gy] = partPoint(s.body.cm_offset, d.cmAngle);
+    const g = 5.5;
+    ctx.fillStyle = '#fff'; ctx.strokeStyle = '#1a1a1a'; ctx.lineWidth = 1.5;
+    ctx.beginPath(); ctx.arc(gx, gy, g, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+    ctx.fillStyle = '#1a1a1a';
+    ctx.beginPath(); ctx.moveTo(gx, gy); ctx.arc(gx, gy, g, -Math.PI / 2, 0); ctx.closePath(); ctx.fill();
+    ctx.beginPath(); ctx.moveTo(gx, gy); ctx.arc(gx, gy, g, Math.PI / 2, Math.PI); ctx.closePath(); ctx.fill();
+  }
+  // N and F at the contact point, M g = 2 r on the screen.
+  if (now.mode !== 'flight') {
+    const [kx, ky] = px(now.x, 0);
+    const k = 2 * R / d.Mg;
+    const [nX, nY] = [Math.sin(a), -Math.cos(a)]; // screen direction of +y (incline normal)
+    const [fX, fY] = [Math.cos(a), Math.sin(a)];  // screen direction of +x (downhill)
+    arrow(ctx, kx, ky, kx + nX * now.normal * k, ky + nY * now.normal * k, '#1f7a3a', 'N');
+    arrow(ctx, kx, ky, kx + fX * now.friction * k, ky + fY * now.friction * k, '#c0392b', 'F');
+  }
+  // Readouts.
+  ctx.fillStyle = '#1a1a1a'; ctx.font = '13px system-ui, sans-serif'; ctx.textAlign = 'left';
+  ctx.fillText(`t = ${state.t.toFixed(3)} s   x = ${(now.x * 100).toFixed(1)} cm   ${now.mode}`, 10, h - 10);
+  ctx.textAlign = 'right';
+  ctx.fillText(`arrows: M g = ${(2 * r * 100).toFixed(0)} cm on the ramp's scale`, w - 10, h - 10);
+  ctx.textAlign = 'left';
+}
+
+// ---- graphs ----
+function plot(canvasId, series, opts = {}) {
+  const canvas = document.getElementById(canvasId);
+  const { ctx, w, h } = fitCanvas(canvas);
+  ctx.clearRect(0, 0, w, h);
+  const run = state.run;
+  if (!run) return;
+  const T = run.samples.t, n = T.length;
+  const L = 44, R = 8, Tp = 20, B = 22;
+  const t0 = 0, t1 = Math.max(run.t_end, 1e-9);
+  let lo = opts.min !== undefined ? opts.min : Infinity, hi = opts.max !== undefined ? opts.max : -Infinity;
+  if (opts.min === undefined || opts.max === undefined) {
+    for (const s of series) for (let i = 0; i < n; ++i) { const y = s.y[i]; if (Number.isFinite(y)) { if (opts.min === undefined) lo = Math.min(lo, y); if (opts.max === undefined) hi = Math.max(hi, y); } }
+  }
+  if (opts.clampMax !== undefined) hi = Math.min(hi, opts.clampMax);
+  if (!Number.isFinite(lo) || !Number.isFinite(hi)) { lo = 0; hi = 1; }
+  if (hi - lo < 1e-12) { hi += 0.5; lo -= 0.5; }
+  const padY = (hi - lo) * 0.06; hi += padY; if (opts.min === undefined) lo -= padY;
+  const X = (t) => L + (w - L - R) * (t - t0) / (t1 - t0);
+  const Y = (y) => Tp + (h - Tp - B) * (hi - y) / (hi - lo);
+  // Grid and axes.
+  ctx.font = '11px system-ui, sans-serif'; ctx.fillStyle = '#444'; ctx.strokeStyle = '#e1e3e8'; ctx.lineWidth = 1;
+  const niceStep = (span, count) => { const raw = span / count, p = 10 ** Math.floor(Math.log10(raw)); return [1, 2, 5, 10].map((m) => m * p).find((s) => s >= raw); };
+  const ys = niceStep(hi - lo, 4);
+  ctx.textAlign = 'right';
+  for (let y = Math.ceil(lo / ys) * ys; y <= hi; y += ys) {
+    ctx.beginPath(); ctx.moveTo(L, Y(y)); ctx.lineTo(w - R, Y(y)); ctx.stroke();
+    ctx.fillText(String(+y.toPrecision(6)), L - 4, Y(y) + 4);
+  }
+  const ts = niceStep(t1 - t0, 6);
+  ctx.textAlign = 'center';
+  for (let t = 0; t <= t1 + 1e-12; t += ts) {
+    ctx.beginPath(); ctx.moveTo(X(t), Tp); ctx.lineTo(X(t), h - B); ctx.stroke();
+    ctx.fillText(String(+t.toPrecision(6)), X(t), h - 8);
+  }
+  ctx.textAlign = 'right'; ctx.fillText('t (s)', w - R, h - 8 - 0);
+  if (opts.band) {
+    const yb = Y(Math.min(opts.band, hi));
+    ctx.fillStyle = 'rgba(192,57,43,.12)'; ctx.fillRect(L, Tp, w - L - R, Math.max(0, yb - Tp));
+    ctx.strokeStyle = 'rgba(192,57,43,.7)'; ctx.setLineDash([4, 3]);
+    ctx.beginPath(); ctx.moveTo(L, yb); ctx.lineTo(w - R, yb); ctx.stroke(); ctx.setLineDash([]);
+  }
+  if (lo < 0 && hi > 0) { ctx.strokeStyle = '#999'; ctx.beginPath(); ctx.moveTo(L, Y(0)); ctx.lineTo(w - R, Y(0)); ctx.stroke(); }
+  // The curves, clipped to the plot, broken at NaN.
+  ctx.save(); ctx.beginPath(); ctx.rect(L, Tp, w - L - R, h - Tp - B); ctx.clip();
+  for (const s of series) {
+    ctx.strokeStyle = s.color; ctx.lineWidth = s.width || 1.6;
+    ctx.beginPath();
+    let pen = false;
+    for (let i = 0; i < n; ++i) {
+      const y = s.y[i];
+      if (!Number.isFinite(y)) { pen = false; continue; }
+      if (pen) ctx.lineTo(X(T[i]), Y(y)); else { ctx.moveTo(X(T[i]), Y(y)); pen = true; }
+    }
+    ctx.stroke();
+  }
+  ctx.restore();
+  // Legend and the current time.
+  ctx.textAlign = 'left'; ctx.font = '11px system-ui, sans-serif';
+  let lx = L + 2;
+  for (const s of series) {
+    if (!s.name) continue;
+    ctx.fillStyle = s.color; ctx.fillRect(lx, 6, 12, 3);
+    ctx.fillStyle = '#222'; ctx.fillText(s.name, lx + 15, 12);
+    lx += 20 + ctx.measureText(s.name).width + 8;
+  }
+  ctx.strokeStyle = '#d35400'; ctx.lineWidth = 1.5;
+  ctx.beginPath(); ctx.moveTo(X(state.t), Tp); ctx.lineTo(X(state.t), h - B); ctx.stroke();
+}
+
+function drawGraphs() {
+  const run = state.run;
+  if (!run) return;
+  const d = run.derived;
+  plot('g-normal', [{ name: 'N / (M g cos α)', color: '#1f7a3a', y: d.ratioN }], { min: Math.min(0, ...[0]) });
+  plot('g-friction', [{ name: '|F| / N', color: '#c0392b', y: d.ratioF }],
+       { min: 0, max: Math.max(1.5 * run.setup.mu_s, 0.1), band: run.setup.mu_s });
+  plot('g-gap', [{ name: 'gap', color: '#8e44ad', y: d.gapMm }], { min: 0 });
+  plot('g-energy', [
+    { name: 'K', color: '#1f5fbf', y: d.K }, { name: 'U', color: '#1f7a3a', y: d.U },
+    { name: 'losses', color: '#c0392b', y: d.L }, { name: 'sum', color: '#1a1a1a', y: d.E, width: 2 }]);
+}
+
+function draw() {
+  drawScene();
+  drawGraphs();
+  const run = state.run;
+  if (!run) return;
+  const scrub = $('#scrub');
+  scrub.value = String(Math.round(1000 * state.t / Math.max(run.t_end, 1e-12)));
+  $('#tnow').textContent = `${state.t.toFixed(3)} s`;
+  highlightEvent();
+}
+
+// ---- summary and events ----
+function showSummary(run) {
+  const fl = run.first_liftoff;
+  tid('first-liftoff-cm').textContent = fl ? (fl.x * 100).toFixed(2) : 'none';
+  tid('first-liftoff-t').textContent = fl ? fl.t.toFixed(4) : '—';
+  tid('termination').textContent = run.termination;
+  tid('t-end').textContent = run.t_end.toFixed(4);
+  tid('event-count').textContent = String(run.events.length);
+  tid('version').textContent = run.version;
+  const note = tid('paper-note');
+  const pr = run.paper_row;
+  if (pr) {
+    const dx = fl ? ` Ours: ${(fl.x * 100).toFixed(2)} cm.` : '';
+    note.textContent = `The paper (Table 1, ${pr.incline_deg}°): printed jump point ${(pr.printed_x_m * 100).toFixed(1)} cm, `
+      + `measured ${(pr.measured_x_m * 100).toFixed(1)} ± ${(pr.measured_error_m * 100).toFixed(1)} cm.${dx}`;
+    note.hidden = false;
+  } else {
+    note.hidden = true;
+  }
+}
+
+const MAX_ROWS = 300;
+function showEvents(run) {
+  const body = $('#event-rows');
+  const rows = [];
+  const n = Math.min(run.events.length, MAX_ROWS);
+  for (let k = 0; k < n; ++k) {
+    const e = run.events[k];
+    rows.push(`<tr tabindex="0" data-t="${e.t}" class="${e.kind}"><td>${k + 1}</td><td>${e.kind}</td>`
+      + `<td>${e.t.toFixed(4)}</td><td>${(e.x * 100).toFixed(2)}</td><td>${(e.theta / DEG).toFixed(1)}</td></tr>`);
+  }
+  body.innerHTML = rows.join('');
+  const more = $('#events-more');
+  more.hidden = run.events.length <= MAX_ROWS;
+  more.textContent = `The first ${MAX_ROWS} of ${run.events.length} events; all of them are in the JSON download.`;
+}
+function highlightEvent() {
+  const run = state.run;
+  let cur = -1;
+  for (let k = 0; k < Math.min(run.events.length, MAX_ROWS); ++k) { if (run.events[k].t <= state.t + 1e-12) cur = k; else break; }
+  const rows = $('#event-rows').children;
+  for (let k = 0; k < rows.length; ++k) rows[k].classList.toggle('current', k === cur);
+}
+
+// ---- controls ----
+function controlValue(c) {
+  if (c.key in state.overrides) return state.overrides[c.key];
+  const s = state.presetSetups[state.preset];
+  return s ? c.get(s) : 0;
+}
+const fmt = (v, step) => {
+  const dec = Math.max(0, Math.min(6, -Math.floor(Math.log10(step)) + 1));
+  return String(+(+v).toFixed(dec));
+};
+
+function buildControls() {
+  const box = $('#sliders');
+  for (const c of CONTROLS) {
+    const row = document.createElement('div');
+    row.className = 'row';
+    row.dataset.key = c.key;
+    row.innerHTML = `<label for="c-${c.key}">${c.label}</label>`
+      + `<input type="range" id="c-${c.key}-range" aria-label="${c.label} (slider)" min="${c.min}" max="${c.max}" step="${c.step}">`
+      + `<input type="number" id="c-${c.key}" name="${c.key}" step="any" inputmode="decimal">`
+      + `<span class="unit">${c.unit}</span>`;
+    box.appendChild(row);
+    const range = row.querySelector('input[type=range]'), number = row.querySelector('input[type=number]');
+    range.addEventListener('input', () => { number.value = range.value; setOverride(c.key, +range.value); });
+    number.addEventListener('input', () => {
+      if (number.value === '' || !Number.isFinite(+number.value)) return;
+      const v = +number.value;
+      if (v < +range.min) range.min = String(v);
+      if (v > +range.max) range.max = String(v);
+      range.value = String(v);
+      setOverride(c.key, v);
+    });
+  }
+}
+
+function syncControls() {
+  for (const c of CONTROLS) {
+    const v = controlValue(c);
+    const range = document.getElementById(`c-${c.key}-range`), number = document.getElementById(`c-${c.key}`);
+    if (v < +range.min) range.min = String(v);
+    if (v > +range.max) range.max = String(v);
+    if (document.activeElement !== number) number.value = fmt(v, c.step);
+    range.value = String(v);
+    range.closest('.row').classList.toggle('changed', c.key in state.overrides);
+    const label = range.closest('.row').querySelector('label');
+    const base = state.presetSetups[state.preset];
+    const hasRod = base && base.body.parts.some((p) => p.kind === 'rod');
+    if (c.key === 'rod-mass') label.textContent = hasRod ? 'Rod mass' : 'Point mass';
+    if (c.key === 'rod-offset') label.textContent = hasRod ? 'Rod offset' : 'Point offset';
+  }
+  $('#c-preset').value = state.preset;
+  $('#c-impact-law').value = state.impactLaw || state.presetLaws[state.preset] || 'stronge';
+}
+
+function setOverride(key, v) {
+  state.overrides[key] = v;
+  $(`.row[data-key="${key}"]`).classList.add('changed');
+  recompute();
+}
+
+// ---- the URL ----
+function updateUrl() {
+  const p = new URLSearchParams();
+  p.set('preset', state.preset);
+  for (const c of CONTROLS) if (c.key in state.overrides) p.set(c.key, num(state.overrides[c.key]));
+  if (state.impactLaw) p.set('impact-law', state.impactLaw);
+  history.replaceState(null, '', `${location.pathname}?${p.toString()}`);
+}
+function readUrl() {
+  const p = new URLSearchParams(location.search);
+  const preset = p.get('preset');
+  if (preset && PRESETS.includes(preset)) state.preset = preset;
+  for (const c of CONTROLS) {
+    const v = p.get(c.key);
+    if (v !== null && v !== '' && Number.isFinite(+v)) state.overrides[c.key] = +v;
+  }
+  if (p.has('mu') && Number.isFinite(+p.get('mu'))) { // --mu: both coefficients
+    if (!('mu-s' in state.overrides)) state.overrides['mu-s'] = +p.get('mu');
+    if (!('mu-k' in state.overrides)) state.overrides['mu-k'] = +p.get('mu');
+  }
+  const law = p.get('impact-law');
+  if (law && IMPACT_LAWS.includes(law)) state.impactLaw = law;
+}
+
+// ---- downloads ----
+function download(name, type, text) {
+  const url = URL.createObjectURL(new Blob([text], { type }));
+  const a = document.createElement('a');
+  a.href = url; a.download = name;
+  document.body.appendChild(a); a.click(); a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 1000);
+}
+function runCsv(run) {
+  const S = run.samples;
+  const cols = ['t', 'x', 'y', 'vx', 'vy', 'theta', 'omega', 'cm_x', 'cm_y', 'normal', 'friction', 'slip', 'gap',
+    'kinetic', 'potential', 'friction_loss', 'impact_loss', 'air_loss', 'rolling_resistance_loss'];
+  const lines = [`# jumpcyl ${run.version} (browser), request ${JSON.stringify(state.request)}; SI units`,
+    ['mode', ...cols].join(',')];
+  for (let i = 0; i < S.count; ++i) lines.push([S.mode[i], ...cols.map((c) => (S[c][i] === null ? '' : String(S[c][i])))].join(','));
+  return `${lines.join('\n')}\n`;
+}
+function fileStem() {
+  const inc = state.run ? `${+state.run.setup.incline_deg.toFixed(2)}deg` : '';
+  return `jumpcyl-${state.preset}-${inc}`;
+}
+
+// ---- playback ----
+function frame(now) {
+  if (!state.playing) return;
+  const dt = Math.min(0.1, (now - state.lastFrame) / 1000);
+  state.lastFrame = now;
+  state.t += dt / state.speed;
+  if (state.t >= state.run.t_end) { state.t = state.run.t_end; setPlaying(false); }
+  draw();
+  if (state.playing) requestAnimationFrame(frame);
+}
+function setPlaying(on) {
+  if (on && state.run && state.t >= state.run.t_end) state.t = 0;
+  state.playing = on;
+  const b = $('#play');
+  b.textContent = on ? 'Pause' : 'Play';
+  b.setAttribute('aria-pressed', String(on));
+  if (on) { state.lastFrame = performance.now(); requestAnimationFrame(frame); }
+}
+function stepFrame(dir) {
+  setPlaying(false);
+  const T = state.run.samples.t;
+  let i = sampleAt(state.t);
+  if (dir > 0) { while (i < T.length - 1 && T[i] <= state.t + 1e-12) ++i; } else if (T[i] >= state.t - 1e-12 && i > 0) --i;
+  state.t = T[i];
+  draw();
+}
+
+function wire() {
+  $('#c-preset').addEventListener('change', (e) => {
+    state.preset = e.target.value; state.overrides = {}; state.impactLaw = null; state.t = 0;
+    syncControls(); recompute();
+  });
+  $('#c-impact-law').addEventListener('change', (e) => { state.impactLaw = e.target.value; recompute(); });
+  $('#reset').addEventListener('click', () => { state.overrides = {}; state.impactLaw = null; syncControls(); recompute(); });
+  $('#play').addEventListener('click', () => setPlaying(!state.playing));
+  $('#step-fwd').addEventListener('click', () => stepFrame(1));
+  $('#step-back').addEventListener('click', () => stepFrame(-1));
+  $('#speed').addEventListener('change', (e) => { state.speed = +e.target.value; });
+  $('#scrub').addEventListener('input', (e) => { setPlaying(false); state.t = state.run.t_end * (+e.target.value) / 1000; draw(); });
+  $('#event-rows').addEventListener('click', (e) => {
+    const tr = e.target.closest('tr'); if (!tr) return;
+    setPlaying(false); state.t = +tr.dataset.t; draw();
+  });
+  $('#event-rows').addEventListener('keydown', (e) => {
+    if (e.key !== 'Enter' && e.key !== ' ') return;
+    const tr = e.target.closest('tr'); if (!tr) return;
+    e.preventDefault(); setPlaying(false); state.t = +tr.dataset.t; draw();
+  });
+  $('#dl-csv').addEventListener('click', () => download(`${fileStem()}.csv`, 'text/csv', runCsv(state.run)));
+  $('#dl-json').addEventListener('click', () => {
+    const { derived, view, ...doc } = state.run;
+    download(`${fileStem()}.json`, 'application/json', `${JSON.stringify(doc, null, 1)}\n`);
+  });
+  $('#dl-config').addEventListener('click', () => {
+    const ans = JSON.parse(call('jc_web_config', state.request));
+    if (!ans.ok) { tid('error').textContent = ans.error; tid('error').hidden = false; return; }
+    download(`${fileStem()}.ini`, 'text/plain', ans.config);
+  });
+  $('#copy-link').addEventListener('click', async () => {
+    try { await navigator.clipboard.writeText(location.href); $('#copy-link').textContent = 'Link copied'; } catch (err) { $('#copy-link').textContent = 'Copy the address bar'; }
+    setTimeout(() => { $('#copy-link').textContent = 'Copy link to this setup'; }, 2000);
+  });
+  window.addEventListener('resize', () => draw());
+}
+
+async function start() {
+  try {
+    const variant = typeof createJumpcyl === 'function' ? 'inlined jumpcyl-single.js'
+      : location.protocol === 'file:' ? 'jumpcyl-single.js' : 'jumpcyl.js';
+    tid('module-variant').textContent = variant;
+    if (typeof createJumpcyl !== 'function') {
+      await new Promise((resolve, reject) => {
+        const sc = document.createElement('script');
+        sc.src = variant; sc.onload = resolve; sc.onerror = () => reject(new Error(`could not load ${variant}`));
+        document.head.appendChild(sc);
+      });
+    }
+    state.jc = await createJumpcyl();
+    for (const p of PRESETS) { // each preset's setup, for the controls' starting values
+      const r = simulate({ preset: p, 't-max': '1ms' });
+      if (!r.ok) throw new Error(r.error);
+      state.presetSetups[p] = r.setup;
+      state.presetLaws[p] = r.impact_law;
+    }
+    buildControls();
+    readUrl();
+    wire();
+    syncControls();
+    recompute();
+    document.body.dataset.ready = 'true';
+  } catch (err) {
+    const e = tid('error');
+    e.textContent = `the engine failed: ${err.message}`;
+    e.hidden = false;
+    tid('first-liftoff-cm').textContent = '—';
+  }
+}
+window.jumpcylPage = { state, recompute, simulate: (r) => simulate(r),
+  seek: (t) => { setPlaying(false); state.t = t; draw(); } };
+start();
+})();

@@ -1,0 +1,157 @@
+// Browser tests of the page (out/web/index.html and jumpcyl.html) in headless
+// Chromium with playwright-core, against the native tool:
+//
+//   node web/test_page.mjs --native ./build/jumpcyl --web out/web --modules build-web/node_modules
+//
+// The page loads without console errors; the incline recomputes; the first
+// lift-off shown for the paper's cylinder on 15, 30, 45 deg and the hoop is
+// what `jumpcyl simulate` prints; the setup round-trips through the URL; the
+// experiment file is `--dump-config`'s; the self-contained jumpcyl.html works
+// from file://. Screenshots (1280x720, 390x844) go to WEB/screenshots/.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { createServer } from 'node:http';
+import { readFileSync, mkdirSync, existsSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { createRequire } from 'node:module';
+import { join, resolve, extname } from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+const arg = (name, dflt) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : dflt; };
+const native = resolve(arg('--native', './build/jumpcyl'));
+const web = resolve(arg('--web', 'out/web'));
+const modules = resolve(arg('--modules', 'build-web/node_modules'));
+const chromiumPath = arg('--chromium', '/usr/bin/chromium');
+const shots = join(web, 'screenshots');
+mkdirSync(shots, { recursive: true });
+const { chromium } = createRequire(join(modules, 'noop.js'))('playwright-core');
+
+// What `jumpcyl simulate` prints: "First lift-off at x = 118.56 cm" or nothing.
+function nativeFirstLiftoff(args) {
+  const out = execFileSync(native, ['simulate', ...args], { encoding: 'utf8' });
+  const m = out.match(/First lift-off at x = ([-0-9.]+) cm/);
+  return m ? m[1] : 'none';
+}
+
+const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.css': 'text/css',
+  '.png': 'image/png' };
+let server, base, browser;
+before(async () => {
+  server = createServer((req, res) => {
+    const path = join(web, decodeURIComponent(new URL(req.url, 'http://x').pathname));
+    if (!path.startsWith(web) || !existsSync(path)) { res.writeHead(404); res.end(); return; }
+    res.writeHead(200, { 'content-type': TYPES[extname(path)] || 'application/octet-stream' });
+    res.end(readFileSync(path));
+  });
+  await new Promise((r) => server.listen(0, '127.0.0.1', r));
+  base = `http://127.0.0.1:${server.address().port}`;
+  browser = await chromium.launch({ executablePath: chromiumPath, args: ['--no-sandbox'] });
+});
+after(async () => { await browser?.close(); server?.close(); });
+
+async function open(url, viewport = { width: 1280, height: 720 }) {
+  const page = await browser.newPage({ viewport });
+  const problems = [];
+  page.on('console', (m) => { if (m.type() === 'error' || m.type() === 'warning') problems.push(`${m.type()}: ${m.text()}`); });
+  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
+  page.on('requestfailed', (r) => problems.push(`requestfailed: ${r.url()}`));
+  await page.goto(url);
+  await page.waitForSelector('body[data-ready=true]', { timeout: 30000 });
+  return { page, problems };
+}
+const text = (page, id) => page.textContent(`[data-testid="${id}"]`);
+
+test('the page loads without console errors and shows the default run', async () => {
+  const { page, problems } = await open(`${base}/index.html`);
+  assert.deepEqual(problems, []);
+  assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff([]));
+  assert.equal(await page.isHidden('[data-testid="error"]'), true);
+  const ms = Number(await page.getAttribute('body', 'data-recompute-ms'));
+  console.log(`# recompute (default paper 30 deg, events + ~1300 samples): ${ms} ms`);
+  await page.close();
+});
+
+for (const [name, query, args] of [
+  ['paper 15 deg', 'preset=paper&incline=15', ['--preset', 'paper', '--incline', '15deg']],
+  ['paper 30 deg', 'preset=paper&incline=30', ['--preset', 'paper', '--incline', '30deg']],
+  ['paper 45 deg', 'preset=paper&incline=45', ['--preset', 'paper', '--incline', '45deg']],
+  ['hoop', 'preset=hoop', ['--preset', 'hoop']],
+]) {
+  test(`first lift-off, ${name}, equals jumpcyl simulate; screenshots`, async () => {
+    const expected = nativeFirstLiftoff(args);
+    for (const [label, viewport] of [['desktop', { width: 1280, height: 720 }], ['phone', { width: 390, height: 844 }]]) {
+      const { page, problems } = await open(`${base}/index.html?${query}`, viewport);
+      assert.deepEqual(problems, []);
+      assert.equal(await text(page, 'first-liftoff-cm'), expected);
+      // A moment just after the first lift-off (the hop in the picture).
+      await page.evaluate(() => {
+        const p = window.jumpcylPage, fl = p.state.run.first_liftoff;
+        p.seek(fl ? Math.min(p.state.run.t_end, fl.t + 0.08) : p.state.run.t_end / 2);
+      });
+      const file = join(shots, `${name.replace(/ /g, '-')}-${label}.png`);
+      await page.screenshot({ path: file, fullPage: label === 'phone' });
+      await page.close();
+    }
+  });
+}
+
+test('changing the incline recomputes, and the URL follows', async () => {
+  const { page, problems } = await open(`${base}/index.html?preset=paper&incline=30`);
+  await page.fill('#c-incline', '45');
+  assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff(['--incline', '45deg']));
+  assert.match(page.url(), /incline=45/);
+  // The slider too (an input event).
+  await page.$eval('#c-incline-range', (r) => { r.value = '15'; r.dispatchEvent(new Event('input', { bubbles: true })); });
+  assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff(['--incline', '15deg']));
+  assert.equal(await page.inputValue('#c-incline'), '15');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('the setup round-trips through the URL', async () => {
+  const query = 'preset=paper&incline=22.5&rod-mass=40&rod-offset=6&mu-s=0.6&mu-k=0.4&restitution=0.5&impact-law=newton';
+  const { page, problems } = await open(`${base}/index.html?${query}`);
+  const expected = nativeFirstLiftoff(['--incline', '22.5deg', '--rod-mass', '40g', '--rod-offset', '6cm',
+    '--mu-s', '0.6', '--mu-k', '0.4', '--restitution', '0.5', '--impact-law', 'newton']);
+  assert.equal(await text(page, 'first-liftoff-cm'), expected);
+  assert.equal(await page.inputValue('#c-rod-mass'), '40');
+  assert.equal(await page.inputValue('#c-impact-law'), 'newton');
+  const url = new URL(page.url());
+  const want = new URLSearchParams(query);
+  for (const [k, v] of want) assert.equal(url.searchParams.get(k), v, k);
+  const again = await open(page.url());
+  assert.equal(await text(again.page, 'first-liftoff-cm'), expected);
+  assert.equal(again.page.url(), page.url());
+  // The hoop's "rod" is its point mass (the body as --part strings).
+  const hoop = await open(`${base}/index.html?preset=hoop&rod-mass=80&rod-offset=9`);
+  assert.equal(await text(hoop.page, 'first-liftoff-cm'),
+    nativeFirstLiftoff(['--preset', 'hoop', '--part', 'hoop:mass=10g', '--part', 'point:mass=80g,offset=9cm']));
+  assert.deepEqual([...problems, ...again.problems, ...hoop.problems], []);
+  await Promise.all([page.close(), again.page.close(), hoop.page.close()]);
+});
+
+test('downloads: the experiment file is --dump-config\'s, CSV and JSON hold the run', async () => {
+  const { page } = await open(`${base}/index.html?preset=paper&incline=15&restitution=0.4`);
+  const grab = async (id) => {
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click(id)]);
+    return readFileSync(await dl.path(), 'utf8');
+  };
+  const ini = await grab('#dl-config');
+  const dump = execFileSync(native, ['simulate', '--incline', '15deg', '--restitution', '0.4', '--dump-config'],
+    { encoding: 'utf8' });
+  assert.equal(ini, dump);
+  const csv = (await grab('#dl-csv')).trim().split('\n');
+  assert.match(csv[1], /^mode,t,x,y,/);
+  const json = JSON.parse(await grab('#dl-json'));
+  assert.equal(json.ok, true);
+  assert.equal(json.samples.count, csv.length - 2);
+  await page.close();
+});
+
+test('jumpcyl.html is self-contained and works from file://', async () => {
+  const { page, problems } = await open(`${pathToFileURL(join(web, 'jumpcyl.html')).href}?preset=paper&incline=45`);
+  assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff(['--incline', '45deg']));
+  assert.match(await text(page, 'module-variant'), /inlined/);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
