@@ -10,7 +10,7 @@ const PRESETS = ['paper', 'hoop', 'rocking-hoop', 'disc'];
 const IMPACT_LAWS = ['stronge', 'poisson', 'newton'];
 // Samples per run for the animation and graphs: sample-dt = t_end / this
 // (at least 1 ms); events are always sampled too.
-const TARGET_SAMPLES = 2000;
+const TARGET_SAMPLES = 1200;
 
 // The sliders. key: the tool's option name (request and URL key); value in
 // the unit shown; suffix: the unit appended for the request ("10cm"), so
@@ -92,12 +92,16 @@ function buildRequest() {
 function recompute() {
   const t0 = performance.now();
   const req = buildRequest();
-  let run = simulate(req);
-  if (run.ok) {
-    // The same run sampled for the animation (sampling never changes the events).
-    const dt = Math.max(1e-3, run.t_end / TARGET_SAMPLES);
-    const dtMs = Number((dt * 1000).toPrecision(3));
-    run = simulate({ ...req, 'sample-dt': `${dtMs}ms` });
+  // Sampled for the animation (sampling never changes the events): with the
+  // last run's spacing when it gives a sensible count, else a first run with
+  // events only tells the length of the run.
+  const sampled = (dtMs) => simulate({ ...req, 'sample-dt': `${dtMs}ms` });
+  const spacing = (tEnd) => Number((Math.max(1e-3, tEnd / TARGET_SAMPLES) * 1000).toPrecision(2));
+  let run = state.dtMs ? sampled(state.dtMs) : simulate(req);
+  if (run.ok && (!state.dtMs || run.samples.count > 2 * TARGET_SAMPLES ||
+                 (run.samples.count < TARGET_SAMPLES / 3 && state.dtMs > 1))) {
+    if (state.dtMs) run = simulate(req);
+    if (run.ok) { state.dtMs = spacing(run.t_end); run = sampled(state.dtMs); }
   }
   const ms = performance.now() - t0;
   tid('recompute-ms').textContent = ms.toFixed(ms < 10 ? 1 : 0);
@@ -189,6 +193,11 @@ function sceneView(w, h) {
                [xlo - 1.5 * r, -0.04], [xhi + 1.5 * r, -0.04]];
   let Xlo = Infinity, Xhi = -Infinity, Ylo = Infinity, Yhi = -Infinity;
   for (const [x, y] of pts) { const [X, Y] = picture(a, x, y); Xlo = Math.min(Xlo, X); Xhi = Math.max(Xhi, X); Ylo = Math.min(Ylo, Y); Yhi = Math.max(Yhi, Y); }
+  if (state.zoom) { // follow the body: a window of a few radii around it
+    const [X, Y] = picture(a, state.now.x, state.now.y);
+    const half = 4.5 * r * Math.max(1, (w / h) / 1.6);
+    Xlo = X - half; Xhi = X + half; Ylo = Y - 2.2 * r; Yhi = Y + 2.2 * r;
+  }
   const pad = 14;
   const scale = Math.min((w - 2 * pad) / (Xhi - Xlo), (h - 2 * pad - 18) / (Yhi - Ylo));
   const ox = pad + ((w - 2 * pad) - scale * (Xhi - Xlo)) / 2 - scale * Xlo;
@@ -217,6 +226,8 @@ function drawScene() {
   const run = state.run;
   if (!run) return;
   const s = run.setup, S = run.samples, d = run.derived, r = s.body.radius, a = d.a;
+  const now = stateAt(state.t);
+  state.now = now;
   const v = sceneView(w, h);
   const { px, scale } = v;
   // The ground under the ramp.
@@ -261,7 +272,6 @@ function drawScene() {
   }
   if (run.first_liftoff) mark(run.first_liftoff.x, '#c0392b', 'lift-off', 2.4 * r);
   // The centre's path: all of it faint, up to now strong.
-  const now = stateAt(state.t);
   ctx.lineWidth = 1; ctx.strokeStyle = 'rgba(142,68,173,.25)';
   ctx.beginPath();
   for (let i = 0; i < S.count; ++i) { const [cx, cy] = px(S.x[i], S.y[i]); if (i) ctx.lineTo(cx, cy); else ctx.moveTo(cx, cy); }
@@ -327,9 +337,8 @@ function drawScene() {
   // Readouts.
   ctx.fillStyle = '#1a1a1a'; ctx.font = '13px system-ui, sans-serif'; ctx.textAlign = 'left';
   ctx.fillText(`t = ${state.t.toFixed(3)} s   x = ${(now.x * 100).toFixed(1)} cm   ${now.mode}`, 10, h - 10);
-  ctx.textAlign = 'right';
-  ctx.fillText(`arrows: M g = ${(2 * r * 100).toFixed(0)} cm on the ramp's scale`, w - 10, h - 10);
-  ctx.textAlign = 'left';
+  ctx.font = '12px system-ui, sans-serif'; ctx.fillStyle = '#444';
+  ctx.fillText(`arrows N, F: M g = ${(2 * r * 100).toFixed(0)} cm on the ramp's scale`, 10, 18);
 }
 
 // ---- graphs ----
@@ -605,7 +614,7 @@ function stepFrame(dir) {
 
 function wire() {
   $('#c-preset').addEventListener('change', (e) => {
-    state.preset = e.target.value; state.overrides = {}; state.impactLaw = null; state.t = 0;
+    state.preset = e.target.value; state.overrides = {}; state.impactLaw = null; state.t = 0; state.dtMs = 0;
     syncControls(); recompute();
   });
   $('#c-impact-law').addEventListener('change', (e) => { state.impactLaw = e.target.value; recompute(); });
@@ -613,6 +622,7 @@ function wire() {
   $('#play').addEventListener('click', () => setPlaying(!state.playing));
   $('#step-fwd').addEventListener('click', () => stepFrame(1));
   $('#step-back').addEventListener('click', () => stepFrame(-1));
+  $('#zoom').addEventListener('change', (e) => { state.zoom = e.target.checked; draw(); });
   $('#speed').addEventListener('change', (e) => { state.speed = +e.target.value; });
   $('#scrub').addEventListener('input', (e) => { setPlaying(false); state.t = state.run.t_end * (+e.target.value) / 1000; draw(); });
   $('#event-rows').addEventListener('click', (e) => {

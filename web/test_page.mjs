@@ -100,6 +100,13 @@ test('changing the incline recomputes, and the URL follows', async () => {
   await page.fill('#c-incline', '45');
   assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff(['--incline', '45deg']));
   assert.match(page.url(), /incline=45/);
+  const times = [];
+  for (const v of ['44', '43', '42', '41', '40']) {
+    await page.fill('#c-incline', v);
+    times.push(Number(await page.getAttribute('body', 'data-recompute-ms')));
+  }
+  times.sort((a, b) => a - b);
+  console.log(`# recompute after an incline change (paper, events + samples, in Chromium): median ${times[2]} ms of ${times.join(', ')}`);
   // The slider too (an input event).
   await page.$eval('#c-incline-range', (r) => { r.value = '15'; r.dispatchEvent(new Event('input', { bubbles: true })); });
   assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff(['--incline', '15deg']));
