@@ -191,7 +191,7 @@ test('an unknown key is refused by its name', () => {
 test('the answer has simulate --json\'s fields, plus samples and first_liftoff', () => {
   const web = simulate(jc, { incline: 30 });
   const native = nativeRun(['--incline', '30']);
-  const extras = ['ok', 'version', 'samples', 'final_mode', 'ode_steps', 'first_liftoff'];
+  const extras = ['ok', 'version', 'samples', 'final_mode', 'ode_steps', 'first_liftoff', 'paper_row'];
   assert.deepEqual(Object.keys(web).filter((k) => !extras.includes(k)), Object.keys(native));
   assert.deepEqual(Object.keys(web.setup), Object.keys(native.setup));
   assert.deepEqual(Object.keys(web.summary), Object.keys(native.summary));
@@ -299,4 +299,43 @@ test('recompute time and sizes (measured, printed)', () => {
   console.table(sizes);
   console.log('Agreement with the native tool (relative differences):');
   console.table(report);
+});
+
+// The page's marks: Table 1's row for the paper's cylinder on 15, 30, 45 deg
+// (the printed jump point as `jumpcyl paper --json` prints it), null otherwise.
+test('paper_row: Table 1 for the paper cylinder on its inclines, else null', () => {
+  const paper = JSON.parse(execFileSync(nativeTool, ['paper', '--json'], { encoding: 'utf8' }));
+  for (const row of paper.rows) {
+    const web = simulate(jc, { incline: row.incline_deg });
+    assert.equal(web.paper_row.incline_deg, row.incline_deg);
+    assert.equal(web.paper_row.printed_x_m, row.printed.x);
+    assert.equal(web.paper_row.printed_theta_rad, row.printed.theta);
+  }
+  assert.equal(simulate(jc, { incline: 20 }).paper_row, null);
+  assert.equal(simulate(jc, { incline: 30, 'rod-mass': '40g' }).paper_row, null);
+  assert.equal(simulate(jc, { preset: 'hoop' }).paper_row, null);
+  assert.notEqual(simulate(jc, { incline: 30, mu: 0.3 }).paper_row, null); // friction is not in the paper's model
+});
+
+// The page's "setup as experiment file": cli_config_write's text, as
+// `simulate --dump-config` prints it for the same options.
+test('jc_web_config is --dump-config\'s text', () => {
+  const config = (request) => {
+    const ptr = jc.ccall('jc_web_config', 'number', ['string'], [JSON.stringify(request)]);
+    const text = jc.UTF8ToString(ptr);
+    jc.ccall('jc_web_free', null, ['number'], [ptr]);
+    return JSON.parse(text);
+  };
+  for (const [request, args] of [
+    [{}, []],
+    [{ preset: 'hoop', omega0: '120rpm', restitution: 0.45 }, ['--preset', 'hoop', '--omega0', '120rpm', '--restitution', '0.45']],
+    [{ incline: '15deg', 'rod-offset': '6cm', 'impact-law': 'newton' }, ['--incline', '15deg', '--rod-offset', '6cm', '--impact-law', 'newton']],
+  ]) {
+    const ans = config(request);
+    assert.equal(ans.ok, true, ans.error);
+    assert.equal(ans.config, execFileSync(nativeTool, ['simulate', ...args, '--dump-config'], { encoding: 'utf8' }));
+  }
+  const bad = config({ incline: 95 });
+  assert.equal(bad.ok, false);
+  assert.match(bad.error, /incline/);
 });
