@@ -11,6 +11,7 @@ const IMPACT_LAWS = ['stronge', 'poisson', 'newton'];
 // Samples per run for the animation and graphs: sample-dt = t_end / this
 // (at least 1 ms); events are always sampled too.
 const TARGET_SAMPLES = 1200;
+const GRAPH_WINDOW_S = 4; // graphs of longer runs show this much around the current time
 
 // The sliders. key: the tool's option name (request and URL key); value in
 // the unit shown; suffix: the unit appended for the request ("10cm"), so
@@ -147,6 +148,7 @@ function prepareRun(run) {
   for (const p of s.body.parts) { sx += p.mass * p.offset * Math.sin(p.angle); sy += p.mass * p.offset * Math.cos(p.angle); }
   run.derived = { a, Mg, ratioN, ratioF, gapMm, K, U, L, E, cmAngle: Math.atan2(sx, sy) };
   run.view = null;
+  run.path = null;
 }
 
 // Index i with t[i] <= t < t[i+1] (binary search).
@@ -158,14 +160,45 @@ function sampleAt(t) {
   while (hi - lo > 1) { const m = (lo + hi) >> 1; if (T[m] <= t) lo = m; else hi = m; }
   return lo;
 }
-// The state at time t, interpolated linearly between samples.
+// In flight without air forces the centre of mass is ballistic and the spin
+// constant: the centre C between two samples, exactly (a loop of C around
+// the CM is not cut into straight pieces by a coarse sampling).
+function ballistic(i, t) {
+  const run = state.run, S = run.samples, s = run.setup, d = s.body.cm_offset, a = run.derived.a;
+  const th = S.theta[i], w = S.omega[i], tau = t - S.t[i];
+  const gx = S.x[i] + d * Math.sin(th), gy = S.y[i] + d * Math.cos(th);
+  const vgx = S.vx[i] + d * w * Math.cos(th), vgy = S.vy[i] - d * w * Math.sin(th);
+  const th2 = th + w * tau;
+  const gX = gx + vgx * tau + 0.5 * s.g * Math.sin(a) * tau * tau;
+  const gY = gy + vgy * tau - 0.5 * s.g * Math.cos(a) * tau * tau;
+  return { x: gX - d * Math.sin(th2), y: gY - d * Math.cos(th2), theta: th2 };
+}
+const airFree = (s) => !s.drag_coefficient && !s.lift_coefficient && !s.spin_drag;
+// The state at time t: between samples ballistic in flight (no air), else linear.
 function stateAt(t) {
   const S = state.run.samples, i = sampleAt(t), j = Math.min(i + 1, S.count - 1);
+  if (S.mode[i] === 'flight' && j > i && t > S.t[i] && t < S.t[j] && airFree(state.run.setup)) {
+    return { i, ...ballistic(i, t), normal: 0, friction: 0, mode: 'flight' };
+  }
   const span = S.t[j] - S.t[i];
   const f = span > 0 ? Math.min(1, Math.max(0, (t - S.t[i]) / span)) : 0;
   const lerp = (c) => S[c][i] + f * (S[c][j] - S[c][i]);
   return { i, x: lerp('x'), y: lerp('y'), theta: lerp('theta'), normal: S.normal[f < 0.5 ? i : j],
            friction: S.friction[f < 0.5 ? i : j], mode: S.mode[f < 0.5 ? i : j] };
+}
+
+// The centre's path for drawing: the samples, with flights cut finer.
+function centrePath(run) {
+  const S = run.samples, t = [], x = [], y = [];
+  const fine = airFree(run.setup);
+  for (let i = 0; i < S.count; ++i) {
+    t.push(S.t[i]); x.push(S.x[i]); y.push(S.y[i]);
+    if (fine && S.mode[i] === 'flight' && i + 1 < S.count) {
+      const span = S.t[i + 1] - S.t[i], m = Math.min(40, Math.ceil(span / 0.002));
+      for (let k = 1; k < m; ++k) { const tk = S.t[i] + span * k / m, b = ballistic(i, tk); t.push(tk); x.push(b.x); y.push(b.y); }
+    }
+  }
+  return { t, x, y };
 }
 
 // ---- the scene ----
@@ -272,14 +305,15 @@ function drawScene() {
   }
   if (run.first_liftoff) mark(run.first_liftoff.x, '#c0392b', 'lift-off', 2.4 * r);
   // The centre's path: all of it faint, up to now strong.
-  ctx.lineWidth = 1; ctx.strokeStyle = 'rgba(142,68,173,.25)';
+  const path = run.path || (run.path = centrePath(run));
+  ctx.lineWidth = 1; ctx.strokeStyle = 'rgba(142,68,173,.3)';
   ctx.beginPath();
-  for (let i = 0; i < S.count; ++i) { const [cx, cy] = px(S.x[i], S.y[i]); if (i) ctx.lineTo(cx, cy); else ctx.moveTo(cx, cy); }
+  for (let k = 0; k < path.t.length; ++k) { const [qx, qy] = px(path.x[k], path.y[k]); if (k) ctx.lineTo(qx, qy); else ctx.moveTo(qx, qy); }
   ctx.stroke();
   ctx.lineWidth = 2; ctx.strokeStyle = '#8e44ad';
   ctx.beginPath();
-  for (let i = 0; i <= now.i; ++i) { const [cx, cy] = px(S.x[i], S.y[i]); if (i) ctx.lineTo(cx, cy); else ctx.moveTo(cx, cy); }
-  { const [cx, cy] = px(now.x, now.y); ctx.lineTo(cx, cy); }
+  for (let k = 0; k < path.t.length && path.t[k] <= state.t; ++k) { const [qx, qy] = px(path.x[k], path.y[k]); if (k) ctx.lineTo(qx, qy); else ctx.moveTo(qx, qy); }
+  { const [qx, qy] = px(now.x, now.y); ctx.lineTo(qx, qy); }
   ctx.stroke();
   // The body: rim, disc, parts, spoke, CM.
   const [cx, cy] = px(now.x, now.y);
@@ -350,10 +384,18 @@ function plot(canvasId, series, opts = {}) {
   if (!run) return;
   const T = run.samples.t, n = T.length;
   const L = 44, R = 8, Tp = 20, B = 22;
-  const t0 = 0, t1 = Math.max(run.t_end, 1e-9);
+  // A long run (the hoop rocks for a minute): a window of GRAPH_WINDOW_S
+  // seconds that follows the current time.
+  let t0 = 0, t1 = Math.max(run.t_end, 1e-9);
+  if (t1 > GRAPH_WINDOW_S * 1.2) {
+    t0 = Math.min(Math.max(0, state.t - GRAPH_WINDOW_S / 2), t1 - GRAPH_WINDOW_S);
+    t1 = t0 + GRAPH_WINDOW_S;
+  }
+  let i0 = 0, i1 = n;
+  if (t0 > 0 || t1 < run.t_end) { i0 = Math.max(0, sampleAt(t0) - 1); i1 = Math.min(n, sampleAt(t1) + 2); }
   let lo = opts.min !== undefined ? opts.min : Infinity, hi = opts.max !== undefined ? opts.max : -Infinity;
   if (opts.min === undefined || opts.max === undefined) {
-    for (const s of series) for (let i = 0; i < n; ++i) { const y = s.y[i]; if (Number.isFinite(y)) { if (opts.min === undefined) lo = Math.min(lo, y); if (opts.max === undefined) hi = Math.max(hi, y); } }
+    for (const s of series) for (let i = i0; i < i1; ++i) { const y = s.y[i]; if (Number.isFinite(y)) { if (opts.min === undefined) lo = Math.min(lo, y); if (opts.max === undefined) hi = Math.max(hi, y); } }
   }
   if (opts.clampMax !== undefined) hi = Math.min(hi, opts.clampMax);
   if (!Number.isFinite(lo) || !Number.isFinite(hi)) { lo = 0; hi = 1; }
@@ -372,7 +414,8 @@ function plot(canvasId, series, opts = {}) {
   }
   const ts = niceStep(t1 - t0, 6);
   ctx.textAlign = 'center';
-  for (let t = 0; t <= t1 + 1e-12; t += ts) {
+  for (let t = Math.ceil(t0 / ts) * ts; t <= t1 + 1e-12; t += ts) {
+    if (X(t) > w - R - 34) continue; // room for the axis' name
     ctx.beginPath(); ctx.moveTo(X(t), Tp); ctx.lineTo(X(t), h - B); ctx.stroke();
     ctx.fillText(String(+t.toPrecision(6)), X(t), h - 8);
   }
@@ -390,7 +433,7 @@ function plot(canvasId, series, opts = {}) {
     ctx.strokeStyle = s.color; ctx.lineWidth = s.width || 1.6;
     ctx.beginPath();
     let pen = false;
-    for (let i = 0; i < n; ++i) {
+    for (let i = i0; i < i1; ++i) {
       const y = s.y[i];
       if (!Number.isFinite(y)) { pen = false; continue; }
       if (pen) ctx.lineTo(X(T[i]), Y(y)); else { ctx.moveTo(X(T[i]), Y(y)); pen = true; }
@@ -636,7 +679,7 @@ function wire() {
   });
   $('#dl-csv').addEventListener('click', () => download(`${fileStem()}.csv`, 'text/csv', runCsv(state.run)));
   $('#dl-json').addEventListener('click', () => {
-    const { derived, view, ...doc } = state.run;
+    const { derived, view, path, ...doc } = state.run;
     download(`${fileStem()}.json`, 'application/json', `${JSON.stringify(doc, null, 1)}\n`);
   });
   $('#dl-config').addEventListener('click', () => {

@@ -90,6 +90,11 @@ for (const [name, query, args] of [
       });
       const file = join(shots, `${name.replace(/ /g, '-')}-${label}.png`);
       await page.screenshot({ path: file, fullPage: label === 'phone' });
+      if (label === 'desktop') { // the whole page, and the follow-the-body camera
+        await page.screenshot({ path: file.replace('.png', '-full.png'), fullPage: true });
+        await page.check('#zoom');
+        await page.locator('#scene').screenshot({ path: file.replace('.png', '-zoom.png') });
+      }
       await page.close();
     }
   });
