@@ -290,18 +290,21 @@ function drawScene() {
   }
   ctx.textAlign = 'left';
   // Marks on the ramp: the paper's measured band, its printed point, our first lift-off.
-  const mark = (x, color, label, up) => {
+  const mark = (x, color, label, up, left) => {
     const [mx, my] = px(x, 0), [mx2, my2] = px(x, up);
     ctx.strokeStyle = ctx.fillStyle = color; ctx.lineWidth = 2;
     ctx.setLineDash([5, 3]); ctx.beginPath(); ctx.moveTo(mx, my); ctx.lineTo(mx2, my2); ctx.stroke(); ctx.setLineDash([]);
-    ctx.font = 'bold 12px system-ui, sans-serif'; ctx.fillText(label, mx2 + 3, my2 - 2);
+    ctx.font = 'bold 12px system-ui, sans-serif';
+    ctx.textAlign = left ? 'right' : 'left'; // the two labels on either side of their lines
+    ctx.fillText(label, mx2 + (left ? -4 : 4), my2 - 2);
+    ctx.textAlign = 'left';
   };
   const pr = run.paper_row;
   if (pr) {
     const [b0x, b0y] = px(pr.measured_x_m - pr.measured_error_m, 0), [b1x, b1y] = px(pr.measured_x_m + pr.measured_error_m, 0);
     ctx.strokeStyle = 'rgba(39,160,80,.55)'; ctx.lineWidth = 10;
     ctx.beginPath(); ctx.moveTo(b0x, b0y); ctx.lineTo(b1x, b1y); ctx.stroke();
-    mark(pr.printed_x_m, '#1f5fbf', 'paper', 3.2 * r);
+    mark(pr.printed_x_m, '#1f5fbf', 'paper', 3.2 * r, true);
   }
   if (run.first_liftoff) mark(run.first_liftoff.x, '#c0392b', 'lift-off', 2.4 * r);
   // The centre's path: all of it faint, up to now strong.
