@@ -167,3 +167,38 @@ test('jumpcyl.html is self-contained and works from file://', async () => {
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('play advances the time; a refused setup shows the tool\'s message and keeps the last run', async () => {
+  const { page, problems } = await open(`${base}/index.html?preset=paper&incline=30`);
+  await page.selectOption('#speed', '1');
+  await page.click('#play');
+  await page.waitForTimeout(400);
+  await page.click('#play');
+  const t = Number((await page.textContent('#tnow')).replace(' s', ''));
+  assert.ok(t > 0.1 && t < 1.31, `time after 0.4 s of real-time play: ${t}`);
+  await page.click('#step-fwd');
+  assert.ok(Number((await page.textContent('#tnow')).replace(' s', '')) > t);
+  await page.fill('#c-incline', '95');
+  assert.match(await text(page, 'error'), /incline 95 deg is out of range/);
+  assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff([]));
+  await page.fill('#c-incline', '45');
+  assert.equal(await page.isHidden('[data-testid="error"]'), true);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('the other presets: rocking-hoop and disc', async () => {
+  for (const p of ['rocking-hoop', 'disc']) {
+    const { page, problems } = await open(`${base}/index.html?preset=${p}`);
+    assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff(['--preset', p]));
+    assert.deepEqual(problems, []);
+    await page.close();
+  }
+  // Choosing a preset from the list resets the controls to it.
+  const { page } = await open(`${base}/index.html?preset=paper&incline=20`);
+  await page.selectOption('#c-preset', 'hoop');
+  assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff(['--preset', 'hoop']));
+  assert.equal(await page.inputValue('#c-incline'), '0');
+  assert.equal(new URL(page.url()).search, '?preset=hoop');
+  await page.close();
+});
