@@ -220,8 +220,11 @@ function picture(a, x, y) { return [x * Math.cos(a) + y * Math.sin(a), -x * Math
 
 function sceneView(w, h) {
   const run = state.run, s = run.setup, S = run.samples, a = run.derived.a, r = s.body.radius;
-  let xlo = 0, xhi = s.ramp_length, yhi = 2 * r;
+  let xlo = 0, xhi = 0, yhi = 2 * r;
   for (let i = 0; i < S.count; ++i) { xlo = Math.min(xlo, S.x[i]); xhi = Math.max(xhi, S.x[i]); yhi = Math.max(yhi, S.y[i] + r); }
+  // The whole ramp, unless it is a floor or much longer than the stretch
+  // travelled (as `jumpcyl animate`'s fixed camera, LONG_RAMP_FACTOR 3).
+  if (a > 0 && s.ramp_length <= 3 * Math.max(xhi - xlo, r)) xhi = Math.max(xhi, s.ramp_length);
   const pts = [[xlo - 1.5 * r, 0], [xhi + 1.5 * r, 0], [xlo - 1.5 * r, yhi + r], [xhi + 1.5 * r, yhi + r],
                [xlo - 1.5 * r, -0.04], [xhi + 1.5 * r, -0.04]];
   let Xlo = Infinity, Xhi = -Infinity, Ylo = Infinity, Yhi = -Infinity;
@@ -236,7 +239,7 @@ function sceneView(w, h) {
   const ox = pad + ((w - 2 * pad) - scale * (Xhi - Xlo)) / 2 - scale * Xlo;
   const oy = pad + ((h - 2 * pad - 18) - scale * (Yhi - Ylo)) / 2 + scale * Yhi;
   const px = (x, y) => { const [X, Y] = picture(a, x, y); return [ox + scale * X, oy - scale * Y]; };
-  return { scale, px, xlo: xlo - 1.5 * r, xhi: Math.max(xhi, s.ramp_length) };
+  return { scale, px, xlo: xlo - 1.5 * r, xhi: xhi + 1.5 * r };
 }
 
 function arrow(ctx, x0, y0, x1, y1, color, label) {
@@ -264,7 +267,7 @@ function drawScene() {
   const v = sceneView(w, h);
   const { px, scale } = v;
   // The ground under the ramp.
-  const rampEnd = s.ramp_length;
+  const rampEnd = Math.min(s.ramp_length, v.xhi);
   const [gx0, gy0] = px(v.xlo, 0), [gx1, gy1] = px(rampEnd, 0);
   ctx.fillStyle = '#e6e1d6';
   ctx.beginPath(); ctx.moveTo(gx0, gy0); ctx.lineTo(gx1, gy1); ctx.lineTo(gx1, h); ctx.lineTo(gx0, h); ctx.closePath(); ctx.fill();
@@ -486,6 +489,7 @@ function showSummary(run) {
   const fl = run.first_liftoff;
   tid('first-liftoff-cm').textContent = fl ? (fl.x * 100).toFixed(2) : 'none';
   tid('first-liftoff-t').textContent = fl ? fl.t.toFixed(4) : '—';
+  $('#fl-rest').hidden = !fl;
   tid('termination').textContent = run.termination;
   tid('t-end').textContent = run.t_end.toFixed(4);
   tid('event-count').textContent = String(run.events.length);
