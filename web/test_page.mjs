@@ -67,7 +67,7 @@ test('the page loads without console errors and shows the default run', async ()
   assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff([]));
   assert.equal(await page.isHidden('[data-testid="error"]'), true);
   const ms = Number(await page.getAttribute('body', 'data-recompute-ms'));
-  console.log(`# recompute (default paper 30 deg, events + ~1300 samples): ${ms} ms`);
+  console.log(`# recompute (default paper 30 deg, events + ~1100 samples, cold): ${ms} ms`);
   await page.close();
 });
 
