@@ -699,6 +699,14 @@ function wire() {
     setTimeout(() => { $('#copy-link').textContent = 'Copy link to this setup'; }, 2000);
   });
   window.addEventListener('resize', () => draw());
+  // Keys, outside text fields and menus: space plays/pauses, arrows step a frame.
+  document.addEventListener('keydown', (e) => {
+    const el = e.target;
+    if (el.closest && el.closest('input, select, textarea, button, tr')) return;
+    if (e.key === ' ') { e.preventDefault(); setPlaying(!state.playing); }
+    else if (e.key === 'ArrowRight') { e.preventDefault(); stepFrame(1); }
+    else if (e.key === 'ArrowLeft') { e.preventDefault(); stepFrame(-1); }
+  });
 }
 
 async function start() {

@@ -190,6 +190,10 @@ test('play advances the time; a refused setup shows the tool\'s message and keep
   assert.ok(after > before, `a frame forward: ${before} -> ${after}`);
   await page.click('#step-back');
   assert.ok((await now()) < after);
+  await page.evaluate(() => document.activeElement.blur());
+  const t1 = await now();
+  await page.keyboard.press('ArrowRight');
+  assert.ok((await now()) > t1, 'the right arrow steps a frame');
   await page.fill('#c-incline', '95');
   assert.match(await text(page, 'error'), /incline 95 deg is out of range/);
   assert.equal(await text(page, 'first-liftoff-cm'), nativeFirstLiftoff([]));
