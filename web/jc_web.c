@@ -338,7 +338,8 @@ static char *print_or_fail(cJSON *doc)
 
 /* ---- exported ---- */
 
-JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
+/* Reads and checks a request: NULL, or the answer that refuses it. */
+static char *read_request(const char *request_json, jc_Setup *setup, jc_SimOptions *options)
 {
     char err[ERR_LEN];
     gsl_set_error_handler_off(); /* GSL reports failures as status codes, never aborts */
@@ -347,13 +348,18 @@ JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
         cJSON_Delete(req);
         return error_text("the request is not a JSON object (e.g. {\"incline\": 30})");
     }
+    const int rc = build_request(req, setup, options, err, sizeof err);
+    cJSON_Delete(req);
+    return rc ? error_text(err) : NULL;
+}
+
+JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
+{
+    char err[ERR_LEN];
     jc_Setup setup;
     jc_SimOptions options;
-    if (build_request(req, &setup, &options, err, sizeof err)) {
-        cJSON_Delete(req);
-        return error_text(err);
-    }
-    cJSON_Delete(req);
+    char *refused = read_request(request_json, &setup, &options);
+    if (refused) return refused;
 
     jc_Model *model = malloc(sizeof *model);
     if (!model) return NULL;
@@ -404,18 +410,10 @@ JC_WEB_EXPORT void jc_web_free(char *text)
  * but not written (the file holds the setup only). */
 JC_WEB_EXPORT char *jc_web_config(const char *request_json)
 {
-    char err[ERR_LEN];
-    gsl_set_error_handler_off();
-    cJSON *req = request_json ? cJSON_Parse(request_json) : NULL;
-    if (!cJSON_IsObject(req)) {
-        cJSON_Delete(req);
-        return error_text("the request is not a JSON object (e.g. {\"incline\": 30})");
-    }
     jc_Setup setup;
     jc_SimOptions options;
-    const int rc = build_request(req, &setup, &options, err, sizeof err);
-    cJSON_Delete(req);
-    if (rc) return error_text(err);
+    char *refused = read_request(request_json, &setup, &options);
+    if (refused) return refused;
     char *text = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&text, &len);
