@@ -1,0 +1,301 @@
+/* jumpcyl design: the values of one setup option for which the first
+ * lift-off happens at X on the ramp (cli/design/, docs/design.md). */
+#include "design.h"
+#include "plot.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    const char *jump_at, *free, *range, *points, *threads, *json, *csv, *figure;
+} design_opts;
+
+static void help(void)
+{
+    puts("Usage: jumpcyl design --jump-at X --free NAME [--range LO:HI] [--points N] [SETUP OPTIONS]\n"
+         "                      [SIMULATION OPTIONS] [--threads N] [--json FILE] [--csv FILE] [--figure FILE]\n"
+         "Every value of one setup option for which the full model's first lift-off happens\n"
+         "at X down the ramp (the centre's travel from its start), each with the jump's\n"
+         "sensitivity to that option. The first lift-off leaps at discontinuities (a\n"
+         "near-miss of the normal force turning into a lift-off): the search goes branch by\n"
+         "branch, locates every leap, and reports the targets no value reaches as gaps.\n"
+         "\n"
+         "  --jump-at X     the wanted first lift-off, a length (1.00m, 100cm); on the ramp\n"
+         "  --free NAME     the option to choose: " CLI_DESIGN_FREE_NAMES "\n"
+         "                  (not also given as a setup option; the others are)\n"
+         "  --range LO:HI   its range, with units as on the command line (rod-offset=2cm:8cm\n"
+         "                  is --range 2cm:8cm; angles in degrees). Default: rod-offset 1 % of r\n"
+         "                  to the rim, rod-mass 1 % to 5 times the rest of the body, theta0\n"
+         "                  -180 to 180 deg, incline 1 to 85 deg, radius just outside the\n"
+         "                  off-centre parts to 3 times r\n"
+         "  --points N      scan points over the range (default 1000; 10 to 200000)\n"
+         "  --threads N     threads (default: every core; the answer does not depend on it)\n"
+         "  --json FILE     the branches, discontinuities, reachable ranges and solutions (SI)\n"
+         "  --csv FILE      every scanned and located point: value, first_liftoff_x_m, outcome, point\n"
+         "  --figure FILE   the first lift-off against the option, X and the solutions marked\n"
+         "                  (gnuplot; .png, .svg or .pdf)\n"
+         "  -h, --help      this help\n"
+         "\n"
+         "Exit status: 0 when the search ran, whether or not it found a solution (the output\n"
+         "says plainly when none exists); 2 for bad options.\n");
+}
+
+static int take(int opt, const char *arg, void *ctx)
+{
+    design_opts *o = ctx;
+    switch (opt) {
+    case 'x': return cli_take_once("design", &o->jump_at, "jump-at", arg);
+    case 'f': return cli_take_once("design", &o->free, "free", arg);
+    case 'r': return cli_take_once("design", &o->range, "range", arg);
+    case 'n': return cli_take_once("design", &o->points, "points", arg);
+    case 't': return cli_take_once("design", &o->threads, "threads", arg);
+    case 'j': return cli_take_once("design", &o->json, "json", arg);
+    case 'c': return cli_take_once("design", &o->csv, "csv", arg);
+    case 'g': return cli_take_once("design", &o->figure, "figure", arg);
+    default: break;
+    }
+    return EXIT_USAGE;
+}
+
+static const struct option own[] = {
+    {"jump-at", required_argument, 0, 'x'}, {"free", required_argument, 0, 'f'},
+    {"range", required_argument, 0, 'r'},   {"points", required_argument, 0, 'n'},
+    {"threads", required_argument, 0, 't'}, {"json", required_argument, 0, 'j'},
+    {"csv", required_argument, 0, 'c'},     {"figure", required_argument, 0, 'g'},
+    {"help", no_argument, 0, 'h'}};
+static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
+
+/* The free option as a parameter of cli_case_setup; EXIT_OK or EXIT_USAGE. */
+static int free_param(const char *name, const cli_SetupArgs *sa, cli_Param *p)
+{
+    static const char *const allowed[] = {"rod-offset", "rod-mass", "theta0", "incline", "radius"};
+    size_t k = 0;
+    while (k < sizeof allowed / sizeof allowed[0] && strcmp(name, allowed[k]) != 0) ++k;
+    if (k == sizeof allowed / sizeof allowed[0]) {
+        cli_error("design: --free '%s' is not a parameter design can choose (allowed: " CLI_DESIGN_FREE_NAMES ")",
+                  name);
+        return EXIT_USAGE;
+    }
+    memset(p, 0, sizeof *p);
+    p->option = cli_setup_option_index(name);
+    cli_setup_option_quantity(p->option, &p->q);
+    p->kind = PARAM_FIXED;
+    p->column_scale = p->q == Q_ANGLE ? 180.0 / CLI_PI : 1.0;
+    p->unit = p->q == Q_ANGLE ? "deg" : p->q == Q_MASS ? "kg" : "m";
+    snprintf(p->column, sizeof p->column, "%s_%s", name, p->unit);
+    for (char *c = p->column; *c; ++c)
+        if (*c == '-') *c = '_';
+    if (sa->value[p->option]) {
+        cli_error("design: --%s and --free %s both given; give one (--range LO:HI bounds the search)", name, name);
+        return EXIT_USAGE;
+    }
+    if (strcmp(name, "radius") == 0 && sa->part_count > 0) {
+        cli_error("design: --free radius with --part bodies: choose a disc+rod body's radius (the paper or disc preset)");
+        return EXIT_USAGE;
+    }
+    return EXIT_OK;
+}
+
+/* The default range of the free option, clipped to values that make sense
+ * for the body (note says which); EXIT_OK or EXIT_USAGE after a message. */
+static int default_range(cli_DesignJob *job, char *note, size_t note_len)
+{
+    const char *name = cli_setup_options[job->param.option].name;
+    const jc_BodyDef *b = &job->nominal.body;
+    const jc_Part *rod = NULL;
+    double rest_kg = 0.0, extent_m = 0.0;
+    for (int i = 0; i < b->part_count; ++i) {
+        const jc_Part *p = &b->parts[i];
+        if (p->kind == JC_PART_ROD && !rod) rod = p;
+        else rest_kg += p->mass_kg;
+        /* Parts that fill the rim grow with it; the others set the smallest radius. */
+        const int fills_rim = (p->kind == JC_PART_DISC || p->kind == JC_PART_HOOP) && p->radius_m == b->radius_m;
+        if (!fills_rim) extent_m = fmax(extent_m, p->offset_m + p->radius_m);
+    }
+    if ((strcmp(name, "rod-offset") == 0 || strcmp(name, "rod-mass") == 0) && !rod) {
+        cli_error("design: --free %s needs a body with a rod (the paper or disc preset, or --part rod:...)", name);
+        return EXIT_USAGE;
+    }
+    if (strcmp(name, "rod-offset") == 0) {
+        job->lo = 0.01 * b->radius_m;
+        job->hi = b->radius_m - rod->radius_m;
+        snprintf(note, note_len, "the default: 1 %% of r to the rim less the rod's radius");
+    } else if (strcmp(name, "rod-mass") == 0) {
+        job->lo = 0.01 * rest_kg;
+        job->hi = 5.0 * rest_kg;
+        snprintf(note, note_len, "the default: 1 %% to 5 times the rest of the body's mass");
+    } else if (strcmp(name, "theta0") == 0) {
+        job->lo = -CLI_PI;
+        job->hi = CLI_PI;
+        snprintf(note, note_len, "the default: a whole turn");
+    } else if (strcmp(name, "incline") == 0) {
+        job->lo = CLI_PI / 180.0;
+        job->hi = 85.0 * CLI_PI / 180.0;
+        snprintf(note, note_len, "the default: 1 to 85 deg");
+    } else {
+        job->lo = fmax(1.01 * extent_m, 0.01 * b->radius_m);
+        job->hi = 3.0 * b->radius_m;
+        snprintf(note, note_len, "the default: just outside the off-centre parts to 3 times r");
+    }
+    return EXIT_OK;
+}
+
+/* --range LO:HI in the option's units; EXIT_OK or EXIT_USAGE. */
+static int parse_range(const char *text, cli_DesignJob *job)
+{
+    char lo[64], hi[64], msg[256];
+    const char *colon = strchr(text, ':');
+    const size_t n = colon ? (size_t)(colon - text) : 0;
+    if (!colon || n == 0 || n >= sizeof lo || strlen(colon + 1) >= sizeof hi || !colon[1] || strchr(colon + 1, ':')) {
+        cli_error("design: --range '%s': expected LO:HI (e.g. --range 2cm:8cm)", text);
+        return EXIT_USAGE;
+    }
+    memcpy(lo, text, n);
+    lo[n] = '\0';
+    snprintf(hi, sizeof hi, "%s", colon + 1);
+    if (cli_parse_quantity(lo, job->param.q, &job->lo, msg, sizeof msg) != 0 ||
+        cli_parse_quantity(hi, job->param.q, &job->hi, msg, sizeof msg) != 0) {
+        cli_error("design: --range '%s': %s", text, msg);
+        return EXIT_USAGE;
+    }
+    if (!(job->hi > job->lo)) {
+        cli_error("design: --range '%s' is empty (allowed: LO < HI)", text);
+        return EXIT_USAGE;
+    }
+    return EXIT_OK;
+}
+
+/* Both ends of the range must be valid setups (between them validity does
+ * not change for these options). */
+static int check_range_ends(const cli_DesignJob *job, const char *range_text)
+{
+    const double ends[2] = {job->lo, job->hi};
+    for (int k = 0; k < 2; ++k) {
+        jc_Setup s;
+        char msg[400];
+        if (cli_case_setup(&job->base, job->args, &job->param, 1, &ends[k], &s, msg, sizeof msg) != 0) {
+            char shown[CLI_TOKEN_MAX];
+            cli_param_column_value(&job->param, ends[k], shown, sizeof shown);
+            cli_error("design: %s%s%s: --%s %s %s is not allowed: %s", range_text ? "--range '" : "the default range",
+                      range_text ? range_text : "", range_text ? "'" : "", cli_setup_options[job->param.option].name,
+                      shown, job->param.unit, msg);
+            return EXIT_USAGE;
+        }
+    }
+    return EXIT_OK;
+}
+
+static int parse_points(const char *text, long *out)
+{
+    char *end;
+    errno = 0;
+    const long n = text ? strtol(text, &end, 10) : CLI_DESIGN_POINTS_DEFAULT;
+    if (text && (end == text || *end || errno || text[0] == '+' || n < CLI_DESIGN_POINTS_MIN ||
+                 n > CLI_DESIGN_POINTS_MAX)) {
+        cli_error("design: --points '%s' is not valid (allowed: a whole number from %ld to %ld)", text,
+                  CLI_DESIGN_POINTS_MIN, CLI_DESIGN_POINTS_MAX);
+        return EXIT_USAGE;
+    }
+    *out = n;
+    return EXIT_OK;
+}
+
+/* X, the points, the threads and the output files, before any work. */
+static int parse_rest(const design_opts *o, cli_DesignJob *job)
+{
+    char msg[256];
+    if (cli_parse_quantity(o->jump_at, Q_LENGTH, &job->target_m, msg, sizeof msg) != 0) {
+        cli_error("design: --jump-at: %s", msg);
+        return EXIT_USAGE;
+    }
+    const double ramp = job->nominal.ramp_length_m;
+    if (!(job->target_m > 0.0 && job->target_m <= ramp)) {
+        cli_error("design: --jump-at %s is off the ramp (allowed: more than 0 and at most the ramp's %.4g m)",
+                  o->jump_at, ramp);
+        return EXIT_USAGE;
+    }
+    if (parse_points(o->points, &job->points) != EXIT_OK) return EXIT_USAGE;
+    if (o->threads && cli_threads_parse(o->threads, &job->threads, msg, sizeof msg) != 0) {
+        cli_error("design: %s", msg);
+        return EXIT_USAGE;
+    }
+    fig_Format f;
+    if (o->figure && fig_format_from_path(o->figure, &f) != 0) {
+        cli_error("design: --figure '%s': unknown format (allowed extensions: .png, .svg, .pdf)", o->figure);
+        return EXIT_USAGE;
+    }
+    const char *files[3] = {o->json, o->csv, o->figure};
+    for (int k = 0; k < 3; ++k)
+        if (files[k] && cli_output_check_target(files[k]) != 0) return EXIT_FAIL;
+    if (o->figure) {
+        char gnuplot[CLI_PATH_MAX];
+        if (cli_find_program("gnuplot", gnuplot, sizeof gnuplot) != 0) {
+            cli_error("design: gnuplot was not found in PATH; install it (Debian: sudo apt-get install gnuplot-nox)");
+            return EXIT_FAIL;
+        }
+    }
+    return EXIT_OK;
+}
+
+/* The job from the options: EXIT_OK, or the exit status after a message. */
+static int make_job(const design_opts *o, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, cli_DesignJob *job,
+                    char *note, size_t note_len)
+{
+    if (!o->jump_at || !o->free) {
+        cli_error("design: --jump-at X and --free NAME are required (e.g. --jump-at 1.00m --free rod-offset)");
+        return EXIT_USAGE;
+    }
+    int st = free_param(o->free, sa, &job->param);
+    if (st == EXIT_OK) st = cli_batch_refuse_samples("design", sim_args);
+    if (st == EXIT_OK && (st = cli_build_inputs("design", sa, sim_args, &job->nominal, &job->sim, NULL)) != 0)
+        return st;
+    char err[512];
+    if (st == EXIT_OK && cli_setup_base(sa, &job->base, err, sizeof err) != 0) {
+        cli_error("design: %s", err);
+        return EXIT_USAGE;
+    }
+    job->args = sa;
+    if (st == EXIT_OK) {
+        st = default_range(job, note, note_len);
+        if (st == EXIT_OK && o->range) {
+            st = parse_range(o->range, job);
+            snprintf(note, note_len, "--range");
+        }
+    }
+    if (st == EXIT_OK) st = check_range_ends(job, o->range);
+    if (st == EXIT_OK) st = parse_rest(o, job);
+    return st;
+}
+
+int cmd_design(int argc, char **argv)
+{
+    design_opts o;
+    memset(&o, 0, sizeof o);
+    cli_SetupArgs sa;
+    cli_SimArgs sim_args;
+    int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
+    if (st != CLI_GO_ON) return st;
+    cli_DesignJob job;
+    memset(&job, 0, sizeof job);
+    char note[128];
+    if ((st = make_job(&o, &sa, &sim_args, &job, note, sizeof note)) != EXIT_OK) return st;
+    cli_DesignResult r;
+    st = cli_design_run(&job, &r);
+    if (st == EXIT_OK) cli_design_print(&job, &r, note);
+    if (st == EXIT_OK && o.json) st = cli_design_write_json(&job, &r, o.json);
+    if (st == EXIT_OK && o.csv) st = cli_design_write_csv(&job, &r, o.csv);
+    if (st == EXIT_OK && o.figure) {
+        char cmdline[2048];
+        fig_command_line(argc, argv, cmdline, sizeof cmdline);
+        st = cli_design_figure(&job, &r, o.figure, cmdline);
+    }
+    if (st == EXIT_OK) {
+        if (o.json) printf("JSON: %s\n", o.json);
+        if (o.csv) printf("CSV: %s\n", o.csv);
+        if (o.figure) printf("Figure: %s\n", o.figure);
+    }
+    cli_design_free(&r);
+    return st == EXIT_OK ? cli_stdout_finish() : st;
+}

@@ -1,0 +1,293 @@
+/* design: the table on standard output, --json and --csv files. Lengths
+ * are shown in cm, masses in g, angles in degrees; the files keep SI
+ * (angles in degrees in the CSV, as sweep writes them). */
+#include "design.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Intervals of reachable first lift-offs shown at most. */
+#define REACHABLE_MAX 64
+
+cli_DesignUnits cli_design_units(const cli_DesignJob *job)
+{
+    switch (job->param.q) {
+    case Q_MASS: return (cli_DesignUnits){"g", 1e3, "cm per g", 100.0 / 1e3};
+    case Q_ANGLE: return (cli_DesignUnits){"deg", 180.0 / CLI_PI, "cm per deg", 100.0 * CLI_PI / 180.0};
+    default: break;
+    }
+    return (cli_DesignUnits){"cm", 100.0, "cm per mm", 100.0 / 1e3};
+}
+
+static const char *free_name(const cli_DesignJob *job) { return cli_setup_options[job->param.option].name; }
+
+static const char *outcome_words(cli_CaseKind k)
+{
+    switch (k) {
+    case CASE_LIFTOFF: return "lifts off";
+    case CASE_NO_LIFTOFF: return "no lift-off on the ramp";
+    case CASE_SLIDES_AT_START: return "slides from the start, no lift-off";
+    case CASE_INVALID: return "not a valid setup";
+    case CASE_FAILED: return "the run failed";
+    }
+    return "?";
+}
+
+static const char *outcome_name(cli_CaseKind k)
+{
+    switch (k) {
+    case CASE_LIFTOFF: return "liftoff";
+    case CASE_NO_LIFTOFF: return "no_liftoff";
+    case CASE_SLIDES_AT_START: return "slides_at_start";
+    case CASE_INVALID: return "invalid_setup";
+    case CASE_FAILED: return "failed";
+    }
+    return "?";
+}
+
+static void print_branches(const cli_DesignJob *job, const cli_DesignResult *r, cli_DesignUnits u)
+{
+    printf("\nFirst lift-off along %s, branch by branch (continuous within each):\n", free_name(job));
+    printf("  %-30s %s\n", "", "first lift-off (cm)");
+    for (int k = 0; k < r->branch_count; ++k) {
+        const cli_DesignBranch *b = &r->branches[k];
+        char span[64];
+        snprintf(span, sizeof span, "%.6g - %.6g %s", b->p_lo * u.per_si, b->p_hi * u.per_si, u.unit);
+        if (b->kind == CASE_LIFTOFF)
+            printf("  %-30s %.4f - %.4f\n", span, b->x_min_m * 100, b->x_max_m * 100);
+        else printf("  %-30s %s\n", span, outcome_words(b->kind));
+    }
+}
+
+static void print_side(const cli_DesignPoint *s)
+{
+    if (s->kind == CASE_LIFTOFF) printf("%14.4f cm", s->x_m * 100);
+    else printf("  %s", outcome_words(s->kind));
+}
+
+static void print_edges(const cli_DesignJob *job, const cli_DesignResult *r, cli_DesignUnits u)
+{
+    if (r->edge_count == 0) {
+        printf("\nNo discontinuity: the first lift-off is continuous over the whole range.\n");
+        return;
+    }
+    printf("\nDiscontinuities (each located to %.2g %s; first lift-offs between the two sides are gaps there):\n",
+           r->edge_width * u.per_si, u.unit);
+    for (int k = 0; k < r->edge_count; ++k) {
+        const cli_DesignEdge *e = &r->edges[k];
+        printf("  at %s = %.10g %s: ", free_name(job), 0.5 * (e->lo.p + e->hi.p) * u.per_si, u.unit);
+        print_side(&e->lo);
+        printf("  ->");
+        print_side(&e->hi);
+        if (e->lo.kind == CASE_LIFTOFF && e->hi.kind == CASE_LIFTOFF)
+            printf("   (gap %.4f - %.4f cm)", fmin(e->lo.x_m, e->hi.x_m) * 100, fmax(e->lo.x_m, e->hi.x_m) * 100);
+        putchar('\n');
+    }
+}
+
+/* No solution: where X lies among the reachable first lift-offs. */
+static void print_no_solution(const cli_DesignJob *job, const cli_DesignResult *r, cli_DesignUnits u,
+                              const double *lo, const double *hi, int n)
+{
+    printf("\nNo solution: no %s in %.6g - %.6g %s makes the first lift-off happen at %.4f cm.\n", free_name(job),
+           job->lo * u.per_si, job->hi * u.per_si, u.unit, job->target_m * 100);
+    if (n == 0) {
+        printf("Nothing in the range lifts off on the ramp.\n");
+        return;
+    }
+    double below = -INFINITY, above = INFINITY;
+    for (int k = 0; k < n; ++k) {
+        if (hi[k] < job->target_m) below = fmax(below, hi[k]);
+        if (lo[k] > job->target_m) above = fmin(above, lo[k]);
+    }
+    if (isfinite(below) && isfinite(above))
+        printf("%.4f cm lies in the gap %.4f - %.4f cm that no value reaches.\n", job->target_m * 100, below * 100,
+               above * 100);
+    else if (isfinite(below))
+        printf("%.4f cm lies beyond every reachable first lift-off (the farthest is %.4f cm).\n",
+               job->target_m * 100, below * 100);
+    else
+        printf("%.4f cm lies before every reachable first lift-off (the nearest is %.4f cm).\n",
+               job->target_m * 100, above * 100);
+    for (int k = 0; k < r->edge_count; ++k) {
+        const cli_DesignEdge *e = &r->edges[k];
+        if (e->lo.kind == CASE_LIFTOFF && e->hi.kind == CASE_LIFTOFF &&
+            (e->lo.x_m - job->target_m) * (e->hi.x_m - job->target_m) < 0.0)
+            printf("At %s = %.6g %s the first lift-off leaps over it, from %.4f to %.4f cm.\n", free_name(job),
+                   0.5 * (e->lo.p + e->hi.p) * u.per_si, u.unit, e->lo.x_m * 100, e->hi.x_m * 100);
+    }
+}
+
+void cli_design_print(const cli_DesignJob *job, const cli_DesignResult *r, const char *range_note)
+{
+    const cli_DesignUnits u = cli_design_units(job);
+    jc_Model m;
+    char err[256];
+    printf("Design: the %s that makes the first lift-off happen at X = %.4f cm down the ramp\n", free_name(job),
+           job->target_m * 100);
+    if (jc_model_init(&m, &job->nominal, err, sizeof err) == JC_OK) cli_print_setup(stdout, &m, 1);
+    printf("Free: %s from %.6g to %.6g %s (%s); the setup line shows its nominal value\n", free_name(job),
+           job->lo * u.per_si, job->hi * u.per_si, u.unit, range_note);
+    printf("Search: %ld scan points, %ld runs of the model in all, %.2f s on %d thread%s\n", r->scan_count,
+           r->evaluations, r->seconds, r->threads_used, r->threads_used == 1 ? "" : "s");
+    print_branches(job, r, u);
+    print_edges(job, r, u);
+    double lo[REACHABLE_MAX], hi[REACHABLE_MAX];
+    const int n = cli_design_reachable(r, lo, hi, REACHABLE_MAX);
+    printf("\nReachable first lift-offs:");
+    for (int k = 0; k < n; ++k) printf("%s %.4f - %.4f cm", k ? "," : "", lo[k] * 100, hi[k] * 100);
+    printf("%s\n", n ? "" : " none (nothing lifts off on the ramp)");
+    if (r->solution_count == 0) print_no_solution(job, r, u, lo, hi, n);
+    else {
+        printf("\nSolutions (%d; each run again and found within %g m of X):\n", r->solution_count,
+               CLI_DESIGN_VERIFY_M);
+        char head[64];
+        snprintf(head, sizeof head, "%s (%s)", free_name(job), u.unit);
+        printf("  %2s %-22s %20s %12s   %s\n", "#", head, "first lift-off (cm)", "x - X (m)", "dX/dp");
+        for (int k = 0; k < r->solution_count; ++k) {
+            const cli_DesignSolution *s = &r->solutions[k];
+            printf("  %2d %-22.10g %20.6f %12.2e   %+.4g %s\n", k + 1, s->p * u.per_si, s->x_m * 100,
+                   s->x_m - job->target_m, s->dxdp * u.dx_per_si, u.dx_unit);
+        }
+    }
+    if (r->unverified > 0)
+        printf("Note: %d bracket(s) did not give a root that lands within %g m of X when run again; they are not\n"
+               "listed (raise --points to resolve the scan there).\n",
+               r->unverified, CLI_DESIGN_VERIFY_M);
+}
+
+/* ---- --json ---- */
+
+static cJSON *side_json(const cli_DesignPoint *s)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "value", s->p);
+    cJSON_AddStringToObject(o, "outcome", outcome_name(s->kind));
+    if (s->kind == CASE_LIFTOFF) cJSON_AddNumberToObject(o, "x_m", s->x_m);
+    else cJSON_AddNullToObject(o, "x_m");
+    return o;
+}
+
+static cJSON *design_json(const cli_DesignJob *job, const cli_DesignResult *r, cli_DesignUnits u)
+{
+    cJSON *doc = cJSON_CreateObject();
+    cJSON_AddNumberToObject(doc, "target_x_m", job->target_m);
+    cJSON *fr = cJSON_AddObjectToObject(doc, "free");
+    cJSON_AddStringToObject(fr, "name", free_name(job));
+    cJSON_AddStringToObject(fr, "si_unit", job->param.q == Q_MASS ? "kg" : job->param.q == Q_ANGLE ? "rad" : "m");
+    cJSON_AddNumberToObject(fr, "lo", job->lo);
+    cJSON_AddNumberToObject(fr, "hi", job->hi);
+    cJSON_AddNumberToObject(doc, "points", (double)r->scan_count);
+    cJSON_AddNumberToObject(doc, "evaluations", (double)r->evaluations);
+    cJSON_AddNumberToObject(doc, "seconds", r->seconds);
+    cJSON_AddNumberToObject(doc, "edge_width", r->edge_width);
+    cJSON *br = cJSON_AddArrayToObject(doc, "branches");
+    for (int k = 0; k < r->branch_count; ++k) {
+        const cli_DesignBranch *b = &r->branches[k];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddNumberToObject(o, "lo", b->p_lo);
+        cJSON_AddNumberToObject(o, "hi", b->p_hi);
+        cJSON_AddStringToObject(o, "outcome", outcome_name(b->kind));
+        if (b->kind == CASE_LIFTOFF) {
+            cJSON_AddNumberToObject(o, "x_min_m", b->x_min_m);
+            cJSON_AddNumberToObject(o, "x_max_m", b->x_max_m);
+        }
+        cJSON_AddItemToArray(br, o);
+    }
+    cJSON *ed = cJSON_AddArrayToObject(doc, "discontinuities");
+    for (int k = 0; k < r->edge_count; ++k) {
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddItemToObject(o, "below", side_json(&r->edges[k].lo));
+        cJSON_AddItemToObject(o, "above", side_json(&r->edges[k].hi));
+        cJSON_AddItemToArray(ed, o);
+    }
+    double lo[REACHABLE_MAX], hi[REACHABLE_MAX];
+    const int n = cli_design_reachable(r, lo, hi, REACHABLE_MAX);
+    cJSON *re = cJSON_AddArrayToObject(doc, "reachable_m");
+    for (int k = 0; k < n; ++k) cJSON_AddItemToArray(re, cJSON_CreateDoubleArray((double[]){lo[k], hi[k]}, 2));
+    cJSON *so = cJSON_AddArrayToObject(doc, "solutions");
+    for (int k = 0; k < r->solution_count; ++k) {
+        const cli_DesignSolution *s = &r->solutions[k];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddNumberToObject(o, "value", s->p);
+        cJSON_AddNumberToObject(o, "x_m", s->x_m);
+        cJSON_AddNumberToObject(o, "error_m", s->x_m - job->target_m);
+        cJSON_AddNumberToObject(o, "dxdp", s->dxdp);
+        cJSON *sens = cJSON_AddObjectToObject(o, "sensitivity");
+        cJSON_AddNumberToObject(sens, "value", s->dxdp * u.dx_per_si);
+        cJSON_AddStringToObject(sens, "unit", u.dx_unit);
+        cJSON_AddNumberToObject(o, "branch", s->branch);
+        cJSON_AddItemToArray(so, o);
+    }
+    cJSON_AddNumberToObject(doc, "unverified", r->unverified);
+    return doc;
+}
+
+int cli_design_write_json(const cli_DesignJob *job, const cli_DesignResult *r, const char *path)
+{
+    cJSON *doc = design_json(job, r, cli_design_units(job));
+    char *text = doc ? cJSON_Print(doc) : NULL;
+    cJSON_Delete(doc);
+    if (!text) {
+        cli_error("design: out of memory for the JSON document");
+        return EXIT_FAIL;
+    }
+    cli_Output o;
+    int rc = cli_output_begin(&o, path, 0) == 0 ? EXIT_OK : EXIT_FAIL;
+    if (rc == EXIT_OK) {
+        fputs(text, o.f);
+        fputc('\n', o.f);
+        if (cli_output_commit(&o, CLI_CHECK_WRITES) != 0) rc = EXIT_FAIL;
+    }
+    free(text);
+    return rc;
+}
+
+/* ---- --csv: every point the search ran, in p order ---- */
+
+typedef struct {
+    cli_DesignPoint pt;
+    const char *what;
+} csv_row;
+
+static int row_order(const void *a, const void *b)
+{
+    const double pa = ((const csv_row *)a)->pt.p, pb = ((const csv_row *)b)->pt.p;
+    return (pa > pb) - (pa < pb);
+}
+
+int cli_design_write_csv(const cli_DesignJob *job, const cli_DesignResult *r, const char *path)
+{
+    const long n = r->scan_count + 2L * r->edge_count + r->solution_count;
+    csv_row *rows = malloc((size_t)n * sizeof *rows);
+    if (!rows) {
+        cli_error("design: out of memory for the CSV rows");
+        return EXIT_FAIL;
+    }
+    long m = 0;
+    for (long i = 0; i < r->scan_count; ++i) rows[m++] = (csv_row){r->scan[i], "scan"};
+    for (int k = 0; k < r->edge_count; ++k) {
+        rows[m++] = (csv_row){r->edges[k].lo, "edge_below"};
+        rows[m++] = (csv_row){r->edges[k].hi, "edge_above"};
+    }
+    for (int k = 0; k < r->solution_count; ++k)
+        rows[m++] = (csv_row){{r->solutions[k].p, CASE_LIFTOFF, r->solutions[k].x_m}, "solution"};
+    qsort(rows, (size_t)m, sizeof *rows, row_order);
+    cli_Output o;
+    if (cli_output_begin(&o, path, 0) != 0) {
+        free(rows);
+        return EXIT_FAIL;
+    }
+    fprintf(o.f, "%s,first_liftoff_x_m,outcome,point\n", job->param.column);
+    for (long i = 0; i < m; ++i) {
+        char v[CLI_TOKEN_MAX];
+        cli_param_column_value(&job->param, rows[i].pt.p, v, sizeof v);
+        if (rows[i].pt.kind == CASE_LIFTOFF)
+            fprintf(o.f, "%s,%.12g,%s,%s\n", v, rows[i].pt.x_m, outcome_name(rows[i].pt.kind), rows[i].what);
+        else fprintf(o.f, "%s,,%s,%s\n", v, outcome_name(rows[i].pt.kind), rows[i].what);
+    }
+    free(rows);
+    return cli_output_commit(&o, CLI_CHECK_WRITES) == 0 ? EXIT_OK : EXIT_FAIL;
+}
