@@ -160,7 +160,10 @@ static void scan(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace **w
         long now;
 #pragma omp atomic capture
         now = ++done;
-        if (thread_index() == 0) cli_progress_update(&progress, now, n);
+        /* The progress record is shared: one thread at a time (it returns
+         * at once unless a redraw is due). */
+#pragma omp critical(design_progress)
+        cli_progress_update(&progress, now, n);
     }
     cli_progress_end(&progress);
     r->evaluations += n;

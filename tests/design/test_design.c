@@ -132,11 +132,13 @@ static int test_answers_jump_at_x(void)
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
         cJSON *doc = design_json(cases[k].args, NULL);
         ENSURE(doc);
+        const double target = num(doc, "target_x_m");
         const int n = cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(doc, "solutions"));
         const int rc = check_solutions(doc, cases[k].free, cases[k].incline_deg,
                                        cases[k].solutions >= 0 ? cases[k].solutions : n);
         cJSON_Delete(doc);
         ENSURE_MSG(rc == 0, "%s", cases[k].args);
+        ENSURE_NEAR(target, cases[k].target_m, 1e-15);
         ENSURE_MSG(n >= 1, "%s: no solution", cases[k].args);
     }
     return 0;
