@@ -7,7 +7,7 @@ _jumpcyl()
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     if [ "$COMP_CWORD" -eq 1 ]; then
-        COMPREPLY=($(compgen -W "paper predict simulate plot animate sweep mc map presets --help --version" -- "$cur"))
+        COMPREPLY=($(compgen -W "paper predict simulate plot animate sweep mc map design presets --help --version" -- "$cur"))
         return
     fi
     cmd=${COMP_WORDS[1]}

@@ -76,9 +76,8 @@ static void write_script(FILE *gp, const cli_DesignJob *job, const cli_DesignRes
         fprintf(gp, "set arrow from %.12g, graph 0 to %.12g, graph 1 nohead dt 3 lw 1.2 lc rgb C_GREY\n", p, p);
     }
     fprintf(gp,
-            "set key below center horizontal\n"
-            "plot $branches using 1:2 with lines lw LW lc rgb C_BLUE title 'first lift-off (one curve per "
-            "continuous branch)', \\\n"
+            "set key below center horizontal maxcols 3 maxrows 2\n"
+            "plot $branches using 1:2 with lines lw LW lc rgb C_BLUE title 'first lift-off', \\\n"
             "     %.12g with lines lw 2 dt 2 lc rgb C_RED title 'X', \\\n"
             "     NaN with lines dt 3 lw 1.2 lc rgb C_GREY title 'discontinuity', \\\n"
             "     NaN with boxes fs transparent solid 0.15 noborder fc rgb C_GREY title 'no lift-off', \\\n"
