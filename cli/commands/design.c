@@ -92,7 +92,7 @@ static int free_param(const char *name, const cli_SetupArgs *sa, cli_Param *p)
         return EXIT_USAGE;
     }
     if (strcmp(name, "radius") == 0 && sa->part_count > 0) {
-        cli_error("design: --free radius with --part bodies: choose a disc+rod body's radius (the paper or disc preset)");
+        cli_error("design: --free radius with --part bodies: choose the radius of a preset body (paper, disc, hoop)");
         return EXIT_USAGE;
     }
     return EXIT_OK;
@@ -115,7 +115,7 @@ static int default_range(cli_DesignJob *job, char *note, size_t note_len)
         if (!fills_rim) extent_m = fmax(extent_m, p->offset_m + p->radius_m);
     }
     if ((strcmp(name, "rod-offset") == 0 || strcmp(name, "rod-mass") == 0) && !rod) {
-        cli_error("design: --free %s needs a body with a rod (the paper or disc preset, or --part rod:...)", name);
+        cli_error("design: --free %s needs a body with a rod (the paper preset, or --part rod:...)", name);
         return EXIT_USAGE;
     }
     if (strcmp(name, "rod-offset") == 0) {

@@ -282,6 +282,41 @@ static int test_text(void)
     return 0;
 }
 
+/* --csv and --figure: the points in order with the solution among them,
+ * and a whole PNG. */
+static int test_files(void)
+{
+    char csv[1100], png[1100], line[3000];
+    snprintf(csv, sizeof csv, "%s/d.csv", dir);
+    snprintf(png, sizeof png, "%s/d.png", dir);
+    snprintf(line, sizeof line,
+             "design --free rod-offset --incline 20 --jump-at 1.20m --points 200 --csv '%s' --figure '%s'", csv, png);
+    cli_result r = cli_run_line(cli, NULL, line);
+    ENSURE_MSG(r.status == 0, "status %d: %s", r.status, r.err ? r.err : "?");
+    cli_result_free(&r);
+    char *text = cli_run_slurp(csv);
+    ENSURE(text);
+    const int header = strncmp(text, "rod_offset_m,first_liftoff_x_m,outcome,point\n", 45) == 0;
+    int rows = 0, solutions = 0, ordered = 1;
+    double prev = -1;
+    for (char *l = strchr(text, '\n'); l && l[1]; l = strchr(l + 1, '\n')) {
+        const double p = strtod(l + 1, NULL);
+        ordered &= p >= prev;
+        prev = p;
+        ++rows;
+        const char *end = strchr(l + 1, '\n');
+        const char *sol = strstr(l + 1, ",solution");
+        solutions += sol && end && sol < end;
+    }
+    free(text);
+    ENSURE(header);
+    ENSURE_MSG(rows >= 200 && solutions == 1 && ordered, "%d rows, %d solutions, ordered %d", rows, solutions,
+               ordered);
+    int w, h;
+    ENSURE(fig_png_size(png, &w, &h) == 0 && w == 1200 && h == 750);
+    return 0;
+}
+
 /* Bad options: one line on stderr, exit 2, nothing written. */
 static int test_bad_options(void)
 {
@@ -342,6 +377,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_near_edge_not_edge);
     RUN_TEST(test_several_solutions);
     RUN_TEST(test_text);
+    RUN_TEST(test_files);
     RUN_TEST(test_bad_options);
     fig_main_end(dir);
     TEST_MAIN_END();
