@@ -52,6 +52,7 @@ typedef struct {
     double p;           /* SI */
     double x_m;         /* the verified first lift-off */
     double dxdp;        /* dX/dp, m per SI unit of p (a central difference inside the branch) */
+    double edge_margin; /* distance to the nearest discontinuity, SI (INFINITY: none in the range) */
     int branch;
 } cli_DesignSolution;
 
@@ -77,6 +78,7 @@ typedef struct {
     cli_DesignSolution *solutions; /* in p order */
     int solution_count;
     int unverified;               /* roots that did not pass the re-run (none expected; said, not listed) */
+    int at_edge;                  /* roots at a discontinuity's edge: X is a side's limit there (said, not listed) */
     double edge_width;            /* p_hi - p_lo of every located edge, at most */
     long evaluations;             /* runs of the model, all told */
     int threads_used;

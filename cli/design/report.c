@@ -99,6 +99,13 @@ static void print_no_solution(const cli_DesignJob *job, const cli_DesignResult *
     }
     double below = -INFINITY, above = INFINITY;
     for (int k = 0; k < n; ++k) {
+        if (lo[k] <= job->target_m && job->target_m <= hi[k]) {
+            printf("%.4f cm lies in the reachable range %.4f - %.4f cm, but only as the limit of the first\n"
+                   "lift-off at a discontinuity's edge%s.\n",
+                   job->target_m * 100, lo[k] * 100, hi[k] * 100,
+                   r->at_edge ? "" : ", or between scan points too far apart (raise --points)");
+            return;
+        }
         if (hi[k] < job->target_m) below = fmax(below, hi[k]);
         if (lo[k] > job->target_m) above = fmin(above, lo[k]);
     }
@@ -145,13 +152,24 @@ void cli_design_print(const cli_DesignJob *job, const cli_DesignResult *r, const
                CLI_DESIGN_VERIFY_M);
         char head[64];
         snprintf(head, sizeof head, "%s (%s)", free_name(job), u.unit);
-        printf("  %2s %-22s %20s %12s   %s\n", "#", head, "first lift-off (cm)", "x - X (m)", "dX/dp");
+        char margin_head[48];
+        snprintf(margin_head, sizeof margin_head, "to a leap (%s)", u.unit);
+        printf("  %2s %-22s %20s %12s   %-22s %s\n", "#", head, "first lift-off (cm)", "x - X (m)", "dX/dp",
+               margin_head);
         for (int k = 0; k < r->solution_count; ++k) {
             const cli_DesignSolution *s = &r->solutions[k];
-            printf("  %2d %-22.10g %20.6f %12.2e   %+.4g %s\n", k + 1, s->p * u.per_si, s->x_m * 100,
-                   s->x_m - job->target_m, s->dxdp * u.dx_per_si, u.dx_unit);
+            char slope[48];
+            snprintf(slope, sizeof slope, "%+.4g %s", s->dxdp * u.dx_per_si, u.dx_unit);
+            printf("  %2d %-22.10g %20.6f %12.2e   %-22s ", k + 1, s->p * u.per_si, s->x_m * 100,
+                   s->x_m - job->target_m, slope);
+            if (isfinite(s->edge_margin)) printf("%.4g\n", s->edge_margin * u.per_si);
+            else printf("none in the range\n");
         }
     }
+    if (r->at_edge > 0)
+        printf("Note: %d root(s) lie so near a discontinuity that its edge is within %g m of X: there X is the\n"
+               "limit of the first lift-off at the edge, not a value one could build, so not listed.\n",
+               r->at_edge, CLI_DESIGN_VERIFY_M);
     if (r->unverified > 0)
         printf("Note: %d bracket(s) did not give a root that lands within %g m of X when run again; they are not\n"
                "listed (raise --points to resolve the scan there).\n",
@@ -218,10 +236,13 @@ static cJSON *design_json(const cli_DesignJob *job, const cli_DesignResult *r, c
         cJSON *sens = cJSON_AddObjectToObject(o, "sensitivity");
         cJSON_AddNumberToObject(sens, "value", s->dxdp * u.dx_per_si);
         cJSON_AddStringToObject(sens, "unit", u.dx_unit);
+        if (isfinite(s->edge_margin)) cJSON_AddNumberToObject(o, "edge_margin", s->edge_margin);
+        else cJSON_AddNullToObject(o, "edge_margin");
         cJSON_AddNumberToObject(o, "branch", s->branch);
         cJSON_AddItemToArray(so, o);
     }
     cJSON_AddNumberToObject(doc, "unverified", r->unverified);
+    cJSON_AddNumberToObject(doc, "at_edge", r->at_edge);
     return doc;
 }
 

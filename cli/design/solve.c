@@ -22,6 +22,8 @@
 /* A turning point is refined when X lies within this many of its steps'
  * changes: the true extremum can pass X between scan points. */
 #define TURN_REACH_STEPS 2.0
+/* A root this many edge widths from a leap is taken as its edge. */
+#define EDGE_NEAR_WIDTHS 1e3
 /* The sensitivity's step, as a fraction of the range. */
 #define DIFF_REL_STEP 1e-6
 
@@ -183,6 +185,17 @@ static double slope(const cli_DesignJob *job, const cli_DesignBranch *b, double 
     return (v.x_m - u.x_m) / (v.p - u.p);
 }
 
+/* The distance from p to the nearer end of its branch that is an edge
+ * (INFINITY when both ends are the range's). */
+static double edge_margin(const cli_DesignResult *r, int branch, double p)
+{
+    const cli_DesignBranch *b = &r->branches[branch];
+    double m = INFINITY;
+    if (branch > 0) m = fmin(m, p - b->p_lo);
+    if (branch < r->branch_count - 1) m = fmin(m, b->p_hi - p);
+    return m;
+}
+
 static int thread_index(void)
 {
 #ifdef _OPENMP
@@ -247,6 +260,7 @@ int cli_design_solve(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : runs)
     for (int k = 0; k < count; ++k) {
         sol[k].p = NAN;
+        sol[k].x_m = NAN;
         if (cli_stop_requested()) continue;
         jc_Workspace *w = ws[thread_index()];
         const double p = polish(job, &br[k], w, r->edge_width, &runs);
@@ -257,12 +271,22 @@ int cli_design_solve(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace
         ++runs;
         if (check.kind != CASE_LIFTOFF || !(fabs(check.x_m - job->target_m) <= CLI_DESIGN_VERIFY_M)) continue;
         const cli_DesignBranch *b = &r->branches[br[k].branch];
-        sol[k] = (cli_DesignSolution){p, check.x_m, slope(job, b, p, check.x_m, w, &runs), br[k].branch};
+        const double dxdp = slope(job, b, p, check.x_m, w, &runs);
+        const double margin = edge_margin(r, br[k].branch, p);
+        /* A root so near a leap that going all the way to the edge changes
+         * x by less than the check's tolerance is the edge's limit: not a
+         * value anyone could build. Said, never listed. */
+        if (margin <= EDGE_NEAR_WIDTHS * r->edge_width || margin * fabs(dxdp) <= CLI_DESIGN_VERIFY_M) {
+            sol[k].x_m = INFINITY;
+            continue;
+        }
+        sol[k] = (cli_DesignSolution){p, check.x_m, dxdp, margin, br[k].branch};
     }
     r->evaluations += runs;
     for (int k = 0; k < count; ++k) {
         if (isnan(sol[k].p)) {
-            ++r->unverified;
+            if (isinf(sol[k].x_m)) ++r->at_edge;
+            else ++r->unverified;
             continue;
         }
         sol[r->solution_count++] = sol[k];

@@ -221,6 +221,39 @@ static int test_near_edge_not_edge(void)
     return 0;
 }
 
+/* X set to a side of the leap itself: the root there is the edge, which is
+ * said (at_edge) and never listed; a root farther inside the branch is. */
+static int test_edge_limit_not_listed(void)
+{
+    cJSON *doc = design_json("--free rod-offset --incline 20 --jump-at 1.50m --range 3.7cm:4.1cm", NULL);
+    ENSURE(doc);
+    const cJSON *e = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(doc, "discontinuities"), 0);
+    ENSURE(e);
+    const double below = num(cJSON_GetObjectItemCaseSensitive(e, "below"), "x_m");
+    const double above = num(cJSON_GetObjectItemCaseSensitive(e, "above"), "x_m");
+    const double edge = num(cJSON_GetObjectItemCaseSensitive(e, "below"), "value");
+    cJSON_Delete(doc);
+    const double sides[2] = {above, below};
+    const int listed[2] = {0, 1}; /* above: the branch's top, reached only at the edge; below: one root inside */
+    for (int k = 0; k < 2; ++k) {
+        char args[256];
+        snprintf(args, sizeof args, "--free rod-offset --incline 20 --jump-at %.17gm --range 3.7cm:4.1cm", sides[k]);
+        doc = design_json(args, NULL);
+        ENSURE(doc);
+        const double at_edge = num(doc, "at_edge");
+        int rc = check_solutions(doc, "rod-offset", 20, listed[k]);
+        const cJSON *s;
+        cJSON_ArrayForEach(s, cJSON_GetObjectItemCaseSensitive(doc, "solutions"))
+        {
+            if (!(fabs(num(s, "value") - edge) * fabs(num(s, "dxdp")) > VERIFY_M)) rc = 1;
+        }
+        cJSON_Delete(doc);
+        ENSURE_MSG(rc == 0, "X = %.17g m", sides[k]);
+        ENSURE_MSG(at_edge == 1, "X = %.17g m: at_edge %g", sides[k], at_edge);
+    }
+    return 0;
+}
+
 /* A brute dense scan with the library: the crossings of X between
  * neighbours whose lift-offs are close (no leap between them); each must
  * hold exactly one of the tool's solutions, and there are no others. */
@@ -375,6 +408,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_issue_example);
     RUN_TEST(test_gap_at_20_deg);
     RUN_TEST(test_near_edge_not_edge);
+    RUN_TEST(test_edge_limit_not_listed);
     RUN_TEST(test_several_solutions);
     RUN_TEST(test_text);
     RUN_TEST(test_files);
