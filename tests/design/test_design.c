@@ -350,6 +350,26 @@ static int test_files(void)
     return 0;
 }
 
+/* The answer does not depend on the number of threads. */
+static int test_threads(void)
+{
+    char *text[2] = {NULL, NULL};
+    for (int t = 0; t < 2; ++t) {
+        cJSON *doc = design_json(t == 0 ? "--free rod-offset --incline 30 --jump-at 1.18m --threads 1"
+                                        : "--free rod-offset --incline 30 --jump-at 1.18m --threads 2",
+                                 NULL);
+        ENSURE(doc);
+        cJSON_DeleteItemFromObjectCaseSensitive(doc, "seconds"); /* the one field that may differ */
+        text[t] = cJSON_PrintUnformatted(doc);
+        cJSON_Delete(doc);
+    }
+    const int same = text[0] && text[1] && strcmp(text[0], text[1]) == 0;
+    free(text[0]);
+    free(text[1]);
+    ENSURE(same);
+    return 0;
+}
+
 /* Bad options: one line on stderr, exit 2, nothing written. */
 static int test_bad_options(void)
 {
@@ -412,6 +432,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_several_solutions);
     RUN_TEST(test_text);
     RUN_TEST(test_files);
+    RUN_TEST(test_threads);
     RUN_TEST(test_bad_options);
     fig_main_end(dir);
     TEST_MAIN_END();
