@@ -74,10 +74,10 @@ static int refine_turn(const cli_DesignJob *job, const cli_DesignPoint *a, const
         /* Once past X the bracket is known: no need for the extremum itself. */
         if (gsl_min_fminimizer_f_minimum(s) < 0.0) break;
     }
-    const double p = gsl_min_fminimizer_x_minimum(s);
+    const double p = st == GSL_SUCCESS ? gsl_min_fminimizer_x_minimum(s) : NAN;
     gsl_min_fminimizer_free(s);
     *runs += c.runs;
-    if (st != GSL_SUCCESS) return -1;
+    if (isnan(p)) return -1;
     cli_design_eval(job, p, ws, out);
     ++*runs;
     return out->kind == CASE_LIFTOFF ? 0 : -1;
