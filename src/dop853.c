@@ -248,6 +248,7 @@ void jc_dop853_init(jc_Dop853 *d, int dim, int full_dim, double rtol, double ato
     d->dense_ready = 0;
     d->rejected_last = 0;
     d->err_old = 1e-4;
+    for (int i = 0; i < JC_DOP_MAX_DIM; ++i) d->scale_floor[i] = 0.0;
 }
 
 int jc_dop853_start(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double t, const double y[])
@@ -285,8 +286,8 @@ static double step_error(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)
         /* The larger magnitude by a comparison, not fmax (a call into libm
          * per component, which GCC does not inline for its NaN rule; a NaN
          * y1 makes the error NaN either way, a rejected step). */
-        const double a0 = fabs(d->y0[i]), a1 = fabs(d->y1[i]);
-        const double sk = d->atol + d->rtol * (a1 > a0 ? a1 : a0);
+        const double a0 = fabs(d->y0[i]), a1 = fabs(d->y1[i]), am = a1 > a0 ? a1 : a0;
+        const double sk = d->atol + d->rtol * (am > d->scale_floor[i] ? am : d->scale_floor[i]);
         err5 += (e5[i] / sk) * (e5[i] / sk);
         err3 += (e3 / sk) * (e3 / sk);
     }
@@ -335,7 +336,7 @@ double jc_dop853_initial_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h_m
     const int n = d->dim;
     double dnf = 0.0, dny = 0.0;
     for (int i = 0; i < n; ++i) {
-        const double sk = d->atol + d->rtol * fabs(d->y0[i]);
+        const double sk = d->atol + d->rtol * fmax(fabs(d->y0[i]), d->scale_floor[i]);
         dnf += (d->f0[i] / sk) * (d->f0[i] / sk);
         dny += (d->y0[i] / sk) * (d->y0[i] / sk);
     }
@@ -349,7 +350,7 @@ double jc_dop853_initial_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h_m
     if (rhs(d->t0 + h, y, f1, ctx) != 0) return h;
     double der2 = 0.0;
     for (int i = 0; i < n; ++i) {
-        const double sk = d->atol + d->rtol * fabs(d->y0[i]);
+        const double sk = d->atol + d->rtol * fmax(fabs(d->y0[i]), d->scale_floor[i]);
         der2 += ((f1[i] - d->f0[i]) / sk) * ((f1[i] - d->f0[i]) / sk);
     }
     der2 = sqrt(der2) / h;
