@@ -27,7 +27,8 @@ typedef struct {
 
 static trig_rems rems(double u)
 {
-    const double s2 = sin(0.5 * u), c2 = cos(0.5 * u);
+    double s2, c2;
+    jc_sincos(0.5 * u, &s2, &c2);
     trig_rems t;
     t.rem0 = 2.0 * s2 * s2;
     t.sin_u = 2.0 * s2 * c2;

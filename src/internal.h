@@ -3,6 +3,7 @@
 #define JUMPCYL_INTERNAL_H
 
 #include "jumpcyl/jumpcyl.h"
+#include "sincos.h"
 
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_roots.h>
