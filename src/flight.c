@@ -226,13 +226,17 @@ typedef struct {
 
 static void flight_ode_accel(const jc_Model *m, const double y[], double acc[3], double *air_power)
 {
-    const double M = m->body.mass_kg, d = m->body.cm_offset_m, g = m->setup.gravity_mps2;
+    /* Reciprocals from the model, as in sliding.c: three divisions at every
+     * stage of every step, on its chain of dependent operations (measured:
+     * user time of 4500 drag runs 0.51 -> 0.47 s, the same instructions). */
+    const jc_ModelTables *tb = jc_model_tables(m);
+    const double inv_m = tb->inv_mass_per_kg, d = m->body.cm_offset_m, g = m->setup.gravity_mps2;
     const double w = y[JC_Y_W], s = y[JC_Y_SIN], c = y[JC_Y_COS];
     jc_Loads l;
     jc_loads_at(m, s, c, y[JC_Y_VX], y[JC_Y_VY], w, &l);
-    const double thdd = l.torque_Nm / m->body.inertia_g_kgm2;
-    acc[0] = g * m->sin_incline + l.fx_N / M - d * c * thdd + d * s * w * w;  /* x_C'' */
-    acc[1] = -g * m->cos_incline + l.fy_N / M + d * s * thdd + d * c * w * w; /* y_C'' */
+    const double thdd = l.torque_Nm * tb->inv_inertia_g;
+    acc[0] = g * m->sin_incline + l.fx_N * inv_m - d * c * thdd + d * s * w * w;  /* x_C'' */
+    acc[1] = -g * m->cos_incline + l.fy_N * inv_m + d * s * thdd + d * c * w * w; /* y_C'' */
     acc[2] = thdd;
     *air_power = l.air_power_W;
 }

@@ -369,7 +369,7 @@ typedef struct {
     int armed; /* 1: watch for w falling into the rolling-resistance band */
 } roll_ode;
 
-/* rad/s: rolling resistance ramps to 0 below 1 mrad/s (air.c), which lets a
+/* rad/s: rolling resistance ramps to 0 below 1 mrad/s (JC_RR_BAND_RADPS), which lets a
  * body creep toward equilibrium for ever instead of stopping. Where the spin
  * falls below this and the resistance can hold the body at rest (rest
  * direction 0), it has come to rest: the run ends with termination rest. */
