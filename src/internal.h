@@ -252,50 +252,7 @@ void jc_record_close_flight(jc_Sim *sim, int landed);
 /* Pushes the held events that are complete. */
 int jc_record_push(jc_Sim *sim);
 
-/* air.c: loads beyond gravity and the contact force. */
-typedef struct {
-    double fx_N, fy_N;       /* air force, acting at the centre C */
-    double torque_Nm;        /* about G, th sense: the air force's moment plus spin drag */
-    double rr_torque_per_N;  /* rolling resistance torque per newton of N (-b sgn w) */
-    double air_power_W;      /* rate of energy lost to the air, >= 0 */
-} jc_Loads;
-int jc_model_has_resistance(const jc_Model *m);
-/* rad/s: below this spin rolling resistance ramps linearly to 0. */
-#define JC_RR_BAND_RADPS 1e-3
-
-/* The loads (air.c's header) at angle th given by its sine and cosine. */
-static inline void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, double vx, double vy, double w, jc_Loads *out)
-{
-    const jc_Setup *s = &m->setup;
-    const double d = m->body.cm_offset_m;
-    /* Not hypot: velocities here are far from overflow, and hypot was 1 % of
-     * a drag run's time (measured). In contact (vy = 0) no square root at
-     * all: sqrt(vx^2) is |vx| to the last bit (unless vx^2 underflows, below
-     * 1e-154 m/s), and the root's latency held up every stage of the
-     * rolling and sliding phases with drag (measured: a drag run 3-4 % less
-     * time, the same numbers). */
-    const double speed = vy == 0.0 ? fabs(vx) : sqrt(vx * vx + vy * vy);
-    const double r = m->body.radius_m;
-    const double cd = s->drag_coefficient, cl = s->lift_coefficient;
-    /* spin ratio r w / |v| clamped to [-1, 1] (0 when the centre is at rest);
-     * only the Magnus force uses it: without lift its division is skipped
-     * (it waits for the square root above, at every stage of every step). */
-    const double spin = cl == 0.0 ? 0.0 : (fabs(r * w) >= speed ? (w > 0.0) - (w < 0.0) : r * w / speed);
-    /* clamp(w / band, -1, 1) as fmax(-1, fmin(1, .)) has it (NaN -> 1),
-     * without the calls into libm, and dividing only inside the band (the
-     * same values: w / band reaches +-1 exactly at w = +-band). */
-    const double roll = !(w < JC_RR_BAND_RADPS) ? 1.0 : (w > -JC_RR_BAND_RADPS ? w / JC_RR_BAND_RADPS : -1.0);
-    const double q = 0.5 * s->air_density_kgpm3 * 2.0 * m->body.radius_m * s->length_m * speed;
-    out->fx_N = q * (-cd * vx + cl * spin * vy);
-    out->fy_N = q * (-cd * vy - cl * spin * vx);
-    /* Torque about G in the th sense (clockwise-positive): the moment of the
-     * air force acting at C, R = C - G = -d (sin th, cos th), plus spin drag. */
-    out->torque_Nm = d * sin_th * out->fy_N - d * cos_th * out->fx_N - s->spin_drag_Nms2 * w * fabs(w);
-    out->rr_torque_per_N = -s->rolling_resistance_m * roll;
-    /* Power lost to the air: drag on the centre and spin drag (Magnus does no work). */
-    out->air_power_W = q * cd * speed * speed + s->spin_drag_Nms2 * fabs(w) * w * w;
-}
-
+#include "air.h"
 
 /* rolling.c: rolling accelerations and contact force; loads NULL for none. */
 void jc_rolling_accel(const jc_Model *m, double sin_th, double cos_th, double w, const jc_Loads *loads, double *thdd,
@@ -307,8 +264,13 @@ void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd
                 jc_Loads *loads);
 void jc_rolling_at_sc(const jc_Model *m, double sin_th, double cos_th, double w, int dir, double *thdd, double *normal,
                    double *friction, jc_Loads *loads);
-/* I_P at th given by its cosine. */
-double jc_rolling_inertia_p(const jc_Model *m, double cos_th);
+/* I_P at th given by its cosine; inline: the rolling time's integrand
+ * evaluates it at every node. */
+static inline double jc_rolling_inertia_p(const jc_Model *m, double cos_th)
+{
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    return m->body.inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * cos_th;
+}
 /* The rolling path from a state (th, w): its functions of th for the state's
  * energy, cleared of positive factors: I_P w^2, N I_P^2, F I_P^2 and
  * mu_s N -/+ F (times I_P^2). Rolling holds while normal, slip_pos and
