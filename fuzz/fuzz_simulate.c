@@ -153,7 +153,7 @@ static int too_stiff(const jc_Model *m, const jc_SimOptions *o)
     double rate = 2.0 * s->spin_drag_Nms2 * w / i_g;           /* spin drag on w */
     rate = fmax(rate, q * v / b->mass_kg);                     /* drag and lift on the centre's speed */
     rate = fmax(rate, b->cm_offset_m * q * v * v / (i_g * w)); /* their torque about G, on w */
-    /* Rolling resistance ramps over |w| < 1 mrad/s (RR_BAND_RADPS, src/air.c):
+    /* Rolling resistance ramps over |w| < 1 mrad/s (JC_RR_BAND_RADPS, src/air.h):
      * near rest it damps w at b N / (I_G 1e-3 rad/s). */
     rate = fmax(rate, s->rolling_resistance_m * b->mass_kg * s->gravity_mps2 / (i_g * 1e-3));
     return !(rate * o->t_max_s <= FUZZ_MAX_STIFF_STEPS);

@@ -102,9 +102,8 @@ static void combine(const jc_Dop853 *d, int count, const int *stages, const doub
  * constants and the loop over components is vectorized (measured: a
  * generic loop over a table of rows took 40 % of a run's instructions;
  * written out, the run takes 23 % fewer). */
-static void stage_input(const jc_Dop853 *d, int s, double h, double *y)
+static inline void stage_input_n(const jc_Dop853 *restrict d, int s, double h, double *restrict y, const int n)
 {
-    const int n = d->dim;
     const double *y0 = d->y0, *k1 = d->f0, *k13 = d->f1;
     const double *k2 = d->k[2], *k3 = d->k[3], *k4 = d->k[4], *k5 = d->k[5], *k6 = d->k[6], *k7 = d->k[7];
     const double *k8 = d->k[8], *k9 = d->k[9], *k10 = d->k[10], *k11 = d->k[11], *k12 = d->k[12];
@@ -230,6 +229,23 @@ static void stage_input(const jc_Dop853 *d, int s, double h, double *y)
     }
 }
 
+/* The stage input with the phases' dimensions as constants (7: sliding, 9:
+ * rolling with resistance, 11: flight with air) and y known apart from the
+ * stages, so that each sum is unrolled over the components without alias
+ * checks; any other dimension by the general loop. Measured with callgrind:
+ * a paper run 231.1k -> 223.8k instructions, a drag run 1.206M -> 1.150M,
+ * the same numbers; in wall time no difference above the noise (the stages
+ * wait on one another). */
+static void stage_input(const jc_Dop853 *restrict d, int s, double h, double *restrict y)
+{
+    switch (d->dim) {
+    case 7: stage_input_n(d, s, h, y, 7); return;
+    case 9: stage_input_n(d, s, h, y, 9); return;
+    case 11: stage_input_n(d, s, h, y, 11); return;
+    default: stage_input_n(d, s, h, y, d->dim); return;
+    }
+}
+
 static int eval_stage(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, int s, double h, double *out)
 {
     double y[JC_DOP_MAX_DIM];
@@ -248,6 +264,7 @@ void jc_dop853_init(jc_Dop853 *d, int dim, int full_dim, double rtol, double ato
     d->dense_ready = 0;
     d->rejected_last = 0;
     d->err_old = 1e-4;
+    for (int i = 0; i < JC_DOP_MAX_DIM; ++i) d->scale_floor[i] = 0.0;
 }
 
 int jc_dop853_start(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double t, const double y[])
@@ -285,8 +302,8 @@ static double step_error(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)
         /* The larger magnitude by a comparison, not fmax (a call into libm
          * per component, which GCC does not inline for its NaN rule; a NaN
          * y1 makes the error NaN either way, a rejected step). */
-        const double a0 = fabs(d->y0[i]), a1 = fabs(d->y1[i]);
-        const double sk = d->atol + d->rtol * (a1 > a0 ? a1 : a0);
+        const double a0 = fabs(d->y0[i]), a1 = fabs(d->y1[i]), am = a1 > a0 ? a1 : a0;
+        const double sk = d->atol + d->rtol * (am > d->scale_floor[i] ? am : d->scale_floor[i]);
         err5 += (e5[i] / sk) * (e5[i] / sk);
         err3 += (e3 / sk) * (e3 / sk);
     }
@@ -335,7 +352,7 @@ double jc_dop853_initial_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h_m
     const int n = d->dim;
     double dnf = 0.0, dny = 0.0;
     for (int i = 0; i < n; ++i) {
-        const double sk = d->atol + d->rtol * fabs(d->y0[i]);
+        const double sk = d->atol + d->rtol * fmax(fabs(d->y0[i]), d->scale_floor[i]);
         dnf += (d->f0[i] / sk) * (d->f0[i] / sk);
         dny += (d->y0[i] / sk) * (d->y0[i] / sk);
     }
@@ -349,7 +366,7 @@ double jc_dop853_initial_step(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h_m
     if (rhs(d->t0 + h, y, f1, ctx) != 0) return h;
     double der2 = 0.0;
     for (int i = 0; i < n; ++i) {
-        const double sk = d->atol + d->rtol * fabs(d->y0[i]);
+        const double sk = d->atol + d->rtol * fmax(fabs(d->y0[i]), d->scale_floor[i]);
         der2 += ((f1[i] - d->f0[i]) / sk) * ((f1[i] - d->f0[i]) / sk);
     }
     der2 = sqrt(der2) / h;

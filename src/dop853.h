@@ -27,6 +27,11 @@ typedef struct {
     int dim;      /* components integrated */
     int full_dim; /* components carried: [dim, full_dim) keep their start values */
     double rtol, atol;
+    /* Component i's error is measured against atol + rtol max(|y_i|,
+     * scale_floor[i]): a component whose own size says nothing of its
+     * scale (a cosine passing through 0, a loss that starts at 0) gets
+     * the caller's scale. 0 after jc_dop853_init: Hairer's norm. */
+    double scale_floor[JC_DOP_MAX_DIM];
     /* The last accepted step, [t0, t0 + h]: y0 -> y1, f0 = f(y0), f1 = f(y1). */
     double t0, h;
     double y0[JC_DOP_MAX_DIM], y1[JC_DOP_MAX_DIM];

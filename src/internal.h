@@ -3,6 +3,7 @@
 #define JUMPCYL_INTERNAL_H
 
 #include "jumpcyl/jumpcyl.h"
+#include "sincos.h"
 
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_roots.h>
@@ -251,17 +252,7 @@ void jc_record_close_flight(jc_Sim *sim, int landed);
 /* Pushes the held events that are complete. */
 int jc_record_push(jc_Sim *sim);
 
-/* air.c: loads beyond gravity and the contact force. */
-typedef struct {
-    double fx_N, fy_N;       /* air force, acting at the centre C */
-    double torque_Nm;        /* about G, th sense: the air force's moment plus spin drag */
-    double rr_torque_per_N;  /* rolling resistance torque per newton of N (-b sgn w) */
-    double air_power_W;      /* rate of energy lost to the air, >= 0 */
-} jc_Loads;
-int jc_model_has_resistance(const jc_Model *m);
-/* At angle th given by its sine and cosine. */
-void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, double vx, double vy, double w, jc_Loads *out);
-
+#include "air.h"
 
 /* rolling.c: rolling accelerations and contact force; loads NULL for none. */
 void jc_rolling_accel(const jc_Model *m, double sin_th, double cos_th, double w, const jc_Loads *loads, double *thdd,
@@ -273,8 +264,13 @@ void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd
                 jc_Loads *loads);
 void jc_rolling_at_sc(const jc_Model *m, double sin_th, double cos_th, double w, int dir, double *thdd, double *normal,
                    double *friction, jc_Loads *loads);
-/* I_P at th given by its cosine. */
-double jc_rolling_inertia_p(const jc_Model *m, double cos_th);
+/* I_P at th given by its cosine; inline: the rolling time's integrand
+ * evaluates it at every node. */
+static inline double jc_rolling_inertia_p(const jc_Model *m, double cos_th)
+{
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    return m->body.inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * cos_th;
+}
 /* The rolling path from a state (th, w): its functions of th for the state's
  * energy, cleared of positive factors: I_P w^2, N I_P^2, F I_P^2 and
  * mu_s N -/+ F (times I_P^2). Rolling holds while normal, slip_pos and

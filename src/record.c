@@ -74,8 +74,10 @@ int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal
     memset(&p, 0, sizeof p); /* padding too: a recorder may compare or hash samples bytewise */
     p.state = *s;
     p.mode = mode;
-    p.cm_x_m = s->x_m + d * sin(s->theta_rad);
-    p.cm_y_m = s->y_m + d * cos(s->theta_rad);
+    double sn, cs;
+    jc_sincos(s->theta_rad, &sn, &cs);
+    p.cm_x_m = s->x_m + d * sn;
+    p.cm_y_m = s->y_m + d * cs;
     p.normal_N = normal_N;
     p.friction_N = friction_N;
     p.slip_mps = mode == JC_MODE_FLIGHT ? 0.0 : s->vx_mps - m->body.radius_m * s->omega_radps;

@@ -21,13 +21,6 @@ const char *jc_rolling_end_name(jc_RollingEnd end)
     return "unknown";
 }
 
-/* I_P at th given by its cosine. */
-double jc_rolling_inertia_p(const jc_Model *m, double c)
-{
-    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    return m->body.inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * c;
-}
-
 static double inertia_p(const jc_Model *m, double th) { return jc_rolling_inertia_p(m, cos(th)); }
 
 static double potential(const jc_Model *m, double th)

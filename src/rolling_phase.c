@@ -40,7 +40,9 @@ static double dt_du(double u, void *params)
     const time_integrand *ti = params;
     const jc_Model *m = ti->m;
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    const double delta = ti->sigma * (ti->linear ? u : u * u), sh = sin(0.5 * delta), ch = cos(0.5 * delta);
+    const double delta = ti->sigma * (ti->linear ? u : u * u);
+    double sh, ch;
+    jc_sincos(0.5 * delta, &sh, &ch);
     const double s_mid = ti->sin_a * ch + ti->cos_a * sh, c_mid = ti->cos_a * ch - ti->sin_a * sh;
     const double c_th = c_mid * ch - s_mid * sh; /* cos(anchor + delta) */
     const double ip = jc_rolling_inertia_p(m, c_th);
@@ -228,7 +230,9 @@ static jc_State roll_state_at(const jc_Model *m, const jc_RollingPath *path, con
 static void roll_derivs(const jc_Model *m, double th, double p, int dir, double d[3])
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, dd = m->body.cm_offset_m, g = m->setup.gravity_mps2;
-    const double s = sin(th), c = cos(th), ip = jc_rolling_inertia_p(m, c), k = M * r * dd;
+    double s, c;
+    jc_sincos(th, &s, &c);
+    const double ip = jc_rolling_inertia_p(m, c), k = M * r * dd;
     const double w = dir * sqrt(p / ip), w2 = w * w;
     const double a = (M * g * ((r + dd * c) * m->sin_incline + dd * s * m->cos_incline) + k * s * w2) / ip;
     const double dtorque = M * g * dd * (c * m->cos_incline - s * m->sin_incline);
@@ -244,8 +248,10 @@ static void roll_derivs(const jc_Model *m, double th, double p, int dir, double 
 static double path_p(const jc_Model *m, const jc_State *start, double p0, double th)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    const double delta = th - start->theta_rad, sh = sin(0.5 * delta), ch = cos(0.5 * delta);
-    const double sa = sin(start->theta_rad), ca = cos(start->theta_rad);
+    const double delta = th - start->theta_rad;
+    double sh, ch, sa, ca;
+    jc_sincos(0.5 * delta, &sh, &ch);
+    jc_sincos(start->theta_rad, &sa, &ca);
     const double s_mid = sa * ch + ca * sh, c_mid = ca * ch - sa * sh;
     const double dcos = -2.0 * s_mid * sh, dsin = 2.0 * c_mid * sh;
     const double du = M * m->setup.gravity_mps2 * (d * m->cos_incline * dcos - m->sin_incline * (r * delta + d * dsin));
@@ -363,7 +369,7 @@ typedef struct {
     int armed; /* 1: watch for w falling into the rolling-resistance band */
 } roll_ode;
 
-/* rad/s: rolling resistance ramps to 0 below 1 mrad/s (air.c), which lets a
+/* rad/s: rolling resistance ramps to 0 below 1 mrad/s (JC_RR_BAND_RADPS), which lets a
  * body creep toward equilibrium for ever instead of stopping. Where the spin
  * falls below this and the resistance can hold the body at rest (rest
  * direction 0), it has come to rest: the run ends with termination rest. */

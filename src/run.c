@@ -81,14 +81,18 @@ const char *jc_termination_name(jc_Termination t)
 double jc_kinetic_energy(const jc_Model *m, const jc_State *s)
 {
     const double d = m->body.cm_offset_m, th = s->theta_rad, w = s->omega_radps;
-    const double vgx = s->vx_mps + d * cos(th) * w, vgy = s->vy_mps - d * sin(th) * w;
+    double sn, cs;
+    jc_sincos(th, &sn, &cs);
+    const double vgx = s->vx_mps + d * cs * w, vgy = s->vy_mps - d * sn * w;
     return 0.5 * m->body.mass_kg * (vgx * vgx + vgy * vgy) + 0.5 * m->body.inertia_g_kgm2 * w * w;
 }
 
 static double potential_abs(const jc_Model *m, const jc_State *s)
 {
     const double d = m->body.cm_offset_m;
-    const double xg = s->x_m + d * sin(s->theta_rad), yg = s->y_m + d * cos(s->theta_rad);
+    double sn, cs;
+    jc_sincos(s->theta_rad, &sn, &cs);
+    const double xg = s->x_m + d * sn, yg = s->y_m + d * cs;
     return m->body.mass_kg * m->setup.gravity_mps2 * (yg * m->cos_incline - xg * m->sin_incline);
 }
 

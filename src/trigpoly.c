@@ -98,7 +98,8 @@ int jc_tl_mul(jc_TrigLin *out, const jc_TrigLin *x, const jc_TrigLin *y)
 void jc_tl_eval(const jc_TrigLin *p, double th, double *f, double *df)
 {
     /* cos(k th), sin(k th) by the angle-addition recurrence: one sincos call. */
-    double c1 = cos(th), s1 = sin(th);
+    double c1, s1;
+    jc_sincos(th, &s1, &c1);
     double ck = 1.0, sk = 0.0;
     double t0 = 0.0, d0 = 0.0, t1 = 0.0, d1 = 0.0;
     for (int k = 0; k <= JC_TRIG_DEGREE; ++k) {
@@ -147,7 +148,8 @@ double jc_tl_curvature_bound(const jc_TrigLin *p, double th_abs_max)
 
 void jc_tl_basis(jc_TrigBasis *b, double th)
 {
-    const double c1 = cos(th), s1 = sin(th);
+    double c1, s1;
+    jc_sincos(th, &s1, &c1);
     b->th = th;
     b->c[0] = 1.0;
     b->s[0] = 0.0;

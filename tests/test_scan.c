@@ -276,6 +276,48 @@ static int test_cubic_root_matches_gsl(void)
     return 0;
 }
 
+/* Without a lent solver the trigonometric functions' roots are polished by
+ * Newton's iteration, with one by GSL's Brent solver: on random sets of
+ * T0 + th T1 functions the same function must be hit first, at the same
+ * place to the tolerance (1e-12 rad each). */
+static int test_newton_polish_matches_brent(void)
+{
+    uint64_t state = 20261125;
+    gsl_root_fsolver *brent = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    ENSURE(brent != NULL);
+    int hits = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        jc_TrigLin f[3];
+        jc_ScanSet set = {.count = 3};
+        for (int i = 0; i < 3; ++i) {
+            jc_tl_zero(&f[i]);
+            /* Positive at th = 0 (the constant dominates there), crossing later. */
+            jc_tl_add_cos(&f[i], 0, 0, uniform_s(&state, 0.5, 2.0));
+            for (int k = 1; k <= JC_TRIG_DEGREE; ++k) {
+                jc_tl_add_cos(&f[i], 0, k, uniform_s(&state, -0.3, 0.3));
+                jc_tl_add_sin(&f[i], 0, k, uniform_s(&state, -0.3, 0.3));
+            }
+            jc_tl_add_cos(&f[i], 1, 0, -uniform_s(&state, 0.01, 0.3));
+            set.f[i] = &f[i];
+            set.sign[i] = 1.0;
+        }
+        jc_ScanHit newton, gsl;
+        char err[256] = "";
+        int st = jc_scan_first(&set, 0.0, 50.0, 1e-12, &newton, err, sizeof err);
+        if (st == JC_OK) st = jc_scan_first_with(&set, 0.0, 50.0, 1e-12, brent, &gsl, err, sizeof err);
+        if (st != JC_OK) gsl_root_fsolver_free(brent);
+        ENSURE_OK(st, err);
+        if (!(newton.index == gsl.index && fabs(newton.theta - gsl.theta) <= 2e-12)) gsl_root_fsolver_free(brent);
+        ENSURE_MSG(newton.index == gsl.index && fabs(newton.theta - gsl.theta) <= 2e-12,
+                   "trial %d: Newton hit %d at %.17g, Brent hit %d at %.17g", trial, newton.index, newton.theta,
+                   gsl.index, gsl.theta);
+        hits += newton.index >= 0 && !newton.grazing;
+    }
+    gsl_root_fsolver_free(brent);
+    ENSURE_MSG(hits > 1500, "only %d of 2000 trials crossed", hits);
+    return 0;
+}
+
 int main(void)
 {
     RUN_TEST(test_narrow_windows_found);
@@ -286,5 +328,6 @@ int main(void)
     RUN_TEST(test_touching_zero_is_grazing);
     RUN_TEST(test_scan_fns_callback);
     RUN_TEST(test_cubic_root_matches_gsl);
+    RUN_TEST(test_newton_polish_matches_brent);
     TEST_MAIN_END();
 }
