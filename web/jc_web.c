@@ -47,6 +47,21 @@ JC_WEB_EXPORT char *jc_web_config(const char *request_json);
 #define ERR_LEN 512
 #define NUM_LEN 32
 
+/* ---- experiment files: none in the browser ---- */
+
+/* cli_setup_base (options.c) reads --config with cli_config_load, the
+ * tool's reader (cli/commands/config.c, inih), which the wasm build does
+ * not compile: the page never reads a file (a request naming 'config' is
+ * refused in take_member, so this is never reached), and writing one
+ * (cli_config_write) is config_write.c, which needs no inih. This stands in
+ * for the reader so that the link resolves. */
+int cli_config_load(const char *path, jc_Setup *setup, char *err, size_t err_len)
+{
+    (void)setup;
+    snprintf(err, err_len, "cannot read %.200s: no experiment files in the browser", path);
+    return -1;
+}
+
 /* ---- the request ---- */
 
 /* The parsed request and the texts the option collectors point into: the
