@@ -309,13 +309,15 @@ function drawScene() {
   ctx.fillStyle = '#3b3630'; ctx.strokeStyle = '#3b3630'; ctx.lineWidth = 1;
   ctx.font = '11px system-ui, sans-serif'; ctx.textAlign = 'center';
   const nx = Math.sin(a), ny = Math.cos(a); // the outward normal on screen: (sin a, -cos a) in pixels
+  ctx.beginPath(); // every tick in one path: one stroke, not hundreds
   for (let c = 0; c <= rampEnd * 100 + 1e-9; c += tick) {
     const [tx, ty] = px(c / 100, 0);
     const big = Math.abs(c % labelEvery) < 1e-9;
     const len = big ? 9 : 5;
-    ctx.beginPath(); ctx.moveTo(tx, ty); ctx.lineTo(tx - nx * -len, ty + ny * len); ctx.stroke();
+    ctx.moveTo(tx, ty); ctx.lineTo(tx - nx * -len, ty + ny * len);
     if (big) ctx.fillText(`${Math.round(c)}`, tx + nx * 16, ty + ny * 20);
   }
+  ctx.stroke();
   {
     const [tx, ty] = px(rampEnd, 0);
     ctx.textAlign = 'right'; ctx.fillText('cm', tx - 4, ty + ny * 34 + 2);
