@@ -253,7 +253,7 @@ test('recompute on every control change, timed (paper cylinder)', async () => {
   assert.ok(rows.length >= 40, `recomputes seen: ${rows.length}`);
   const stats = (k) => {
     const v = rows.map((r) => r[k]).sort((a, b) => a - b);
-    return `median ${v[v.length >> 1].toFixed(1)}, max ${v[v.length - 1].toFixed(1)}`;
+    return `median ${v[v.length >> 1].toFixed(1)}, min ${v[0].toFixed(1)}, max ${v[v.length - 1].toFixed(1)}`;
   };
   const twoRuns = rows.filter((r) => r.runs > 1).length;
   let load = '';
