@@ -316,3 +316,37 @@ test('every option the page shows round-trips through the URL', async () => {
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+// Readable contrast (WCAG AA): every element with text of its own has a
+// contrast ratio of at least 4.5 against the background it sits on.
+test('text contrast is at least 4.5:1 everywhere', async () => {
+  const { page, problems } = await open(`${base}/index.html?preset=paper&incline=30`);
+  const worst = await page.evaluate(() => {
+    const rgb = (c) => (c.match(/[\d.]+/g) || []).map(Number);
+    const lum = ([r, g, b]) => {
+      const f = (v) => { v /= 255; return v <= 0.03928 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4; };
+      return 0.2126 * f(r) + 0.7152 * f(g) + 0.0722 * f(b);
+    };
+    const background = (el) => {
+      for (let e = el; e; e = e.parentElement) {
+        const c = rgb(getComputedStyle(e).backgroundColor);
+        if (c.length === 3 || (c.length === 4 && c[3] > 0.5)) return c.slice(0, 3);
+      }
+      return [255, 255, 255];
+    };
+    const out = [];
+    for (const el of document.querySelectorAll('body *')) {
+      if (!el.offsetParent && el.tagName !== 'BODY') continue; // not shown
+      const own = [...el.childNodes].some((n) => n.nodeType === 3 && n.textContent.trim());
+      if (!own) continue;
+      const a = lum(rgb(getComputedStyle(el).color)), b = lum(background(el));
+      const ratio = (Math.max(a, b) + 0.05) / (Math.min(a, b) + 0.05);
+      out.push({ ratio: +ratio.toFixed(2), what: `${el.tagName.toLowerCase()}${el.id ? `#${el.id}` : ''}${el.className ? `.${el.className}` : ''}: ${el.textContent.trim().slice(0, 30)}` });
+    }
+    return out.sort((x, y) => x.ratio - y.ratio).slice(0, 3);
+  });
+  console.log(`# lowest text contrast: ${worst.map((w) => `${w.ratio} (${w.what})`).join('; ')}`);
+  assert.ok(worst[0].ratio >= 4.5, JSON.stringify(worst));
+  assert.deepEqual(problems, []);
+  await page.close();
+});
