@@ -268,7 +268,12 @@ function sceneView(w, h) {
   const ox = pad + ((w - 2 * pad) - scale * (Xhi - Xlo)) / 2 - scale * Xlo;
   const oy = pad + ((h - 2 * pad - 18) - scale * (Yhi - Ylo)) / 2 + scale * Yhi;
   const px = (x, y) => { const [X, Y] = picture(a, x, y); return [ox + scale * X, oy - scale * Y]; };
-  return { scale, px, xlo: xlo - 1.5 * r, xhi: xhi + 1.5 * r };
+  // The ground reaches the right edge of the picture (x of the incline's
+  // line there), not only the stretch travelled: a floor wider than the run
+  // is drawn to the edge.
+  const xEdge = (w - ox) / scale / Math.cos(a);
+  const xLeft = a === 0 ? Math.min(xlo - 1.5 * r, -ox / scale) : xlo - 1.5 * r; // a floor: both edges
+  return { scale, px, xlo: xLeft, xhi: Math.max(xhi + 1.5 * r, xEdge) };
 }
 
 function arrow(ctx, x0, y0, x1, y1, color, label) {
