@@ -34,7 +34,9 @@ all: build
 help:
 	@echo "make run        install missing packages, build, run 'jumpcyl paper' (the paper's Table 1),"
 	@echo "                write out/overview-{15,30,45}.png and the film out/jump-45.gif"
-	@echo "make test       install missing packages, build, run the test suite (ctest)"
+	@echo "make test       install missing packages, build, run the test suite (ctest), and the web"
+	@echo "                tests when Chromium and a built page are there"
+	@echo "make web        the page in out/web/ (WebAssembly, Emscripten); make test-web-all: its tests"
 	@echo "make test-asan  the test suite built with AddressSanitizer + UndefinedBehaviorSanitizer"
 	@echo "make test-valgrind  the CLI tests with every run of the tool under valgrind"
 	@echo "make fuzz       build the libFuzzer targets (clang) and run each FUZZ_SECONDS=$(FUZZ_SECONDS) s"
@@ -96,6 +98,7 @@ run: build
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -LE valgrind
+	@$(MAKE) --no-print-directory test-web-present
 
 test-asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DJC_SANITIZE=ON -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
@@ -175,19 +178,38 @@ clean:
 # ---- WebAssembly (docs/web.md) ----
 # make web: the library and its browser entry point (web/jc_web.c) compiled
 # with Emscripten into $(WEB_OUT): jumpcyl.js + jumpcyl.wasm, the one-file
-# jumpcyl-single.js, and the engine check page index.html. GSL and cJSON are
-# built for wasm32 from Debian's source packages once, into $(WEB_BUILD)
-# (web/build-deps.sh). make test-web: the wasm against the native tool.
+# jumpcyl-single.js, the page (index.html, app.js, style.css) and the
+# self-contained jumpcyl.html. GSL and cJSON are built for wasm32 from
+# Debian's source packages once, into $(WEB_BUILD) (web/build-deps.sh).
+# make test-web: the wasm against the native tool. make test-page: the page
+# in headless Chromium. make test-web-all: both, installing what they need
+# (CI runs it).
 WEB_BUILD    ?= build-web
 WEB_OUT      ?= out/web
+CHROMIUM     ?= /usr/bin/chromium
 WEB_PACKAGES := emscripten dpkg-dev autotools-dev nodejs
+# Debian's chromium for make test-page; npm when node came without it.
+WEB_TEST_PACKAGES := chromium
 # Debian's emscripten finds its node modules (acorn, ...) there.
 WEB_ENV      := NODE_PATH=/usr/share/nodejs
-.PHONY: deps-web web test-web test-page clean-web
+.PHONY: deps-web deps-web-test web test-web test-page test-web-all test-web-present clean-web
 
 deps-web:
 	@$(call need,$(WEB_PACKAGES))
 	@web/apt-sources.sh
+
+# Chromium, and playwright-core at the version web/package-lock.json pins,
+# installed with npm ci into $(WEB_BUILD)/node_modules (not into the
+# repository), again only when the lock file changed.
+deps-web-test: deps-web
+	@$(call need,$(WEB_TEST_PACKAGES))
+	@if ! command -v npm >/dev/null 2>&1; then $(call need,npm); fi
+	@mkdir -p $(WEB_BUILD)
+	@if ! cmp -s web/package-lock.json $(WEB_BUILD)/package-lock.json || \
+	    [ ! -f $(WEB_BUILD)/node_modules/playwright-core/package.json ]; then \
+	  cp web/package.json web/package-lock.json $(WEB_BUILD)/ && \
+	  npm ci --prefix $(WEB_BUILD) --ignore-scripts --no-audit --no-fund; \
+	fi
 
 web: deps-web
 	$(WEB_ENV) JOBS=$(JOBS) web/build-deps.sh $(WEB_BUILD)
@@ -199,13 +221,28 @@ web: deps-web
 test-web: web build
 	node web/test_web.mjs --native ./$(BUILD)/jumpcyl --web $(WEB_OUT)
 
-# make test-page: the page in headless Chromium (playwright-core, installed
-# with npm into $(WEB_BUILD)/node_modules, not into the repository), against
-# the native tool; screenshots in $(WEB_OUT)/screenshots/.
-test-page: web build
-	@test -d $(WEB_BUILD)/node_modules/playwright-core || npm install --no-save --prefix $(WEB_BUILD) playwright-core
+# The page in headless Chromium (playwright-core), against the native tool;
+# screenshots in $(WEB_OUT)/screenshots/.
+test-page: web build deps-web-test
 	node web/test_page.mjs --native ./$(BUILD)/jumpcyl --web $(WEB_OUT) \
-	  --modules $(WEB_BUILD)/node_modules
+	  --modules $(WEB_BUILD)/node_modules --chromium $(CHROMIUM)
+
+test-web-all: test-web test-page
+
+# What make test runs after ctest: both web tests when Chromium,
+# playwright-core and a configured wasm build are there (the page rebuilt
+# first if a source changed), else a line saying why not. Installs nothing.
+test-web-present:
+	@if [ -x $(CHROMIUM) ] && [ -f $(WEB_BUILD)/node_modules/playwright-core/package.json ] && \
+	    [ -f $(WEB_BUILD)/wasm/CMakeCache.txt ] && command -v emcc >/dev/null 2>&1; then \
+	  set -e; \
+	  $(WEB_ENV) cmake --build $(WEB_BUILD)/wasm -j $(JOBS); \
+	  node web/test_web.mjs --native ./$(BUILD)/jumpcyl --web $(WEB_OUT); \
+	  node web/test_page.mjs --native ./$(BUILD)/jumpcyl --web $(WEB_OUT) \
+	    --modules $(WEB_BUILD)/node_modules --chromium $(CHROMIUM); \
+	else \
+	  echo "make test: web tests skipped (they need $(CHROMIUM), a built page and playwright-core: make test-web-all)"; \
+	fi
 
 clean-web:
 	rm -rf $(WEB_BUILD)/wasm $(WEB_OUT)

@@ -54,7 +54,22 @@ function call(fn, request) {
   state.jc.ccall('jc_web_free', null, ['number'], [ptr]);
   return text;
 }
-const simulate = (request) => JSON.parse(call('jc_web_simulate', request));
+// A run. The samples come as binary columns (sample-format "binary"): the
+// answer gives the address of count x 19 doubles in the wasm memory, copied
+// here into one Float64Array per quantity and freed; no printing and no
+// parsing of numbers (7 times faster than the JSON columns, docs/web.md).
+function simulate(request) {
+  const run = JSON.parse(call('jc_web_simulate', { ...request, 'sample-format': 'binary' }));
+  const S = run.ok ? run.samples : null;
+  if (S && S.buffer) {
+    const n = S.count, base = S.buffer / 8;
+    S.columns.forEach((c, k) => { S[c] = state.jc.HEAPF64.slice(base + k * n, base + (k + 1) * n); });
+    state.jc.ccall('jc_web_free', null, ['number'], [S.buffer]);
+    delete S.buffer;
+    delete S.columns;
+  }
+  return run;
+}
 
 // A number as the request's text: shortest form that reads back the same.
 const num = (v) => String(+v);
@@ -92,25 +107,25 @@ function buildRequest() {
 
 function recompute() {
   const t0 = performance.now();
+  state.lastRuns = 0;
   const req = buildRequest();
   // Sampled for the animation (sampling never changes the events): with the
   // last run's spacing when it gives a sensible count, else a first run with
   // events only tells the length of the run.
-  const sampled = (dtMs) => simulate({ ...req, 'sample-dt': `${dtMs}ms` });
+  const sampled = (dtMs) => { state.lastRuns++; return simulate({ ...req, 'sample-dt': `${dtMs}ms` }); };
   const spacing = (tEnd) => Number((Math.max(1e-3, tEnd / TARGET_SAMPLES) * 1000).toPrecision(2));
   let run = state.dtMs ? sampled(state.dtMs) : simulate(req);
   if (run.ok && (!state.dtMs || run.samples.count > 2 * TARGET_SAMPLES ||
                  (run.samples.count < TARGET_SAMPLES / 3 && state.dtMs > 1))) {
-    if (state.dtMs) run = simulate(req);
+    if (state.dtMs) { state.lastRuns++; run = simulate(req); }
     if (run.ok) { state.dtMs = spacing(run.t_end); run = sampled(state.dtMs); }
   }
-  const ms = performance.now() - t0;
-  tid('recompute-ms').textContent = ms.toFixed(ms < 10 ? 1 : 0);
-  document.body.dataset.recomputeMs = ms.toFixed(2);
+  const t1 = performance.now();
   const err = tid('error');
   if (!run.ok) {
     err.textContent = run.error;
     err.hidden = false;
+    showTiming(t1 - t0, 0);
     return false;
   }
   err.hidden = true;
@@ -122,7 +137,21 @@ function recompute() {
   showEvents(run);
   updateUrl();
   draw();
+  showTiming(t1 - t0, performance.now() - t1);
   return true;
+}
+// The time of the last recompute: the runs (wasm, the answer read) and the
+// redraw (derived columns, summary, events, URL, scene and graphs), shown
+// small in the corner and kept in body[data-recompute-ms], [data-run-ms],
+// [data-draw-ms] for the browser tests.
+function showTiming(runMs, drawMs) {
+  const ms = runMs + drawMs;
+  tid('recompute-ms').textContent = ms.toFixed(ms < 10 ? 1 : 0);
+  const d = document.body.dataset;
+  d.recomputeMs = ms.toFixed(2);
+  d.runMs = runMs.toFixed(2);
+  d.drawMs = drawMs.toFixed(2);
+  d.runs = String(state.lastRuns);
 }
 
 // ---- derived data for drawing ----
@@ -239,7 +268,12 @@ function sceneView(w, h) {
   const ox = pad + ((w - 2 * pad) - scale * (Xhi - Xlo)) / 2 - scale * Xlo;
   const oy = pad + ((h - 2 * pad - 18) - scale * (Yhi - Ylo)) / 2 + scale * Yhi;
   const px = (x, y) => { const [X, Y] = picture(a, x, y); return [ox + scale * X, oy - scale * Y]; };
-  return { scale, px, xlo: xlo - 1.5 * r, xhi: xhi + 1.5 * r };
+  // The ground reaches the right edge of the picture (x of the incline's
+  // line there), not only the stretch travelled: a floor wider than the run
+  // is drawn to the edge.
+  const xEdge = (w - ox) / scale / Math.cos(a);
+  const xLeft = a === 0 ? Math.min(xlo - 1.5 * r, -ox / scale) : xlo - 1.5 * r; // a floor: both edges
+  return { scale, px, xlo: xLeft, xhi: Math.max(xhi + 1.5 * r, xEdge) };
 }
 
 function arrow(ctx, x0, y0, x1, y1, color, label) {
@@ -280,13 +314,15 @@ function drawScene() {
   ctx.fillStyle = '#3b3630'; ctx.strokeStyle = '#3b3630'; ctx.lineWidth = 1;
   ctx.font = '11px system-ui, sans-serif'; ctx.textAlign = 'center';
   const nx = Math.sin(a), ny = Math.cos(a); // the outward normal on screen: (sin a, -cos a) in pixels
+  ctx.beginPath(); // every tick in one path: one stroke, not hundreds
   for (let c = 0; c <= rampEnd * 100 + 1e-9; c += tick) {
     const [tx, ty] = px(c / 100, 0);
     const big = Math.abs(c % labelEvery) < 1e-9;
     const len = big ? 9 : 5;
-    ctx.beginPath(); ctx.moveTo(tx, ty); ctx.lineTo(tx - nx * -len, ty + ny * len); ctx.stroke();
+    ctx.moveTo(tx, ty); ctx.lineTo(tx - nx * -len, ty + ny * len);
     if (big) ctx.fillText(`${Math.round(c)}`, tx + nx * 16, ty + ny * 20);
   }
+  ctx.stroke();
   {
     const [tx, ty] = px(rampEnd, 0);
     ctx.textAlign = 'right'; ctx.fillText('cm', tx - 4, ty + ny * 34 + 2);
@@ -504,6 +540,18 @@ function showSummary(run) {
   } else {
     note.hidden = true;
   }
+  $('.paper-keys').hidden = !pr; // the paper's marks are drawn only for its rows
+  // The same beside the event table.
+  const cmp = tid('paper-compare');
+  cmp.hidden = !pr;
+  if (pr) {
+    $('#cmp-incline').textContent = String(pr.incline_deg);
+    $('#cmp-ours-x').textContent = fl ? (fl.x * 100).toFixed(2) : 'none';
+    $('#cmp-ours-th').textContent = fl ? (fl.theta / DEG).toFixed(1) : '—';
+    $('#cmp-printed-x').textContent = (pr.printed_x_m * 100).toFixed(1);
+    $('#cmp-printed-th').textContent = (pr.printed_theta_rad / DEG).toFixed(1);
+    $('#cmp-measured-x').textContent = `${(pr.measured_x_m * 100).toFixed(1)} ± ${(pr.measured_error_m * 100).toFixed(1)}`;
+  }
 }
 
 const MAX_ROWS = 300;
@@ -590,7 +638,16 @@ function setOverride(key, v) {
 }
 
 // ---- the URL ----
+// Rewritten 150 ms after the last change, not on every input event: in
+// Chromium history.replaceState costs 1 to 40 ms (and is throttled when
+// called hundreds of times a minute, as a dragged slider would), more than
+// the run. body[data-url-pending] while one is due.
 function updateUrl() {
+  clearTimeout(state.urlTimer);
+  document.body.dataset.urlPending = 'true';
+  state.urlTimer = setTimeout(() => { writeUrl(); delete document.body.dataset.urlPending; }, 150);
+}
+function writeUrl() {
   const p = new URLSearchParams();
   p.set('preset', state.preset);
   for (const c of CONTROLS) if (c.key in state.overrides) p.set(c.key, num(state.overrides[c.key]));
@@ -627,7 +684,7 @@ function runCsv(run) {
     'kinetic', 'potential', 'friction_loss', 'impact_loss', 'air_loss', 'rolling_resistance_loss'];
   const lines = [`# jumpcyl ${run.version} (browser), request ${JSON.stringify(state.request)}; SI units`,
     ['mode', ...cols].join(',')];
-  for (let i = 0; i < S.count; ++i) lines.push([S.mode[i], ...cols.map((c) => (S[c][i] === null ? '' : String(S[c][i])))].join(','));
+  for (let i = 0; i < S.count; ++i) lines.push([S.mode[i], ...cols.map((c) => (Number.isFinite(S[c][i]) ? String(S[c][i]) : ''))].join(','));
   return `${lines.join('\n')}\n`;
 }
 function fileStem() {
@@ -687,7 +744,9 @@ function wire() {
   $('#dl-csv').addEventListener('click', () => download(`${fileStem()}.csv`, 'text/csv', runCsv(state.run)));
   $('#dl-json').addEventListener('click', () => {
     const { derived, view, path, ...doc } = state.run;
-    download(`${fileStem()}.json`, 'application/json', `${JSON.stringify(doc, null, 1)}\n`);
+    const samples = {};
+    for (const [k, v] of Object.entries(doc.samples)) samples[k] = ArrayBuffer.isView(v) ? Array.from(v, (x) => (Number.isFinite(x) ? x : null)) : v;
+    download(`${fileStem()}.json`, 'application/json', `${JSON.stringify({ ...doc, samples }, null, 1)}\n`);
   });
   $('#dl-config').addEventListener('click', () => {
     const ans = JSON.parse(call('jc_web_config', state.request));
@@ -733,6 +792,9 @@ async function start() {
     wire();
     syncControls();
     recompute();
+    clearTimeout(state.urlTimer); // the first URL at once
+    writeUrl();
+    delete document.body.dataset.urlPending;
     document.body.dataset.ready = 'true';
   } catch (err) {
     const e = tid('error');

@@ -10,8 +10,6 @@
 #                        include/gsl/*.h, lib/libgsl.a
 # BUILD_DIR/cjson-wasm/  cJSON (Debian's patched cJSON.c): include/cjson/cJSON.h,
 #                        lib/libcjson.a
-# BUILD_DIR/inih-wasm/   inih (Debian's libinih ini.c): include/ini.h, lib/libinih.a
-#                        (the tool's experiment-file reader, cli/commands/config.c)
 # BUILD_DIR/deps-src/    the unpacked source packages (scratch; may be removed)
 #
 # Needs emcc/emar (Debian 'emscripten'), dpkg-dev (apt-get source),
@@ -99,7 +97,9 @@ else
     echo "build-deps: $(cat "$gsl/.built")"
 fi
 
-# ---- one-file libraries: cJSON, inih ----
+# ---- one-file libraries: cJSON ----
+# (not inih: the page reads no experiment file, so the reader that needs it,
+# cli/commands/config.c, is not compiled for wasm)
 # one_file LABEL PACKAGE OUT HEADER_DIR NAME LIB: OUT/include/HEADER_DIR/NAME.h
 # and OUT/lib/libLIB.a from the source package's NAME.c compiled with emcc -O2.
 one_file() {
@@ -123,5 +123,3 @@ one_file() {
     echo "build-deps: $(cat "$out/.built")"
 }
 one_file cJSON cjson "$cjson" cjson cJSON cjson
-# inih as Debian builds it (meson defaults: the macros of ini.h as they are).
-one_file inih libinih "$build/inih-wasm" . ini inih

@@ -25,6 +25,7 @@
 #include <jumpcyl/jumpcyl.h>
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,6 +48,21 @@ JC_WEB_EXPORT char *jc_web_config(const char *request_json);
 #define ERR_LEN 512
 #define NUM_LEN 32
 
+/* ---- experiment files: none in the browser ---- */
+
+/* cli_setup_base (options.c) reads --config with cli_config_load, the
+ * tool's reader (cli/commands/config.c, inih), which the wasm build does
+ * not compile: the page never reads a file (a request naming 'config' is
+ * refused in take_member, so this is never reached), and writing one
+ * (cli_config_write) is config_write.c, which needs no inih. This stands in
+ * for the reader so that the link resolves. */
+int cli_config_load(const char *path, jc_Setup *setup, char *err, size_t err_len)
+{
+    (void)setup;
+    snprintf(err, err_len, "cannot read %.200s: no experiment files in the browser", path);
+    return -1;
+}
+
 /* ---- the request ---- */
 
 /* The parsed request and the texts the option collectors point into: the
@@ -57,6 +73,7 @@ typedef struct {
     cli_SetupArgs setup;
     cli_SimArgs sim;
     const char *max_samples;
+    int binary; /* sample-format "binary" */
     char (*numbers)[NUM_LEN];
 } request_args;
 
@@ -87,6 +104,13 @@ static int take_member(request_args *a, const cJSON *it, char *slot, char *err, 
             const char *text = value_text(it, key, slot, err, err_len);
             return !text || cli_sim_take(&a->sim, cli_sim_options[i].val, text, err, err_len) < 0 ? -1 : 0;
         }
+    if (strcmp(key, "sample-format") == 0) { /* the page's own: "json" (default) or "binary" */
+        const int json = cJSON_IsString(it) && strcmp(it->valuestring, "json") == 0;
+        a->binary = cJSON_IsString(it) && strcmp(it->valuestring, "binary") == 0;
+        if (json || a->binary) return 0;
+        snprintf(err, err_len, "sample-format: must be \"json\" or \"binary\"");
+        return -1;
+    }
     if (strcmp(key, "max-samples") == 0) { /* the page's own: the tool keeps every sample */
         a->max_samples = value_text(it, key, slot, err, err_len);
         return a->max_samples ? 0 : -1;
@@ -112,7 +136,8 @@ static int take_member(request_args *a, const cJSON *it, char *slot, char *err, 
     return !text || cli_setup_take(&a->setup, val, text, err, err_len) < 0 ? -1 : 0;
 }
 
-static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, char *err, size_t err_len)
+static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, int *binary, char *err,
+                         size_t err_len)
 {
     request_args a;
     memset(&a, 0, sizeof a);
@@ -141,6 +166,7 @@ static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, ch
         }
     }
     free(a.numbers);
+    *binary = a.binary;
     return rc ? -1 : 0;
 }
 
@@ -218,12 +244,19 @@ static void put_number(text_buf *b, double v)
     put(b, tmp, (size_t)n);
 }
 
-/* {"count": N, "mode": [...], "t": [...], ...} as raw JSON. */
-static cJSON *samples_json(const jc_Run *run)
+static const char *const column_names[C_COUNT] = {
+    "t", "x", "y", "vx", "vy", "theta", "omega", "cm_x", "cm_y", "normal", "friction", "slip", "gap",
+    "kinetic", "potential", "friction_loss", "impact_loss", "air_loss", "rolling_resistance_loss"};
+
+/* {"count": N, "mode": [...], "t": [...], ...} as raw JSON; with binary,
+ * {"count": N, "mode": [...], "columns": ["t", ...], "buffer": ADDRESS}
+ * instead of the numbers: ADDRESS is that of count * C_COUNT doubles,
+ * column after column (t first), which the caller reads from the wasm
+ * memory and frees with jc_web_free (no printing, no parsing: the page's
+ * way). NaN and infinities stay as they are there. */
+static cJSON *samples_json(const jc_Run *run, int binary)
 {
-    static const char *const names[C_COUNT] = {
-        "t", "x", "y", "vx", "vy", "theta", "omega", "cm_x", "cm_y", "normal", "friction", "slip", "gap",
-        "kinetic", "potential", "friction_loss", "impact_loss", "air_loss", "rolling_resistance_loss"};
+    const char *const *names = column_names;
     text_buf b = {NULL, 0, 0, 0};
     char head[64];
     put(&b, head, (size_t)snprintf(head, sizeof head, "{\"count\":%d,\"mode\":[", run->sample_count));
@@ -235,6 +268,26 @@ static cJSON *samples_json(const jc_Run *run)
         put(&b, "\"", 1);
     }
     put(&b, "]", 1);
+    if (binary) {
+        const size_t n = (size_t)run->sample_count;
+        double *buf = malloc((n ? n : 1) * C_COUNT * sizeof *buf);
+        if (!buf) b.failed = 1;
+        for (int c = 0; buf && c < C_COUNT; ++c)
+            for (size_t i = 0; i < n; ++i) buf[(size_t)c * n + i] = column_value(&run->samples[i], c);
+        put(&b, ",\"columns\":[", 12);
+        for (int c = 0; c < C_COUNT; ++c) {
+            if (c) put(&b, ",", 1);
+            put(&b, "\"", 1);
+            put(&b, names[c], strlen(names[c]));
+            put(&b, "\"", 1);
+        }
+        char tail[48];
+        put(&b, tail, (size_t)snprintf(tail, sizeof tail, "],\"buffer\":%lu}", (unsigned long)(uintptr_t)buf));
+        cJSON *raw = b.failed ? NULL : cJSON_CreateRaw(b.text);
+        if (!raw) free(buf); /* (if memory runs out after this, the buffer is lost with the answer) */
+        free(b.text);
+        return raw;
+    }
     for (int c = 0; c < C_COUNT; ++c) {
         put(&b, ",\"", 2);
         put(&b, names[c], strlen(names[c]));
@@ -264,10 +317,10 @@ static void add_state(cJSON *o, const jc_State *st)
 
 /* {"ok": true, "version"} + `simulate --json`'s members (cli_sim_json_doc),
  * with the samples after the events, then the page's extras. */
-static cJSON *run_json(const jc_Model *m, const jc_Run *run)
+static cJSON *run_json(const jc_Model *m, const jc_Run *run, int binary)
 {
     cJSON *sim = cli_sim_json_doc(m, run);
-    cJSON *samples = samples_json(run);
+    cJSON *samples = samples_json(run, binary);
     cJSON *doc = cJSON_CreateObject();
     if (!sim || !samples || !doc) {
         cJSON_Delete(sim);
@@ -339,7 +392,7 @@ static char *print_or_fail(cJSON *doc)
 /* ---- exported ---- */
 
 /* Reads and checks a request: NULL, or the answer that refuses it. */
-static char *read_request(const char *request_json, jc_Setup *setup, jc_SimOptions *options)
+static char *read_request(const char *request_json, jc_Setup *setup, jc_SimOptions *options, int *binary)
 {
     char err[ERR_LEN];
     gsl_set_error_handler_off(); /* GSL reports failures as status codes, never aborts */
@@ -348,7 +401,7 @@ static char *read_request(const char *request_json, jc_Setup *setup, jc_SimOptio
         cJSON_Delete(req);
         return error_text("the request is not a JSON object (e.g. {\"incline\": 30})");
     }
-    const int rc = build_request(req, setup, options, err, sizeof err);
+    const int rc = build_request(req, setup, options, binary, err, sizeof err);
     cJSON_Delete(req);
     return rc ? error_text(err) : NULL;
 }
@@ -358,7 +411,8 @@ JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
     char err[ERR_LEN];
     jc_Setup setup;
     jc_SimOptions options;
-    char *refused = read_request(request_json, &setup, &options);
+    int binary = 0;
+    char *refused = read_request(request_json, &setup, &options, &binary);
     if (refused) return refused;
 
     jc_Model *model = malloc(sizeof *model);
@@ -375,7 +429,7 @@ JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
         snprintf(msg, sizeof msg, "simulation failed (%s): %s", jc_status_text(st), err);
         text = error_text(msg);
     } else {
-        text = print_or_fail(run_json(model, &run));
+        text = print_or_fail(run_json(model, &run, binary));
     }
     jc_run_free(&run);
     free(model);
@@ -412,7 +466,8 @@ JC_WEB_EXPORT char *jc_web_config(const char *request_json)
 {
     jc_Setup setup;
     jc_SimOptions options;
-    char *refused = read_request(request_json, &setup, &options);
+    int binary = 0; /* no samples here */
+    char *refused = read_request(request_json, &setup, &options, &binary);
     if (refused) return refused;
     char *text = NULL;
     size_t len = 0;

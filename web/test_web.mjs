@@ -41,6 +41,18 @@ function call(jc, request) {
   return text;
 }
 const simulate = (jc, request) => JSON.parse(call(jc, request));
+// sample-format "binary" (the page's way): the columns read from the wasm
+// memory at samples.buffer, which is then freed.
+function simulateBinary(jc, request) {
+  const run = JSON.parse(call(jc, { ...request, 'sample-format': 'binary' }));
+  const S = run.samples;
+  if (S && S.buffer) {
+    const n = S.count, base = S.buffer / 8;
+    S.columns.forEach((c, k) => { S[c] = jc.HEAPF64.slice(base + k * n, base + (k + 1) * n); });
+    jc.ccall('jc_web_free', null, ['number'], [S.buffer]);
+  }
+  return run;
+}
 
 function nativeRun(args) {
   return JSON.parse(execFileSync(nativeTool, ['simulate', '--json', ...args], { encoding: 'utf8' }));
@@ -269,6 +281,28 @@ test('the one-file build answers as the two-file one', async () => {
   assert.ok(presets.some((p) => p.name === 'hoop'));
 });
 
+test('binary samples (sample-format "binary") are the JSON columns, bit for bit', () => {
+  for (const request of [{ incline: 45, 'sample-dt': '1ms' }, { preset: 'hoop', 'sample-dt': '10ms', 't-max': 5 },
+    { incline: 30 }]) {
+    const a = simulate(jc, request), b = simulateBinary(jc, request);
+    assert.equal(b.samples.count, a.samples.count);
+    assert.deepEqual(b.samples.mode, a.samples.mode);
+    assert.equal(b.samples.columns.length, 19);
+    for (const c of b.samples.columns) {
+      assert.equal(b.samples[c].length, a.samples.count, c);
+      for (let i = 0; i < a.samples.count; ++i) {
+        const x = a.samples[c][i], y = b.samples[c][i];
+        assert.ok(x === y || (x === null && !Number.isFinite(y)), `${c}[${i}]: ${x} vs ${y}`);
+      }
+    }
+    const { samples: sa, ...ra } = a, { samples: sb, ...rb } = b;
+    assert.deepEqual(rb, ra); // the rest of the answer is the same
+  }
+  const bad = simulate(jc, { 'sample-format': 'csv' });
+  assert.equal(bad.ok, false);
+  assert.match(bad.error, /sample-format/);
+});
+
 test('recompute time and sizes (measured, printed)', () => {
   const times = {};
   for (const [label, request] of [
@@ -290,7 +324,21 @@ test('recompute time and sizes (measured, printed)', () => {
     ms.sort((a, b) => a - b);
     times[label] = { 'median ms': +ms[7].toFixed(2), 'min ms': +ms[0].toFixed(2), 'answer kB': +(bytes / 1024).toFixed(1) };
   }
-  console.log('\nRecompute (jc_web_simulate + text + JSON.parse), 15 runs:');
+  for (const [label, request] of [
+    ['paper 30 deg, sample-dt 1 ms, binary', { incline: 30, 'sample-dt': 0.001 }],
+    ['hoop (60 s), sample-dt 10 ms, binary', { preset: 'hoop', 'sample-dt': 0.01 }],
+  ]) {
+    simulateBinary(jc, request);
+    const ms = [];
+    for (let i = 0; i < 15; ++i) {
+      const t0 = performance.now();
+      simulateBinary(jc, request);
+      ms.push(performance.now() - t0);
+    }
+    ms.sort((a, b) => a - b);
+    times[label] = { 'median ms': +ms[7].toFixed(2), 'min ms': +ms[0].toFixed(2), 'answer kB': null };
+  }
+  console.log('\nRecompute (jc_web_simulate + text + JSON.parse; binary: + the columns copied), 15 runs:');
   console.table(times);
   const sizes = {};
   for (const f of ['jumpcyl.wasm', 'jumpcyl.js', 'jumpcyl-single.js', 'index.html'])

@@ -1,5 +1,5 @@
 /* Experiment files: a whole setup in a small INI file (docs/config.md), read
- * with inih and written back in the same format.
+ * with inih (config_write.c writes them, config_keys.h is the format).
  *
  * inih splits "key = value" lines and strips blanks and inline comments. It
  * reports neither line numbers nor section headers to the handler (Debian's
@@ -10,13 +10,12 @@
  * staged while reading and applied afterwards in a fixed order, so that the
  * order of sections and keys in the file does not matter. */
 #define _POSIX_C_SOURCE 200809L
-#include "cli.h"
+#include "config_keys.h"
 
 #include <ini.h>
 
 #include <ctype.h>
 #include <errno.h>
-#include <math.h>
 #include <fcntl.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -31,45 +30,11 @@
 /* Largest file: an experiment file is a few hundred bytes. */
 #define FILE_MAX_BYTES 65536
 
-enum { SEC_BODY, SEC_INCLINE, SEC_CONTACT, SEC_START, SEC_AIR, SEC_PAPER, SEC_PART_FIRST };
-#define SECTION_COUNT (SEC_PART_FIRST + JC_MAX_PARTS)
-#define SEC_NONE (-1)
-static const char *const section_names[SEC_PART_FIRST] = {"body", "incline", "contact", "start", "air", "paper"};
-
-/* The keys that are one number of the setup. */
-typedef struct {
-    int section;
-    const char *key;
-    cli_Quantity q;
-    const char *unit; /* written by cli_config_write; "" for a plain number */
-    size_t offset;    /* of the double in jc_Setup */
-} scalar_key;
-
-static const scalar_key scalar_keys[] = {
-    {SEC_BODY, "radius", Q_LENGTH, "cm", offsetof(jc_Setup, body.radius_m)},
-    {SEC_BODY, "length", Q_LENGTH, "cm", offsetof(jc_Setup, length_m)},
-    {SEC_INCLINE, "angle", Q_ANGLE, "deg", offsetof(jc_Setup, incline_rad)},
-    {SEC_INCLINE, "gravity", Q_ACCELERATION, "m/s2", offsetof(jc_Setup, gravity_mps2)},
-    {SEC_INCLINE, "ramp_length", Q_LENGTH, "m", offsetof(jc_Setup, ramp_length_m)},
-    {SEC_CONTACT, "mu_s", Q_NUMBER, "", offsetof(jc_Setup, mu_static)},
-    {SEC_CONTACT, "mu_k", Q_NUMBER, "", offsetof(jc_Setup, mu_kinetic)},
-    {SEC_CONTACT, "restitution", Q_NUMBER, "", offsetof(jc_Setup, restitution)},
-    {SEC_CONTACT, "rolling_resistance", Q_LENGTH, "mm", offsetof(jc_Setup, rolling_resistance_m)},
-    {SEC_START, "theta0", Q_ANGLE, "deg", offsetof(jc_Setup, theta0_rad)},
-    {SEC_START, "omega0", Q_ANGULAR_SPEED, "rad/s", offsetof(jc_Setup, omega0_radps)},
-    {SEC_AIR, "density", Q_DENSITY, "kg/m3", offsetof(jc_Setup, air_density_kgpm3)},
-    {SEC_AIR, "drag_coefficient", Q_NUMBER, "", offsetof(jc_Setup, drag_coefficient)},
-    {SEC_AIR, "lift_coefficient", Q_NUMBER, "", offsetof(jc_Setup, lift_coefficient)},
-    {SEC_AIR, "spin_drag", Q_SPIN_DRAG, "N m s2", offsetof(jc_Setup, spin_drag_Nms2)},
-    {SEC_PAPER, "cm_offset", Q_LENGTH, "cm", offsetof(jc_Setup, paper_cm_offset_m)},
-};
-#define SCALAR_COUNT ((int)(sizeof scalar_keys / sizeof scalar_keys[0]))
-
 /* The table entry of a field, for the keys that act on others. */
 static int scalar_index(size_t offset)
 {
-    for (int i = 0; i < SCALAR_COUNT; ++i)
-        if (scalar_keys[i].offset == offset) return i;
+    for (int i = 0; i < CLI_CONFIG_SCALAR_COUNT; ++i)
+        if (cli_config_scalars[i].offset == offset) return i;
     return -1;
 }
 
@@ -80,8 +45,8 @@ static const cli_Quantity part_quantities[PART_KEY_COUNT] = {Q_NUMBER, Q_MASS, Q
 
 /* What the file says, before it is applied; a line number 0 means "not given". */
 typedef struct {
-    double value[SCALAR_COUNT];
-    int value_line[SCALAR_COUNT];
+    double value[CLI_CONFIG_SCALAR_COUNT];
+    int value_line[CLI_CONFIG_SCALAR_COUNT];
     jc_Part part[JC_MAX_PARTS];
     int part_line[JC_MAX_PARTS][PART_KEY_COUNT];
     int section_line[SECTION_COUNT];
@@ -158,14 +123,15 @@ static int part_section(const char *name, size_t len)
 static int find_section(const char *name, size_t len)
 {
     for (int i = 0; i < SEC_PART_FIRST; ++i)
-        if (strlen(section_names[i]) == len && strncmp(name, section_names[i], len) == 0) return i;
+        if (strlen(cli_config_section_names[i]) == len && strncmp(name, cli_config_section_names[i], len) == 0)
+            return i;
     return part_section(name, len);
 }
 
 static void section_label(int sec, char *buf, size_t n)
 {
     if (sec >= SEC_PART_FIRST) snprintf(buf, n, "[part.%d]", sec - SEC_PART_FIRST + 1);
-    else snprintf(buf, n, "[%s]", section_names[sec]);
+    else snprintf(buf, n, "[%s]", cli_config_section_names[sec]);
 }
 
 /* A "[name]" line (leading blanks already gone): only blanks or a comment
@@ -292,10 +258,10 @@ static int parse_kind(parser *p, const char *value, jc_PartKind *kind)
 static void allowed_keys(int sec, char *buf, size_t n)
 {
     buf[0] = '\0';
-    for (int i = 0; i < SCALAR_COUNT; ++i) {
-        if (scalar_keys[i].section != sec) continue;
+    for (int i = 0; i < CLI_CONFIG_SCALAR_COUNT; ++i) {
+        if (cli_config_scalars[i].section != sec) continue;
         const size_t used = strlen(buf);
-        snprintf(buf + used, n - used, "%s%s", used ? ", " : "", scalar_keys[i].key);
+        snprintf(buf + used, n - used, "%s%s", used ? ", " : "", cli_config_scalars[i].key);
     }
     if (sec == SEC_CONTACT) {
         const size_t used = strlen(buf);
@@ -384,15 +350,15 @@ static int on_pair(void *user, const char *section, const char *key_text, const 
             fail(p, p->line, "impact_law: unknown impact law '%s' (allowed: stronge, poisson, newton)", value);
         return 1;
     }
-    for (int i = 0; i < SCALAR_COUNT; ++i) {
-        if (scalar_keys[i].section != p->section || strcmp(scalar_keys[i].key, key) != 0) continue;
+    for (int i = 0; i < CLI_CONFIG_SCALAR_COUNT; ++i) {
+        if (cli_config_scalars[i].section != p->section || strcmp(cli_config_scalars[i].key, key) != 0) continue;
         if (first_time(p, &p->st.value_line[i], key) == 0)
-            parse_value(p, key, value, scalar_keys[i].q, &p->st.value[i]);
+            parse_value(p, key, value, cli_config_scalars[i].q, &p->st.value[i]);
         return 1;
     }
     char allowed[256];
     allowed_keys(p->section, allowed, sizeof allowed);
-    fail(p, p->line, "unknown key '%s' in [%s] (allowed: %s)", key, section_names[p->section], allowed);
+    fail(p, p->line, "unknown key '%s' in [%s] (allowed: %s)", key, cli_config_section_names[p->section], allowed);
     return 1;
 }
 
@@ -450,8 +416,8 @@ static void apply_body(const staged *st, int parts, jc_Setup *s)
 static void apply(const staged *st, int parts, jc_Setup *s)
 {
     apply_body(st, parts, s);
-    for (int i = 0; i < SCALAR_COUNT; ++i)
-        if (st->value_line[i]) memcpy((char *)s + scalar_keys[i].offset, &st->value[i], sizeof(double));
+    for (int i = 0; i < CLI_CONFIG_SCALAR_COUNT; ++i)
+        if (st->value_line[i]) memcpy((char *)s + cli_config_scalars[i].offset, &st->value[i], sizeof(double));
     if (st->impact_law_line) s->impact_law = st->impact_law;
     /* The printed d belongs to the paper's body: a file that changes the body
      * without naming the paper model's d gets the body's exact d. */
@@ -581,122 +547,4 @@ int cli_config_load(const char *path, jc_Setup *setup, char *err, size_t err_len
     const int st = cli_config_parse(path, text, len, setup, err, err_len);
     free(text);
     return st;
-}
-
-/* ---- writing ---- */
-
-/* The shortest decimal that reads back to v exactly (%.17g always does). */
-static void shortest(double v, char *buf, size_t len)
-{
-    for (int prec = 1; prec <= 17; ++prec) {
-        snprintf(buf, len, "%.*g", prec, v);
-        if (strtod(buf, NULL) == v) return;
-    }
-}
-
-/* v times 10^shift as a decimal, written by moving the decimal point of
- * v's shortest form: the unit parser applies its power of ten to the
- * decimal exponent, so "3.21 cm" reads back to exactly the double of
- * "0.0321" (docs/config.md). */
-static void shifted(double v, int shift, char *buf, size_t len)
-{
-    char e[40];
-    int prec = 0;
-    for (; prec < 17; ++prec) {
-        snprintf(e, sizeof e, "%.*e", prec, v);
-        if (strtod(e, NULL) == v) break;
-    }
-    /* e: [-]d.ddde[+-]xx: the digits and the exponent of the first one */
-    const int neg = e[0] == '-';
-    char digits[24];
-    int nd = 0;
-    const char *p = e + neg;
-    for (; *p && *p != 'e'; ++p)
-        if (*p >= '0' && *p <= '9' && nd < 23) digits[nd++] = *p;
-    digits[nd] = '\0';
-    const int exp10 = atoi(p + 1) + shift;
-    while (nd > 1 && digits[nd - 1] == '0') digits[--nd] = '\0';
-    if (v == 0.0) {
-        snprintf(buf, len, "%s", neg ? "-0" : "0"); /* -0 stays -0: the dump is exact to the bit */
-    } else if (exp10 >= 0 && exp10 < 15) {
-        /* the point after digit exp10 */
-        char out[48];
-        int o = 0;
-        if (neg) out[o++] = '-';
-        for (int i = 0; i <= exp10; ++i) out[o++] = i < nd ? digits[i] : '0';
-        if (nd > exp10 + 1) {
-            out[o++] = '.';
-            for (int i = exp10 + 1; i < nd; ++i) out[o++] = digits[i];
-        }
-        out[o] = '\0';
-        snprintf(buf, len, "%s", out);
-    } else if (exp10 < 0 && exp10 > -7) {
-        snprintf(buf, len, "%s0.%0*d%s", neg ? "-" : "", -exp10 - 1, 0, digits);
-        if (exp10 == -1) snprintf(buf, len, "%s0.%s", neg ? "-" : "", digits);
-    } else {
-        snprintf(buf, len, "%s%c%s%s%se%d", neg ? "-" : "", digits[0], nd > 1 ? "." : "", digits + 1, "", exp10);
-    }
-}
-
-/* v (SI) in the unit a person would type, reading back to v exactly: cm,
- * mm and g by moving the decimal point, degrees when some decimal in
- * degrees reads back exactly (else radians); other units as SI. */
-static void write_number(FILE *out, double v, const char *unit)
-{
-    char buf[64];
-    const char *written = unit;
-    if (strcmp(unit, "cm") == 0) shifted(v, 2, buf, sizeof buf);
-    else if (strcmp(unit, "mm") == 0 || strcmp(unit, "g") == 0) shifted(v, 3, buf, sizeof buf);
-    else if (strcmp(unit, "deg") == 0) {
-        written = "rad";
-        shortest(v, buf, sizeof buf);
-        const double deg = v * (180.0 / CLI_PI);
-        for (int decimals = 0; decimals <= 16 && fabs(deg) < 1e15; ++decimals) {
-            char d[64], err[128];
-            double back;
-            snprintf(d, sizeof d, "%.*f", decimals, deg);
-            char token[80];
-            snprintf(token, sizeof token, "%sdeg", d);
-            if (cli_parse_quantity(token, Q_ANGLE, &back, err, sizeof err) == 0 && memcmp(&back, &v, sizeof v) == 0) {
-                snprintf(buf, sizeof buf, "%s", d);
-                written = "deg";
-                break;
-            }
-        }
-    } else shortest(v, buf, sizeof buf);
-    fprintf(out, "%s%s%s\n", buf, *written ? " " : "", written);
-}
-
-static void write_section_scalars(FILE *out, const jc_Setup *s, int sec)
-{
-    fprintf(out, "\n[%s]\n", section_names[sec]);
-    for (int i = 0; i < SCALAR_COUNT; ++i) {
-        if (scalar_keys[i].section != sec) continue;
-        double v;
-        memcpy(&v, (const char *)s + scalar_keys[i].offset, sizeof v);
-        fprintf(out, "%s = ", scalar_keys[i].key);
-        write_number(out, v, scalar_keys[i].unit);
-    }
-    if (sec == SEC_CONTACT) fprintf(out, "impact_law = %s\n", jc_impact_law_name(s->impact_law));
-}
-
-int cli_config_write(FILE *out, const jc_Setup *s)
-{
-    fputs("# jumpcyl experiment file (docs/config.md): units as a person types them (cm, g,\n"
-          "# deg); every number reads back to the same double.\n",
-          out);
-    write_section_scalars(out, s, SEC_BODY);
-    for (int i = 0; i < s->body.part_count && i < JC_MAX_PARTS; ++i) {
-        const jc_Part *p = &s->body.parts[i];
-        fprintf(out, "\n[part.%d]\nkind = %s\nmass = ", i + 1, jc_part_kind_name(p->kind));
-        write_number(out, p->mass_kg, "g");
-        fputs("offset = ", out);
-        write_number(out, p->offset_m, "cm");
-        fputs("radius = ", out);
-        write_number(out, p->radius_m, "cm");
-        fputs("angle = ", out);
-        write_number(out, p->angle_rad, "deg");
-    }
-    for (int sec = SEC_INCLINE; sec < SEC_PART_FIRST; ++sec) write_section_scalars(out, s, sec);
-    return ferror(out) ? -1 : 0;
 }
