@@ -48,6 +48,11 @@ typedef struct {
     double radius_m;         /* r used for the height above the surface */
     double hop_threshold_m;  /* y_m above radius_m + this is airborne */
     double mark_radius_m;    /* median distance of the mark from C; NaN without */
+    double noise_m;          /* position noise estimated from the centre's third
+                                differences (robust: MAD); sigma_m is the larger of
+                                this and a pixel */
+    double surface_tilt_rad; /* angle of the line through the rolling frames'
+                                centres against the incline's x axis: a check of α */
 
     /* What the file held, for the report. */
     char format[8];                                         /* "trk" or "table" */
