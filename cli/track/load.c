@@ -62,12 +62,14 @@ int cli_track_parse(const char *name, const char *data, size_t len, const cli_Tr
         snprintf(err, err_len, "%s: larger than %ld bytes", name, max);
         return -1;
     }
-    size_t i = 0;
-    if (len >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0) i = 3; /* a UTF-8 byte order mark */
+    size_t bom = 0;
+    if (len >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0) bom = 3; /* a UTF-8 byte order mark */
+    size_t i = bom;
     while (i < len && (data[i] == ' ' || data[i] == '\t' || data[i] == '\r' || data[i] == '\n')) i++;
     cli_RawData raw;
+    /* XML starts with '<'; a table may start with a tab (its name row). */
     const int st = i < len && data[i] == '<' ? cli_trk_parse(name, data, len, &raw, err, err_len)
-                                             : cli_table_parse(name, data + i, len - i, &raw, err, err_len);
+                                             : cli_table_parse(name, data + bom, len - bom, &raw, err, err_len);
     if (st != 0) return -1;
     int rc = cli_track_from_raw(name, &raw, opt, out, err, err_len);
     cli_raw_free(&raw);
