@@ -21,7 +21,7 @@ INSTALL_PACKAGES  := help2man
 MPI_BUILD    ?= build-mpi
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := options config simulate names batch
+FUZZ_TARGETS := options config simulate names batch track
 LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/test_signals.c tests/test_fuzz_findings.c tests/cli_run.h \
                 tests/test_safe_output.c tests/test_sim_json.c tests/sim/test_stream.c tests/batch/test_map.c
 
