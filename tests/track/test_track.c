@@ -330,6 +330,40 @@ static int test_good_small_files(void)
     return 0;
 }
 
+/* Tables as people make them: Tracker's single-track export (a name row
+ * starting with the delimiter, a trailing delimiter), units in the header,
+ * a byte order mark and CRLF line ends. */
+static int test_table_forms(void)
+{
+    static const struct {
+        const char *text;
+        double last_x_m; /* along the incline (level: the incline is 0) */
+        const char *name;
+    } cases[] = {
+        {"\taxle\t\t\nt\tx\ty\t\n0\t0\t0.1\n0.1\t0.01\t0.1\n0.2\t0.02\t0.1\n0.3\t0.03\t0.1\n", 0.03, "axle"},
+        {"\xEF\xBB\xBFt (ms);x (cm);y (mm)\r\n0;0;100\r\n100;1,5;100\r\n200;3;100\r\n300;4,5;100\r\n", 0.045, "mass A"},
+        {"t x y\n0 0 0.1\n0.1 -0.01 0.1\n0.2 -0.02 0.1\n0.3 -0.04 0.1\n", 0.04, "mass A"}, /* rolls to the left */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        cli_TrackOptions o;
+        cli_track_options_default(&o);
+        o.incline_rad = 0;
+        o.radius_m = 0.1;
+        cli_Track t;
+        char err[256];
+        const int st = cli_track_parse("table", cases[i].text, strlen(cases[i].text), &o, &t, err, sizeof err);
+        ENSURE_MSG(st == 0, "case %zu: %s", i, err);
+        const int ok = t.n == 4 && fabs(t.x_m[3] - cases[i].last_x_m) < 1e-12 && fabs(t.t_s[3] - 0.3) < 1e-12 &&
+                       fabs(t.y_m[2] - 0.1) < 1e-9 && strcmp(t.centre_name, cases[i].name) == 0 && !t.has_mark;
+        if (!ok)
+            fprintf(stderr, "case %zu: n %ld, x %g, t %g, y %g, centre '%s'\n", i, t.n, t.n ? t.x_m[t.n - 1] : NAN,
+                    t.n ? t.t_s[t.n - 1] : NAN, t.n > 2 ? t.y_m[2] : NAN, t.centre_name);
+        cli_track_free(&t);
+        ENSURE(ok);
+    }
+    return 0;
+}
+
 static int test_refusals(void)
 {
     int bad = 0;
@@ -459,6 +493,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_tables);
     RUN_TEST(test_camera_moved);
     RUN_TEST(test_good_small_files);
+    RUN_TEST(test_table_forms);
     RUN_TEST(test_refusals);
     RUN_TEST(test_cli_outputs);
     if (ratio_cases > 0)
