@@ -359,7 +359,7 @@ int cmd_track(int argc, char **argv)
     st = write_outputs(&o, file, &t, &opt);
     if (st == EXIT_OK) {
         print_report(file, &t, opt.axes, opt.fit_tilt);
-        if (o.csv) printf("Frames: %ld rows written to %s\n", t.n, o.csv);
+        if (o.csv) printf("CSV: %ld frames written to %s\n", t.n, o.csv);
         if (o.json) printf("JSON written to %s\n", o.json);
     }
     cli_track_free(&t);
