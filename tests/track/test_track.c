@@ -47,7 +47,8 @@ static syn_Camera camera(double noise_px, uint64_t seed)
 typedef struct {
     double rms_x_m, rms_h_m, rms_theta_rad, med_omega_err;
     long true_hops, hops;
-    int hop_ambiguous; /* a true height within 4 sigma of the threshold */
+    long ambiguous;    /* frames whose true height is within 4 sigma of the threshold */
+    long flag_errors;  /* frames beyond that whose airborne flag is wrong */
 } recovery;
 
 static int cmp_d(const void *a, const void *b)
@@ -57,7 +58,7 @@ static int cmp_d(const void *a, const void *b)
 }
 
 /* Matches kept frames to the truth by time. */
-static int measure(const syn_Experiment *e, const cli_Track *t, recovery *r)
+static int measure(const syn_Experiment *e, const cli_Track *t, double sigma, recovery *r)
 {
     memset(r, 0, sizeof *r);
     double sx = 0, sh = 0, sth = 0;
@@ -91,7 +92,8 @@ static int measure(const syn_Experiment *e, const cli_Track *t, recovery *r)
         const int air = gap > t->hop_threshold_m;
         if (air && !prev_air) r->true_hops++;
         prev_air = air;
-        if (fabs(gap - t->hop_threshold_m) < 4 * t->sigma_m) r->hop_ambiguous = 1;
+        if (fabs(gap - t->hop_threshold_m) < 4 * sigma) r->ambiguous++;
+        else if (air != t->airborne[i]) r->flag_errors++;
     }
     qsort(werr, (size_t)nw, sizeof *werr, cmp_d);
     r->med_omega_err = nw ? werr[nw / 2] : NAN;
@@ -115,7 +117,8 @@ static void default_options(cli_TrackOptions *o, const jc_Setup *s)
 /* The recovery figures of the last trk and table cases, printed at the end. */
 static double worst_ratio_x, worst_ratio_h, worst_ratio_theta;
 static double sum_ratio_x, sum_ratio_h, sum_ratio_theta;
-static int ratio_cases;
+static int ratio_cases, hops_exact;
+static long hops_true_total;
 
 /* One synthetic case: write, load, compare. kind: "trk" or a table style. */
 static int round_trip(const char *kind, syn_Camera c, const char *what)
@@ -142,8 +145,8 @@ static int round_trip(const char *kind, syn_Camera c, const char *what)
         ENSURE_MSG(0, "%s (%s, seed %llu): %s", what, kind, (unsigned long long)c.seed, err);
     }
     recovery r;
-    const int mst = measure(&e, &t, &r);
     const double sigma = c.noise_px / c.px_per_m;
+    const int mst = measure(&e, &t, sigma, &r);
     const double sigma_theta = sqrt(2.0) * sigma / c.mark_offset_m;
     const long n = e.n;
     syn_free(&e);
@@ -179,10 +182,14 @@ static int round_trip(const char *kind, syn_Camera c, const char *what)
     /* The hops the camera saw: runs of frames whose true height is above
      * the threshold (a bounce between two frames in the air is one). */
     ENSURE_MSG(r.true_hops >= 2, CASE_MSG "the truth has %ld hops", CASE_ARGS, r.true_hops);
-    if (!r.hop_ambiguous)
-        ENSURE_MSG(r.hops == r.true_hops, CASE_MSG "%ld hops found, %ld true", CASE_ARGS, r.hops, r.true_hops);
-    else
-        ENSURE_MSG(labs(r.hops - r.true_hops) <= 1, CASE_MSG "%ld hops found, %ld true", CASE_ARGS, r.hops, r.true_hops);
+    /* Frames clearly above or below the threshold are flagged as they are;
+     * each frame near it (noise can put it either side) may add or split a hop. */
+    ENSURE_MSG(r.flag_errors == 0, CASE_MSG "%ld frames far from the threshold flagged wrongly", CASE_ARGS,
+               r.flag_errors);
+    hops_exact += r.hops == r.true_hops;
+    hops_true_total += r.true_hops;
+    ENSURE_MSG(labs(r.hops - r.true_hops) <= r.ambiguous, CASE_MSG "%ld hops found, %ld true, %ld frames near the threshold",
+               CASE_ARGS, r.hops, r.true_hops, r.ambiguous);
     if (strcmp(kind, "trk") == 0) {
         ENSURE_MSG(fabs(tc.scale_px_per_m - c.px_per_m) < 1e-9, CASE_MSG "scale %g", CASE_ARGS, tc.scale_px_per_m);
         ENSURE_MSG(tc.dt_jitter_s < 1e-9, CASE_MSG "jitter %g s", CASE_ARGS, tc.dt_jitter_s);
@@ -501,6 +508,9 @@ int main(int argc, char **argv)
                "theta %.2f; worst x %.2f, height %.2f, theta %.2f\n",
                ratio_cases, sum_ratio_x / ratio_cases, sum_ratio_h / ratio_cases, sum_ratio_theta / ratio_cases,
                worst_ratio_x, worst_ratio_h, worst_ratio_theta);
+    if (ratio_cases > 0)
+        printf("hops: the count the camera saw found exactly in %d of %d cases (%ld true hops in all)\n", hops_exact,
+               ratio_cases, hops_true_total);
     remove_scratch();
     TEST_MAIN_END();
 }
