@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 void cli_track_options_default(cli_TrackOptions *opt)
 {
@@ -107,7 +108,15 @@ int cli_track_load(const char *path, const cli_TrackOptions *opt, cli_Track *out
         one_line(err);
         return -1;
     }
-    /* Read whole, at most max + 1 bytes: a larger file is refused, however it grows. */
+    /* A regular file's size is known: refused before reading. Others (a pipe)
+     * are read whole, at most max + 1 bytes: refused however they grow. */
+    struct stat sb;
+    if (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > (off_t)max) {
+        fclose(f);
+        snprintf(err, err_len, "%s: larger than %ld bytes", path, max);
+        one_line(err);
+        return -1;
+    }
     size_t cap = 65536, len = 0;
     char *buf = malloc(cap);
     int st = buf ? 0 : -1;
