@@ -32,7 +32,8 @@ typedef struct {
     double *theta_rad;
     int has_mark;          /* a mark track was found and used */
     double x0_m;           /* where the centre starts along the incline (m) */
-    double sigma_m;        /* a pixel in metres: the position noise to expect */
+    double sigma_m;        /* the position noise to expect (m): the larger of a
+                              pixel in metres (.trk) and noise_m, at least 10 µm */
     double frame_rate_hz;  /* nominal */
     double dt_jitter_s;    /* largest |dt - nominal| between kept frames */
     long gaps;             /* missing frames of the centre track */
