@@ -41,6 +41,8 @@ static void usage(FILE *out)
           "  mc         Monte Carlo: how sure the first lift-off is, given the inputs' uncertainties\n"
           "  map        a regime map (gnuplot): the first lift-off over two setup options\n"
           "  design     the values of one option (rod offset, ...) that make it jump at a chosen place\n"
+          "  track      a video's tracked points (Tracker .trk or exported table) in the incline\n"
+          "             frame: theta, omega, the centre's height and its hops\n"
           "  presets    list the built-in setups\n"
           "\n"
           "  jumpcyl COMMAND --help   options of a command\n"
@@ -82,12 +84,13 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "mc") == 0) return batch_command(cmd_mc, argc, argv);
     if (strcmp(cmd, "map") == 0) return batch_command(cmd_map, argc, argv);
     if (strcmp(cmd, "design") == 0) return cmd_design(argc - 1, argv + 1);
+    if (strcmp(cmd, "track") == 0) return cmd_track(argc - 1, argv + 1);
     if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
         static char paper_name[] = "paper";
         argv[0] = paper_name;
         return cmd_paper(argc, argv);
     }
-    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map, design; see 'jumpcyl --help')", cmd);
+    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map, design, track; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
 }
 
