@@ -10,7 +10,7 @@ CMAKE_ARGS ?=
 # and `make test` install only these). Each developer tool comes with the
 # target that uses it (DEV_PACKAGES below).
 DEB_PACKAGES := cmake make gcc pkgconf libgsl-dev libcjson-dev libinih-dev libcairo2-dev librandom123-dev \
-                gnuplot-nox ffmpeg
+                libxml2-dev gnuplot-nox ffmpeg
 # make fuzz: clang and its libFuzzer runtime; make test-valgrind; make lint;
 # make test-mpi: the optional MPI build; make install: the man page.
 FUZZ_PACKAGES     := clang libclang-rt-14-dev

@@ -67,7 +67,7 @@ double cli_track_mark_offset_rad(const jc_Model *m) { return m->body.cm_angle_ra
 
 double cli_track_mark_radius(const cli_Track *t, const jc_Model *m)
 {
-    (void)t; /* the import's median distance, once it measures one */
+    if (t->has_mark && isfinite(t->mark_radius_m) && t->mark_radius_m > 0.0) return t->mark_radius_m;
     double a = 0.0;
     for (int i = 0; i < m->setup.body.part_count; ++i) a = fmax(a, m->setup.body.parts[i].offset_m);
     return a > 0.0 ? a : m->body.radius_m;

@@ -105,6 +105,12 @@ int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, cli_T
     out->x0_m = 0.0;
     out->sigma_m = s;
     out->frame_rate_hz = o->fps_hz;
+    out->noise_m = s;
+    out->incline_rad = setup->incline_rad;
+    out->radius_m = m.body.radius_m;
+    out->mark_radius_m = out->has_mark ? o->mark_radius_m : NAN;
+    out->hop_threshold_m = 5.0 * s;
+    snprintf(out->format, sizeof out->format, "model");
     snprintf(out->centre_name, sizeof out->centre_name, "centre");
     snprintf(out->mark_name, sizeof out->mark_name, "%s", out->has_mark ? "mark" : "");
     if (n < 3) {

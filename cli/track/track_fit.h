@@ -86,8 +86,9 @@ int cli_track_start_estimate(const cli_Track *t, long first, long span, double r
  * cm_angle_rad, as the mark sits on the body's reference direction. */
 double cli_track_mark_offset_rad(const jc_Model *m);
 
-/* The mark's distance from C: the track's when it has one, else the
- * off-centre part farthest from C (the paper's rod: 5.5 cm). */
+/* The mark's distance from C: the track's (the median measured by the
+ * import) when it has one, else the off-centre part farthest from C (the
+ * paper's rod: 5.5 cm). */
 double cli_track_mark_radius(const cli_Track *t, const jc_Model *m);
 
 /* Hops seen in a sampled height: runs of frames whose centre is more than

@@ -1,0 +1,133 @@
+/* cli_track_load: a tracked experiment from a file (docs/tracker.md): the
+ * file read whole within a size bound, its format told by its content,
+ * then the incline frame (frame.c) and the derived quantities (derive.c). */
+#include "raw.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void cli_track_options_default(cli_TrackOptions *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->incline_rad = 30.0 * CLI_PI / 180.0;
+    opt->radius_m = 0.10;
+    opt->axes = CLI_TRACK_AXES_LEVEL;
+    opt->hop_sigmas = 5.0;
+    opt->max_bytes = CLI_TRACK_MAX_BYTES;
+}
+
+int cli_raw_alloc(cli_RawData *raw, long frames, int track_count)
+{
+    raw->frames = frames;
+    raw->track_count = track_count;
+    raw->t_s = malloc((size_t)frames * sizeof(double));
+    int ok = raw->t_s != NULL;
+    for (int i = 0; i < track_count; ++i) {
+        raw->tracks[i].x_m = malloc((size_t)frames * sizeof(double));
+        raw->tracks[i].y_m = malloc((size_t)frames * sizeof(double));
+        ok = ok && raw->tracks[i].x_m && raw->tracks[i].y_m;
+    }
+    if (!ok) {
+        cli_raw_free(raw);
+        return -1;
+    }
+    for (long f = 0; f < frames; ++f) {
+        raw->t_s[f] = NAN;
+        for (int i = 0; i < track_count; ++i) raw->tracks[i].x_m[f] = raw->tracks[i].y_m[f] = NAN;
+    }
+    return 0;
+}
+
+void cli_raw_free(cli_RawData *raw)
+{
+    free(raw->t_s);
+    raw->t_s = NULL;
+    for (int i = 0; i < CLI_TRACK_MAX_TRACKS; ++i) {
+        free(raw->tracks[i].x_m);
+        free(raw->tracks[i].y_m);
+        raw->tracks[i].x_m = raw->tracks[i].y_m = NULL;
+    }
+    raw->track_count = 0;
+    raw->frames = 0;
+}
+
+int cli_track_parse(const char *name, const char *data, size_t len, const cli_TrackOptions *opt, cli_Track *out,
+                    char *err, size_t err_len)
+{
+    memset(out, 0, sizeof *out);
+    const long max = opt->max_bytes > 0 && opt->max_bytes < CLI_TRACK_MAX_BYTES ? opt->max_bytes : CLI_TRACK_MAX_BYTES;
+    if (len > (size_t)max) {
+        snprintf(err, err_len, "%s: larger than %ld bytes", name, max);
+        return -1;
+    }
+    size_t i = 0;
+    if (len >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0) i = 3; /* a UTF-8 byte order mark */
+    while (i < len && (data[i] == ' ' || data[i] == '\t' || data[i] == '\r' || data[i] == '\n')) i++;
+    cli_RawData raw;
+    const int st = i < len && data[i] == '<' ? cli_trk_parse(name, data, len, &raw, err, err_len)
+                                             : cli_table_parse(name, data + i, len - i, &raw, err, err_len);
+    if (st != 0) return -1;
+    int rc = cli_track_from_raw(name, &raw, opt, out, err, err_len);
+    cli_raw_free(&raw);
+    if (rc == 0) rc = cli_track_derive(name, opt, out, err, err_len);
+    if (rc != 0) cli_track_free(out);
+    return rc;
+}
+
+int cli_track_load(const char *path, const cli_TrackOptions *opt, cli_Track *out, char *err, size_t err_len)
+{
+    memset(out, 0, sizeof *out);
+    const long max = opt->max_bytes > 0 && opt->max_bytes < CLI_TRACK_MAX_BYTES ? opt->max_bytes : CLI_TRACK_MAX_BYTES;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, err_len, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    /* Read whole, at most max + 1 bytes: a larger file is refused, however it grows. */
+    size_t cap = 65536, len = 0;
+    char *buf = malloc(cap);
+    int st = buf ? 0 : -1;
+    while (st == 0) {
+        if (len == cap) {
+            if (cap > (size_t)max) break;
+            size_t bigger = cap * 2;
+            if (bigger > (size_t)max + 1) bigger = (size_t)max + 1;
+            char *p = realloc(buf, bigger);
+            if (!p) { st = -1; break; }
+            buf = p;
+            cap = bigger;
+        }
+        const size_t got = fread(buf + len, 1, cap - len, f);
+        len += got;
+        if (got == 0) break;
+    }
+    const int read_error = ferror(f);
+    fclose(f);
+    if (st != 0 || read_error) {
+        snprintf(err, err_len, "%s: %s", path, st != 0 ? "out of memory" : "read error");
+        free(buf);
+        return -1;
+    }
+    if (len > (size_t)max) {
+        snprintf(err, err_len, "%s: larger than %ld bytes", path, max);
+        free(buf);
+        return -1;
+    }
+    st = cli_track_parse(path, buf, len, opt, out, err, err_len);
+    free(buf);
+    return st;
+}
+
+void cli_track_free(cli_Track *t)
+{
+    if (!t) return;
+    free(t->t_s);
+    free(t->x_m);
+    free(t->y_m);
+    free(t->theta_rad);
+    free(t->omega_radps);
+    free(t->airborne);
+    memset(t, 0, sizeof *t);
+}
