@@ -2,6 +2,7 @@
  * exit 0 ok, 1 failure, 2 bad usage or input. */
 #include "cli.h"
 #include "batch.h"
+#include "track_fit.h"
 
 #include <gsl/gsl_errno.h>
 #include <signal.h>
@@ -39,6 +40,8 @@ static void usage(FILE *out)
           "  sweep      the full model over a grid of setup values: one CSV row per case\n"
           "  mc         Monte Carlo: how sure the first lift-off is, given the inputs' uncertainties\n"
           "  map        a regime map (gnuplot): the first lift-off over two setup options\n"
+          "  compare    a tracked video (Tracker) against the model run from its first tracked state\n"
+          "  fit        setup values and the start fitted to a tracked video (least squares)\n"
           "  presets    list the built-in setups\n"
           "\n"
           "  jumpcyl COMMAND --help   options of a command\n"
@@ -79,12 +82,14 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "sweep") == 0) return batch_command(cmd_sweep, argc, argv);
     if (strcmp(cmd, "mc") == 0) return batch_command(cmd_mc, argc, argv);
     if (strcmp(cmd, "map") == 0) return batch_command(cmd_map, argc, argv);
+    if (strcmp(cmd, "compare") == 0) return cmd_compare(argc - 1, argv + 1);
+    if (strcmp(cmd, "fit") == 0) return cmd_fit(argc - 1, argv + 1);
     if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
         static char paper_name[] = "paper";
         argv[0] = paper_name;
         return cmd_paper(argc, argv);
     }
-    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map; see 'jumpcyl --help')", cmd);
+    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map, compare, fit; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
 }
 

@@ -14,6 +14,8 @@
  * HOP_MIN_M, so that a noise-free track does not count rounding). */
 #define HOP_SIGMAS 5.0
 #define HOP_MIN_M 1e-4
+#define START_FIT_S 0.25
+#define START_FIT_ITER 50
 
 void cli_compare_free(cli_Compare *c)
 {
@@ -45,6 +47,25 @@ static int make_start(const cli_Track *t, const jc_Model *m, long first, cli_Sta
     /* The mark's angle is G's minus the body's offset between the two. */
     if (t->has_mark) s->theta_rad += cli_track_mark_offset_rad(m);
     return 0;
+}
+
+/* A parabola through a few noisy frames gives omega to a fraction of a
+ * rad/s at 60 fps and 1 px, which grows into centimetres down the ramp:
+ * the start is refined by fitting the model's own start (x0, omega0, and
+ * theta0 when the mark is tracked) to the frames of the first START_FIT_S. */
+static void refine_start(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long first, jc_State *s)
+{
+    cli_FitOptions fo;
+    memset(&fo, 0, sizeof fo);
+    fo.free_mask = (1u << CLI_FIT_X0) | (1u << CLI_FIT_OMEGA0) | (t->has_mark ? 1u << CLI_FIT_THETA0 : 0u);
+    fo.loss = CLI_LOSS_LINEAR;
+    fo.from_s = t->t_s[first];
+    fo.to_s = t->t_s[first] + START_FIT_S;
+    fo.max_iter = START_FIT_ITER;
+    fo.start = CLI_START_TRACKED;
+    cli_FitResult r;
+    char err[256];
+    if (cli_track_fit(setup, t, &fo, o, &r, err, sizeof err) == 0 && r.stop != CLI_FIT_STOP_ITERATIONS) *s = r.start;
 }
 
 static void residuals(cli_Compare *c, const cli_Track *t, double mark_offset)
@@ -81,6 +102,7 @@ int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOpt
     const double r = m.body.radius_m;
     out->threshold_m = fmax(HOP_SIGMAS * t->sigma_m, HOP_MIN_M);
     if (make_start(t, &m, out->first, start, out->threshold_m, &out->start, err, err_len) != 0) return -1;
+    if (start == CLI_START_TRACKED) refine_start(setup, t, o, out->first, &out->start);
     /* The model starts where the run does (its energies and the closed
      * form of a tiny first swing refer to its own start). */
     jc_Setup at_start = *setup;
@@ -97,6 +119,7 @@ int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOpt
         snprintf(err, err_len, "out of memory");
         return -1;
     }
+    sim.shift_m = cli_track_sim_shift(t);
     const double *ts = t->t_s + out->first;
     int rc = cli_track_sim_run(&sim, &m, &out->start, o, ts, out->count, out->x_m, out->y_m, out->theta_rad, err,
                                err_len);
@@ -111,7 +134,7 @@ int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOpt
         out->model_largest_hop_m = sum->largest_hop_m;
         out->model_liftoff_t_s = sum->first_liftoff >= 0 ? sum->first_liftoff_state.t_s : NAN;
         out->model_liftoff_x_m =
-            sum->first_liftoff >= 0 ? sum->first_liftoff_state.x_m - CLI_TRACK_RAMP_MARGIN_M : NAN;
+            sum->first_liftoff >= 0 ? sum->first_liftoff_state.x_m - sim.shift_m : NAN;
     }
     cli_track_sim_free(&sim);
     if (rc != 0) cli_compare_free(out);

@@ -342,6 +342,7 @@ static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const 
         return -1;
     }
     for (long i = 0; i < c->nres; ++i) c->sw[i] = 1.0;
+    c->ts.shift_m = cli_track_sim_shift(t);
     return 0;
 }
 
@@ -392,7 +393,7 @@ static double liftoff_x(fit_ctx *c, const double *u, double *t_s)
     jc_RunSummary sum;
     if (run_u(c, u, &sum) != 0 || sum.first_liftoff < 0) return NAN;
     if (t_s) *t_s = sum.first_liftoff_state.t_s;
-    return sum.first_liftoff_state.x_m - CLI_TRACK_RAMP_MARGIN_M;
+    return sum.first_liftoff_state.x_m - c->ts.shift_m;
 }
 
 /* Predicted first lift-off and its standard error by the delta method:

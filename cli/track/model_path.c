@@ -20,7 +20,13 @@ int cli_track_sim_init(cli_TrackSim *s)
 {
     memset(s, 0, sizeof *s);
     s->ws = jc_workspace_new();
+    s->shift_m = CLI_TRACK_RAMP_MARGIN_M;
     return s->ws ? 0 : -1;
+}
+
+double cli_track_sim_shift(const cli_Track *t)
+{
+    return CLI_TRACK_RAMP_MARGIN_M - (isfinite(t->x0_m) ? t->x0_m : 0.0);
 }
 
 void cli_track_sim_free(cli_TrackSim *s)
@@ -167,7 +173,7 @@ int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *st
     const double samples = (opt.t_max_s - start->t_s) / opt.sample_dt_s + 1000.0;
     opt.max_samples = samples < 1e8 ? (int)samples : 100000000;
     jc_State st0 = *start;
-    st0.x_m += CLI_TRACK_RAMP_MARGIN_M;
+    st0.x_m += s->shift_m;
     past_tiny_swing(model, &st0);
     s->count = 0;
     s->impacts = 0;
@@ -189,7 +195,7 @@ int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *st
     for (long i = 0; i < n; ++i) {
         double th;
         at_time(s, model, &k, t_s[i], &x_m[i], &y_m[i], &th);
-        x_m[i] -= CLI_TRACK_RAMP_MARGIN_M;
+        x_m[i] -= s->shift_m;
         if (theta_rad) theta_rad[i] = th;
     }
     return 0;

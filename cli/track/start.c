@@ -49,7 +49,12 @@ int cli_track_start_estimate(const cli_Track *t, long first, long span, double r
     if (y - radius_m < hop_threshold_m) {
         /* In contact: rolling, the only start the frames can tell apart
          * from noise. */
-        if (!isfinite(w)) w = vx / radius_m;
+        /* Both tell omega when rolling: the centre's speed over r, and the
+         * mark's angle; weighted by their inverse variances (a mark at a
+         * from C has angle noise sigma sqrt 2 / a, the centre sigma / r). */
+        const double a = isfinite(t->mark_radius_m) && t->mark_radius_m > 0.0 ? t->mark_radius_m : radius_m;
+        const double wx = radius_m * radius_m, wt = 0.5 * a * a;
+        w = isfinite(w) ? (wt * w + wx * vx / radius_m) / (wt + wx) : vx / radius_m;
         out->y_m = radius_m;
         out->vy_mps = 0.0;
         out->omega_radps = w;

@@ -45,12 +45,17 @@ typedef struct {
     double *impact_t_s; /* times of impacts: velocities jump there */
     int impacts, impact_cap;
     jc_Workspace *ws;
+    /* x in the run = x in the track + shift_m: the track's x0_m (the first
+     * frame's centre) is the setup's start, the ramp's top, and the ramp is
+     * lengthened uphill by the margin. cli_track_sim_shift gives it. */
+    double shift_m;
     jc_RunSummary sum;   /* of the last run */
     jc_Run run;          /* its end */
     int failed;          /* out of memory in the recorder */
 } cli_TrackSim;
 
 int cli_track_sim_init(cli_TrackSim *s);
+double cli_track_sim_shift(const cli_Track *t);
 void cli_track_sim_free(cli_TrackSim *s);
 
 /* The setup as runs against a track use it: the ramp lengthened uphill by
@@ -65,8 +70,8 @@ int cli_track_model(const jc_Setup *setup, jc_Model *model, char *err, size_t er
  * samples a fraction of a frame apart (linear in an interval that ends at an
  * impact). Past the run's end (the ramp's end) the body flies on freely.
  * The run's summary is in s->sum, in the run's coordinates (x of the
- * summary's states minus CLI_TRACK_RAMP_MARGIN_M is along the track). 0, or
- * -1 with a message. */
+ * summary's states minus s->shift_m is along the track). 0, or -1 with a
+ * message. */
 int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *start, const jc_SimOptions *o,
                       const double *t_s, long n, double *x_m, double *y_m, double *theta_rad, char *err,
                       size_t err_len);
@@ -192,5 +197,61 @@ typedef struct {
  * message (no frames, a setup the model refuses, a numerical failure). */
 int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
                   cli_FitResult *out, char *err, size_t err_len);
+
+/* ---- cli/figures/plot_track.c: the figure of compare and fit ---- */
+
+typedef struct {
+    const cli_Track *track;
+    long first, count;               /* the frames shown */
+    const double *sim_x, *sim_y, *sim_theta; /* the model at those frames (theta: the mark's) */
+    const double *path_t, *path_x, *path_y;  /* the model finely sampled, for its curves */
+    long path_n;
+    double radius_m, incline_rad;
+    double mark_radius_m;            /* > 0: the mark's residual across its radius is shown */
+    double hop_threshold_m;
+    char title[256];                 /* text the tool made (numbers, fixed words) */
+} cli_TrackFigure;
+
+/* Three panels (to scale in the laboratory frame: the tracked centre over
+ * the model's path; the centre's height above the surface against time;
+ * the residuals against time), rendered by gnuplot in a scratch directory
+ * and written to output (.png, .svg, .pdf) whole or not at all. cmdline is
+ * for the script's header. EXIT_OK, or an exit status after a message. */
+int cli_track_figure(const char *cmd, const cli_TrackFigure *f, const char *output, const char *cmdline);
+
+/* ---- cli/commands/track_input.c: what compare and fit share ---- */
+
+enum {
+    CLI_TRACK_OPT_TRACK = 2000, CLI_TRACK_OPT_CENTRE, CLI_TRACK_OPT_MASS, CLI_TRACK_OPT_AXES, CLI_TRACK_OPT_FROM,
+    CLI_TRACK_OPT_TO, CLI_TRACK_OPT_OUTPUT, CLI_TRACK_OPT_SETUP_START
+};
+#define CLI_TRACK_ARG_OPTIONS                                                                                   \
+    {"track", required_argument, 0, CLI_TRACK_OPT_TRACK}, {"centre", required_argument, 0, CLI_TRACK_OPT_CENTRE}, \
+        {"mass", required_argument, 0, CLI_TRACK_OPT_MASS}, {"axes", required_argument, 0, CLI_TRACK_OPT_AXES},    \
+        {"from", required_argument, 0, CLI_TRACK_OPT_FROM}, {"to", required_argument, 0, CLI_TRACK_OPT_TO},        \
+        {"output", required_argument, 0, CLI_TRACK_OPT_OUTPUT},                                                    \
+        {"from-setup-start", no_argument, 0, CLI_TRACK_OPT_SETUP_START}
+
+typedef struct {
+    const char *track, *centre, *mass, *axes, *from, *to, *output;
+    int from_setup_start;
+} cli_TrackArgs;
+
+/* 0 when it took the option, EXIT_USAGE after a message, 1 when the option is not one of these. */
+int cli_track_args_take(const char *cmd, cli_TrackArgs *a, int opt, const char *arg);
+void cli_track_args_help(void);
+/* Checks the options before any work (the window, the figure's name and
+ * target, gnuplot); 0 or the exit status after a one-line message. */
+int cli_track_args_check(const char *cmd, const cli_TrackArgs *a, double *from_s, double *to_s);
+/* Reads the track for the model's incline and radius; 0 or the exit status after a message. */
+int cli_track_args_load(const char *cmd, const cli_TrackArgs *a, const jc_Model *m, cli_Track *t);
+void cli_track_print_head(const char *file, const cli_Track *t, long first, long count);
+/* The model's path every quarter frame from start to t_end_s (for the
+ * figure); 0, or -1 (the arrays are then to be freed all the same). */
+int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_State *start, const jc_SimOptions *o,
+                        double t_end_s, double **pt, double **px, double **py, long *n);
+
+int cmd_compare(int argc, char **argv);
+int cmd_fit(int argc, char **argv);
 
 #endif
