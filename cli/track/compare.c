@@ -63,6 +63,7 @@ static void refine_start(const jc_Setup *setup, const cli_Track *t, const jc_Sim
     fo.to_s = t->t_s[first] + START_FIT_S;
     fo.max_iter = START_FIT_ITER;
     fo.start = CLI_START_TRACKED;
+    fo.sigma_m = t->sigma_m > 0.0 ? 0.0 : 1e-3; /* a noise-free track: any scale has the same minimum */
     cli_FitResult r;
     char err[256];
     if (cli_track_fit(setup, t, &fo, o, &r, err, sizeof err) == 0 && r.stop != CLI_FIT_STOP_ITERATIONS) *s = r.start;
