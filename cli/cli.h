@@ -221,5 +221,6 @@ int cmd_predict(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
 int cmd_plot(int argc, char **argv);    /* commands/plot.c: figures with gnuplot */
 int cmd_animate(int argc, char **argv); /* commands/animate.c: films with cairo and ffmpeg */
+int cmd_track(int argc, char **argv);   /* commands/track.c: a video's tracked points (Tracker) */
 
 #endif

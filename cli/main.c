@@ -40,6 +40,8 @@ static void usage(FILE *out)
           "  sweep      the full model over a grid of setup values: one CSV row per case\n"
           "  mc         Monte Carlo: how sure the first lift-off is, given the inputs' uncertainties\n"
           "  map        a regime map (gnuplot): the first lift-off over two setup options\n"
+          "  track      a video's tracked points (Tracker .trk or exported table) in the incline\n"
+          "             frame: theta, omega, the centre's height and its hops\n"
           "  compare    a tracked video (Tracker) against the model run from its first tracked state\n"
           "  fit        setup values and the start fitted to a tracked video (least squares)\n"
           "  presets    list the built-in setups\n"
@@ -82,6 +84,7 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "sweep") == 0) return batch_command(cmd_sweep, argc, argv);
     if (strcmp(cmd, "mc") == 0) return batch_command(cmd_mc, argc, argv);
     if (strcmp(cmd, "map") == 0) return batch_command(cmd_map, argc, argv);
+    if (strcmp(cmd, "track") == 0) return cmd_track(argc - 1, argv + 1);
     if (strcmp(cmd, "compare") == 0) return cmd_compare(argc - 1, argv + 1);
     if (strcmp(cmd, "fit") == 0) return cmd_fit(argc - 1, argv + 1);
     if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
@@ -89,7 +92,7 @@ static int dispatch(int argc, char **argv)
         argv[0] = paper_name;
         return cmd_paper(argc, argv);
     }
-    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map, compare, fit; see 'jumpcyl --help')", cmd);
+    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map, track, compare, fit; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
 }
 

@@ -33,16 +33,38 @@ static double noise_estimate(const cli_Track *t, double *work)
     return m > 0 ? 1.4826 * median(work, m) / sqrt(20.0) : NAN;
 }
 
-/* The line y = a + b x through the frames in contact: least squares, then
- * again without the frames more than cut above it (hops), a few times. */
-static int surface_line(const cli_Track *t, double cut, double *a, double *b)
+/* The line y = a + b x through the frames in contact. It starts level
+ * through the first frames (the body is released on the surface); each pass
+ * keeps the runs of at least SURFACE_RUN consecutive frames within cut of
+ * the line and fits it again by least squares. A flight's low first and
+ * last frames and a bounce seen between two frames make short runs: left
+ * out, as they would tilt the line where the body is mostly in the air. */
+#define SURFACE_RUN 4
+#define SURFACE_START 8
+
+static int surface_line(const cli_Track *t, double cut, int fit_tilt, double *work, unsigned char *keep, double *a,
+                        double *b, double *tilt)
 {
-    *a = 0;
+    const long first = t->n < SURFACE_START ? t->n : SURFACE_START;
+    for (long i = 0; i < first; ++i) work[i] = t->y_m[i];
+    *a = median(work, first);
     *b = 0;
     for (int pass = 0; pass < 6; ++pass) {
+        long run = 0;
+        for (long i = 0; i <= t->n; ++i) {
+            const int near = i < t->n && !(t->y_m[i] - (*a + *b * t->x_m[i]) > cut);
+            if (i < t->n) keep[i] = 0;
+            if (near) {
+                run++;
+                continue;
+            }
+            if (run >= SURFACE_RUN)
+                for (long k = i - run; k < i; ++k) keep[k] = 1;
+            run = 0;
+        }
         double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
         for (long i = 0; i < t->n; ++i) {
-            if (pass > 0 && t->y_m[i] - (*a + *b * t->x_m[i]) > cut) continue;
+            if (!keep[i]) continue;
             sw += 1;
             sx += t->x_m[i];
             sy += t->y_m[i];
@@ -51,13 +73,13 @@ static int surface_line(const cli_Track *t, double cut, double *a, double *b)
         }
         if (sw < 3) return -1;
         const double det = sw * sxx - sx * sx;
-        if (!(fabs(det) > 1e-300)) { /* the centre did not move: a level line */
-            *b = 0;
-            *a = sy / sw;
-        } else {
-            *b = (sw * sxy - sx * sy) / det;
-            *a = (sy - *b * sx) / sw;
-        }
+        /* A centre that hardly moved along the incline: a level line. */
+        *tilt = det > 1e-12 * sw * sxx ? (sw * sxy - sx * sy) / det : 0.0;
+        /* Without fit_tilt the given incline and axes are trusted: a tilt
+         * fitted on the frames in contact, mostly before the first hop,
+         * would move the far end of the ramp by more than the noise. */
+        *b = fit_tilt ? *tilt : 0.0;
+        *a = (sy - *b * sx) / sw;
     }
     return 0;
 }
@@ -72,16 +94,17 @@ int cli_track_derive(const char *name, const cli_TrackOptions *opt, cli_Track *t
     t->noise_m = noise_estimate(t, work);
     double sigma = t->noise_m;
     if (!isnan(t->sigma_m) && !(sigma >= t->sigma_m)) sigma = t->sigma_m;
-    if (!(sigma > 0)) sigma = isnan(t->sigma_m) ? 1e-4 : t->sigma_m; /* noiseless data: 0.1 mm */
+    /* Noiseless or very short data: no finer than 10 µm, beyond what any video resolves. */
+    if (!(sigma >= 1e-5)) sigma = 1e-5;
     t->sigma_m = sigma;
     const double k = opt->hop_sigmas >= 1 ? opt->hop_sigmas : 5.0;
-    double a, b;
-    if (surface_line(t, 3 * sigma, &a, &b) != 0) {
+    double a, b, tilt;
+    if (surface_line(t, 3 * sigma, opt->fit_tilt, work, t->airborne, &a, &b, &tilt) != 0) {
         free(work);
-        snprintf(err, err_len, "%s: too few frames in contact to place the surface", name);
+        snprintf(err, err_len, "%s: too few frames in contact to place the surface (check --incline and --axes)", name);
         return -1;
     }
-    t->surface_tilt_rad = atan(b);
+    t->surface_tilt_rad = atan(tilt);
     for (long i = 0; i < t->n; ++i) t->y_m[i] = t->radius_m + t->y_m[i] - (a + b * t->x_m[i]);
     /* Hops: runs of frames with the centre clearly above r. */
     t->hop_threshold_m = k * sigma;

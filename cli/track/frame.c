@@ -158,8 +158,13 @@ int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_Track
         }
         for (long f = 1; f < raw->frames; ++f) d[f - 1] = raw->t_s[f] - raw->t_s[f - 1];
         qsort(d, (size_t)(raw->frames - 1), sizeof *d, cmp_double);
-        dt = d[(raw->frames - 1) / 2];
+        const double step = d[(raw->frames - 1) / 2];
         free(d);
+        /* The median step, refined: the whole span over the frames it holds
+         * (each step a whole number of frames), so that jitter averages out. */
+        double frames_spanned = 0;
+        for (long f = 1; f < raw->frames; ++f) frames_spanned += fmax(1.0, floor((raw->t_s[f] - raw->t_s[f - 1]) / step + 0.5));
+        dt = (raw->t_s[raw->frames - 1] - raw->t_s[0]) / frames_spanned;
     }
     if (!(dt > 0) || !isfinite(1.0 / dt)) {
         snprintf(err, err_len, "%s: the frames have no time step", name);

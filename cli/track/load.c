@@ -53,8 +53,27 @@ void cli_raw_free(cli_RawData *raw)
     raw->frames = 0;
 }
 
+/* Messages quote the file's bytes (fields, names) and the user's: control
+ * characters become '?', so that a message is always one line. */
+static void one_line(char *err)
+{
+    for (char *p = err; *p; ++p)
+        if ((unsigned char)*p < 0x20 || *p == 0x7f) *p = '?';
+}
+
+static int parse(const char *name, const char *data, size_t len, const cli_TrackOptions *opt, cli_Track *out,
+                 char *err, size_t err_len);
+
 int cli_track_parse(const char *name, const char *data, size_t len, const cli_TrackOptions *opt, cli_Track *out,
                     char *err, size_t err_len)
+{
+    const int st = parse(name, data, len, opt, out, err, err_len);
+    if (st != 0 && err_len > 0) one_line(err);
+    return st;
+}
+
+static int parse(const char *name, const char *data, size_t len, const cli_TrackOptions *opt, cli_Track *out,
+                 char *err, size_t err_len)
 {
     memset(out, 0, sizeof *out);
     const long max = opt->max_bytes > 0 && opt->max_bytes < CLI_TRACK_MAX_BYTES ? opt->max_bytes : CLI_TRACK_MAX_BYTES;
@@ -62,12 +81,14 @@ int cli_track_parse(const char *name, const char *data, size_t len, const cli_Tr
         snprintf(err, err_len, "%s: larger than %ld bytes", name, max);
         return -1;
     }
-    size_t i = 0;
-    if (len >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0) i = 3; /* a UTF-8 byte order mark */
+    size_t bom = 0;
+    if (len >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0) bom = 3; /* a UTF-8 byte order mark */
+    size_t i = bom;
     while (i < len && (data[i] == ' ' || data[i] == '\t' || data[i] == '\r' || data[i] == '\n')) i++;
     cli_RawData raw;
+    /* XML starts with '<'; a table may start with a tab (its name row). */
     const int st = i < len && data[i] == '<' ? cli_trk_parse(name, data, len, &raw, err, err_len)
-                                             : cli_table_parse(name, data + i, len - i, &raw, err, err_len);
+                                             : cli_table_parse(name, data + bom, len - bom, &raw, err, err_len);
     if (st != 0) return -1;
     int rc = cli_track_from_raw(name, &raw, opt, out, err, err_len);
     cli_raw_free(&raw);
@@ -83,6 +104,7 @@ int cli_track_load(const char *path, const cli_TrackOptions *opt, cli_Track *out
     FILE *f = fopen(path, "rb");
     if (!f) {
         snprintf(err, err_len, "%s: cannot open: %s", path, strerror(errno));
+        one_line(err);
         return -1;
     }
     /* Read whole, at most max + 1 bytes: a larger file is refused, however it grows. */
@@ -107,11 +129,13 @@ int cli_track_load(const char *path, const cli_TrackOptions *opt, cli_Track *out
     fclose(f);
     if (st != 0 || read_error) {
         snprintf(err, err_len, "%s: %s", path, st != 0 ? "out of memory" : "read error");
+        one_line(err);
         free(buf);
         return -1;
     }
     if (len > (size_t)max) {
         snprintf(err, err_len, "%s: larger than %ld bytes", path, max);
+        one_line(err);
         free(buf);
         return -1;
     }

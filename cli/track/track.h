@@ -51,8 +51,9 @@ typedef struct {
     double noise_m;          /* position noise estimated from the centre's third
                                 differences (robust: MAD); sigma_m is the larger of
                                 this and a pixel */
-    double surface_tilt_rad; /* angle of the line through the rolling frames'
-                                centres against the incline's x axis: a check of α */
+    double surface_tilt_rad; /* angle of the line through the frames in contact
+                                against the incline's x axis: a check of α and
+                                the axes (removed from y_m with fit_tilt) */
 
     /* What the file held, for the report. */
     char format[8];                                         /* "trk" or "table" */
@@ -82,6 +83,9 @@ typedef struct {
     cli_TrackAxes axes;
     double hop_sigmas;      /* the hop threshold in units of sigma_m (≥ 1) */
     long max_bytes;         /* files larger are refused (≤ CLI_TRACK_MAX_BYTES) */
+    int fit_tilt;           /* 1: the surface is the line fitted through the frames
+                               in contact (axes set by eye); 0: parallel to the
+                               incline's x axis, only its height fitted */
 } cli_TrackOptions;
 
 /* Defaults: no names, level axes, 30° and the paper's r (callers set both

@@ -396,7 +396,7 @@ static int parse_doc(const trk_ctx *c, xmlDoc *doc, cli_RawData *raw)
         return -1;
     }
     raw->px_per_m = k.sx[clip.start] / m_per_unit;
-    raw->nominal_dt_s = clip.dt_s;
+    raw->nominal_dt_s = clip.dt_s * (double)clip.step; /* between steps */
     for (long i = 0; i < clip.count; ++i) raw->t_s[i] = (double)(i * clip.step) * clip.dt_s;
     int ti = 0, st = 0;
     for (xmlNode *it = tracks->children; it && st == 0; it = it->next) {
@@ -428,7 +428,8 @@ int cli_trk_parse(const char *name, const char *data, size_t len, cli_RawData *r
     strcpy(raw->format, "trk");
     err[0] = '\0';
     const trk_ctx c = {name, err, err_len};
-    if (len > (size_t)CLI_TRACK_MAX_BYTES * 4 || len > 0x7fffffff) {
+    /* libxml2 takes an int length; the caller's bound is far below. */
+    if (len > (size_t)CLI_TRACK_MAX_BYTES) {
         snprintf(err, err_len, "%s: too large", name);
         return -1;
     }

@@ -1,0 +1,446 @@
+/*
+ * jumpcyl track (issue 16, import): synthetic experiments written as
+ * Tracker writes them (.trk, exported tables with tab, semicolon or comma
+ * delimiters and a decimal point or comma) are read back by cli_track_load
+ * to the pixel noise; θ and the hops match the simulation; hostile and
+ * malformed files get one line on standard error, exit 2 and no output.
+ *
+ *   test_track PATH_TO_JUMPCYL
+ * JC_TEST_SEED=N repeats the random cases with another seed.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "../test.h"
+#include "../cli_run.h"
+#include "synth.h"
+#include "track.h"
+
+#include <cjson/cJSON.h>
+#include <sys/stat.h>
+
+static char scratch[] = "/tmp/jc_track_test_XXXXXX";
+static uint64_t base_seed = 16;
+
+static void scratch_path(char *buf, size_t len, const char *name) { snprintf(buf, len, "%s/%s", scratch, name); }
+
+static syn_Camera camera(double noise_px, uint64_t seed)
+{
+    syn_Camera c;
+    memset(&c, 0, sizeof c);
+    c.fps = 60;
+    c.stepsize = 1;
+    c.startframe = 5;
+    c.px_per_m = 560;
+    c.roll_deg = 3.5;
+    c.cx_px = 110;
+    c.cy_px = 160;
+    c.noise_px = noise_px;
+    c.mark_offset_m = 0.055; /* the paper's rod: on the direction C -> G */
+    c.missing_centre[0] = 17, c.missing_centre[1] = 40, c.missing_centre[2] = 41;
+    c.n_missing_centre = 3;
+    c.missing_mark[0] = 23, c.missing_mark[1] = 51;
+    c.n_missing_mark = 2;
+    c.seed = seed;
+    return c;
+}
+
+/* What a load must recover, measured against the truth. */
+typedef struct {
+    double rms_x_m, rms_h_m, rms_theta_rad, med_omega_err;
+    long true_hops, hops;
+    int hop_ambiguous; /* a true height within 4 sigma of the threshold */
+} recovery;
+
+static int cmp_d(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Matches kept frames to the truth by time. */
+static int measure(const syn_Experiment *e, const cli_Track *t, recovery *r)
+{
+    memset(r, 0, sizeof *r);
+    double sx = 0, sh = 0, sth = 0;
+    long nx = 0, nth = 0, j = 0;
+    double *werr = malloc((size_t)t->n * sizeof *werr);
+    long nw = 0;
+    if (!werr) return -1;
+    double t0 = NAN; /* the truth's first recorded time */
+    t0 = e->t_s[0];
+    double theta_shift = NAN;
+    int prev_air = 0;
+    for (long i = 0; i < t->n; ++i) {
+        while (j < e->n && e->t_s[j] - t0 < t->t_s[i] - 1e-6) j++;
+        if (j >= e->n || fabs(e->t_s[j] - t0 - t->t_s[i]) > 1e-6) {
+            free(werr);
+            fprintf(stderr, "frame %ld at t = %.9f has no true frame\n", i, t->t_s[i]);
+            return -1;
+        }
+        const double dx = t->x_m[i] - e->x_m[j], dh = t->y_m[i] - e->y_m[j];
+        sx += dx * dx;
+        sh += dh * dh;
+        nx++;
+        if (!isnan(t->theta_rad[i])) {
+            if (isnan(theta_shift)) theta_shift = 2 * SYN_PI * floor((t->theta_rad[i] - e->theta_rad[j]) / (2 * SYN_PI) + 0.5);
+            const double d = t->theta_rad[i] - theta_shift - e->theta_rad[j];
+            sth += d * d;
+            nth++;
+        }
+        if (!isnan(t->omega_radps[i])) werr[nw++] = fabs(t->omega_radps[i] - e->omega_radps[j]);
+        const double gap = e->y_m[j] - e->radius_m;
+        const int air = gap > t->hop_threshold_m;
+        if (air && !prev_air) r->true_hops++;
+        prev_air = air;
+        if (fabs(gap - t->hop_threshold_m) < 4 * t->sigma_m) r->hop_ambiguous = 1;
+    }
+    qsort(werr, (size_t)nw, sizeof *werr, cmp_d);
+    r->med_omega_err = nw ? werr[nw / 2] : NAN;
+    free(werr);
+    r->rms_x_m = sqrt(sx / (double)nx);
+    r->rms_h_m = sqrt(sh / (double)nx);
+    r->rms_theta_rad = nth ? sqrt(sth / (double)nth) : NAN;
+    r->hops = t->hops;
+    return 0;
+}
+
+static void default_options(cli_TrackOptions *o, const jc_Setup *s)
+{
+    cli_track_options_default(o);
+    o->incline_rad = s->incline_rad;
+    o->radius_m = s->body.radius_m;
+    o->centre = "axle";
+    o->mark = "rod";
+}
+
+/* The recovery figures of the last trk and table cases, printed at the end. */
+static double worst_ratio_x, worst_ratio_h, worst_ratio_theta;
+
+/* One synthetic case: write, load, compare. kind: "trk" or a table style. */
+static int round_trip(const char *kind, syn_Camera c, const char *what)
+{
+    jc_Setup s = jc_paper_setup(); /* 30 deg: slips, lifts off at 1.19 m, three flights */
+    syn_Experiment e;
+    ENSURE(syn_make(&s, &c, &e) == 0);
+    char path[256];
+    scratch_path(path, sizeof path, strcmp(kind, "trk") == 0 ? "case.trk" : "case.txt");
+    int st;
+    if (strcmp(kind, "trk") == 0) st = syn_write_trk(path, &c, &e, "axle", "rod");
+    else if (strcmp(kind, "tab") == 0) st = syn_write_table(path, &e, "axle", "rod", '\t', 0);
+    else if (strcmp(kind, "semicolon-comma") == 0) st = syn_write_table(path, &e, "axle", "rod", ';', 1);
+    else if (strcmp(kind, "tab-comma") == 0) st = syn_write_table(path, &e, "axle", "rod", '\t', 1);
+    else st = syn_write_table(path, &e, "axle", "rod", ',', 0);
+    ENSURE(st == 0);
+    cli_TrackOptions o;
+    default_options(&o, &s);
+    o.axes = c.axes_incline ? CLI_TRACK_AXES_INCLINE : CLI_TRACK_AXES_LEVEL;
+    cli_Track t;
+    char err[512];
+    if (cli_track_load(path, &o, &t, err, sizeof err) != 0) {
+        syn_free(&e);
+        ENSURE_MSG(0, "%s (%s, seed %llu): %s", what, kind, (unsigned long long)c.seed, err);
+    }
+    recovery r;
+    const int mst = measure(&e, &t, &r);
+    const double sigma = c.noise_px / c.px_per_m;
+    const double sigma_theta = sqrt(2.0) * sigma / c.mark_offset_m;
+    const long n = e.n;
+    syn_free(&e);
+    const cli_Track tc = t;
+    cli_track_free(&t);
+    ENSURE_MSG(mst == 0, "%s (%s, seed %llu): frames do not match the truth", what, kind, (unsigned long long)c.seed);
+    const double rx = r.rms_x_m / sigma, rh = r.rms_h_m / sigma, rt = r.rms_theta_rad / sigma_theta;
+    if (rx > worst_ratio_x) worst_ratio_x = rx;
+    if (rh > worst_ratio_h) worst_ratio_h = rh;
+    if (rt > worst_ratio_theta) worst_ratio_theta = rt;
+#define CASE_MSG "%s (%s, noise %.1f px, seed %llu): "
+#define CASE_ARGS what, kind, c.noise_px, (unsigned long long)c.seed
+    ENSURE_MSG(tc.n == n - c.n_missing_centre, CASE_MSG "%ld frames kept of %ld", CASE_ARGS, tc.n, n);
+    ENSURE_MSG(tc.gaps == c.n_missing_centre, CASE_MSG "%ld gaps, %d made", CASE_ARGS, tc.gaps, c.n_missing_centre);
+    /* The clip's rate exactly; a table's from its jittered times (the span's
+     * ends are off by up to the jitter). */
+    const double rate_tol = strcmp(kind, "trk") == 0 ? 1e-9 : 3e-3;
+    ENSURE_MSG(fabs(tc.frame_rate_hz - c.fps) < rate_tol * c.fps, CASE_MSG "frame rate %g", CASE_ARGS, tc.frame_rate_hz);
+    ENSURE_MSG(tc.has_mark && strcmp(tc.centre_name, "axle") == 0 && strcmp(tc.mark_name, "rod") == 0,
+               CASE_MSG "tracks '%s', '%s'", CASE_ARGS, tc.centre_name, tc.mark_name);
+    /* Positions to the noise: the RMS error of each coordinate is sigma for
+     * Gaussian noise; 1.5 sigma allows for the fitted surface and the sample. */
+    ENSURE_MSG(rx < 1.5, CASE_MSG "RMS x error %.3g mm = %.2f sigma", CASE_ARGS, r.rms_x_m * 1e3, rx);
+    ENSURE_MSG(rh < 1.5, CASE_MSG "RMS height error %.3g mm = %.2f sigma", CASE_ARGS, r.rms_h_m * 1e3, rh);
+    ENSURE_MSG(rt < 1.5, CASE_MSG "RMS theta error %.3g rad = %.2f sigma_theta", CASE_ARGS, r.rms_theta_rad, rt);
+    /* omega by central differences: noise sigma_theta / dt, and the impacts. */
+    ENSURE_MSG(r.med_omega_err < 1.5 * sigma_theta * c.fps, CASE_MSG "median omega error %.3g rad/s", CASE_ARGS,
+               r.med_omega_err);
+    /* The hops the camera saw: runs of frames whose true height is above
+     * the threshold (a bounce between two frames in the air is one). */
+    ENSURE_MSG(r.true_hops >= 2, CASE_MSG "the truth has %ld hops", CASE_ARGS, r.true_hops);
+    if (!r.hop_ambiguous)
+        ENSURE_MSG(r.hops == r.true_hops, CASE_MSG "%ld hops found, %ld true", CASE_ARGS, r.hops, r.true_hops);
+    else
+        ENSURE_MSG(labs(r.hops - r.true_hops) <= 1, CASE_MSG "%ld hops found, %ld true", CASE_ARGS, r.hops, r.true_hops);
+    if (strcmp(kind, "trk") == 0) {
+        ENSURE_MSG(fabs(tc.scale_px_per_m - c.px_per_m) < 1e-9, CASE_MSG "scale %g", CASE_ARGS, tc.scale_px_per_m);
+        ENSURE_MSG(tc.dt_jitter_s < 1e-9, CASE_MSG "jitter %g s", CASE_ARGS, tc.dt_jitter_s);
+        ENSURE_MSG(fabs(tc.tape_length_m - 1.0) < 1e-12, CASE_MSG "tape %g", CASE_ARGS, tc.tape_length_m);
+    } else if (c.jitter_fine > 0) {
+        /* Two neighbours off by up to jitter_fine twentieths of a frame each, against a rate known to 3e-3. */
+        const double max_jitter = 2.0 * c.jitter_fine / 20.0 / c.fps + 3e-3 * 2 / c.fps;
+        ENSURE_MSG(tc.dt_jitter_s > 0 && tc.dt_jitter_s <= max_jitter, CASE_MSG "jitter %g s (at most %g)", CASE_ARGS,
+                   tc.dt_jitter_s, max_jitter);
+    }
+    return 0;
+}
+
+static uint64_t seed_of(int i) { return base_seed * 1000 + (uint64_t)i; }
+
+static int test_trk_level_axes(void)
+{
+    const double noise[] = {0.5, 1.0, 2.0};
+    for (int i = 0; i < 6; ++i) {
+        syn_Camera c = camera(noise[i % 3], seed_of(i));
+        if (round_trip("trk", c, "trk, level axes, camera rolled 3.5 deg") != 0) return 1;
+    }
+    return 0;
+}
+
+static int test_trk_incline_axes_mirrored_stepsize(void)
+{
+    for (int i = 0; i < 4; ++i) {
+        syn_Camera c = camera(1.0, seed_of(100 + i));
+        c.axes_incline = 1;
+        c.mirror = i % 2;
+        c.stepsize = 2; /* a 120 fps video tracked every second frame */
+        c.startframe = 0;
+        c.roll_deg = -2.0;
+        c.cx_px = 1800;
+        if (round_trip("trk", c, "trk, axes along the incline, every 2nd frame") != 0) return 1;
+    }
+    return 0;
+}
+
+static int test_tables(void)
+{
+    const char *kinds[] = {"tab", "semicolon-comma", "comma", "tab-comma"};
+    for (int i = 0; i < 8; ++i) {
+        syn_Camera c = camera(i % 2 ? 2.0 : 0.5, seed_of(200 + i));
+        c.jitter_fine = 2; /* frame times off by up to 0.1 frame */
+        c.mirror = i >= 4;
+        if (round_trip(kinds[i % 4], c, "table with jittered times") != 0) return 1;
+    }
+    return 0;
+}
+
+/* A file's text, written to the scratch directory. */
+static void put(const char *name, const char *text)
+{
+    char path[256];
+    scratch_path(path, sizeof path, name);
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+/* The tool on a file: must fail with exit 2, one line naming want, no output file. */
+static int refused(const char *name, const char *want, const char *extra)
+{
+    char path[256], csv[256];
+    scratch_path(path, sizeof path, name);
+    scratch_path(csv, sizeof csv, "out.csv");
+    unlink(csv);
+    const char *args[] = {"track", path, "--csv", csv, extra, NULL};
+    cli_result r = cli_run(args);
+    struct stat sb;
+    const int made = stat(csv, &sb) == 0;
+    const int ok = r.status == 2 && cli_one_line(r.err) && r.out && r.out[0] == '\0' && !made &&
+                   (!want || strstr(r.err, want) != NULL);
+    if (!ok)
+        fprintf(stderr, "%s: status %d, stdout '%.80s', stderr '%s', csv %s (wanted '%s')\n", name, r.status,
+                r.out ? r.out : "", r.err ? r.err : "", made ? "made" : "not made", want ? want : "");
+    cli_result_free(&r);
+    return ok ? 0 : 1;
+}
+
+#define TRK_HEAD                                                                                                   \
+    "<?xml version=\"1.0\"?>\n<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\">\n"
+#define TRK_CLIP                                                                                                   \
+    "<property name=\"videoclip\" type=\"object\"><object class=\"org.opensourcephysics.media.core.VideoClip\">"   \
+    "<property name=\"startframe\" type=\"int\">0</property><property name=\"stepsize\" type=\"int\">1</property>" \
+    "<property name=\"stepcount\" type=\"int\">4</property></object></property>\n"
+#define TRK_DT(v)                                                                                                   \
+    "<property name=\"clipcontrol\" type=\"object\"><object class=\"org.opensourcephysics.media.core.ClipControl\">" \
+    "<property name=\"delta_t\" type=\"double\">" v "</property></object></property>\n"
+#define TRK_COORDS(scale)                                                                                          \
+    "<property name=\"coords\" type=\"object\"><object class=\"org.opensourcephysics.media.core.ImageCoordSystem\">" \
+    "<property name=\"framedata\" type=\"array\"><property name=\"[0]\" type=\"object\">"                          \
+    "<object class=\"org.opensourcephysics.media.core.ImageCoordSystem$FrameData\">"                               \
+    "<property name=\"xorigin\" type=\"double\">10</property><property name=\"yorigin\" type=\"double\">300</property>" \
+    "<property name=\"angle\" type=\"double\">0</property><property name=\"xscale\" type=\"double\">" scale       \
+    "</property><property name=\"yscale\" type=\"double\">" scale "</property></object></property></property>"     \
+    "</object></property>\n"
+#define PT(i, x, y)                                                                                                 \
+    "<property name=\"[" #i "]\" type=\"object\"><object class=\"org.opensourcephysics.cabrillo.tracker.PointMass$FrameData\">" \
+    "<property name=\"x\" type=\"double\">" x "</property><property name=\"y\" type=\"double\">" y                 \
+    "</property></object></property>"
+#define TRK_TRACK(x2)                                                                                              \
+    "<property name=\"tracks\" type=\"collection\"><property name=\"item\" type=\"object\">"                       \
+    "<object class=\"org.opensourcephysics.cabrillo.tracker.PointMass\"><property name=\"name\" type=\"string\">axle</property>" \
+    "<property name=\"framedata\" type=\"array\">" PT(0, "10", "290") PT(1, "20", "295") PT(2, x2, "300")        \
+    PT(3, "40", "305") "</property></object></property></property>\n"
+#define TRK_TAIL "</object>\n"
+
+static int test_good_small_files(void)
+{
+    /* The minimal .trk and table the refusals below are variations of. */
+    put("ok.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("100") TRK_TRACK("30") TRK_TAIL);
+    put("ok.txt", "mass A\nt\tx\ty\n0\t0\t0\n0.04\t0.01\t-0.001\n0.08\t0.02\t-0.002\n0.12\t0.03\t-0.003\n");
+    const char *files[] = {"ok.trk", "ok.txt"};
+    const char *inclines[] = {"26.565", "5.711"}; /* the points' slopes */
+    for (int i = 0; i < 2; ++i) {
+        char path[256];
+        scratch_path(path, sizeof path, files[i]);
+        const char *args[] = {"track", path, "--incline", inclines[i], NULL};
+        cli_result r = cli_run(args);
+        const int ok = r.status == 0 && r.out && strstr(r.out, "25.000 frames/s") && strstr(r.out, "Hops");
+        if (!ok) fprintf(stderr, "%s: status %d\n%s\n%s\n", files[i], r.status, r.out ? r.out : "", r.err ? r.err : "");
+        cli_result_free(&r);
+        ENSURE(ok);
+    }
+    return 0;
+}
+
+static int test_refusals(void)
+{
+    int bad = 0;
+    put("empty.trk", "");
+    bad += refused("empty.trk", "empty", NULL);
+    put("truncated.trk", TRK_HEAD TRK_CLIP TRK_DT("40") "<property name=\"coords\" type=\"obj");
+    bad += refused("truncated.trk", "line", NULL);
+    put("laughs.trk", "<?xml version=\"1.0\"?>\n<!DOCTYPE lolz [<!ENTITY lol \"lol\">"
+                      "<!ENTITY lol2 \"&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;\">"
+                      "<!ENTITY lol3 \"&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;\">]>\n"
+                      "<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\">&lol3;</object>\n");
+    bad += refused("laughs.trk", "DTD", NULL);
+    put("external.trk", "<?xml version=\"1.0\"?>\n<!DOCTYPE x SYSTEM \"http://example.invalid/x.dtd\">\n"
+                        "<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\"></object>\n");
+    bad += refused("external.trk", "DTD", NULL);
+    put("nocoords.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_TRACK("30") TRK_TAIL);
+    bad += refused("nocoords.trk", "coordinate system", NULL);
+    put("nodt.trk", TRK_HEAD TRK_CLIP TRK_COORDS("100") TRK_TRACK("30") TRK_TAIL);
+    bad += refused("nodt.trk", "frame duration", NULL);
+    put("zeroscale.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("0") TRK_TRACK("30") TRK_TAIL);
+    bad += refused("zeroscale.trk", "scale", NULL);
+    put("nan.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("100") TRK_TRACK("NaN") TRK_TAIL);
+    bad += refused("nan.trk", "not a finite number", NULL);
+    put("negdt.trk", TRK_HEAD TRK_CLIP TRK_DT("-40") TRK_COORDS("100") TRK_TRACK("30") TRK_TAIL);
+    bad += refused("negdt.trk", "delta_t", NULL);
+    put("notracker.trk", "<?xml version=\"1.0\"?>\n<svg></svg>\n");
+    bad += refused("notracker.trk", "TrackerPanel", NULL);
+    put("notracks.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("100") TRK_TAIL);
+    bad += refused("notracks.trk", "no point-mass track", NULL);
+    put("backwards.txt", "t\tx\ty\n0\t0\t0\n0.04\t0.01\t0\n0.03\t0.02\t0\n0.12\t0.03\t0\n");
+    bad += refused("backwards.txt", "does not increase", NULL);
+    put("nan.txt", "t;x;y\n0;0;0\n0,04;NaN;0\n0,08;0,02;0\n0,12;0,03;0\n");
+    bad += refused("nan.txt", "not a number", NULL);
+    put("xonly.txt", "t,x\n0,0\n0.04,0.01\n0.08,0.02\n");
+    bad += refused("xonly.txt", "but no", NULL);
+    put("noheader.txt", "1 2 3\n4 5 6\n");
+    bad += refused("noheader.txt", "header", NULL);
+    put("short.txt", "t\tx\ty\n0\t0\t0\n");
+    bad += refused("short.txt", "fewer than 3", NULL);
+    put("binary.txt", "t\tx\ty\n\x01\x02\x7f\xff\n");
+    bad += refused("binary.txt", "not a number", NULL);
+    put("two.txt", "\tmass A\t\tmass B\t\t\nt\tx\ty\tx\ty\t\n0\t0\t0\t0\t0.05\n0.1\t0.1\t0\t0.1\t0.05\n"
+                   "0.2\t0.2\t0\t0.2\t0.05\n0.3\t0.3\t0\t0.3\t0.05\n");
+    bad += refused("two.txt", "which track is the centre", NULL);
+    bad += refused("two.txt", "no track named", "--centre=wheel");
+    /* Larger than the bound: a sparse file of 65 MiB. */
+    char path[256];
+    scratch_path(path, sizeof path, "huge.trk");
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fclose(f);
+        if (truncate(path, 65L * 1024 * 1024) != 0) bad++;
+    }
+    bad += refused("huge.trk", "larger than", NULL);
+    /* Many elements within the size bound. */
+    scratch_path(path, sizeof path, "many.trk");
+    f = fopen(path, "w");
+    if (f) {
+        fputs(TRK_HEAD, f);
+        for (long i = 0; i < 4100000; ++i) fputs("<a/><b/>", f);
+        fputs(TRK_TAIL, f);
+        fclose(f);
+    }
+    bad += refused("many.trk", "XML elements", NULL);
+    ENSURE_MSG(bad == 0, "%d hostile files were not refused as they should be", bad);
+    return 0;
+}
+
+/* The command's outputs: the CSV and JSON carry every kept frame. */
+static int test_cli_outputs(void)
+{
+    jc_Setup s = jc_paper_setup();
+    syn_Camera c = camera(1.0, seed_of(300));
+    syn_Experiment e;
+    ENSURE(syn_make(&s, &c, &e) == 0);
+    char trk[256], csv[256], json[256];
+    scratch_path(trk, sizeof trk, "cli.trk");
+    scratch_path(csv, sizeof csv, "cli.csv");
+    scratch_path(json, sizeof json, "cli.json");
+    const long n = e.n - c.n_missing_centre;
+    ENSURE(syn_write_trk(trk, &c, &e, "axle", "rod") == 0);
+    syn_free(&e);
+    const char *args[] = {"track", "--preset", "paper", trk, "--csv", csv, "--json", json, "--mass", "rod", NULL};
+    cli_result r = cli_run(args);
+    const int ok = r.status == 0 && r.out && strstr(r.out, "Centre 'axle'") && strstr(r.out, "Mark 'rod'");
+    if (!ok) fprintf(stderr, "status %d\n%s\n%s\n", r.status, r.out ? r.out : "", r.err ? r.err : "");
+    cli_result_free(&r);
+    ENSURE(ok);
+    char *text = cli_run_slurp(csv);
+    ENSURE(text);
+    long lines = 0;
+    for (const char *p = text; *p; ++p) lines += *p == '\n';
+    const int head_ok = strncmp(text, "t_s,x_m,y_m,height_m,theta_rad,omega_radps,airborne\n", 52) == 0;
+    free(text);
+    ENSURE_MSG(head_ok && lines == n + 1, "CSV: %ld lines for %ld frames", lines, n);
+    text = cli_run_slurp(json);
+    ENSURE(text);
+    cJSON *doc = cJSON_Parse(text);
+    free(text);
+    ENSURE(doc);
+    const cJSON *frames = cJSON_GetObjectItem(doc, "frames");
+    const cJSON *fd = cJSON_GetObjectItem(doc, "frames_data");
+    const cJSON *hops = cJSON_GetObjectItem(doc, "hops");
+    const int jok = cJSON_IsNumber(frames) && (long)frames->valuedouble == n && fd &&
+                    cJSON_GetArraySize(cJSON_GetObjectItem(fd, "theta_rad")) == n && cJSON_GetArraySize(hops) >= 2;
+    cJSON_Delete(doc);
+    ENSURE(jok);
+    return 0;
+}
+
+static void remove_scratch(void)
+{
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", scratch);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", scratch);
+}
+
+int main(int argc, char **argv)
+{
+    if (cli_run_init(argc, argv) != 0) return 2;
+    const char *env = getenv("JC_TEST_SEED");
+    if (env) base_seed = strtoull(env, NULL, 10);
+    if (!mkdtemp(scratch)) return 2;
+    printf("seed %llu (JC_TEST_SEED)\n", (unsigned long long)base_seed);
+    RUN_TEST(test_trk_level_axes);
+    RUN_TEST(test_trk_incline_axes_mirrored_stepsize);
+    RUN_TEST(test_tables);
+    RUN_TEST(test_good_small_files);
+    RUN_TEST(test_refusals);
+    RUN_TEST(test_cli_outputs);
+    printf("worst RMS error / noise: x %.2f, height %.2f, theta %.2f (of sigma, sigma, sqrt(2) sigma / mark offset)\n",
+           worst_ratio_x, worst_ratio_h, worst_ratio_theta);
+    remove_scratch();
+    TEST_MAIN_END();
+}
