@@ -14,7 +14,7 @@
  * HOP_MIN_M, so that a noise-free track does not count rounding). */
 #define HOP_SIGMAS 5.0
 #define HOP_MIN_M 1e-4
-#define START_FIT_S 0.25
+#define START_FIT_S 0.4
 #define START_FIT_ITER 50
 
 void cli_compare_free(cli_Compare *c)
