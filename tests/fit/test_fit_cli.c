@@ -77,6 +77,46 @@ static int test_noise_free_compare(void)
     return 0;
 }
 
+/* Four mis-clicked frames (2 cm off) in a track with 10 % of its frames
+ * dropped: the linear fit's chi2/dof says so and its sigma swell; the
+ * Cauchy loss sets them aside (sigma as without them, the truth within 3
+ * of them). */
+static int test_robust_loss(void)
+{
+    const jc_Setup s = truth();
+    const cli_SynthOptions so = {60.0, 1e-3, 1.5, 0.055, 0.1, 5u, 0u};
+    cli_Track t;
+    char err[256];
+    ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
+    ENSURE(t.gaps > 0);
+    const long bad[] = {10, 25, 40, 55};
+    for (int k = 0; k < 4; ++k) {
+        t.x_m[bad[k]] += 0.02;
+        t.y_m[bad[k]] -= 0.01;
+    }
+    jc_Setup guess = s;
+    guess.mu_kinetic = 0.35;
+    guess.restitution = 0.4;
+    const jc_SimOptions o = jc_default_sim_options();
+    cli_FitOptions fo = {(1u << CLI_FIT_MU_K) | (1u << CLI_FIT_RESTITUTION) | (1u << CLI_FIT_THETA0) |
+                             (1u << CLI_FIT_OMEGA0) | (1u << CLI_FIT_X0),
+                         CLI_LOSS_LINEAR, NAN, NAN, 100, 0.0, CLI_START_TRACKED};
+    cli_FitResult lin, cau;
+    const int rc1 = cli_track_fit(&guess, &t, &fo, &o, &lin, err, sizeof err);
+    fo.loss = CLI_LOSS_CAUCHY;
+    const int rc2 = rc1 == 0 ? cli_track_fit(&guess, &t, &fo, &o, &cau, err, sizeof err) : -1;
+    cli_track_free(&t);
+    ENSURE_MSG(rc1 == 0 && rc2 == 0, "%s", err);
+    printf("linear: chi2/dof %.2f, mu_k %.5f +- %.5f, e %.5f +- %.5f\n", lin.chi2_dof, lin.value[0], lin.sigma[0],
+           lin.value[1], lin.sigma[1]);
+    printf("cauchy: chi2/dof %.2f, mu_k %.5f +- %.5f, e %.5f +- %.5f (%d passes)\n", cau.chi2_dof, cau.value[0],
+           cau.sigma[0], cau.value[1], cau.sigma[1], cau.passes);
+    ENSURE(lin.chi2_dof > 5.0 && cau.chi2_dof < 1.5);
+    ENSURE(lin.sigma[0] > 2.0 * cau.sigma[0] && lin.sigma[1] > 2.0 * cau.sigma[1]);
+    ENSURE(fabs(cau.value[0] - 0.4) < 3.0 * cau.sigma[0] && fabs(cau.value[1] - 0.3) < 3.0 * cau.sigma[1]);
+    return 0;
+}
+
 /* A track file the tool reads: the synthetic track as Tracker's table. */
 static int write_table(const char *path, double sigma_m)
 {
@@ -189,6 +229,7 @@ int main(int argc, char **argv)
     gsl_set_error_handler_off();
     if (cli_run_init(argc, argv) != 0) return 2;
     RUN_TEST(test_noise_free_compare);
+    RUN_TEST(test_robust_loss);
     RUN_TEST(test_noise_free_compare_tool);
     RUN_TEST(test_bad_options);
     TEST_MAIN_END();
