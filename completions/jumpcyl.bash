@@ -7,7 +7,7 @@ _jumpcyl()
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     if [ "$COMP_CWORD" -eq 1 ]; then
-        COMPREPLY=($(compgen -W "paper predict simulate plot animate sweep mc map presets --help --version" -- "$cur"))
+        COMPREPLY=($(compgen -W "paper predict simulate plot animate sweep mc map track presets --help --version" -- "$cur"))
         return
     fi
     cmd=${COMP_WORDS[1]}
@@ -22,6 +22,12 @@ _jumpcyl()
         --impact-law)
             COMPREPLY=($(compgen -W "stronge poisson newton" -- "$cur"))
             return ;;
+        --axes)
+            COMPREPLY=($(compgen -W "level incline" -- "$cur"))
+            return ;;
+        --json)
+            # a file only for track; elsewhere --json takes no value
+            if [ "$cmd" = track ]; then COMPREPLY=($(compgen -f -- "$cur")); return; fi ;;
         --output|--config|--csv|--summarize)
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;

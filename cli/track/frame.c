@@ -212,6 +212,12 @@ int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_Track
         if (prev >= 0) {
             const double step = out->t_s[n] - out->t_s[n - 1];
             const double k = fmax(1.0, floor(step / dt + 0.5));
+            if (!(k <= (double)CLI_TRACK_MAX_FRAMES)) {
+                snprintf(err, err_len, "%s: the time jumps by %g s after %g s, more than %ld frames of %g s", name,
+                         step, out->t_s[n - 1], CLI_TRACK_MAX_FRAMES, dt);
+                cli_track_free(out);
+                return -1;
+            }
             const long missing_rows = (long)k - 1 - (f - prev - 1); /* rows a table left out */
             if (missing_rows > 0) out->gaps += missing_rows;
             const double j = fabs(step - k * dt);
