@@ -3,7 +3,7 @@
 # --version make NAME, SYNOPSIS and DESCRIPTION; each command's --help becomes
 # a subsection of COMMANDS, verbatim.
 #   cmake -DTOOL=path/to/jumpcyl -DHELP2MAN=path -DOUT=jumpcyl.1 -DWORK=dir -P manpage.cmake
-set(commands paper predict simulate plot animate sweep mc map presets)
+set(commands paper predict simulate plot animate sweep mc map track presets)
 set(include "${WORK}/jumpcyl.h2m")
 file(WRITE "${include}" "[COMMANDS]\nEach command's options, as `jumpcyl COMMAND --help' prints them.\n")
 foreach(cmd ${commands})
@@ -23,7 +23,7 @@ foreach(cmd ${commands})
 endforeach()
 file(APPEND "${include}" "[FILES]\nExperiment files: docs/config.md in the source tree; examples/*.ini.\n"
      "[SEE ALSO]\nThe documentation in the source tree: README.md, docs/cli.md, docs/batch.md, docs/figures.md,\n"
-     "docs/physics.md, docs/api.md.\n")
+     "docs/physics.md, docs/api.md, docs/tracker.md.\n")
 execute_process(COMMAND "${HELP2MAN}" --no-info --no-discard-stderr --section=1
                         "--name=where an off-centre-mass cylinder rolling down an incline jumps"
                         "--include=${include}" --output=${OUT} "${TOOL}"

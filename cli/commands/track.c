@@ -142,7 +142,7 @@ static int next_hop(const cli_Track *t, long from, hop_span *h)
     return 1;
 }
 
-static cJSON *track_json(const char *file, const cli_Track *t)
+static cJSON *track_json(const char *file, const cli_Track *t, const cli_TrackOptions *opt)
 {
     cJSON *d = cJSON_CreateObject();
     cJSON_AddStringToObject(d, "file", file);
@@ -166,6 +166,8 @@ static cJSON *track_json(const char *file, const cli_Track *t)
     cJSON_AddBoolToObject(d, "scale_varies", t->scale_varies);
     cJSON_AddItemToObject(d, "tape_length_m", num(t->tape_length_m));
     cJSON_AddItemToObject(d, "incline_rad", num(t->incline_rad));
+    cJSON_AddStringToObject(d, "axes", opt->axes == CLI_TRACK_AXES_INCLINE ? "incline" : "level");
+    cJSON_AddBoolToObject(d, "fit_tilt", opt->fit_tilt);
     cJSON_AddItemToObject(d, "radius_m", num(t->radius_m));
     cJSON_AddItemToObject(d, "x0_m", num(t->x0_m));
     cJSON_AddItemToObject(d, "sigma_m", num(t->sigma_m));
@@ -257,7 +259,7 @@ static void print_report(const char *file, const cli_Track *t, cli_TrackAxes axe
 }
 
 /* Both files made whole, then both published: neither or both appear. */
-static int write_outputs(const track_opts *o, const char *file, const cli_Track *t)
+static int write_outputs(const track_opts *o, const char *file, const cli_Track *t, const cli_TrackOptions *opt)
 {
     cli_Output csv, json;
     memset(&csv, 0, sizeof csv);
@@ -273,7 +275,7 @@ static int write_outputs(const track_opts *o, const char *file, const cli_Track 
         ok = cli_output_finish(&csv, CLI_CHECK_WRITES) == 0;
     }
     if (ok && o->json) {
-        cJSON *doc = track_json(file, t);
+        cJSON *doc = track_json(file, t, opt);
         char *text = doc ? cJSON_Print(doc) : NULL;
         cJSON_Delete(doc);
         if (!text) {
@@ -354,7 +356,7 @@ int cmd_track(int argc, char **argv)
         cli_error("track: %s", err);
         return EXIT_USAGE;
     }
-    st = write_outputs(&o, file, &t);
+    st = write_outputs(&o, file, &t, &opt);
     if (st == EXIT_OK) {
         print_report(file, &t, opt.axes, opt.fit_tilt);
         if (o.csv) printf("Frames: %ld rows written to %s\n", t.n, o.csv);

@@ -198,7 +198,7 @@ static int read_header(table_ctx *c, const table_row *names, const table_row *he
     for (int i = 0; i < ng; ++i) {
         if (g[i].x_col < 0 && g[i].y_col < 0) continue; /* a track exported without positions */
         if (g[i].x_col < 0 || g[i].y_col < 0) {
-            char what[CLI_TRACK_NAME_LEN + 32];
+            char what[CLI_TRACK_NAME_LEN + 96];
             snprintf(what, sizeof what, "track '%s' has %s but no %s", g[i].name[0] ? g[i].name : "?",
                      g[i].x_col < 0 ? "y" : "x", g[i].x_col < 0 ? "x" : "y");
             return fail(c, head_line, what, "");

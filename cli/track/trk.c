@@ -320,7 +320,7 @@ static int read_track(const trk_ctx *c, const xmlNode *o, const trk_clip *clip, 
         const xmlNode *p = prop_object(it);
         if (f < 0 || !p || f < clip->start || f > last || (f - clip->start) % clip->step != 0) continue;
         double ix = NAN, iy = NAN;
-        char what[CLI_TRACK_NAME_LEN + 32];
+        char what[CLI_TRACK_NAME_LEN + 96];
         snprintf(what, sizeof what, "track '%s' frame %ld", t->name, f);
         const int sx = prop_double(c, p, what, "x", &ix), sy = prop_double(c, p, what, "y", &iy);
         if (sx < 0 || sy < 0) return -1;

@@ -40,6 +40,12 @@ typedef struct {
     long missing_mark[SYN_MAX_MISSING];
     int n_missing_mark;
     uint64_t seed;
+    /* The camera moved between two frames (a hand-held phone): from step
+     * pan_from_step on, the image is shifted by (pan_dx_px, pan_dy_px), and
+     * the .trk holds a key frame of the axes there (tables are unaffected:
+     * Tracker exports world coordinates). 0: no move. */
+    long pan_from_step;
+    double pan_dx_px, pan_dy_px;
 } syn_Camera;
 
 /* The truth and the tracked pixels, per step. */
@@ -176,6 +182,12 @@ static inline int syn_make(const jc_Setup *setup, const syn_Camera *c, syn_Exper
         syn_lab_to_image(c, mX * xh[0] + mY * nh[0], mX * xh[1] + mY * nh[1], &ix, &iy);
         e->mx_px[f] = ix + c->noise_px * syn_gauss(&s);
         e->my_px[f] = iy + c->noise_px * syn_gauss(&s);
+        if (c->pan_from_step > 0 && f >= c->pan_from_step) {
+            e->cx_px[f] += c->pan_dx_px;
+            e->cy_px[f] += c->pan_dy_px;
+            e->mx_px[f] += c->pan_dx_px;
+            e->my_px[f] += c->pan_dy_px;
+        }
         if (syn_listed(c->missing_centre, c->n_missing_centre, f)) e->cx_px[f] = e->cy_px[f] = NAN;
         if (syn_listed(c->missing_mark, c->n_missing_mark, f)) e->mx_px[f] = e->my_px[f] = NAN;
     }
@@ -232,6 +244,21 @@ static inline int syn_write_trk(const char *path, const syn_Camera *c, const syn
     FILE *f = fopen(path, "w");
     if (!f) return -1;
     const double video_dt_ms = 1000.0 / (c->fps * c->stepsize);
+    /* A key frame of the axes where the camera moved (frame numbers index the array). */
+    char key[1024] = "";
+    if (c->pan_from_step > 0)
+        snprintf(key, sizeof key,
+                 "            <property name=\"[%ld]\" type=\"object\">\n"
+                 "            <object class=\"org.opensourcephysics.media.core.ImageCoordSystem$FrameData\">\n"
+                 "                <property name=\"xorigin\" type=\"double\">%.17g</property>\n"
+                 "                <property name=\"yorigin\" type=\"double\">%.17g</property>\n"
+                 "                <property name=\"angle\" type=\"double\">%.17g</property>\n"
+                 "                <property name=\"xscale\" type=\"double\">%.17g</property>\n"
+                 "                <property name=\"yscale\" type=\"double\">%.17g</property>\n"
+                 "            </object>\n"
+                 "            </property>\n",
+                 c->startframe + c->pan_from_step * c->stepsize, e->origin_x_px + c->pan_dx_px,
+                 e->origin_y_px + c->pan_dy_px, e->axes_angle_deg, e->scale_px_per_m, e->scale_px_per_m);
     fprintf(f,
             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
             "<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\">\n"
@@ -272,6 +299,7 @@ static inline int syn_write_trk(const char *path, const syn_Camera *c, const syn
             "                <property name=\"yscale\" type=\"double\">%.17g</property>\n"
             "            </object>\n"
             "            </property>\n"
+            "%s"
             "        </property>\n"
             "    </object>\n"
             "    </property>\n"
@@ -292,7 +320,7 @@ static inline int syn_write_trk(const char *path, const syn_Camera *c, const syn
             "        </object>\n"
             "        </property>\n",
             c->startframe + e->n * c->stepsize + 10, c->startframe, c->stepsize, e->n, video_dt_ms, e->origin_x_px,
-            e->origin_y_px, e->axes_angle_deg, e->scale_px_per_m, e->scale_px_per_m);
+            e->origin_y_px, e->axes_angle_deg, e->scale_px_per_m, e->scale_px_per_m, key);
     syn_point_mass(f, centre_name, c, e, e->cx_px, e->cy_px);
     if (mark_name) syn_point_mass(f, mark_name, c, e, e->mx_px, e->my_px);
     fputs("    </property>\n</object>\n", f);
@@ -302,8 +330,8 @@ static inline int syn_write_trk(const char *path, const syn_Camera *c, const syn
 /* A table as Tracker exports two tracks: "#multi:", the names row, the
  * header, rows with empty fields where a track has no position. delim is
  * '\t', ';' or ','; decimal_comma writes "0,123". */
-static inline int syn_write_table(const char *path, const syn_Experiment *e, const char *centre_name,
-                                  const char *mark_name, char delim, int decimal_comma)
+static inline int syn_write_table(const char *path, const syn_Camera *c, const syn_Experiment *e,
+                                  const char *centre_name, const char *mark_name, char delim, int decimal_comma)
 {
     FILE *f = fopen(path, "w");
     if (!f) return -1;
@@ -311,8 +339,10 @@ static inline int syn_write_table(const char *path, const syn_Experiment *e, con
     fprintf(f, "t%cx%cy%cx%cy%c\n", delim, delim, delim, delim, delim);
     for (long k = 0; k < e->n; ++k) {
         double v[5] = {e->t_s[k], NAN, NAN, NAN, NAN};
-        if (!isnan(e->cx_px[k])) syn_image_to_world(e, e->cx_px[k], e->cy_px[k], &v[1], &v[2]);
-        if (!isnan(e->mx_px[k])) syn_image_to_world(e, e->mx_px[k], e->my_px[k], &v[3], &v[4]);
+        const int moved = c->pan_from_step > 0 && k >= c->pan_from_step;
+        const double px = moved ? c->pan_dx_px : 0, py = moved ? c->pan_dy_px : 0;
+        if (!isnan(e->cx_px[k])) syn_image_to_world(e, e->cx_px[k] - px, e->cy_px[k] - py, &v[1], &v[2]);
+        if (!isnan(e->mx_px[k])) syn_image_to_world(e, e->mx_px[k] - px, e->my_px[k] - py, &v[3], &v[4]);
         for (int i = 0; i < 5; ++i) {
             if (i) fputc(delim, f);
             if (isnan(v[i])) continue;
