@@ -33,6 +33,7 @@ void cli_track_args_help(void)
          "  --from T, --to T    the frames from T to T (s; default: all)\n"
          "  --from-setup-start  start the model with the setup's theta0 and omega0 at the first\n"
          "                      frame's position, not with the state the first frames show\n"
+         "                      (with --theta0 and --omega0: a start of your own)\n"
          "  --output FILE       the figure (gnuplot): .png, .svg or .pdf, written whole or not at all");
 }
 
