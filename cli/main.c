@@ -3,6 +3,7 @@
 #include "cli.h"
 #include "batch.h"
 #include "design.h"
+#include "track_fit.h"
 
 #include <gsl/gsl_errno.h>
 #include <signal.h>
@@ -43,6 +44,8 @@ static void usage(FILE *out)
           "  design     the values of one option (rod offset, ...) that make it jump at a chosen place\n"
           "  track      a video's tracked points (Tracker .trk or exported table) in the incline\n"
           "             frame: theta, omega, the centre's height and its hops\n"
+          "  compare    a tracked video (Tracker) against the model run from its first tracked state\n"
+          "  fit        setup values and the start fitted to a tracked video (least squares)\n"
           "  presets    list the built-in setups\n"
           "\n"
           "  jumpcyl COMMAND --help   options of a command\n"
@@ -85,12 +88,14 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "map") == 0) return batch_command(cmd_map, argc, argv);
     if (strcmp(cmd, "design") == 0) return cmd_design(argc - 1, argv + 1);
     if (strcmp(cmd, "track") == 0) return cmd_track(argc - 1, argv + 1);
+    if (strcmp(cmd, "compare") == 0) return cmd_compare(argc - 1, argv + 1);
+    if (strcmp(cmd, "fit") == 0) return cmd_fit(argc - 1, argv + 1);
     if (cmd[0] == '-') { /* "jumpcyl --json" = "jumpcyl paper --json" */
         static char paper_name[] = "paper";
         argv[0] = paper_name;
         return cmd_paper(argc, argv);
     }
-    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map, design, track; see 'jumpcyl --help')", cmd);
+    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map, design, track, compare, fit; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
 }
 

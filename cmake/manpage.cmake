@@ -3,7 +3,7 @@
 # --version make NAME, SYNOPSIS and DESCRIPTION; each command's --help becomes
 # a subsection of COMMANDS, verbatim.
 #   cmake -DTOOL=path/to/jumpcyl -DHELP2MAN=path -DOUT=jumpcyl.1 -DWORK=dir -P manpage.cmake
-set(commands paper predict simulate plot animate sweep mc map design track presets)
+set(commands paper predict simulate plot animate sweep mc map design track compare fit presets)
 set(include "${WORK}/jumpcyl.h2m")
 file(WRITE "${include}" "[COMMANDS]\nEach command's options, as `jumpcyl COMMAND --help' prints them.\n")
 foreach(cmd ${commands})

@@ -7,7 +7,7 @@ _jumpcyl()
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     if [ "$COMP_CWORD" -eq 1 ]; then
-        COMPREPLY=($(compgen -W "paper predict simulate plot animate sweep mc map design track presets --help --version" -- "$cur"))
+        COMPREPLY=($(compgen -W "paper predict simulate plot animate sweep mc map design track compare fit presets --help --version" -- "$cur"))
         return
     fi
     cmd=${COMP_WORDS[1]}
@@ -21,6 +21,15 @@ _jumpcyl()
             return ;;
         --impact-law)
             COMPREPLY=($(compgen -W "stronge poisson newton" -- "$cur"))
+            return ;;
+        --loss)
+            COMPREPLY=($(compgen -W "linear huber cauchy" -- "$cur"))
+            return ;;
+        --free)
+            COMPREPLY=($(compgen -W "mu_s mu_k restitution theta0 omega0 x0" -- "${cur##*,}"))
+            return ;;
+        --track)
+            COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
         --axes)
             COMPREPLY=($(compgen -W "level incline" -- "$cur"))

@@ -1,0 +1,139 @@
+/* jumpcyl compare: a tracked video against the model run from the first
+ * tracked state (docs/tracker.md, "Compare"). */
+#include "plot.h"
+#include "track_fit.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void help(void)
+{
+    puts("Usage: jumpcyl compare --track FILE [--from T] [--to T] [--from-setup-start] [--output FIG]\n"
+         "                       [SETUP OPTIONS] [SIMULATION OPTIONS]\n"
+         "Runs the model from the first tracked state (the position, angle and velocities the\n"
+         "first frames show; in contact it rolls) and reports measured against simulated: the\n"
+         "first lift-off, the hops and their heights, and the residuals of the centre's path and\n"
+         "of the mark's angle (docs/tracker.md).\n");
+    cli_track_args_help();
+    puts("  -h, --help          this help\n");
+}
+
+static int take(int opt, const char *arg, void *ctx)
+{
+    const int rc = cli_track_args_take("compare", ctx, opt, arg);
+    return rc == 1 ? EXIT_USAGE : rc;
+}
+
+static const struct option own[] = {CLI_TRACK_ARG_OPTIONS, {"help", no_argument, 0, 'h'}};
+static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
+
+static void print_hops(const char *label, const cli_TrackHops *h)
+{
+    printf("  %-28s %d", label, h->hops);
+    if (h->hops > 0) {
+        printf(" (heights");
+        for (int k = 0; k < h->hops && k < CLI_TRACK_MAX_HOPS; ++k) printf("%s %.1f", k ? "," : "", h->height_m[k] * 1e3);
+        printf(" mm)");
+    }
+    putchar('\n');
+}
+
+static void print_liftoff(const char *label, const cli_TrackHops *h)
+{
+    if (isnan(h->first_liftoff_t_s)) printf("  %-28s none\n", label);
+    else printf("  %-28s t = %.4f s, x = %.2f cm (the last frame in contact)\n", label, h->first_liftoff_t_s,
+                h->first_liftoff_x_m * 100);
+}
+
+static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, int setup_start)
+{
+    const jc_State *s = &c->start;
+    printf("Start (%s) at t = %.4f s: x = %.2f cm, %s, theta = %.4f rad, omega = %.4f rad/s\n\n",
+           setup_start ? "the setup's theta0 and omega0" : "the first tracked state", s->t_s, s->x_m * 100,
+           s->y_m > m->body.radius_m ? "in flight" : "rolling", s->theta_rad, s->omega_radps);
+    printf("Hops: the centre more than %.2f mm above contact in consecutive frames\n", c->threshold_m * 1e3);
+    print_liftoff("measured first lift-off", &c->measured);
+    print_liftoff("simulated first lift-off", &c->simulated);
+    if (isnan(c->model_liftoff_t_s)) printf("  %-28s none\n", "model's own lift-off event");
+    else printf("  %-28s t = %.4f s, x = %.2f cm\n", "model's own lift-off event", c->model_liftoff_t_s,
+                c->model_liftoff_x_m * 100);
+    print_hops("measured hops", &c->measured);
+    print_hops("simulated hops", &c->simulated);
+    printf("  %-28s %d lift-off(s), %d bounce(s), largest %.2f mm\n\n", "model's own events", c->model_liftoffs,
+           c->model_bounces, c->model_largest_hop_m * 1e3);
+    printf("Residuals (tracked - model) over %ld frames:\n  centre's path: RMS %.3f mm, largest %.3f mm\n", c->count,
+           c->rms_path_m * 1e3, c->max_path_m * 1e3);
+    if (t->has_mark) printf("  mark's angle:  RMS %.4f rad\n", c->rms_theta_rad);
+}
+
+static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, const cli_Track *t, const cli_Compare *c,
+                  const jc_SimOptions *o, int argc, char **argv)
+{
+    cli_TrackFigure f;
+    memset(&f, 0, sizeof f);
+    double *pt = NULL, *px = NULL, *py = NULL;
+    int rc = cli_track_fine_path(setup, t, &c->start, o, t->t_s[c->first + c->count - 1], &pt, &px, &py, &f.path_n);
+    if (rc == 0) {
+        f.track = t;
+        f.first = c->first;
+        f.count = c->count;
+        f.sim_x = c->x_m;
+        f.sim_y = c->y_m;
+        f.sim_theta = c->theta_rad;
+        f.path_t = pt;
+        f.path_x = px;
+        f.path_y = py;
+        f.radius_m = m->body.radius_m;
+        f.incline_rad = m->setup.incline_rad;
+        f.mark_radius_m = t->has_mark ? cli_track_mark_radius(t, m) : 0.0;
+        f.hop_threshold_m = c->threshold_m;
+        snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; residuals RMS %.2f mm (centre)",
+                 cli_deg(m->setup.incline_rad), c->rms_path_m * 1e3);
+        char cmdline[2048];
+        fig_command_line(argc, argv, cmdline, sizeof cmdline);
+        rc = cli_track_figure("compare", &f, out, cmdline);
+    } else {
+        cli_error("compare: out of memory for the figure's path");
+        rc = EXIT_FAIL;
+    }
+    free(pt);
+    free(px);
+    free(py);
+    return rc;
+}
+
+int cmd_compare(int argc, char **argv)
+{
+    cli_TrackArgs a;
+    memset(&a, 0, sizeof a);
+    cli_SetupArgs sa;
+    cli_SimArgs sim_args;
+    int st = cli_command_parse(argc, argv, &command, &a, &sa, &sim_args);
+    if (st != CLI_GO_ON) return st;
+    double from_s, to_s;
+    if ((st = cli_track_args_check("compare", &a, &from_s, &to_s)) != 0) return st;
+    jc_Setup setup;
+    jc_SimOptions opts;
+    jc_Model model;
+    if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, &model)) != 0) return st;
+    cli_Track t;
+    if ((st = cli_track_args_load("compare", &a, &model, &t)) != 0) return st;
+    cli_Compare c;
+    char err[512];
+    if (cli_track_compare(&setup, &t, &opts, a.from_setup_start ? CLI_START_SETUP : CLI_START_TRACKED, from_s, to_s,
+                          &c, err, sizeof err) != 0) {
+        cli_error("compare: %s", err);
+        cli_track_free(&t);
+        return EXIT_USAGE;
+    }
+    cli_track_print_head(a.track, &t, c.first, c.count);
+    cli_print_setup(stdout, &model, 1);
+    putchar('\n');
+    report(&model, &t, &c, a.from_setup_start);
+    st = a.output ? figure(a.output, &setup, &model, &t, &c, &opts, argc, argv) : EXIT_OK;
+    if (st == EXIT_OK && a.output) printf("Figure: %s\n", a.output);
+    cli_compare_free(&c);
+    cli_track_free(&t);
+    return st == EXIT_OK ? cli_stdout_finish() : st;
+}
