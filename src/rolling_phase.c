@@ -594,17 +594,26 @@ int jc_rolling_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
         int st = jc_scan_first_with(&set, start.theta_rad, th_lim, ROLL_ROOT_TOL_RAD, sim->ws->brent, &hit, err,
                                     err_len);
         if (st != JC_OK) return st;
-        if (hit.index == RW_ENERGY && r * fabs(hit.theta - start.theta_rad) < ROLL_REST_SWING_M) {
-            /* A swing to a turning point less than 1 nm away: the body rocks
-             * about a stable equilibrium by less than any ramp's roughness
-             * (and the time quadrature of so short a swing is all rounding):
-             * it is at rest here, now. */
+        const int tiny_swing = hit.index == RW_ENERGY && r * fabs(hit.theta - start.theta_rad) < ROLL_REST_SWING_M;
+        if (tiny_swing && start.omega_radps == 0.0) {
+            /* From rest, a swing to a turning point less than 1 nm away: the
+             * body rocks about a stable equilibrium by less than any ramp's
+             * roughness: it is at rest here, now. */
             *end = PHASE_AT_REST;
             return JC_OK;
         }
         double dt;
         const double p_start = start_p(m, &start);
-        if ((st = roll_time(sim, &path, start.theta_rad, p_start, hit.theta, &dt, err, err_len)) != JC_OK) return st;
+        if (tiny_swing) {
+            /* A moving body that turns within 1 nm (a faint spin against the
+             * slope) is not at rest: it turns and rolls back, and the next
+             * swing decides. So short a swing is uniform deceleration to
+             * rounding (the time quadrature of it would be all rounding):
+             * the angle falls by half the start's w times the time. */
+            dt = 2.0 * fabs(hit.theta - start.theta_rad) / fabs(start.omega_radps);
+        } else if ((st = roll_time(sim, &path, start.theta_rad, p_start, hit.theta, &dt, err, err_len)) != JC_OK) {
+            return st;
+        }
         const double t_max = sim->opt->t_max_s;
         double th_end = hit.theta;
         if (start.t_s + dt > t_max) {

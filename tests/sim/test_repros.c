@@ -254,6 +254,47 @@ static int test_rest_near_equilibrium(void)
     return 0;
 }
 
+/* 5a'. A faint spin against the slope is not rest: off equilibrium (the
+ * paper's cylinder at theta0 = 0 on 30 deg), a start with w0 = -w turns
+ * within 1 nm and, energy being conserved on the rolling path, comes back
+ * through theta0 with +w: the run of +w, late by the turn's time 2 w / th''
+ * (th'' = M g (r sin a + d sin(th + a)) / I_P at w = 0, from the potential
+ * computed here). Events at the same places to 1e-9 m. */
+static int test_faint_uphill_spin_rolls_back(void)
+{
+    const double w = 5e-4;
+    jc_Setup s = paper_at(30.0, 0.5);
+    jc_Model m;
+    jc_Run up, down;
+    s.omega0_radps = -w;
+    if (run_setup(&s, &m, &up)) return 1;
+    s.omega0_radps = w;
+    if (run_setup(&s, &m, &down)) {
+        jc_run_free(&up);
+        return 1;
+    }
+    const jc_Body *b = &m.body;
+    const double a = s.incline_rad, th = s.theta0_rad, r = b->radius_m, d = b->cm_offset_m, M = b->mass_kg;
+    const double ip = b->inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * cos(th);
+    const double thdd = M * s.gravity_mps2 * (r * sin(a) + d * sin(th + a)) / ip;
+    const double t_turn = 2.0 * w / thdd;
+    int ok = up.event_count == down.event_count && up.event_count > 0 && up.termination == down.termination;
+    double worst_dx = 0.0, worst_dt = 0.0;
+    for (int i = 0; ok && i < up.event_count; ++i) {
+        ok = up.events[i].kind == down.events[i].kind;
+        worst_dx = fmax(worst_dx, fabs(up.events[i].state.x_m - down.events[i].state.x_m));
+        worst_dt = fmax(worst_dt, fabs(up.events[i].state.t_s - down.events[i].state.t_s - t_turn));
+    }
+    const int n_up = up.event_count, n_down = down.event_count;
+    const jc_Termination t_up = up.termination;
+    jc_run_free(&up);
+    jc_run_free(&down);
+    ENSURE_MSG(ok, "w0 = -w: %d events, ended %s; w0 = +w: %d events", n_up, jc_termination_name(t_up), n_down);
+    ENSURE_MSG(worst_dx <= 1e-9, "events %.3g m apart", worst_dx);
+    ENSURE_MSG(worst_dt <= 1e-3 * t_turn, "late by the turn %.6g s, off by %.3g s", t_turn, worst_dt);
+    return 0;
+}
+
 /* 5b. Rolling resistance: a uniform disc rolled on a floor decelerates at
  * w' = -b g / (1.5 r^2) (torque -b M g about the contact point, I_P =
  * 3/2 M r^2) and stops at t = w0 / |w'|; the run ends with rest there, to
@@ -477,6 +518,7 @@ int main(void)
     RUN_TEST(test_painleve_is_a_named_end);
     RUN_TEST(test_liftoff_where_consistent);
     RUN_TEST(test_rest_near_equilibrium);
+    RUN_TEST(test_faint_uphill_spin_rolls_back);
     RUN_TEST(test_rest_under_rolling_resistance);
     RUN_TEST(test_rocking_hoop_goes_on);
     RUN_TEST(test_rocking_hoop_periodic);
