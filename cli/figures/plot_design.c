@@ -62,7 +62,9 @@ static void write_script(FILE *gp, const cli_DesignJob *job, const cli_DesignRes
     fputs(")\n", gp);
     fprintf(gp, "set xlabel '%s (%s)'\nset ylabel 'first lift-off down the ramp (cm)'\n", name, u.unit);
     fprintf(gp, "set xrange [%.12g:%.12g]\n", job->lo * u.per_si, job->hi * u.per_si);
-    fprintf(gp, "set yrange [0:%.12g]\n", job->nominal.ramp_length_m * 100);
+    /* The lift-offs and X decide the vertical range: a narrow --range would
+     * flatten its curve against the whole ramp's. */
+    fputs("set autoscale y\nset offsets 0, 0, graph 0.08, graph 0.08\n", gp);
     int obj = 1;
     for (int k = 0; k < r->branch_count; ++k) {
         const cli_DesignBranch *b = &r->branches[k];
