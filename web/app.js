@@ -329,14 +329,25 @@ function drawScene() {
   }
   ctx.textAlign = 'left';
   // Marks on the ramp: the paper's measured band, its printed point, our first lift-off.
+  // Labels already drawn, as boxes: on a steep incline the two marks' tops
+  // come close, and a label that would cover another moves below it.
+  const labelBoxes = [];
   const mark = (x, color, label, up, left) => {
     const [mx, my] = px(x, 0), [mx2, my2] = px(x, up);
     ctx.strokeStyle = ctx.fillStyle = color; ctx.lineWidth = 2;
     ctx.setLineDash([5, 3]); ctx.beginPath(); ctx.moveTo(mx, my); ctx.lineTo(mx2, my2); ctx.stroke(); ctx.setLineDash([]);
     ctx.font = 'bold 12px system-ui, sans-serif';
-    ctx.textAlign = left ? 'right' : 'left'; // the two labels on either side of their lines
-    ctx.fillText(label, mx2 + (left ? -4 : 4), my2 - 2);
+    const wText = ctx.measureText(label).width, hText = 13;
+    const x0 = left ? mx2 - 4 - wText : mx2 + 4; // the two labels on either side of their lines
+    let yBase = my2 - 2;
+    for (let k = 0; k < 4; ++k) {
+      const hit = labelBoxes.find(b => x0 < b.x + b.w && b.x < x0 + wText && yBase - hText < b.y && b.y - hText < yBase);
+      if (!hit) break;
+      yBase = hit.y + hText + 1;
+    }
     ctx.textAlign = 'left';
+    ctx.fillText(label, x0, yBase);
+    labelBoxes.push({ x: x0, y: yBase, w: wText });
   };
   const pr = run.paper_row;
   if (pr) {
