@@ -90,6 +90,8 @@ typedef struct {
 /* x at p: one run of the full model on the job's setup with p as the free
  * option's value (through cli_case_setup, so exactly `jumpcyl simulate`). */
 void cli_design_eval(const cli_DesignJob *job, double p, jc_Workspace *ws, cli_DesignPoint *out);
+/* The calling thread's number in the parallel loops: the index of its workspace. */
+int cli_design_thread_index(void);
 /* The scan, the edges and the branches; then the solutions (solve.c).
  * EXIT_OK, EXIT_FAIL after a message (out of memory), or the stop status. */
 int cli_design_run(const cli_DesignJob *job, cli_DesignResult *r);

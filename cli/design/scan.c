@@ -136,7 +136,9 @@ static int thread_count(int threads)
 #endif
 }
 
-static int thread_index(void)
+/* The calling thread's number in the design's parallel loops (0 without
+ * OpenMP): which workspace it may use. */
+int cli_design_thread_index(void)
 {
 #ifdef _OPENMP
     return omp_get_thread_num();
@@ -156,7 +158,7 @@ static void scan(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace **w
     for (long i = 0; i < n; ++i) {
         if (cli_stop_requested()) continue; /* an OpenMP loop cannot break: the rest is skipped */
         const double p = i == n - 1 ? job->hi : job->lo + (job->hi - job->lo) * (double)i / (double)(n - 1);
-        cli_design_eval(job, p, ws[thread_index()], &r->scan[i]);
+        cli_design_eval(job, p, ws[cli_design_thread_index()], &r->scan[i]);
         long now;
 #pragma omp atomic capture
         now = ++done;
@@ -191,7 +193,7 @@ static int locate_edges(const cli_DesignJob *job, cli_DesignResult *r, jc_Worksp
     for (long k = 0; k < count; ++k) {
         if (cli_stop_requested()) continue;
         const long i = suspects[k];
-        found_count[k] = edges_in_step(job, &r->scan[i], &r->scan[i + 1], r->edge_width, ws[thread_index()],
+        found_count[k] = edges_in_step(job, &r->scan[i], &r->scan[i + 1], r->edge_width, ws[cli_design_thread_index()],
                                        &found[k * EDGES_PER_STEP_MAX], &runs);
     }
     r->evaluations += runs;

@@ -11,9 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #define BRENT_ITERATIONS_MAX 200
 #define MIN_ITERATIONS_MAX 100
@@ -196,15 +193,6 @@ static double edge_margin(const cli_DesignResult *r, int branch, double p)
     return m;
 }
 
-static int thread_index(void)
-{
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-}
-
 /* The brackets of every lift-off branch; NULL when out of memory. */
 static bracket *find_brackets(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace *ws, int *count)
 {
@@ -262,7 +250,7 @@ int cli_design_solve(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace
         sol[k].p = NAN;
         sol[k].x_m = NAN;
         if (cli_stop_requested()) continue;
-        jc_Workspace *w = ws[thread_index()];
+        jc_Workspace *w = ws[cli_design_thread_index()];
         const double p = polish(job, &br[k], w, r->edge_width, &runs);
         if (isnan(p)) continue;
         /* Verified by a run of its own: what the user will see. */
