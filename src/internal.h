@@ -145,6 +145,8 @@ double jc_cubic_first_positive(double a, double b, double c);
  * workspace: no allocation), or making one when it is NULL. */
 int jc_scan_fns_with(const jc_ScanFn *fns, int count, double u_from, double u_to, double tol,
                      gsl_root_fsolver *brent, jc_ScanHit *hit, char *err, size_t err_len);
+/* The sets' roots are polished by Halley's iteration (scan.c says why):
+ * brent is not used, and kept for the callers. */
 int jc_scan_first_with(const jc_ScanSet *set, double th_from, double th_to, double tol_rad, gsl_root_fsolver *brent,
                        jc_ScanHit *hit, char *err, size_t err_len);
 /* A set prepared once for several scans (its bounds computed once): the
@@ -158,7 +160,7 @@ typedef struct {
 } jc_TrigScan;
 void jc_trig_scan_init(jc_TrigScan *s, const jc_ScanSet *set);
 int jc_trig_scan_run(const jc_TrigScan *s, unsigned active, double th_from, double th_to, double tol_rad,
-                     gsl_root_fsolver *brent, jc_ScanHit *hit, char *err, size_t err_len);
+                     jc_ScanHit *hit, char *err, size_t err_len);
 
 
 /* ---- the simulator's shared pieces (simulate.c and one file per phase) ---- */

@@ -177,7 +177,7 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
         unsigned mask = 0;
         for (int i = 0; i < WATCH_COUNT; ++i) mask |= active[i] ? 1u << i : 0u;
         jc_ScanHit hit;
-        int st = jc_trig_scan_run(&scan, mask, th, th_end, ROLL_ROOT_TOL_RAD, NULL, &hit, err, err_len);
+        int st = jc_trig_scan_run(&scan, mask, th, th_end, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
         if (st != JC_OK) return st;
         if (hit.index < 0) break;
         th = hit.theta;
