@@ -158,8 +158,8 @@ static int safe_over(double g, double g1, double g2, double m3, double h)
  * no evaluation repeated at a or b: a rolling prediction's roots took 6 to 7
  * evaluations and now take 2 to 3 (callgrind: see jc_scan_first_with).
  * tests/test_scan.c compares the roots with GSL's Brent solver's. */
-static int polish_newton(const jc_ScanFn *fn, double a, const double da[3], double b, double slope_min, double tol,
-                         double *root, char *err, size_t err_len)
+static int polish_newton(const jc_ScanFn *fn, double a, const double da[3], double b, double slope_min, double m3,
+                         double tol, double *root, char *err, size_t err_len)
 {
     const double sign = fn->sign, close = 0.25 * slope_min * tol;
     double pos = a, neg = b, f_pos = sign * da[0], f_neg = -INFINITY, x = a;
@@ -175,9 +175,12 @@ static int polish_newton(const jc_ScanFn *fn, double a, const double da[3], doub
                 *root = x;
                 return JC_OK;
             }
-            if (fabs(f) <= close) {
-                /* One more Newton step, free: from within tol / 4 it lands
-                 * at rounding (its error is of the order of its square). */
+            /* The root is within e = |f| / slope_min of x, and one more
+             * Newton step, free, lands within (|f''| + m3 e) e^2 / (2 |f'|)
+             * of it: done where that is below tol / 4 (callgrind: 2.5 -> 2
+             * evaluations a root; 30 deg prediction 15.1k -> 14.8k). */
+            const double e = fabs(f) / slope_min;
+            if (fabs(f) <= close || (fabs(d2f) + m3 * e) * e * e <= 0.5 * tol * fabs(df)) {
                 const double next = x - f / df;
                 *root = next > fmin(a, b) && next < fmax(a, b) ? next : x;
                 return JC_OK;
@@ -299,7 +302,7 @@ static int scan_core(const jc_ScanFn *fns, int count, scan_eval_all eval_all, vo
                      * may be a double root touched, not crossed. */
                     if (fn_value(b, (void *)&fns[i]) < -fns[i].noise) {
                         double root = b;
-                        int st = fns[i].newton ? polish_newton(&fns[i], at, d, b, -slope, tol, &root, err, err_len)
+                        int st = fns[i].newton ? polish_newton(&fns[i], at, d, b, -slope, m3, tol, &root, err, err_len)
                                                : polish_brent(&fns[i], at, b, tol, brent, &root, err, err_len);
                         if (st != JC_OK) return st;
                         cand_u = min_d(fabs(root - u_from), cand_u);
