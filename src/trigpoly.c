@@ -215,9 +215,13 @@ void jc_tl_bounds(const jc_TrigLin *p, jc_TrigBounds *out)
     /* f''' = T0''' + 3 T1'' + th T1''', term by term of amplitude k^3 A0,
      * 3 k^2 A1 and |th| k^3 A1. 1 + 1e-12 covers the rounding of the sums. */
     double b0 = 0.0, b1 = 0.0, b2 = 0.0, m0 = fabs(p->c0[0]), m1 = fabs(p->c1[0]);
-    int deg = (p->c0[0] != 0.0 || p->c1[0] != 0.0) ? 0 : -1;
-    for (int k = 1; k <= JC_TRIG_DEGREE; ++k) {
-        if (p->c0[k] != 0.0 || p->s0[k] != 0.0 || p->c1[k] != 0.0 || p->s1[k] != 0.0) deg = k;
+    /* The degree first: the terms above it add nothing (the energy is of
+     * degree 1 in a field of 4; callgrind: a rolling prediction at 30 deg
+     * 14.75k -> 14.58k instructions). */
+    int deg = JC_TRIG_DEGREE;
+    while (deg > 0 && p->c0[deg] == 0.0 && p->s0[deg] == 0.0 && p->c1[deg] == 0.0 && p->s1[deg] == 0.0) --deg;
+    if (deg == 0 && p->c0[0] == 0.0 && p->c1[0] == 0.0) deg = -1;
+    for (int k = 1; k <= deg; ++k) {
         const double kk = (double)k * k, kkk = kk * k;
         const double a0 = amplitude(p->c0[k], p->s0[k]), a1 = amplitude(p->c1[k], p->s1[k]);
         b0 += kkk * a0;
