@@ -300,8 +300,12 @@ static int scan_core(const jc_ScanFn *fns, int count, scan_eval_all eval_all, vo
                 if (slope < 0.0 && w <= reach && u + w < cand_u) {
                     const double b = at + dir * w;
                     /* A clear sign change only: a value within noise of zero
-                     * may be a double root touched, not crossed. */
-                    if (fn_value(b, (void *)&fns[i]) < -fns[i].noise) {
+                     * may be a double root touched, not crossed. The Taylor
+                     * bound f(b) <= g + g1 w + g2 w^2/2 + m3 w^3/6 proves it
+                     * mostly without evaluating f at b (callgrind: a rolling
+                     * prediction at 30 deg 14.58k -> 14.16k instructions). */
+                    const double f_b_max = -g + (0.5 * g2 + m3 * w / 6.0) * w * w;
+                    if (f_b_max + 1e-9 * g < -fns[i].noise || fn_value(b, (void *)&fns[i]) < -fns[i].noise) {
                         double root = b;
                         int st = fns[i].newton ? polish_newton(&fns[i], at, d, b, -slope, m3, tol, &root, err, err_len)
                                                : polish_brent(&fns[i], at, b, tol, brent, &root, err, err_len);
