@@ -11,9 +11,10 @@
  * the first steps would crawl.) Near a simple root h* tends to the Newton
  * step, so the approach is fast; once the root is provably unique ahead
  * (f' stays negative across the bracket), the sign change is confirmed and
- * GSL's Brent solver polishes it. Values within rounding noise of zero count
- * as zero. A function that only touches zero (a double root) is reported as
- * grazing once the safe step falls below the tolerance.
+ * Halley's iteration on the exact derivatives (or, for a general function
+ * that asks for it, GSL's Brent solver) polishes it. Values within rounding
+ * noise of zero count as zero. A function that only touches zero (a double
+ * root) is reported as grazing once the safe step falls below the tolerance.
  */
 #include "internal.h"
 
