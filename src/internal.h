@@ -76,6 +76,15 @@ double jc_tl_third_bound(const jc_TrigLin *p, double th_abs_max);
 /* How that bound grows with th_abs_max: |f'''| <= jc_tl_third_bound(p, 0)
  * + jc_tl_third_slope(p) |th| at every th. */
 double jc_tl_third_slope(const jc_TrigLin *p);
+/* All of a function's bounds in one pass over its coefficients (the
+ * crossing search needs them at every scan's start): its degree; |f'''| <=
+ * third0 + third_slope |th| at every th (as the two above); |f| <= mag0 +
+ * mag1 |th| (as jc_tl_magnitude_bound). */
+typedef struct {
+    int degree;
+    double third0, third_slope, mag0, mag1;
+} jc_TrigBounds;
+void jc_tl_bounds(const jc_TrigLin *p, jc_TrigBounds *b);
 /* Value and derivative at th. */
 void jc_tl_eval(const jc_TrigLin *p, double th, double *f, double *df);
 double jc_tl_value(const jc_TrigLin *p, double th);
@@ -136,8 +145,22 @@ double jc_cubic_first_positive(double a, double b, double c);
  * workspace: no allocation), or making one when it is NULL. */
 int jc_scan_fns_with(const jc_ScanFn *fns, int count, double u_from, double u_to, double tol,
                      gsl_root_fsolver *brent, jc_ScanHit *hit, char *err, size_t err_len);
+/* The sets' roots are polished by Halley's iteration (scan.c says why):
+ * brent is not used, and kept for the callers. */
 int jc_scan_first_with(const jc_ScanSet *set, double th_from, double th_to, double tol_rad, gsl_root_fsolver *brent,
                        jc_ScanHit *hit, char *err, size_t err_len);
+/* A set prepared once for several scans (its bounds computed once): the
+ * rolling prediction scans its path again past the slip with fewer
+ * functions. active: bit i for set->f[i]; hit->index is the place in set. */
+typedef struct {
+    int count;
+    const jc_TrigLin *f[JC_SCAN_MAX];
+    double sign[JC_SCAN_MAX];
+    jc_TrigBounds bounds[JC_SCAN_MAX];
+} jc_TrigScan;
+void jc_trig_scan_init(jc_TrigScan *s, const jc_ScanSet *set);
+int jc_trig_scan_run(const jc_TrigScan *s, unsigned active, double th_from, double th_to, double tol_rad,
+                     jc_ScanHit *hit, char *err, size_t err_len);
 
 
 /* ---- the simulator's shared pieces (simulate.c and one file per phase) ---- */

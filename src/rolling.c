@@ -21,13 +21,11 @@ const char *jc_rolling_end_name(jc_RollingEnd end)
     return "unknown";
 }
 
-static double inertia_p(const jc_Model *m, double th) { return jc_rolling_inertia_p(m, cos(th)); }
-
-static double potential(const jc_Model *m, double th)
+/* U at th given by its sine and cosine. */
+static double potential(const jc_Model *m, double th, double s, double c)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    return M * m->setup.gravity_mps2 *
-           ((r + d * cos(th)) * m->cos_incline - (r * th + d * sin(th)) * m->sin_incline);
+    return M * m->setup.gravity_mps2 * ((r + d * c) * m->cos_incline - (r * th + d * s) * m->sin_incline);
 }
 
 /* th'' for a given w^2 (physics.md §2), at th given by its sine and cosine. */
@@ -39,12 +37,13 @@ static double angular_accel(const jc_Model *m, double s, double c, double w2)
     return (torque + M * r * d * s * w2) / jc_rolling_inertia_p(m, c);
 }
 
-/* Direction of motion along th at the start; 0 if at rest in equilibrium. */
-static int start_direction(const jc_Model *m)
+/* Direction of motion along th at the start (th0 given by its sine and
+ * cosine); 0 if at rest in equilibrium. */
+static int start_direction(const jc_Model *m, double s0, double c0)
 {
     const double w0 = m->setup.omega0_radps;
     if (w0 != 0.0) return w0 > 0.0 ? 1 : -1;
-    const double a0 = angular_accel(m, sin(m->setup.theta0_rad), cos(m->setup.theta0_rad), 0.0);
+    const double a0 = angular_accel(m, s0, c0, 0.0);
     return a0 > 0.0 ? 1 : (a0 < 0.0 ? -1 : 0);
 }
 
@@ -111,12 +110,17 @@ int jc_rolling_state(const jc_Model *m, double th, jc_RollingState *out, char *e
     const double th0 = m->setup.theta0_rad, w0 = m->setup.omega0_radps;
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2;
-    const double ip = inertia_p(m, th);
-    (void)M;
-    const double u0 = potential(m, th0), u = potential(m, th);
-    double two_ke = inertia_p(m, th0) * w0 * w0 + 2.0 * (u0 - u);
+    /* One inline sincos for th and one for th0, shared by every term below
+     * (callgrind: a rolling prediction at 30 deg 15.8k -> 15.1k
+     * instructions, with jc_rolling_path_init's). */
+    double s, c, s0, c0;
+    jc_sincos(th, &s, &c);
+    jc_sincos(th0, &s0, &c0);
+    const double ip = jc_rolling_inertia_p(m, c), ip0 = jc_rolling_inertia_p(m, c0);
+    const double u0 = potential(m, th0, s0, c0), u = potential(m, th, s, c);
+    double two_ke = ip0 * w0 * w0 + 2.0 * (u0 - u);
     /* Tolerate rounding at a turning point, where w^2 is exactly 0. */
-    const double slack = 1e-12 * (inertia_p(m, th0) * w0 * w0 + 2.0 * M * g * (r + d) * (1.0 + fabs(th - th0)));
+    const double slack = 1e-12 * (ip0 * w0 * w0 + 2.0 * M * g * (r + d) * (1.0 + fabs(th - th0)));
     if (two_ke < -slack)
         return jc_fail(err, err_len, JC_EINVAL,
                        "angle %g rad is out of reach of the rolling motion (w^2 = %g rad^2/s^2 < 0 there)",
@@ -124,8 +128,8 @@ int jc_rolling_state(const jc_Model *m, double th, jc_RollingState *out, char *e
     if (two_ke < 0.0) two_ke = 0.0;
     const double w2 = two_ke / ip;
     out->theta_rad = th;
-    out->omega_radps = start_direction(m) * sqrt(w2);
-    jc_rolling_forces(m, th, out->omega_radps, &out->alpha_radps2, &out->normal_N, &out->friction_N);
+    out->omega_radps = start_direction(m, s0, c0) * sqrt(w2);
+    jc_rolling_accel(m, s, c, out->omega_radps, NULL, &out->alpha_radps2, &out->normal_N, &out->friction_N);
     out->x_m = r * (th - th0);
     out->kinetic_J = 0.5 * two_ke;
     out->potential_J = u - u0;
@@ -146,7 +150,9 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
 {
     *out = (jc_RollingResult){0};
     const double th0 = m->setup.theta0_rad;
-    const int dir = start_direction(m);
+    double s0, c0;
+    jc_sincos(th0, &s0, &c0);
+    const int dir = start_direction(m, s0, c0);
 
     /* N, mu_s N -/+ F and I_P w^2, all cleared of I_P^2: rolling holds while all are > 0. */
     jc_RollingPath path;
@@ -160,23 +166,22 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
     out->end = dir > 0 ? JC_ROLLING_END_RAMP_END : (dir < 0 ? JC_ROLLING_END_RAMP_TOP : JC_ROLLING_END_AT_REST);
     out->end_theta_rad = th_end;
 
+    /* One prepared set for both scans (to the first event, then on past a
+     * slip for the lift-off): its bounds are computed once (callgrind: at
+     * 30 deg 16.4k -> 15.8k instructions a prediction). */
+    jc_ScanSet set = {WATCH_COUNT, {watch[0], watch[1], watch[2], watch[3]}, {1.0, 1.0, 1.0, 1.0}};
+    jc_TrigScan scan;
+    jc_trig_scan_init(&scan, &set);
     double th = th0;
     while (active[WATCH_NORMAL] || active[WATCH_SLIP_POS]) {
-        jc_ScanSet set = {0};
-        int who[WATCH_COUNT];
-        for (int i = 0; i < WATCH_COUNT; ++i) {
-            if (!active[i]) continue;
-            who[set.count] = i;
-            set.f[set.count] = watch[i];
-            set.sign[set.count] = 1.0;
-            set.count++;
-        }
+        unsigned mask = 0;
+        for (int i = 0; i < WATCH_COUNT; ++i) mask |= active[i] ? 1u << i : 0u;
         jc_ScanHit hit;
-        int st = jc_scan_first(&set, th, th_end, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
+        int st = jc_trig_scan_run(&scan, mask, th, th_end, ROLL_ROOT_TOL_RAD, &hit, err, err_len);
         if (st != JC_OK) return st;
         if (hit.index < 0) break;
         th = hit.theta;
-        switch (who[hit.index]) {
+        switch (hit.index) {
         case WATCH_NORMAL:
             active[WATCH_NORMAL] = 0;
             st = fill_crossing(m, &hit, &out->liftoff, err, err_len);
@@ -198,14 +203,32 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
     return JC_OK;
 }
 
+/* A polynomial of degree 1 at th given by its sine and cosine: the sums of
+ * jc_tl_value, term for term (its higher terms add exact zeros). */
+static double value_deg1(const jc_TrigLin *p, double th, double s, double c)
+{
+    const double t0 = p->c0[0] + (p->c0[1] * c + p->s0[1] * s);
+    const double t1 = p->c1[0] + (p->c1[1] * c + p->s1[1] * s);
+    return t0 + th * t1;
+}
+
 void jc_rolling_path_init(const jc_Model *m, double th, double w, jc_RollingPath *p)
 {
     const jc_ModelTables *tb = jc_model_tables(m);
-    const double e = jc_tl_value(&tb->inertia_p_poly, th) * w * w + 2.0 * jc_tl_value(&tb->potential_poly, th);
-    jc_TrigLin one;
-    jc_tl_zero(&one);
-    jc_tl_add_cos(&one, 0, 0, 1.0);
-    jc_tl_axpby(&p->energy, e, &one, -2.0, &tb->potential_poly);
+    /* I_P and U (both of degree 1, model.c) from one inline sincos, where
+     * jc_tl_value made one each; the same sums, the same e. */
+    double s, c;
+    jc_sincos(th, &s, &c);
+    const double e = value_deg1(&tb->inertia_p_poly, th, s, c) * w * w +
+                     2.0 * value_deg1(&tb->potential_poly, th, s, c);
+    /* energy = e - 2 U(th) */
+    for (int k = 0; k <= JC_TRIG_DEGREE; ++k) {
+        p->energy.c0[k] = -2.0 * tb->potential_poly.c0[k];
+        p->energy.s0[k] = -2.0 * tb->potential_poly.s0[k];
+        p->energy.c1[k] = -2.0 * tb->potential_poly.c1[k];
+        p->energy.s1[k] = -2.0 * tb->potential_poly.s1[k];
+    }
+    p->energy.c0[0] += e;
     jc_tl_axpby(&p->normal, 1.0, &tb->roll_normal_a, e, &tb->roll_normal_b);
     jc_tl_axpby(&p->friction, 1.0, &tb->roll_friction_a, e, &tb->roll_friction_b);
     jc_tl_axpby(&p->slip_pos, m->setup.mu_static, &p->normal, -1.0, &p->friction);

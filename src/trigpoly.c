@@ -196,23 +196,57 @@ void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3])
     jc_tl_eval3_basis(p, &b, out);
 }
 
+/* The amplitude of a cos(k th) + b sin(k th), sqrt(a^2 + b^2): it and its
+ * n-th derivatives (times k^n) never exceed it. Up to sqrt 2 below |a| + |b|,
+ * the bound used before: the crossing search's safe steps grow like
+ * M3^(-1/3) (callgrind, a rolling prediction: 15 deg 29.8k -> 27.2k
+ * instructions, 30 deg 17.4k -> 15.8k, 45 deg 14.0k -> 13.7k). Where a^2
+ * could underflow (both below 1e-150): |a| + |b|, still a bound. */
+static double amplitude(double a, double b)
+{
+    const double sum = fabs(a) + fabs(b);
+    if (!(sum > 1e-150)) return sum;
+    const double amp = sqrt(a * a + b * b);
+    return amp < sum ? amp : sum; /* sum when a^2 overflows (amp infinite) */
+}
+
+void jc_tl_bounds(const jc_TrigLin *p, jc_TrigBounds *out)
+{
+    /* f''' = T0''' + 3 T1'' + th T1''', term by term of amplitude k^3 A0,
+     * 3 k^2 A1 and |th| k^3 A1. 1 + 1e-12 covers the rounding of the sums. */
+    double b0 = 0.0, b1 = 0.0, b2 = 0.0, m0 = fabs(p->c0[0]), m1 = fabs(p->c1[0]);
+    /* The degree first: the terms above it add nothing (the energy is of
+     * degree 1 in a field of 4; callgrind: a rolling prediction at 30 deg
+     * 14.75k -> 14.58k instructions). */
+    int deg = JC_TRIG_DEGREE;
+    while (deg > 0 && p->c0[deg] == 0.0 && p->s0[deg] == 0.0 && p->c1[deg] == 0.0 && p->s1[deg] == 0.0) --deg;
+    if (deg == 0 && p->c0[0] == 0.0 && p->c1[0] == 0.0) deg = -1;
+    for (int k = 1; k <= deg; ++k) {
+        const double kk = (double)k * k, kkk = kk * k;
+        const double a0 = amplitude(p->c0[k], p->s0[k]), a1 = amplitude(p->c1[k], p->s1[k]);
+        b0 += kkk * a0;
+        b1 += kk * a1;
+        b2 += kkk * a1;
+        m0 += fabs(p->c0[k]) + fabs(p->s0[k]);
+        m1 += fabs(p->c1[k]) + fabs(p->s1[k]);
+    }
+    out->degree = deg;
+    out->third0 = (b0 + 3.0 * b1) * (1.0 + 1e-12);
+    out->third_slope = b2 * (1.0 + 1e-12);
+    out->mag0 = m0;
+    out->mag1 = m1;
+}
+
 double jc_tl_third_bound(const jc_TrigLin *p, double th_abs_max)
 {
-    /* f''' = T0''' + 3 T1'' + th T1''' */
-    double b0 = 0.0, b1 = 0.0, b2 = 0.0;
-    for (int k = 1; k <= JC_TRIG_DEGREE; ++k) {
-        const double kk = (double)k * k, kkk = kk * k;
-        b0 += kkk * (fabs(p->c0[k]) + fabs(p->s0[k]));
-        b1 += kk * (fabs(p->c1[k]) + fabs(p->s1[k]));
-        b2 += kkk * (fabs(p->c1[k]) + fabs(p->s1[k]));
-    }
-    return (b0 + 3.0 * b1 + th_abs_max * b2) * (1.0 + 1e-12);
+    jc_TrigBounds b;
+    jc_tl_bounds(p, &b);
+    return b.third0 + th_abs_max * b.third_slope;
 }
 
 double jc_tl_third_slope(const jc_TrigLin *p)
 {
-    double b2 = 0.0;
-    for (int k = 1; k <= JC_TRIG_DEGREE; ++k)
-        b2 += (double)k * k * k * (fabs(p->c1[k]) + fabs(p->s1[k]));
-    return b2 * (1.0 + 1e-12);
+    jc_TrigBounds b;
+    jc_tl_bounds(p, &b);
+    return b.third_slope;
 }

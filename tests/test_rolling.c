@@ -445,6 +445,80 @@ static int test_crossings_are_first(void)
     return 0;
 }
 
+/* The first th along the path from th0 to th_end where g(th) <= 0, by a
+ * brute-force search independent of the library's: n samples, then
+ * bisection to rounding between the last two. NAN where g stays > 0. */
+typedef double (*path_fn)(const dyn *D, double mu, double th);
+static double n_of(const dyn *D, double mu, double th)
+{
+    (void)mu;
+    return contact_at(D, th).N;
+}
+static double cone_of(const dyn *D, double mu, double th)
+{
+    const contact c = contact_at(D, th);
+    return mu * c.N - fabs(c.F);
+}
+static double brute_first_root(path_fn g, const dyn *D, double mu, double th_end, int n)
+{
+    double prev = D->th0;
+    if (g(D, mu, prev) <= 0.0) return prev;
+    for (int i = 1; i <= n; ++i) {
+        const double th = D->th0 + (th_end - D->th0) * i / n;
+        if (g(D, mu, th) > 0.0) {
+            prev = th;
+            continue;
+        }
+        double pos = prev, neg = th;
+        for (int k = 0; k < 200 && fabs(neg - pos) > 0.0; ++k) {
+            const double mid = 0.5 * (pos + neg);
+            if (mid == pos || mid == neg) break;
+            if (g(D, mu, mid) > 0.0) pos = mid;
+            else neg = mid;
+        }
+        return 0.5 * (pos + neg);
+    }
+    return NAN;
+}
+
+/* The predicted slip and N = 0 against a brute-force search with the
+ * Newton-Euler forces above: the same places to 2e-12 rad (each is located
+ * to 1e-12 rad; the scan's steps and polishing changed, not its answers). */
+static int test_crossings_match_brute_force(void)
+{
+    const jc_Setup setups[] = {paper_at(15, 0.5), paper_at(30, 0.5), paper_at(45, 0.5), paper_at(30, 0.2),
+                               paper_at(30, 1e6), spinning(), lopsided(), rocking()};
+    int compared = 0;
+    for (size_t k = 0; k < sizeof setups / sizeof setups[0]; ++k) {
+        jc_Model m;
+        if (init(&m, &setups[k])) return 1;
+        const dyn D = dyn_of(&m);
+        const double mu = setups[k].mu_static;
+        jc_RollingResult res;
+        char err[256] = "";
+        ENSURE_OK(jc_rolling_predict(&m, &res, err, sizeof err), err);
+        const double end = res.end_theta_rad;
+        const double slip = brute_first_root(cone_of, &D, mu, end, 20000);
+        const double lift = brute_first_root(n_of, &D, mu, end, 20000);
+        ENSURE_MSG(res.slip.found == !isnan(slip), "setup %zu: slip found %d, brute force %.17g", k,
+                   res.slip.found, slip);
+        ENSURE_MSG(res.liftoff.found == !isnan(lift), "setup %zu: N = 0 found %d, brute force %.17g", k,
+                   res.liftoff.found, lift);
+        if (res.slip.found) {
+            ENSURE_MSG(fabs(res.slip.state.theta_rad - slip) <= 2e-12, "setup %zu: slip at %.17g, brute force %.17g",
+                       k, res.slip.state.theta_rad, slip);
+            ++compared;
+        }
+        if (res.liftoff.found) {
+            ENSURE_MSG(fabs(res.liftoff.state.theta_rad - lift) <= 2e-12,
+                       "setup %zu: N = 0 at %.17g, brute force %.17g", k, res.liftoff.state.theta_rad, lift);
+            ++compared;
+        }
+    }
+    ENSURE(compared >= 10);
+    return 0;
+}
+
 /* ---- (f) the paper's setup: slip comes first, and F != 0 where N = 0 ---- */
 
 static int test_paper_slips_before_n_zero(void)
@@ -605,6 +679,7 @@ int main(void)
     RUN_TEST(test_newton_euler_pointwise);
     RUN_TEST(test_forces_from_trajectory);
     RUN_TEST(test_crossings_are_first);
+    RUN_TEST(test_crossings_match_brute_force);
     RUN_TEST(test_paper_slips_before_n_zero);
     RUN_TEST(test_starts_out_of_rolling);
     RUN_TEST(test_at_rest);
