@@ -285,31 +285,30 @@ static void anchor_at_start(const jc_Model *m, const jc_State *start, int dir,
     an->d[0] = start->omega_radps; /* the state's own, exact */
 }
 
-/* The time after the swing's start at th: from the last anchor by one
- * short Gauss-Kronrod rule where 1/|w| is smooth between the two
- * (walk_piece, with I_P w^2 at th by the exact potential change), else by
- * the quadrature from the swing's start. Measured on the paper's cylinder
- * at 30 deg sampled every 1 ms: 9.18M -> 4.59M instructions a run (the
- * quadrature from the start took 21 to 87 integrand values, or two pieces,
- * at every sample). Not next to a turning point (P below JC_WALK_P_FLOOR of
- * its scale), where P is a small difference of large numbers: chained
- * there, the times drifted from the whole swing's quadrature by up to 2e-8
- * of it, and by 9e-12 rad at the events with the floor at 0 (its 1e-3 keeps
- * them within 2e-13 rad: tests/sim/test_rolling_samples.c, 300 random
- * setups). 1 when the time is known. */
 /* roll_time_one_piece's rule for the short step between two samples: 15
  * Gauss-Kronrod points, or its 21 when they do not meet the same test
- * (measured, paper's cylinder at 30 deg sampled every 1 ms: 4.59M -> 3.96M
- * instructions a run). */
+ * (measured, paper's cylinder at 30 deg sampled every 1 ms, the floor at
+ * 1e-3: 4.59M -> 3.96M instructions a run). */
 static int walk_piece(const jc_Model *m, double th_a, double p_a, double th_b, double p_b, double *dt)
 {
     return roll_time_one_piece_with(gsl_integration_qk15, m, th_a, p_a, th_b, p_b, dt) ||
            roll_time_one_piece(m, th_a, p_a, th_b, p_b, dt);
 }
 
-#ifndef JC_WALK_P_FLOOR
-#define JC_WALK_P_FLOOR 1e-3
-#endif
+/* The time after the swing's start at th: from the last anchor by one
+ * short Gauss-Kronrod rule where 1/|w| is smooth between the two
+ * (walk_piece, with I_P w^2 at th by the exact potential change), else by
+ * the quadrature from the swing's start. Measured on the paper's cylinder
+ * at 30 deg sampled every 1 ms: 9.18M -> 4.2M instructions a run (the
+ * quadrature from the start took 21 to 87 integrand values, or two pieces,
+ * at every sample). Not where P is below JC_WALK_P_FLOOR of its scale (near
+ * a turning point): chained there too, the times drifted from the whole
+ * swing's quadrature by up to 2e-8 of it; with the floor at 1e-3, by up to
+ * 2.6e-12 of it, which put an event 1.1e-11 rad off the ODE from the last
+ * sample before it; at 1e-2 the worst over eight seeds of
+ * tests/sim/test_rolling_samples.c is 0.31 of that test's bound (0.1: 0.07,
+ * at 4.9M instructions). 1 when the time is known. */
+#define JC_WALK_P_FLOOR 1e-2
 static int roll_time_from_anchor(jc_Sim *sim, const jc_RollingPath *path, const jc_State *start, double p_start,
                                  int dir, const roll_anchor *an, double th, double *tau)
 {
@@ -320,11 +319,6 @@ static int roll_time_from_anchor(jc_Sim *sim, const jc_RollingPath *path, const 
     double piece;
     if (an->p >= p_floor && p_th >= p_floor && walk_piece(m, an->th, an->p, th, p_th, &piece)) {
         *tau = an->tau + ((th - an->th) * dir >= 0.0 ? piece : -piece);
-#ifdef JC_WALK_DEBUG
-        double full;
-        roll_time(sim, path, start->theta_rad, p_start, th, &full, NULL, 0);
-        fprintf(stderr, "WALK %.3e %.3e %.3e\n", *tau - full, full, an->p);
-#endif
         return 1;
     }
     return roll_time(sim, path, start->theta_rad, p_start, th, tau, NULL, 0) == JC_OK;
