@@ -71,7 +71,9 @@ static int roll_time_one_piece_with(gk_rule *rule, const jc_Model *m, double th_
                                     double p_b, double *dt)
 {
     if (!(p_a > 0.0 && p_b > 0.0 && fmin(p_a, p_b) >= 0.25 * fmax(p_a, p_b))) return 0;
-    time_integrand ti = {m, th_b > th_a ? 1.0 : -1.0, sin(th_a), cos(th_a), p_a, 0.0, 1};
+    double sa, ca;
+    jc_sincos(th_a, &sa, &ca); /* inline: libm's sin and cos are calls through the PLT */
+    time_integrand ti = {m, th_b > th_a ? 1.0 : -1.0, sa, ca, p_a, 0.0, 1};
     gsl_function fn = {dt_du, &ti};
     double result, abserr, resabs, resasc;
     rule(&fn, 0.0, fabs(th_b - th_a), &result, &abserr, &resabs, &resasc);
@@ -94,7 +96,9 @@ static int roll_piece(jc_Sim *sim, double end, double p, double dp, double sigma
     /* An end where P is negligible against P' over the piece is a turning
      * point up to rounding: take P = 0 there exactly. */
     if (!linear && p <= 1e-12 * fabs(dp) * len) p = 0.0;
-    time_integrand ti = {sim->m, sigma, sin(end), cos(end), p, sigma * dp, linear};
+    double se, ce;
+    jc_sincos(end, &se, &ce);
+    time_integrand ti = {sim->m, sigma, se, ce, p, sigma * dp, linear};
     gsl_function fn = {dt_du, &ti};
     const double upper = linear ? len : sqrt(len);
     double abserr;
@@ -212,7 +216,9 @@ static int roll_theta_at(jc_Sim *sim, const jc_RollingPath *path, double th_a, d
 /* I_P w^2 of a state, directly. */
 static double start_p(const jc_Model *m, const jc_State *s)
 {
-    return jc_rolling_inertia_p(m, cos(s->theta_rad)) * s->omega_radps * s->omega_radps;
+    double sn, cs;
+    jc_sincos(s->theta_rad, &sn, &cs);
+    return jc_rolling_inertia_p(m, cs) * s->omega_radps * s->omega_radps;
 }
 
 /* The state on the rolling path at th. */
