@@ -79,7 +79,9 @@ static double dt_du(double u, void *params)
 }
 
 /* Where neither end is near a turning point (P at each end at least a
- * quarter of P at the other), 1/|w| is smooth in th itself: one 21-point
+ * quarter of P at the other), 1/|w| is smooth in th itself (roll_time now
+ * takes that case by qng, the same first rule; the sample walk uses this
+ * one with its 15-point rule first): one 21-point
  * Gauss-Kronrod rule over [th_a, th_b], accepted when its error estimate
  * meets what gsl_integration_qng asks of the same rule (1e-13 of the
  * result, or rounding); 1 if it did, with the time in *dt. Measured on the
@@ -180,9 +182,19 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
     jc_tl_eval(&path->energy, th_a, &p[0], &dp[0]);
     jc_tl_eval(&path->energy, th_b, &p[1], &dp[1]);
     p[0] = p_a;
-    if (roll_time_one_piece(sim->m, th_a, p[0], th_b, p[1], dt)) return JC_OK;
     const double ends[2] = {th_a, th_b}, len = fabs(th_b - th_a);
     const double sig[2] = {th_b > th_a ? 1.0 : -1.0, th_b > th_a ? -1.0 : 1.0}; /* from each end inward */
+    /* Neither end near a turning point: roll_time_one_piece's case, by qng
+     * linear in th, whose first 21 points are the same Gauss-Kronrod rule
+     * with the same test, and which goes on to 43 and 87 points reusing
+     * them where the 21 fall short, instead of dropping them for the
+     * halves (found: a 3.2 rad swing of the paper's runs took 21 + 43 + 21
+     * integrand values that way). Callgrind: a paper run 215.1k -> 212.4k
+     * instructions. */
+    if (p[0] > 0.0 && p[1] > 0.0 && fmin(p[0], p[1]) >= 0.25 * fmax(p[0], p[1])) {
+        if (roll_piece_with(sim, th_a, p[0], dp[0], sig[0], len, 1, 1, dt, NULL, 0) == JC_OK) return JC_OK;
+        *dt = 0.0;
+    }
     /* One end near a turning point, the other not: a short u^2 piece and a long linear one. */
     const int turn = p[0] < 0.25 * p[1] ? 0 : (p[1] < 0.25 * p[0] ? 1 : -1);
     double part;
