@@ -14,7 +14,8 @@
 double jc_free_gap_accel(const jc_Model *m, const jc_State *s)
 {
     const double d = m->body.cm_offset_m, th = s->theta_rad, w = s->omega_radps;
-    const double sn = sin(th), cs = cos(th);
+    double sn, cs;
+    jc_sincos(th, &sn, &cs); /* inline: libm's pair was 0.7k of a paper run's 224k instructions */
     double acc = d * w * w * cs - m->setup.gravity_mps2 * m->cos_incline;
     if (jc_model_has_resistance(m)) {
         jc_Loads l;
@@ -71,7 +72,9 @@ jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_rol
     }
     double thdd, normal, friction;
     const int roll_dir = s->omega_radps > 0.0 ? 1 : (s->omega_radps < 0.0 ? -1 : 0);
-    jc_rolling_at(m, s->theta_rad, s->omega_radps, roll_dir, &thdd, &normal, &friction, NULL);
+    double sn, cs;
+    jc_sincos(s->theta_rad, &sn, &cs); /* jc_rolling_at with the inline sincos, not libm's pair */
+    jc_rolling_at_sc(m, sn, cs, s->omega_radps, roll_dir, &thdd, &normal, &friction, NULL);
     if (allow_roll && normal > 0.0 && fabs(friction) <= m->setup.mu_static * normal) {
         if (s->omega_radps == 0.0 && thdd == 0.0) return CHOICE_REST;
         return CHOICE_ROLL;

@@ -28,34 +28,60 @@
  * delta/2, one sincos per point (measured: the integrand with three sines
  * and a trigonometric-polynomial I_P was 20 % of a run's time). */
 typedef struct {
-    const jc_Model *m;
     double sigma;        /* th = anchor + sigma u^2 */
     double sin_a, cos_a; /* of the anchor */
     double p0, p1;       /* P and sigma * P' at the anchor */
     int linear;          /* 1: th = anchor + sigma u instead, dt/du = 1 / |w| */
+    /* The model's products the integrand uses, formed once per piece (the
+     * same values: each is a leading product of the expression it stands
+     * in): I_P = ip0 + ip1 cos th; U's change is mg (dca dcos - sin a (r
+     * delta + d dsin)). Callgrind: 121 integrand values a paper run, 157
+     * -> 140 instructions each (a run 217.8k -> 215.8k). */
+    double ip0, ip1, mg, dca, sin_inc, r, d;
 } time_integrand;
+
+static time_integrand time_integrand_at(const jc_Model *m, double sigma, double anchor, double p0, double p1,
+                                        int linear)
+{
+    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
+    double sa, ca;
+    jc_sincos(anchor, &sa, &ca); /* inline: libm's sin and cos are calls through the PLT */
+    return (time_integrand){sigma,
+                            sa,
+                            ca,
+                            p0,
+                            p1,
+                            linear,
+                            m->body.inertia_c_kgm2 + M * r * r,
+                            2.0 * M * r * d,
+                            M * m->setup.gravity_mps2,
+                            d * m->cos_incline,
+                            m->sin_incline,
+                            r,
+                            d};
+}
 
 static double dt_du(double u, void *params)
 {
     const time_integrand *ti = params;
-    const jc_Model *m = ti->m;
-    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     const double delta = ti->sigma * (ti->linear ? u : u * u);
     double sh, ch;
     jc_sincos(0.5 * delta, &sh, &ch);
     const double s_mid = ti->sin_a * ch + ti->cos_a * sh, c_mid = ti->cos_a * ch - ti->sin_a * sh;
     const double c_th = c_mid * ch - s_mid * sh; /* cos(anchor + delta) */
-    const double ip = jc_rolling_inertia_p(m, c_th);
+    const double ip = ti->ip0 + ti->ip1 * c_th;  /* jc_rolling_inertia_p */
     if (u == 0.0 && !ti->linear) return ti->p0 > 0.0 || ti->p1 <= 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
     const double dcos = -2.0 * s_mid * sh, dsin = 2.0 * c_mid * sh;
-    const double du = M * m->setup.gravity_mps2 * (d * m->cos_incline * dcos - m->sin_incline * (r * delta + d * dsin));
+    const double du = ti->mg * (ti->dca * dcos - ti->sin_inc * (ti->r * delta + ti->d * dsin));
     const double p = ti->p0 - 2.0 * du;
     if (ti->linear) return p > 0.0 ? 1.0 / sqrt(p / ip) : 0.0;
     return p > 0.0 ? 2.0 * u / sqrt(p / ip) : 0.0;
 }
 
 /* Where neither end is near a turning point (P at each end at least a
- * quarter of P at the other), 1/|w| is smooth in th itself: one 21-point
+ * quarter of P at the other), 1/|w| is smooth in th itself (roll_time now
+ * takes that case by qng, the same first rule; the sample walk uses this
+ * one with its 15-point rule first): one 21-point
  * Gauss-Kronrod rule over [th_a, th_b], accepted when its error estimate
  * meets what gsl_integration_qng asks of the same rule (1e-13 of the
  * result, or rounding); 1 if it did, with the time in *dt. Measured on the
@@ -71,7 +97,7 @@ static int roll_time_one_piece_with(gk_rule *rule, const jc_Model *m, double th_
                                     double p_b, double *dt)
 {
     if (!(p_a > 0.0 && p_b > 0.0 && fmin(p_a, p_b) >= 0.25 * fmax(p_a, p_b))) return 0;
-    time_integrand ti = {m, th_b > th_a ? 1.0 : -1.0, sin(th_a), cos(th_a), p_a, 0.0, 1};
+    time_integrand ti = time_integrand_at(m, th_b > th_a ? 1.0 : -1.0, th_a, p_a, 0.0, 1);
     gsl_function fn = {dt_du, &ti};
     double result, abserr, resabs, resasc;
     rule(&fn, 0.0, fabs(th_b - th_a), &result, &abserr, &resabs, &resasc);
@@ -85,16 +111,20 @@ static int roll_time_one_piece(const jc_Model *m, double th_a, double p_a, doubl
     return roll_time_one_piece_with(gsl_integration_qk21, m, th_a, p_a, th_b, p_b, dt);
 }
 
+/* An end where P is negligible against P' over a piece of len rad: a
+ * turning point up to rounding. */
+static int is_turning(double p, double dp, double len) { return p <= 1e-12 * fabs(dp) * len; }
+
 /* The time over len rad from an end (P = p, P' = dp there) toward sigma:
  * th = end + sigma u^2 (the end may be a turning point), or linear in th
  * (the end is not one). */
-static int roll_piece(jc_Sim *sim, double end, double p, double dp, double sigma, double len, int linear,
-                      double *part, char *err, size_t err_len)
+static int roll_piece_with(jc_Sim *sim, double end, double p, double dp, double sigma, double len, int linear,
+                           int qng_only, double *part, char *err, size_t err_len)
 {
     /* An end where P is negligible against P' over the piece is a turning
      * point up to rounding: take P = 0 there exactly. */
-    if (!linear && p <= 1e-12 * fabs(dp) * len) p = 0.0;
-    time_integrand ti = {sim->m, sigma, sin(end), cos(end), p, sigma * dp, linear};
+    if (!linear && is_turning(p, dp, len)) p = 0.0;
+    time_integrand ti = time_integrand_at(sim->m, sigma, end, p, sigma * dp, linear);
     gsl_function fn = {dt_du, &ti};
     const double upper = linear ? len : sqrt(len);
     double abserr;
@@ -105,6 +135,7 @@ static int roll_piece(jc_Sim *sim, double end, double p, double dp, double sigma
      * settle at 21 or 43 points, against 21 to 63 for the adaptive
      * rule; the adaptive rule takes the rest. */
     int st = gsl_integration_qng(&fn, 0.0, upper, 0.0, 1e-13, part, &abserr, &evals);
+    if (qng_only) return st == GSL_SUCCESS ? JC_OK : JC_ENUMERIC; /* the caller has another way */
     if (st != GSL_SUCCESS)
         st = gsl_integration_qag(&fn, 0.0, upper, 0.0, 1e-13, JC_QUAD_INTERVALS, GSL_INTEG_GAUSS21, sim->ws->quad,
                                  part, &abserr);
@@ -117,6 +148,12 @@ static int roll_piece(jc_Sim *sim, double end, double p, double dp, double sigma
     return JC_OK;
 }
 
+static int roll_piece(jc_Sim *sim, double end, double p, double dp, double sigma, double len, int linear,
+                      double *part, char *err, size_t err_len)
+{
+    return roll_piece_with(sim, end, p, dp, sigma, len, linear, 0, part, err, err_len);
+}
+
 /* With one end near a turning point and the other not, the u^2 piece from
  * the turning end covers this fraction of the range and a piece linear in
  * th, from the other end, the rest: only near the turning point is 1/|w|
@@ -126,6 +163,11 @@ static int roll_piece(jc_Sim *sim, double end, double p, double dp, double sigma
  * 0.3, 0.5: 108/130/130/174, 108/64/64/64, 108/64/42/42); the times agree
  * to 1e-16 s. */
 #define TURN_PIECE 0.1
+/* rad: the longest range taken by one u^2 piece from a turning point (see
+ * roll_time). On longer ranges u^2 crowds the path's oscillation in th
+ * (cos th, sin th terms of P) into the far end: the 12.5 rad swing from
+ * rest took the adaptive fallback (callgrind: 220k -> 234k a run). */
+#define WHOLE_U2_MAX_RAD 1.5707963267948966
 
 /* Time to roll from th_a to th_b (either may be a turning point). p_a is
  * I_P w^2 at th_a as known exactly (the phase's start state); taking it from
@@ -140,15 +182,42 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
     jc_tl_eval(&path->energy, th_a, &p[0], &dp[0]);
     jc_tl_eval(&path->energy, th_b, &p[1], &dp[1]);
     p[0] = p_a;
-    if (roll_time_one_piece(sim->m, th_a, p[0], th_b, p[1], dt)) return JC_OK;
     const double ends[2] = {th_a, th_b}, len = fabs(th_b - th_a);
     const double sig[2] = {th_b > th_a ? 1.0 : -1.0, th_b > th_a ? -1.0 : 1.0}; /* from each end inward */
+    /* Neither end near a turning point: roll_time_one_piece's case, by qng
+     * linear in th, whose first 21 points are the same Gauss-Kronrod rule
+     * with the same test, and which goes on to 43 and 87 points reusing
+     * them where the 21 fall short, instead of dropping them for the
+     * halves (found: a 3.2 rad swing of the paper's runs took 21 + 43 + 21
+     * integrand values that way). Callgrind: a paper run 215.1k -> 212.4k
+     * instructions. */
+    if (p[0] > 0.0 && p[1] > 0.0 && fmin(p[0], p[1]) >= 0.25 * fmax(p[0], p[1])) {
+        if (roll_piece_with(sim, th_a, p[0], dp[0], sig[0], len, 1, 1, dt, NULL, 0) == JC_OK) return JC_OK;
+        *dt = 0.0;
+    }
     /* One end near a turning point, the other not: a short u^2 piece and a long linear one. */
     const int turn = p[0] < 0.25 * p[1] ? 0 : (p[1] < 0.25 * p[0] ? 1 : -1);
     double part;
     int st;
     if (turn >= 0) {
         const int other = 1 - turn;
+        if (len <= WHOLE_U2_MAX_RAD && is_turning(p[turn], dp[turn], len) && !is_turning(p[other], dp[other], len)) {
+            /* A turning point at one end only: th = end + sigma u^2 over the
+             * whole range. With P = 0 at the end, 2 u / |w| is analytic in u
+             * up to the other end (no pole near [0, sqrt(len)]), while the
+             * split's linear piece, ending 0.1 of the range short of the
+             * turning point, has one close by. Measured on the paper's runs
+             * from rest (0 -> 12.5, 6.0 and 1.3 rad): 87, 87 and 21 integrand
+             * values, where the split took 108, 64 and 64 (times agree to 4e-16
+             * of a 64-piece 21-point reference; qng's own estimate failed the
+             * 12.5 rad one, hence WHOLE_U2_MAX_RAD); callgrind: a paper run
+             * 220.4k -> 217.7k instructions. Where the other end is near a
+             * turning point too (a creep, P small at both ends), qng fails:
+             * then the split (found in tests/sim/test_random_setups.c). */
+            if (roll_piece_with(sim, ends[turn], p[turn], dp[turn], sig[turn], len, 0, 1, dt, NULL, 0) == JC_OK)
+                return JC_OK;
+            *dt = 0.0;
+        }
         if ((st = roll_piece(sim, ends[turn], p[turn], dp[turn], sig[turn], TURN_PIECE * len, 0, &part, err,
                              err_len)) != JC_OK)
             return st;
@@ -212,7 +281,9 @@ static int roll_theta_at(jc_Sim *sim, const jc_RollingPath *path, double th_a, d
 /* I_P w^2 of a state, directly. */
 static double start_p(const jc_Model *m, const jc_State *s)
 {
-    return jc_rolling_inertia_p(m, cos(s->theta_rad)) * s->omega_radps * s->omega_radps;
+    double sn, cs;
+    jc_sincos(s->theta_rad, &sn, &cs);
+    return jc_rolling_inertia_p(m, cs) * s->omega_radps * s->omega_radps;
 }
 
 /* The state on the rolling path at th. */
