@@ -6,6 +6,8 @@
 #include "dop853.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 /* Nodes c_i of the stages (stage 13 is f at the step's end). */
 static const double C[17] = {
@@ -77,6 +79,52 @@ static const double D[4][12] = {
 #ifndef PI_BETA
 #define PI_BETA 0.04
 #endif
+/* The smallest error the PI control remembers, 1e-4 (Hairer's), as log2. */
+#define LOG2_ERR_MIN (-13.287712379549449)
+/* Errors below this are taken as it: every factor is then clamped to
+ * 1/FAC_MAX already (below ~4e-9), and log2 stays on normal numbers. */
+#define ERR_TINY 1e-20
+
+/* The step size controller's powers err^(1/8 - 0.2 beta) / err_old^beta
+ * by log2 and exp2 of our own, good to 1e-9 (a step size needs no more:
+ * the factor only steers it), where libm's pow was two calls of ~125
+ * instructions each per step, plus calls of fmin and fmax. Callgrind: a
+ * drag run 1.154M -> 1.121M instructions, the paper's run 228.1k ->
+ * 228.1k (the same steps in both). */
+static double log2_pos(double x)
+{
+    /* x = m 2^e with m in [sqrt(1/2), sqrt(2)); x positive and normal. */
+    uint64_t b;
+    memcpy(&b, &x, sizeof b);
+    int e = (int)(b >> 52) - 1023;
+    b = (b & 0xfffffffffffffULL) | 0x3ff0000000000000ULL;
+    double m;
+    memcpy(&m, &b, sizeof m);
+    if (m > 1.4142135623730951) {
+        m *= 0.5;
+        e += 1;
+    }
+    /* ln m = 2 atanh(s), s = (m - 1)/(m + 1), |s| < 0.172: the series to s^9. */
+    const double s = (m - 1.0) / (m + 1.0), s2 = s * s;
+    const double ln_m = 2.0 * s * (1.0 + s2 * (1.0 / 3 + s2 * (1.0 / 5 + s2 * (1.0 / 7 + s2 * (1.0 / 9)))));
+    return e + ln_m * 1.4426950408889634074;
+}
+
+/* 2^y for |y| < 1000. */
+static double exp2_small(double y)
+{
+    const int n = (int)(y + 1024.5) - 1024; /* nearest integer: truncation of a positive number */
+    const double f = (y - n) * 0.69314718055994530942; /* |f| <= ln 2 / 2: Taylor to f^9 */
+    const double p = 1.0 + f * (1.0 + f * (1.0 / 2 + f * (1.0 / 6 + f * (1.0 / 24 + f * (1.0 / 120 +
+                     f * (1.0 / 720 + f * (1.0 / 5040 + f * (1.0 / 40320 + f * (1.0 / 362880)))))))));
+    const uint64_t b = (uint64_t)(n + 1023) << 52;
+    double scale;
+    memcpy(&scale, &b, sizeof scale);
+    return p * scale;
+}
+
+static double min2(double a, double b) { return a < b ? a : b; }
+static double max2(double a, double b) { return a > b ? a : b; }
 
 static const double *stage(const jc_Dop853 *d, int j)
 {
@@ -263,7 +311,7 @@ void jc_dop853_init(jc_Dop853 *d, int dim, int full_dim, double rtol, double ato
     d->h = 0.0;
     d->dense_ready = 0;
     d->rejected_last = 0;
-    d->err_old = 1e-4;
+    d->log2_err_old = LOG2_ERR_MIN;
     for (int i = 0; i < JC_DOP_MAX_DIM; ++i) d->scale_floor[i] = 0.0;
 }
 
@@ -332,15 +380,17 @@ double jc_dop853_try(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h, double *h
         d->rejected_last = 1;
         return INFINITY;
     }
-    const double fac11 = pow(err, 0.125 - 0.2 * PI_BETA);
+    const double log2_err = log2_pos(err > ERR_TINY ? err : ERR_TINY);
+    const double expo = 0.125 - 0.2 * PI_BETA;
     if (err <= 1.0) {
-        const double fac = fmax(1.0 / FAC_MAX, fmin(1.0 / FAC_MIN, fac11 / pow(d->err_old, PI_BETA) / SAFETY));
-        *h_next = h / fac;
-        if (d->rejected_last) *h_next = fmin(*h_next, h);
+        /* err^expo / err_old^beta / SAFETY */
+        const double fac = exp2_small(expo * log2_err - PI_BETA * d->log2_err_old) / SAFETY;
+        *h_next = h / max2(1.0 / FAC_MAX, min2(1.0 / FAC_MIN, fac));
+        if (d->rejected_last) *h_next = min2(*h_next, h);
         d->rejected_last = 0;
-        d->err_old = fmax(err, 1e-4);
+        d->log2_err_old = max2(log2_err, LOG2_ERR_MIN);
     } else {
-        *h_next = h / fmin(1.0 / FAC_MIN, fac11 / SAFETY);
+        *h_next = h / min2(1.0 / FAC_MIN, exp2_small(expo * log2_err) / SAFETY);
         d->rejected_last = 1;
     }
     return err;

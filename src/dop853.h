@@ -44,7 +44,7 @@ typedef struct {
     int dense_ready;
     /* Step size control. */
     int rejected_last;
-    double err_old; /* the last accepted step's error (PI control) */
+    double log2_err_old; /* log2 of the last accepted step's error (PI control) */
 } jc_Dop853;
 
 void jc_dop853_init(jc_Dop853 *d, int dim, int full_dim, double rtol, double atol);
