@@ -373,6 +373,23 @@ static int flight_ode_sample(jc_Sim *sim, void *params, double t, const double y
 
 #define FLIGHT_MAX_APEXES 100000L
 
+/* An apex (or a dip) of the centre is passed through, not a phase's end:
+ * its height from the continuous extension (there vy = 0: an error in its
+ * time changes the height in second order only), the event's sign flipped,
+ * and the integration goes on in the same step. Stopping there cost a
+ * located real step, a restart and the rest of the step again (callgrind:
+ * a drag run has about 7 apexes; 1.121M -> 1.061M instructions, the
+ * paper's three drag runs 486 -> 470 steps). */
+static int flight_ode_pass(jc_Sim *sim, void *params, int k, double t, const double y[])
+{
+    (void)t;
+    flight_ode *c = params;
+    if (k != FE_APEX) return 0;
+    sim->hop_height_m = fmax(sim->hop_height_m, y[JC_Y_Y] - sim->m->body.radius_m);
+    c->apex_sign = -c->apex_sign;
+    return 1;
+}
+
 static int flight_ode_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     const double r = sim->m->body.radius_m;
@@ -382,7 +399,7 @@ static int flight_ode_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, cha
         const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx, JC_Y_DIM,
                                    flight_ode_event_rates};
         int which;
-        int st = jc_ode_run(sim, &phase, &which, err, err_len);
+        int st = jc_ode_run_passing(sim, &phase, flight_ode_pass, &which, err, err_len);
         if (st != JC_OK) return st;
         sim->hop_height_m = fmax(sim->hop_height_m, sim->s.y_m - r);
         switch (which) {

@@ -231,6 +231,13 @@ void jc_y_to_state(const double y[JC_Y_DIM], double t, jc_State *s);
 /* Runs from sim->s to the first event (its index in *which) or a limit
  * (JC_ODE_TIME_LIMIT, JC_ODE_STEP_LIMIT); sim->s and the losses advance. */
 int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t err_len);
+/* Event k at (t, y), found on the continuous extension: 1 if the phase
+ * passes through it (it may change its event functions) and the
+ * integration goes on, 0 if it ends the phase. */
+typedef int (*jc_OdePass)(jc_Sim *sim, void *ctx, int k, double t, const double y[]);
+/* jc_ode_run with events that the phase may pass through (pass). */
+int jc_ode_run_passing(jc_Sim *sim, const jc_OdePhase *p, jc_OdePass pass, int *which, char *err,
+                       size_t err_len);
 
 /* record.c: pushes a trajectory sample (derived fields computed here). */
 int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);
