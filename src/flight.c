@@ -399,7 +399,8 @@ static int flight_ode_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, cha
         const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx, JC_Y_DIM,
                                    flight_ode_event_rates};
         int which;
-        int st = jc_ode_run_passing(sim, &phase, flight_ode_pass, &which, err, err_len);
+        const jc_OdeExtras passing = {0, flight_ode_pass};
+        int st = jc_ode_run_with(sim, &phase, &passing, &which, err, err_len);
         if (st != JC_OK) return st;
         sim->hop_height_m = fmax(sim->hop_height_m, sim->s.y_m - r);
         switch (which) {

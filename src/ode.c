@@ -242,14 +242,15 @@ static int sample_failure(int st, char *err, size_t err_len)
                              : jc_fail(err, err_len, st, "out of memory for samples");
 }
 
-int jc_ode_run_passing(jc_Sim *sim, const jc_OdePhase *p, jc_OdePass pass, int *which, char *err,
-                       size_t err_len)
+int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, int *which, char *err,
+                    size_t err_len)
 {
+    const jc_OdePass pass = x->pass;
     jc_Dop853 *d = &sim->dop;
     double y[JC_Y_DIM];
     jc_state_to_y(sim, y);
     const double t_max = sim->opt->t_max_s;
-    jc_dop853_init(d, p->dim, JC_Y_DIM, sim->opt->ode_rtol, sim->opt->ode_atol);
+    jc_dop853_init_range(d, x->first, p->dim, JC_Y_DIM, sim->opt->ode_rtol, sim->opt->ode_atol);
     /* cos th and sin th are measured on the unit circle's scale, not their
      * own (near a zero of either, relative error asked for th far below
      * th's own tolerance). The losses are measured on the energy the run
@@ -335,5 +336,6 @@ int jc_ode_run_passing(jc_Sim *sim, const jc_OdePhase *p, jc_OdePass pass, int *
 
 int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t err_len)
 {
-    return jc_ode_run_passing(sim, p, NULL, which, err, err_len);
+    const jc_OdeExtras none = {0, NULL};
+    return jc_ode_run_with(sim, p, &none, which, err, err_len);
 }

@@ -367,7 +367,18 @@ typedef struct {
     const jc_Model *m;
     int dir;   /* sign of w during the phase */
     int armed; /* 1: watch for w falling into the rolling-resistance band */
+    double x0_m, th0_rad; /* at the start of the integration: x = x0 + r (th - th0) */
 } roll_ode;
+
+/* Only th, w, cos th, sin th and the losses are integrated (friction's is
+ * carried with them, unchanged): x and vx follow from th and w exactly,
+ * x = x0 + r (th - th0) and vx = r w, and were a third of the stages' work
+ * (callgrind: a drag run 1.061M -> 0.995M instructions with the stages'
+ * range chosen once per step, dop853.c; 470 -> 466 steps). */
+static double roll_ode_x(const roll_ode *c, const double y[])
+{
+    return c->x0_m + c->m->body.radius_m * (y[JC_Y_TH] - c->th0_rad);
+}
 
 /* rad/s: rolling resistance ramps to 0 below 1 mrad/s (JC_RR_BAND_RADPS), which lets a
  * body creep toward equilibrium for ever instead of stopping. Where the spin
@@ -414,8 +425,9 @@ static void roll_ode_events(void *params, const double y[], double ev[])
     ev[RE_SLIP_POS] = mu * n - f;
     ev[RE_SLIP_NEG] = mu * n + f;
     ev[RE_TURN] = c->dir * y[JC_Y_W];
-    ev[RE_END] = c->m->setup.ramp_length_m - y[JC_Y_X];
-    ev[RE_TOP] = y[JC_Y_X] + JC_RAMP_TOP_SLACK_M;
+    const double x = roll_ode_x(c, y);
+    ev[RE_END] = c->m->setup.ramp_length_m - x;
+    ev[RE_TOP] = x + JC_RAMP_TOP_SLACK_M;
     /* Armed: w falls into the band. Not armed: w leaves twice the band (then armed). */
     ev[RE_SLOW] = c->armed ? c->dir * y[JC_Y_W] - ROLL_REST_BAND_RADPS : 2.0 * ROLL_REST_BAND_RADPS - c->dir * y[JC_Y_W];
 }
@@ -425,9 +437,13 @@ static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[]
     const roll_ode *c = params;
     double thdd, n, f;
     roll_ode_forces(c, y, &thdd, &n, &f, NULL);
+    double ys[JC_Y_DIM];
+    for (int i = 0; i < JC_Y_DIM; ++i) ys[i] = y[i];
+    ys[JC_Y_X] = roll_ode_x(c, y);
+    ys[JC_Y_VX] = c->m->body.radius_m * y[JC_Y_W];
     jc_State s;
-    jc_y_to_state(y, t, &s);
-    return jc_record_sample_y(sim, &s, y, JC_MODE_ROLLING, n, f);
+    jc_y_to_state(ys, t, &s);
+    return jc_record_sample_y(sim, &s, ys, JC_MODE_ROLLING, n, f);
 }
 
 /* Direction in which a body at rest (w = 0) starts to roll, 0 if rolling
@@ -447,16 +463,21 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
 {
     const double w0 = sim->s.omega_radps;
     roll_ode ctx = {sim->m, w0 > 0.0 ? 1 : (w0 < 0.0 ? -1 : rest_direction(sim->m, sim->s.theta_rad)),
-                    fabs(w0) > ROLL_REST_BAND_RADPS};
+                    fabs(w0) > ROLL_REST_BAND_RADPS, 0.0, 0.0};
     for (long turn = 0; turn < ROLL_ODE_MAX_TURNS; ++turn) {
         if (ctx.dir == 0) {
             *end = PHASE_AT_REST;
             return JC_OK;
         }
-        const jc_OdePhase phase = {roll_ode_rhs, roll_ode_events, RE_COUNT, roll_ode_sample, &ctx, JC_Y_RR + 1, NULL};
+        const jc_OdePhase phase = {roll_ode_rhs, roll_ode_events, RE_COUNT, roll_ode_sample, &ctx,
+                                   JC_Y_RR + 1 - JC_Y_TH, NULL};
+        const jc_OdeExtras range = {JC_Y_TH, NULL};
+        ctx.x0_m = sim->s.x_m;
+        ctx.th0_rad = sim->s.theta_rad;
         int which;
-        int st = jc_ode_run(sim, &phase, &which, err, err_len);
+        int st = jc_ode_run_with(sim, &phase, &range, &which, err, err_len);
         if (st != JC_OK) return st;
+        sim->s.x_m = ctx.x0_m + sim->m->body.radius_m * (sim->s.theta_rad - ctx.th0_rad);
         sim->s.y_m = sim->m->body.radius_m;
         sim->s.vy_mps = 0.0;
         sim->s.vx_mps = sim->m->body.radius_m * sim->s.omega_radps;
