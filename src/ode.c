@@ -16,6 +16,7 @@
 #include "internal.h"
 
 #include <math.h>
+#include <string.h>
 
 /* rad: measured, results are the same to 12 digits for caps 0.1 to 1 rad. */
 #define MAX_ROTATION_PER_STEP 0.3
@@ -282,7 +283,11 @@ int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, in
     double h = sim->ode_h_s;
     if (!(h > 0.0))
         h = jc_dop853_initial_step(d, p->rhs, p->ctx, MAX_ROTATION_PER_STEP / fmax(fabs(d->y0[JC_Y_W]), 1e-3));
-    double ev0[JC_ODE_MAX_EVENTS], dev0[JC_ODE_MAX_EVENTS];
+    /* Whole arrays, zeroed past the phase's events: copied from the step's
+     * end to its start at a fixed size (a copy of event_count values was
+     * two calls of memcpy per step). */
+    double ev0[JC_ODE_MAX_EVENTS] = {0}, dev0[JC_ODE_MAX_EVENTS] = {0};
+    double ev1[JC_ODE_MAX_EVENTS] = {0}, dev1[JC_ODE_MAX_EVENTS] = {0};
     eval_events(p, d->y0, d->f0, ev0, dev0);
     *which = JC_ODE_TIME_LIMIT;
     while (sim->run->ode_steps < ODE_MAX_STEPS) {
@@ -309,7 +314,6 @@ int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, in
             continue;
         }
         if (!last) sim->ode_h_s = h; /* a step cut by the time limit says nothing of the next phase */
-        double ev1[JC_ODE_MAX_EVENTS], dev1[JC_ODE_MAX_EVENTS];
         eval_events(p, d->y1, d->f1, ev1, dev1);
         double tau;
         int st = 0;
@@ -326,7 +330,8 @@ int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, in
         if ((st = emit_samples(sim, p, t0 + d->h)) != JC_OK) return sample_failure(st, err, err_len);
         jc_dop853_advance(d);
         if (last) d->t0 = t_max;
-        for (int i = 0; i < p->event_count; ++i) { ev0[i] = ev1[i]; dev0[i] = dev1[i]; }
+        memcpy(ev0, ev1, sizeof ev0);
+        memcpy(dev0, dev1, sizeof dev0);
         h = h_next;
     }
     y_to_sim(sim, d->y0, d->t0);
