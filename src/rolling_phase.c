@@ -368,6 +368,7 @@ typedef struct {
     int dir;   /* sign of w during the phase */
     int armed; /* 1: watch for w falling into the rolling-resistance band */
     double x0_m, th0_rad; /* at the start of the integration: x = x0 + r (th - th0) */
+    jc_RollConsts k;      /* the right-hand side's constants */
     /* N and F at the last state the events were evaluated at (sin, cos, w):
      * their rates start from there. */
     double at_sin, at_cos, at_w, at_n, at_f;
@@ -398,26 +399,21 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
 {
     (void)t;
     const roll_ode *c = params;
-    double thdd, n, f;
-    /* jc_rolling_at_sc's two parts called directly: the loads inlined with
-     * the centre's vy = 0 a constant, no copy of them, no check of the
-     * model (resistance is on here). Callgrind: a drag run 0.968M -> 0.951M. */
-    const double w = y[JC_Y_W], r = c->m->body.radius_m;
-    jc_Loads l;
-    jc_loads_at(c->m, y[JC_Y_SIN], y[JC_Y_COS], r * w, 0.0, w, &l);
-    if (w == 0.0) l.rr_torque_per_N = -c->m->setup.rolling_resistance_m * c->dir;
-    jc_rolling_accel(c->m, y[JC_Y_SIN], y[JC_Y_COS], w, &l, &thdd, &n, &f);
-    dydt[JC_Y_X] = r * y[JC_Y_W];
+    const double w = y[JC_Y_W];
+    double thdd, n, air_W, rr_W;
+    jc_roll_rates(&c->k, y[JC_Y_SIN], y[JC_Y_COS], w, c->dir, &thdd, &n, &air_W, &rr_W);
+    const double r = c->k.r_m;
+    dydt[JC_Y_X] = r * w;
     dydt[JC_Y_Y] = 0.0;
-    dydt[JC_Y_TH] = y[JC_Y_W];
+    dydt[JC_Y_TH] = w;
     dydt[JC_Y_VX] = r * thdd;
     dydt[JC_Y_VY] = 0.0;
     dydt[JC_Y_W] = thdd;
     dydt[JC_Y_FRICTION] = 0.0;
-    dydt[JC_Y_AIR] = l.air_power_W;
-    dydt[JC_Y_RR] = -l.rr_torque_per_N * n * y[JC_Y_W];
-    dydt[JC_Y_COS] = -y[JC_Y_W] * y[JC_Y_SIN];
-    dydt[JC_Y_SIN] = y[JC_Y_W] * y[JC_Y_COS];
+    dydt[JC_Y_AIR] = air_W;
+    dydt[JC_Y_RR] = rr_W;
+    dydt[JC_Y_COS] = -w * y[JC_Y_SIN];
+    dydt[JC_Y_SIN] = w * y[JC_Y_COS];
     return 0;
 }
 
@@ -507,8 +503,11 @@ static int rest_direction(const jc_Model *m, double th)
 static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
 {
     const double w0 = sim->s.omega_radps;
-    roll_ode ctx = {sim->m, w0 > 0.0 ? 1 : (w0 < 0.0 ? -1 : rest_direction(sim->m, sim->s.theta_rad)),
-                    fabs(w0) > ROLL_REST_BAND_RADPS, 0.0, 0.0, NAN, NAN, NAN, 0.0, 0.0};
+    roll_ode ctx = {.m = sim->m,
+                    .dir = w0 > 0.0 ? 1 : (w0 < 0.0 ? -1 : rest_direction(sim->m, sim->s.theta_rad)),
+                    .armed = fabs(w0) > ROLL_REST_BAND_RADPS,
+                    .at_sin = NAN};
+    jc_roll_consts(sim->m, &ctx.k);
     for (long turn = 0; turn < ROLL_ODE_MAX_TURNS; ++turn) {
         if (ctx.dir == 0) {
             *end = PHASE_AT_REST;
