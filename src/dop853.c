@@ -363,27 +363,30 @@ int jc_dop853_start(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double t, const doub
  * (INFINITY when a stage failed or is not finite). */
 static double step_error(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h)
 {
-    const int n = d->dim, lo = d->first, hi = lo + n;
+    const int n = d->dim, o = d->first;
     d->dense_ready = 0;
     if (stages(d, rhs, ctx, 2, 12, h) != 0) return INFINITY;
+    /* The integrated components [o, o + n) of every vector, from 0. */
     double inc[JC_DOP_MAX_DIM], e5[JC_DOP_MAX_DIM];
-    const double *k1 = d->f0, *k6 = d->k[6], *k7 = d->k[7], *k8 = d->k[8], *k9 = d->k[9], *k10 = d->k[10];
-    const double *k11 = d->k[11], *k12 = d->k[12];
-    for (int i = lo; i < hi; ++i) {
+    const double *k1 = d->f0 + o, *k6 = d->k[6] + o, *k7 = d->k[7] + o, *k8 = d->k[8] + o, *k9 = d->k[9] + o;
+    const double *k10 = d->k[10] + o, *k11 = d->k[11] + o, *k12 = d->k[12] + o;
+    const double *y0 = d->y0 + o, *floor_ = d->scale_floor + o;
+    double *y1 = d->y1 + o;
+    for (int i = 0; i < n; ++i) {
         inc[i] = B[0] * k1[i] + B[1] * k6[i] + B[2] * k7[i] + B[3] * k8[i] + B[4] * k9[i] + B[5] * k10[i] +
                  B[6] * k11[i] + B[7] * k12[i];
         e5[i] = ER[0] * k1[i] + ER[1] * k6[i] + ER[2] * k7[i] + ER[3] * k8[i] + ER[4] * k9[i] + ER[5] * k10[i] +
                 ER[6] * k11[i] + ER[7] * k12[i];
     }
     double err5 = 0.0, err3 = 0.0;
-    for (int i = lo; i < hi; ++i) {
-        d->y1[i] = d->y0[i] + h * inc[i];
-        const double e3 = inc[i] - BHH[0] * d->f0[i] - BHH[1] * d->k[9][i] - BHH[2] * d->k[12][i];
+    for (int i = 0; i < n; ++i) {
+        y1[i] = y0[i] + h * inc[i];
+        const double e3 = inc[i] - BHH[0] * k1[i] - BHH[1] * k9[i] - BHH[2] * k12[i];
         /* The larger magnitude by a comparison, not fmax (a call into libm
          * per component, which GCC does not inline for its NaN rule; a NaN
          * y1 makes the error NaN either way, a rejected step). */
-        const double a0 = fabs(d->y0[i]), a1 = fabs(d->y1[i]), am = a1 > a0 ? a1 : a0;
-        const double sk = d->atol + d->rtol * (am > d->scale_floor[i] ? am : d->scale_floor[i]);
+        const double a0 = fabs(y0[i]), a1 = fabs(y1[i]), am = a1 > a0 ? a1 : a0;
+        const double sk = d->atol + d->rtol * (am > floor_[i] ? am : floor_[i]);
         err5 += (e5[i] / sk) * (e5[i] / sk);
         err3 += (e3 / sk) * (e3 / sk);
     }
