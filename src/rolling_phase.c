@@ -390,9 +390,9 @@ static double roll_ode_x(const roll_ode *c, const double y[])
  * direction 0), it has come to rest: the run ends with termination rest. */
 #define ROLL_REST_BAND_RADPS 1e-3
 
-static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f, jc_Loads *l)
+static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f)
 {
-    jc_rolling_at_sc(c->m, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, thdd, n, f, l);
+    jc_roll_forces(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, thdd, n, f);
 }
 
 static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
@@ -423,7 +423,7 @@ static void roll_ode_events(void *params, const double y[], double ev[])
 {
     roll_ode *c = params;
     double thdd, n, f;
-    roll_ode_forces(c, y, &thdd, &n, &f, NULL);
+    roll_ode_forces(c, y, &thdd, &n, &f);
     c->at_sin = y[JC_Y_SIN];
     c->at_cos = y[JC_Y_COS];
     c->at_w = y[JC_Y_W];
@@ -461,7 +461,7 @@ static void roll_ode_event_rates(void *params, const double y[], const double f[
     yp[JC_Y_COS] = y[JC_Y_COS] + h * f[JC_Y_COS];
     yp[JC_Y_W] = y[JC_Y_W] + h * f[JC_Y_W];
     double thdd, n, fr;
-    roll_ode_forces(c, yp, &thdd, &n, &fr, NULL);
+    roll_ode_forces(c, yp, &thdd, &n, &fr);
     const double dn = (n - n0) / h, df = (fr - f0) / h, mu = c->m->setup.mu_static;
     const double dx = c->m->body.radius_m * f[JC_Y_TH];
     dev[RE_NORMAL] = dn;
@@ -477,7 +477,7 @@ static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[]
 {
     const roll_ode *c = params;
     double thdd, n, f;
-    roll_ode_forces(c, y, &thdd, &n, &f, NULL);
+    roll_ode_forces(c, y, &thdd, &n, &f);
     double ys[JC_Y_DIM];
     for (int i = 0; i < JC_Y_DIM; ++i) ys[i] = y[i];
     ys[JC_Y_X] = roll_ode_x(c, y);

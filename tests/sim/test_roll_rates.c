@@ -2,8 +2,8 @@
  * The rolling phase's right-hand side with air and rolling resistance
  * (jc_roll_rates, air.h: constants taken once per phase) against the
  * general route it replaces at every stage, jc_loads_at and
- * jc_rolling_accel by way of jc_rolling_at_sc: th'', N, and the two loss
- * rates, over random angles, spins and loads, including w = 0 and spins
+ * jc_rolling_accel by way of jc_rolling_at_sc: th'', N, the two loss
+ * rates, and F (jc_roll_forces, for the phase's events), over random angles, spins and loads, including w = 0 and spins
  * inside the rolling-resistance band. They differ by rounding only.
  */
 #include "sim_common.h"
@@ -33,16 +33,20 @@ static int check_model(const jc_Model *m)
         const double pick = uniform(0.0, 1.0);
         const double w = pick < 0.1 ? 0.0 : (pick < 0.3 ? uniform(-2e-3, 2e-3) : uniform(-60.0, 60.0));
         const double s = sin(th), c = cos(th);
-        double thdd, n, f, thdd2, n2, air, rr;
+        double thdd, n, f, thdd2, n2, air, rr, thdd3, n3, f3;
         jc_Loads l;
         jc_rolling_at_sc(m, s, c, w, dir, &thdd, &n, &f, &l);
         jc_roll_rates(&k, s, c, w, dir, &thdd2, &n2, &air, &rr);
+        jc_roll_forces(&k, s, c, w, dir, &thdd3, &n3, &f3);
         /* Scales: the gravity's angular acceleration and force, and the power scale M g r |w|. */
         const double acc_scale = M * g * (r + m->body.cm_offset_m) * (1.0 + w * w / g) / m->body.inertia_c_kgm2;
         const double force_scale = M * g + M * m->body.cm_offset_m * w * w + k.qcd_kgpm * r * r * w * w;
         const double power_scale = (force_scale * r + k.spin_drag_Nms2 * w * w) * fabs(w) + 1e-300;
         ENSURE_NEAR(thdd2, thdd, 1e-12 * acc_scale);
         ENSURE_NEAR(n2, n, 1e-12 * force_scale);
+        ENSURE_NEAR(thdd3, thdd, 1e-12 * acc_scale);
+        ENSURE_NEAR(n3, n, 1e-12 * force_scale);
+        ENSURE_NEAR(f3, f, 1e-12 * force_scale);
         ENSURE_NEAR(air, l.air_power_W, 1e-12 * power_scale);
         ENSURE_NEAR(rr, -l.rr_torque_per_N * n * w, 1e-12 * power_scale);
     }
