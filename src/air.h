@@ -155,4 +155,41 @@ static inline void jc_roll_forces(const jc_RollConsts *k, double s, double c, do
     *friction_N = k->m_kg * (k->r_m + k->d_m * c) * *thdd - k->md_kgm * s * w * w - k->mg_sin_N - fx;
 }
 
+/* The air loads at any velocity (flight) by constants of the model taken
+ * once per phase: the same as jc_loads_at without rolling resistance (no
+ * contact), tests/sim/test_roll_rates.c checks them against it. Measured
+ * with callgrind: a drag run 0.851M -> 0.841M instructions. */
+typedef struct {
+    double r_m, d_m;
+    double qcd_kgpm, qcl_kgpm; /* 1/2 rho A C_d, 1/2 rho A C_L */
+    double spin_drag_Nms2;
+} jc_AirConsts;
+
+static inline void jc_air_consts(const jc_Model *m, jc_AirConsts *k)
+{
+    const jc_Setup *s = &m->setup;
+    const double half_rho_area = 0.5 * s->air_density_kgpm3 * 2.0 * m->body.radius_m * s->length_m;
+    k->r_m = m->body.radius_m;
+    k->d_m = m->body.cm_offset_m;
+    k->qcd_kgpm = half_rho_area * s->drag_coefficient;
+    k->qcl_kgpm = half_rho_area * s->lift_coefficient;
+    k->spin_drag_Nms2 = s->spin_drag_Nms2;
+}
+
+/* The air force (fx, fy) at C, its torque about G with spin drag, and the
+ * power lost to the air, as jc_loads_at has them. */
+static inline void jc_air_loads(const jc_AirConsts *k, double sin_th, double cos_th, double vx, double vy, double w,
+                                double *fx_N, double *fy_N, double *torque_Nm, double *air_power_W)
+{
+    const double speed = vy == 0.0 ? fabs(vx) : sqrt(vx * vx + vy * vy);
+    const double rw = k->r_m * w;
+    const double spin = k->qcl_kgpm == 0.0 ? 0.0 : (fabs(rw) >= speed ? (w > 0.0) - (w < 0.0) : rw / speed);
+    const double fx = speed * (-k->qcd_kgpm * vx + k->qcl_kgpm * spin * vy);
+    const double fy = speed * (-k->qcd_kgpm * vy - k->qcl_kgpm * spin * vx);
+    *fx_N = fx;
+    *fy_N = fy;
+    *torque_Nm = k->d_m * (sin_th * fy - cos_th * fx) - k->spin_drag_Nms2 * w * fabs(w);
+    *air_power_W = k->qcd_kgpm * speed * speed * speed + k->spin_drag_Nms2 * fabs(w) * w * w;
+}
+
 #endif

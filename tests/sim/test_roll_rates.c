@@ -3,7 +3,8 @@
  * (jc_roll_rates, air.h: constants taken once per phase) against the
  * general route it replaces at every stage, jc_loads_at and
  * jc_rolling_accel by way of jc_rolling_at_sc: th'', N, the two loss
- * rates, and F (jc_roll_forces, for the phase's events), over random angles, spins and loads, including w = 0 and spins
+ * rates, and F (jc_roll_forces, for the phase's events); and the air loads
+ * of flight (jc_air_loads) against jc_loads_at; over random angles, spins and loads, including w = 0 and spins
  * inside the rolling-resistance band. They differ by rounding only.
  */
 #include "sim_common.h"
@@ -49,6 +50,19 @@ static int check_model(const jc_Model *m)
         ENSURE_NEAR(f3, f, 1e-12 * force_scale);
         ENSURE_NEAR(air, l.air_power_W, 1e-12 * power_scale);
         ENSURE_NEAR(rr, -l.rr_torque_per_N * n * w, 1e-12 * power_scale);
+        /* In flight: any velocity. */
+        const double vx = uniform(-10.0, 10.0), vy = pick < 0.2 ? 0.0 : uniform(-10.0, 10.0);
+        jc_AirConsts a;
+        jc_air_consts(m, &a);
+        double fx, fy, torque, power;
+        jc_air_loads(&a, s, c, vx, vy, w, &fx, &fy, &torque, &power);
+        jc_loads_at(m, s, c, vx, vy, w, &l);
+        const double v2 = vx * vx + vy * vy + r * r * w * w;
+        const double air_force_scale = (k.qcd_kgpm + fabs(k.qcl_kgpm)) * v2 + 1e-300;
+        ENSURE_NEAR(fx, l.fx_N, 1e-12 * air_force_scale);
+        ENSURE_NEAR(fy, l.fy_N, 1e-12 * air_force_scale);
+        ENSURE_NEAR(torque, l.torque_Nm, 1e-12 * (air_force_scale * m->body.cm_offset_m + k.spin_drag_Nms2 * w * w));
+        ENSURE_NEAR(power, l.air_power_W, 1e-12 * (air_force_scale * sqrt(v2) + k.spin_drag_Nms2 * fabs(w) * w * w));
     }
     return 0;
 }
