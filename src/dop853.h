@@ -24,8 +24,9 @@
 typedef int (*jc_DopRhs)(double t, const double y[], double dydt[], void *ctx);
 
 typedef struct {
-    int dim;      /* components integrated */
-    int full_dim; /* components carried: [dim, full_dim) keep their start values */
+    int first;    /* components integrated: [first, first + dim) */
+    int dim;
+    int full_dim; /* components carried: the others below full_dim keep their start values */
     double rtol, atol;
     /* Component i's error is measured against atol + rtol max(|y_i|,
      * scale_floor[i]): a component whose own size says nothing of its
@@ -36,6 +37,9 @@ typedef struct {
     double t0, h;
     double y0[JC_DOP_MAX_DIM], y1[JC_DOP_MAX_DIM];
     double f0[JC_DOP_MAX_DIM], f1[JC_DOP_MAX_DIM];
+    /* The stages' input: its components not integrated hold their start
+     * values from jc_dop853_start on (set once, not per stage). */
+    double ys[JC_DOP_MAX_DIM];
     /* Stages 2..16 (k[0] is unused: stage 1 is f0). */
     double k[17][JC_DOP_MAX_DIM];
     /* Continuous extension of the last accepted step, once prepared. */
@@ -44,10 +48,13 @@ typedef struct {
     int dense_ready;
     /* Step size control. */
     int rejected_last;
-    double err_old; /* the last accepted step's error (PI control) */
+    double log2_err_old; /* log2 of the last accepted step's error (PI control) */
 } jc_Dop853;
 
 void jc_dop853_init(jc_Dop853 *d, int dim, int full_dim, double rtol, double atol);
+/* The same integrating components [first, first + dim) only: a phase whose
+ * other components follow from these (rolling: x and vx from th and w). */
+void jc_dop853_init_range(jc_Dop853 *d, int first, int dim, int full_dim, double rtol, double atol);
 /* Starts at (t, y), y of full_dim components: evaluates f0. */
 int jc_dop853_start(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double t, const double y[]);
 /* One attempted step of size h from the current start. Returns the scaled

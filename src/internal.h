@@ -228,11 +228,12 @@ typedef struct jc_Sim {
  * the first event. The state vector is the same in every mode; it carries
  * cos th and sin th (cos' = -w sin, sin' = w cos), so that no right-hand side
  * computes a sine (measured: sincos was 26 % of a run's time before). */
-/* Ordered so that a phase integrates a prefix of the vector and carries the
+/* Ordered so that a phase integrates a range of the vector and carries the
  * rest unchanged: sliding without resistance the first 7 (y, vy are
  * constant in contact; measured: 7 components instead of 11 take a
- * quarter fewer instructions per step), with it the first 9, flight all. */
-enum { JC_Y_X, JC_Y_TH, JC_Y_VX, JC_Y_W, JC_Y_COS, JC_Y_SIN, JC_Y_FRICTION, JC_Y_AIR, JC_Y_RR, JC_Y_Y, JC_Y_VY,
+ * quarter fewer instructions per step), with it the first 9, rolling with
+ * resistance th to rr (x and vx follow from th and w), flight all. */
+enum { JC_Y_X, JC_Y_VX, JC_Y_TH, JC_Y_W, JC_Y_COS, JC_Y_SIN, JC_Y_FRICTION, JC_Y_AIR, JC_Y_RR, JC_Y_Y, JC_Y_VY,
        JC_Y_DIM };
 #define JC_ODE_MAX_EVENTS 8
 #define JC_ODE_TIME_LIMIT (-1)
@@ -254,6 +255,17 @@ void jc_y_to_state(const double y[JC_Y_DIM], double t, jc_State *s);
 /* Runs from sim->s to the first event (its index in *which) or a limit
  * (JC_ODE_TIME_LIMIT, JC_ODE_STEP_LIMIT); sim->s and the losses advance. */
 int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t err_len);
+/* Event k at (t, y), found on the continuous extension: 1 if the phase
+ * passes through it (it may change its event functions) and the
+ * integration goes on, 0 if it ends the phase. */
+typedef int (*jc_OdePass)(jc_Sim *sim, void *ctx, int k, double t, const double y[]);
+/* What some phases add to jc_ode_run. */
+typedef struct {
+    int first;       /* integrated: [first, first + dim) (0: the first dim, as jc_ode_run) */
+    jc_OdePass pass; /* events the phase may pass through; NULL: every event ends it */
+} jc_OdeExtras;
+int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, int *which, char *err,
+                    size_t err_len);
 
 /* record.c: pushes a trajectory sample (derived fields computed here). */
 int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);

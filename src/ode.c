@@ -16,6 +16,7 @@
 #include "internal.h"
 
 #include <math.h>
+#include <string.h>
 
 /* rad: measured, results are the same to 12 digits for caps 0.1 to 1 rad. */
 #define MAX_ROTATION_PER_STEP 0.3
@@ -85,14 +86,15 @@ static double dense_event(const jc_Sim *sim, const jc_OdePhase *p, int k, double
     return ev[k];
 }
 
-/* Root of event k on the continuous extension in (0, hi], where it is > 0
- * (or 0) at 0 and <= 0 at hi: the Illinois variant of regula falsi, which
+/* Root of event k on the continuous extension in (lo, hi], where it is > 0
+ * (or 0) at lo and <= 0 at hi: the Illinois variant of regula falsi, which
  * keeps the bracket and converges superlinearly. Returns the bracket's
  * right end, a time at which the event has happened on the interpolant
- * (never 0: a phase always advances). */
-static double locate_dense(const jc_Sim *sim, const jc_OdePhase *p, int k, double f0, double hi, double tol)
+ * (never lo: a phase always advances). */
+static double locate_dense(const jc_Sim *sim, const jc_OdePhase *p, int k, double lo, double f0, double hi,
+                           double tol)
 {
-    double a = 0.0, fa = fmax(f0, 0.0), b = hi, fb = dense_event(sim, p, k, hi);
+    double a = lo, fa = fmax(f0, 0.0), b = hi, fb = dense_event(sim, p, k, hi);
     int side = 0;
     for (int it = 0; it < 200 && b - a > tol && fb < 0.0; ++it) {
         /* fa = 0 only at the start, where the event function starts at zero
@@ -133,10 +135,11 @@ static double hermite_min_tau(double f0, double d0, double f1, double d1, double
     return best < 0.5 * fmin(f0, f1) ? best_tau : -1.0;
 }
 
-/* The earliest event inside the accepted step (continuous extension ready
- * when needed), its time after the step's start in *tau_hit; -1 for none. */
-static int first_event_in_step(jc_Sim *sim, const jc_OdePhase *p, const double ev0[], const double dev0[],
-                               const double ev1[], const double dev1[], double *tau_hit, int *st)
+/* The earliest event inside the accepted step after lo (its start, or a
+ * passed event; ev0, dev0 there), continuous extension ready when needed,
+ * its time after the step's start in *tau_hit; -1 for none. */
+static int first_event_in_step(jc_Sim *sim, const jc_OdePhase *p, double lo, const double ev0[],
+                               const double dev0[], const double ev1[], const double dev1[], double *tau_hit, int *st)
 {
     const double h = sim->dop.h, tol = 0.5 * sim->opt->event_tol_s;
     int which = -1;
@@ -144,17 +147,45 @@ static int first_event_in_step(jc_Sim *sim, const jc_OdePhase *p, const double e
     for (int k = 0; k < p->event_count; ++k) {
         double hi = -1.0;
         const double dip = ev1[k] > 0.0 && dev0[k] < 0.0 && dev1[k] > 0.0
-                               ? hermite_min_tau(ev0[k], dev0[k], ev1[k], dev1[k], h) : -1.0;
+                               ? hermite_min_tau(ev0[k], dev0[k], ev1[k], dev1[k], h - lo) : -1.0;
         if (ev1[k] > 0.0 && !(dip > 0.0)) continue;
         if ((*st = jc_dop853_dense(&sim->dop, p->rhs, p->ctx)) != 0) return -1;
         if (ev1[k] <= 0.0) hi = h;
-        else if (dense_event(sim, p, k, dip) <= 0.0) hi = dip;
+        else if (dense_event(sim, p, k, lo + dip) <= 0.0) hi = lo + dip;
         if (hi > 0.0) {
-            const double tau = locate_dense(sim, p, k, ev0[k], hi, tol);
+            const double tau = locate_dense(sim, p, k, lo, ev0[k], hi, tol);
             if (tau < *tau_hit) { *tau_hit = tau; which = k; }
         }
     }
     return which;
+}
+
+/* A phase's events that it passes through (p->pass) without ending, per
+ * step: past this many, the next ends the phase the ordinary way. */
+#define MAX_PASSES_PER_STEP 8
+
+/* The first event in the accepted step that ends the phase (-1 for none;
+ * its time in *tau_hit): those the phase passes through are handed to it
+ * at their state on the continuous extension and the search goes on from
+ * there, in the same step. ev0, dev0 are those at the step's start, and
+ * are overwritten; ev1, dev1 at its end are refreshed after a pass (which
+ * may change the event functions). */
+static int first_ending_event(jc_Sim *sim, const jc_OdePhase *p, jc_OdePass pass, double ev0[], double dev0[], double ev1[],
+                              double dev1[], double *tau_hit, int *st)
+{
+    jc_Dop853 *d = &sim->dop;
+    double lo = 0.0;
+    for (int passes = 0;; ++passes) {
+        const int k = first_event_in_step(sim, p, lo, ev0, dev0, ev1, dev1, tau_hit, st);
+        if (k < 0 || *st != 0 || !pass || passes >= MAX_PASSES_PER_STEP) return k;
+        double y[JC_Y_DIM], f[JC_Y_DIM];
+        jc_dop853_eval(d, *tau_hit, y);
+        if (!pass(sim, p->ctx, k, d->t0 + *tau_hit, y)) return k;
+        if ((*st = p->rhs(d->t0 + *tau_hit, y, f, p->ctx)) != 0) return -1;
+        eval_events(p, y, f, ev0, dev0);
+        eval_events(p, d->y1, d->f1, ev1, dev1);
+        lo = *tau_hit;
+    }
 }
 
 /* The state at the located event by a real step from the step's start,
@@ -212,13 +243,15 @@ static int sample_failure(int st, char *err, size_t err_len)
                              : jc_fail(err, err_len, st, "out of memory for samples");
 }
 
-int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t err_len)
+int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, int *which, char *err,
+                    size_t err_len)
 {
+    const jc_OdePass pass = x->pass;
     jc_Dop853 *d = &sim->dop;
     double y[JC_Y_DIM];
     jc_state_to_y(sim, y);
     const double t_max = sim->opt->t_max_s;
-    jc_dop853_init(d, p->dim, JC_Y_DIM, sim->opt->ode_rtol, sim->opt->ode_atol);
+    jc_dop853_init_range(d, x->first, p->dim, JC_Y_DIM, sim->opt->ode_rtol, sim->opt->ode_atol);
     /* cos th and sin th are measured on the unit circle's scale, not their
      * own (near a zero of either, relative error asked for th far below
      * th's own tolerance). The losses are measured on the energy the run
@@ -250,7 +283,11 @@ int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t 
     double h = sim->ode_h_s;
     if (!(h > 0.0))
         h = jc_dop853_initial_step(d, p->rhs, p->ctx, MAX_ROTATION_PER_STEP / fmax(fabs(d->y0[JC_Y_W]), 1e-3));
-    double ev0[JC_ODE_MAX_EVENTS], dev0[JC_ODE_MAX_EVENTS];
+    /* Whole arrays, zeroed past the phase's events: copied from the step's
+     * end to its start at a fixed size (a copy of event_count values was
+     * two calls of memcpy per step). */
+    double ev0[JC_ODE_MAX_EVENTS] = {0}, dev0[JC_ODE_MAX_EVENTS] = {0};
+    double ev1[JC_ODE_MAX_EVENTS] = {0}, dev1[JC_ODE_MAX_EVENTS] = {0};
     eval_events(p, d->y0, d->f0, ev0, dev0);
     *which = JC_ODE_TIME_LIMIT;
     while (sim->run->ode_steps < ODE_MAX_STEPS) {
@@ -277,11 +314,10 @@ int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t 
             continue;
         }
         if (!last) sim->ode_h_s = h; /* a step cut by the time limit says nothing of the next phase */
-        double ev1[JC_ODE_MAX_EVENTS], dev1[JC_ODE_MAX_EVENTS];
         eval_events(p, d->y1, d->f1, ev1, dev1);
         double tau;
         int st = 0;
-        const int k = first_event_in_step(sim, p, ev0, dev0, ev1, dev1, &tau, &st);
+        const int k = first_ending_event(sim, p, pass, ev0, dev0, ev1, dev1, &tau, &st);
         if (st != 0) return jc_fail(err, err_len, JC_ENUMERIC, "integration failed at t = %.9g s", t0);
         if (k >= 0) {
             if ((st = emit_samples(sim, p, t0 + tau)) != JC_OK) return sample_failure(st, err, err_len);
@@ -294,10 +330,17 @@ int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t 
         if ((st = emit_samples(sim, p, t0 + d->h)) != JC_OK) return sample_failure(st, err, err_len);
         jc_dop853_advance(d);
         if (last) d->t0 = t_max;
-        for (int i = 0; i < p->event_count; ++i) { ev0[i] = ev1[i]; dev0[i] = dev1[i]; }
+        memcpy(ev0, ev1, sizeof ev0);
+        memcpy(dev0, dev1, sizeof dev0);
         h = h_next;
     }
     y_to_sim(sim, d->y0, d->t0);
     *which = JC_ODE_STEP_LIMIT;
     return JC_OK;
+}
+
+int jc_ode_run(jc_Sim *sim, const jc_OdePhase *p, int *which, char *err, size_t err_len)
+{
+    const jc_OdeExtras none = {0, NULL};
+    return jc_ode_run_with(sim, p, &none, which, err, err_len);
 }
