@@ -72,35 +72,20 @@ static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, con
 {
     cli_TrackFigure f;
     memset(&f, 0, sizeof f);
-    double *pt = NULL, *px = NULL, *py = NULL;
-    int rc = cli_track_fine_path(setup, t, &c->start, o, t->t_s[c->first + c->count - 1], &pt, &px, &py, &f.path_n);
-    if (rc == 0) {
-        f.track = t;
-        f.first = c->first;
-        f.count = c->count;
-        f.sim_x = c->x_m;
-        f.sim_y = c->y_m;
-        f.sim_theta = c->theta_rad;
-        f.path_t = pt;
-        f.path_x = px;
-        f.path_y = py;
-        f.radius_m = m->body.radius_m;
-        f.incline_rad = m->setup.incline_rad;
-        f.mark_radius_m = t->has_mark ? cli_track_mark_radius(t, m) : 0.0;
-        f.hop_threshold_m = c->threshold_m;
-        snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; residuals RMS %.2f mm (centre)",
-                 cli_deg(m->setup.incline_rad), c->rms_path_m * 1e3);
-        char cmdline[2048];
-        fig_command_line(argc, argv, cmdline, sizeof cmdline);
-        rc = cli_track_figure("compare", &f, out, cmdline);
-    } else {
-        cli_error("compare: out of memory for the figure's path");
-        rc = EXIT_FAIL;
-    }
-    free(pt);
-    free(px);
-    free(py);
-    return rc;
+    f.track = t;
+    f.first = c->first;
+    f.count = c->count;
+    f.sim_x = c->x_m;
+    f.sim_y = c->y_m;
+    f.sim_theta = c->theta_rad;
+    f.mark_radius_m = t->has_mark ? cli_track_mark_radius(t, m) : 0.0;
+    f.hop_threshold_m = c->threshold_m;
+    snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; residuals RMS %.2f mm (centre)",
+             cli_deg(m->setup.incline_rad), c->rms_path_m * 1e3);
+    const int rc = cli_track_figure_draw("compare", &f, setup, m, &c->start, o, out, argc, argv);
+    if (rc != CLI_TRACK_FIGURE_NO_PATH) return rc;
+    cli_error("compare: out of memory for the figure's path");
+    return EXIT_FAIL;
 }
 
 int cmd_compare(int argc, char **argv)

@@ -140,7 +140,6 @@ static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, c
     }
     const size_t n = (size_t)r->frames;
     double *x = malloc(n * sizeof *x), *y = malloc(n * sizeof *y), *th = malloc(n * sizeof *th);
-    double *pt = NULL, *px = NULL, *py = NULL;
     cli_TrackFigure f;
     memset(&f, 0, sizeof f);
     cli_TrackSim sim;
@@ -150,8 +149,6 @@ static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, c
         rc = cli_track_sim_run(&sim, &m, &r->start, o, t->t_s + r->first, r->frames, x, y, th, err, sizeof err);
         cli_track_sim_free(&sim);
     }
-    if (rc == 0)
-        rc = cli_track_fine_path(&r->setup, t, &r->start, o, t->t_s[r->first + r->frames - 1], &pt, &px, &py, &f.path_n);
     if (rc == 0) {
         for (size_t i = 0; i < n; ++i) th[i] -= cli_track_mark_offset_rad(&m);
         f.track = t;
@@ -160,29 +157,22 @@ static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, c
         f.sim_x = x;
         f.sim_y = y;
         f.sim_theta = th;
-        f.path_t = pt;
-        f.path_x = px;
-        f.path_y = py;
-        f.radius_m = m.body.radius_m;
-        f.incline_rad = m.setup.incline_rad;
         f.mark_radius_m = t->has_mark ? r->mark_radius_m : 0.0;
         f.hop_threshold_m = fmax(5.0 * r->sigma_m, 1e-4);
         snprintf(f.title, sizeof f.title,
                  "jumpcyl fit: μ_s = %.4g, μ_k = %.4g, e = %.4g; χ²/dof = %.3g, residuals RMS %.2f mm",
                  r->setup.mu_static, r->setup.mu_kinetic, r->setup.restitution, r->chi2_dof, r->rms_path_m * 1e3);
-        char cmdline[2048];
-        fig_command_line(argc, argv, cmdline, sizeof cmdline);
-        rc = cli_track_figure("fit", &f, out, cmdline);
+        rc = cli_track_figure_draw("fit", &f, &r->setup, &m, &r->start, o, out, argc, argv);
     } else {
+        rc = CLI_TRACK_FIGURE_NO_PATH;
+    }
+    if (rc == CLI_TRACK_FIGURE_NO_PATH) {
         cli_error("fit: the fitted model's path for the figure failed");
         rc = EXIT_FAIL;
     }
     free(x);
     free(y);
     free(th);
-    free(pt);
-    free(px);
-    free(py);
     return rc;
 }
 

@@ -1,6 +1,7 @@
 /* What compare and fit share: the track file and how to read it, the time
  * window, the figure's file, and the model's fine path for the figure. */
 #include "figures.h"
+#include "plot.h"
 #include "track_fit.h"
 
 #include <math.h>
@@ -138,5 +139,30 @@ int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_Stat
     sim.shift_m = cli_track_sim_shift(t);
     const int rc = cli_track_sim_run(&sim, &model, start, o, *pt, *n, *px, *py, NULL, err, sizeof err);
     cli_track_sim_free(&sim);
+    return rc;
+}
+
+int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_Model *m,
+                          const jc_State *start, const jc_SimOptions *o, const char *out, int argc, char **argv)
+{
+    const cli_Track *t = f->track;
+    double *pt = NULL, *px = NULL, *py = NULL;
+    int rc = cli_track_fine_path(setup, t, start, o, t->t_s[f->first + f->count - 1], &pt, &px, &py, &f->path_n);
+    if (rc == 0) {
+        f->path_t = pt;
+        f->path_x = px;
+        f->path_y = py;
+        f->radius_m = m->body.radius_m;
+        f->incline_rad = m->setup.incline_rad;
+        char cmdline[2048];
+        fig_command_line(argc, argv, cmdline, sizeof cmdline);
+        rc = cli_track_figure(cmd, f, out, cmdline);
+        f->path_t = f->path_x = f->path_y = NULL;
+    } else {
+        rc = CLI_TRACK_FIGURE_NO_PATH;
+    }
+    free(pt);
+    free(px);
+    free(py);
     return rc;
 }

@@ -250,6 +250,16 @@ void cli_track_print_head(const char *file, const cli_Track *t, long first, long
  * figure); 0, or -1 (the arrays are then to be freed all the same). */
 int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_State *start, const jc_SimOptions *o,
                         double t_end_s, double **pt, double **px, double **py, long *n);
+/* The last step of compare's and fit's figure, one piece so the two figures
+ * cannot drift apart: the caller fills f's frames, model values, mark radius,
+ * hop threshold and title; this samples the model's fine path from start to
+ * the last frame shown, takes the radius and incline from m, draws the figure
+ * to out (cmdline from argv) and frees the path. EXIT_OK or an exit status
+ * after a message, or CLI_TRACK_FIGURE_NO_PATH when the path could not be
+ * made (no message: the caller says it in its own words). */
+#define CLI_TRACK_FIGURE_NO_PATH (-1)
+int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_Model *m,
+                          const jc_State *start, const jc_SimOptions *o, const char *out, int argc, char **argv);
 
 int cmd_compare(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
