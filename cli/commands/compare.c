@@ -1,6 +1,5 @@
 /* jumpcyl compare: a tracked video against the model run from the first
  * tracked state (docs/tracker.md, "Compare"). */
-#include "plot.h"
 #include "track_fit.h"
 
 #include <math.h>

@@ -1,6 +1,5 @@
 /* jumpcyl fit: setup values and the start fitted to a tracked video by
  * nonlinear least squares (docs/tracker.md, "Fit"). */
-#include "plot.h"
 #include "track_fit.h"
 
 #include <math.h>
