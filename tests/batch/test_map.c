@@ -55,6 +55,18 @@ static int ends_with(const char *path, const char *end)
     return n >= m && memcmp(tail + n - m, end, m) == 0;
 }
 
+/* Neither the script nor the rows (stem.gp, stem.csv) that --keep-script keeps are in dir. */
+static int no_script_or_rows(const char *stem)
+{
+    static const char *const kept[] = {"gp", "csv"};
+    for (int i = 0; i < 2; ++i) {
+        char path[1100];
+        snprintf(path, sizeof path, "%s/%s.%s", dir, stem, kept[i]);
+        ENSURE_MSG(!fig_exists(path), "%s was written", path);
+    }
+    return 0;
+}
+
 static int test_small_map_png(void)
 {
     char out[1100], args[2400];
@@ -66,11 +78,7 @@ static int test_small_map_png(void)
     cli_result_free(&r);
     ENSURE(whole_png(out, 1200, 750));
     /* Without --keep-script: the figure alone. */
-    snprintf(out, sizeof out, "%s/small.gp", dir);
-    ENSURE(!fig_exists(out));
-    snprintf(out, sizeof out, "%s/small.csv", dir);
-    ENSURE(!fig_exists(out));
-    return 0;
+    return no_script_or_rows("small");
 }
 
 static int test_svg_and_pdf(void)
@@ -318,7 +326,7 @@ static int test_categories(void)
 /* Exit 2, one line naming the value, and no file at all. */
 static int refused(const char *axes, const char *needle)
 {
-    char out[1100], args[2400], kept[1100];
+    char out[1100], args[2400];
     snprintf(out, sizeof out, "%s/bad.png", dir);
     snprintf(args, sizeof args, "map %s --output '%s' --keep-script", axes, out);
     cli_result r = cli_run_line(cli, NULL, args);
@@ -327,11 +335,7 @@ static int refused(const char *axes, const char *needle)
     cli_result_free(&r);
     ENSURE(ok);
     ENSURE_MSG(!fig_exists(out), "%s was written", out);
-    snprintf(kept, sizeof kept, "%s/bad.gp", dir);
-    ENSURE(!fig_exists(kept));
-    snprintf(kept, sizeof kept, "%s/bad.csv", dir);
-    ENSURE(!fig_exists(kept));
-    return 0;
+    return no_script_or_rows("bad");
 }
 
 static int test_bad_axes(void)
@@ -378,16 +382,10 @@ static int test_bad_axes(void)
 
 static int test_missing_gnuplot(void)
 {
-    char empty[1100], out[1100], args[2400];
-    if (fig_empty_path(empty, sizeof empty, dir) != 0 && errno != EEXIST) return 1;
+    char out[1100], args[2400];
     snprintf(out, sizeof out, "%s/nognuplot.png", dir);
     snprintf(args, sizeof args, "map --x " X_AXIS " --y " Y_AXIS " --output '%s' --keep-script", out);
-    cli_result r = cli_run_line(cli, empty, args);
-    const int ok = r.status == 1 && cli_one_line(r.err) && strstr(r.err, "gnuplot was not found");
-    if (!ok) fprintf(stderr, "status %d, stderr: %s", r.status, r.err ? r.err : "?\n");
-    cli_result_free(&r);
-    ENSURE(ok);
-    ENSURE(!fig_exists(out));
+    if (fig_without_tools(cli, dir, args, out, "gnuplot was not found", NULL, 1)) return 1;
     snprintf(out, sizeof out, "%s/nognuplot.csv", dir);
     ENSURE(!fig_exists(out));
     return 0;
