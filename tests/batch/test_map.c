@@ -7,7 +7,6 @@
  * are refused with one line, exit 2 and no file. */
 #include "../figures/fig_common.h"
 
-#include <errno.h>
 
 static const char *cli;
 static char dir[1024];
@@ -18,14 +17,20 @@ static char dir[1024];
 #define NX 5
 #define NY 4
 
-static int run_ok(const char *args)
+/* The tool run with args: exit 0, and standard output holding say and also
+ * where they are not NULL. */
+static int run_says(const char *args, const char *say, const char *also)
 {
     cli_result r = cli_run_line(cli, NULL, args);
-    const int ok = r.status == 0;
-    if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
+    const int ok = r.status == 0 && (!say || (r.out && strstr(r.out, say))) && (!also || (r.out && strstr(r.out, also)));
+    if (!ok)
+        fprintf(stderr, "'%s': status %d, stdout: %s, stderr: %s\n", args, r.status, r.out ? r.out : "?",
+                r.err ? r.err : "?");
     cli_result_free(&r);
     return ok;
 }
+
+static int run_ok(const char *args) { return run_says(args, NULL, NULL); }
 
 /* A PNG of w x h that ends with its IEND chunk. */
 static int whole_png(const char *path, int w, int h)
@@ -72,10 +77,7 @@ static int test_small_map_png(void)
     char out[1100], args[2400];
     snprintf(out, sizeof out, "%s/small.png", dir);
     snprintf(args, sizeof args, "map --x " X_AXIS " --y " Y_AXIS " --output '%s'", out);
-    cli_result r = cli_run_line(cli, NULL, args);
-    ENSURE_MSG(r.status == 0, "status %d: %s", r.status, r.err ? r.err : "?");
-    ENSURE(r.out && strstr(r.out, "Map: 20 cases (5 x 4)") && strstr(r.out, "Figure: "));
-    cli_result_free(&r);
+    ENSURE(run_says(args, "Map: 20 cases (5 x 4)", "Figure: "));
     ENSURE(whole_png(out, 1200, 750));
     /* Without --keep-script: the figure alone. */
     return no_script_or_rows("small");
@@ -104,10 +106,7 @@ static int test_kept_csv_is_the_sweep(void)
     snprintf(gp, sizeof gp, "%s/kept.gp", dir);
     snprintf(sweep, sizeof sweep, "%s/sweep.csv", dir);
     snprintf(args, sizeof args, "map --x " X_AXIS " --y " Y_AXIS " --output '%s' --keep-script --threads 2", out);
-    cli_result r = cli_run_line(cli, NULL, args);
-    ENSURE_MSG(r.status == 0, "status %d: %s", r.status, r.err ? r.err : "?");
-    ENSURE(r.out && strstr(r.out, "Script: ") && strstr(r.out, "Rows: "));
-    cli_result_free(&r);
+    ENSURE(run_says(args, "Script: ", "Rows: "));
     ENSURE(whole_png(out, 1200, 750));
     ENSURE(fig_exists(gp));
     snprintf(args, sizeof args, "sweep --vary " Y_AXIS " --vary " X_AXIS " --output '%s' --threads 1", sweep);
