@@ -59,6 +59,18 @@ static int plot_ok(const char *args)
     return ok;
 }
 
+/* plot with opts and --keep-script to stem.png in the scratch directory; the
+ * kept script's path (stem.gp) and the library's model at incline_deg. */
+static int plot_kept(const char *stem, const char *opts, double incline_deg, jc_Model *m, char *script, size_t len)
+{
+    char args[2400], out[1100];
+    snprintf(out, sizeof out, "%s/%s.png", dir, stem);
+    snprintf(args, sizeof args, "plot %s --keep-script --output '%s'", opts, out);
+    ENSURE(plot_ok(args));
+    snprintf(script, len, "%s/%s.gp", dir, stem);
+    return init_model(m, incline_deg);
+}
+
 static int test_every_kind_png(void)
 {
     static const char *kinds[] = {"paper-criterion", "forces", "gap", "path", "energy", "trajectory", "overview"};
@@ -201,14 +213,9 @@ static int extract_block(const char *script, const char *name, const char *out)
 
 static int test_criterion_data(void)
 {
-    char args[2048], out[1100], path[1200];
-    snprintf(out, sizeof out, "%s/c30.png", dir);
-    snprintf(args, sizeof args, "plot --what paper-criterion --keep-script --output '%s'", out);
-    ENSURE(plot_ok(args));
+    char script[1200], path[1200];
     jc_Model m;
-    if (init_model(&m, 30)) return 1;
-    char script[1200];
-    snprintf(script, sizeof script, "%s/c30.gp", dir);
+    if (plot_kept("c30", "--what paper-criterion", 30, &m, script, sizeof script)) return 1;
     snprintf(path, sizeof path, "%s/c30-criterion.dat", dir);
     ENSURE(extract_block(script, "criterion", path) == 0);
     if (check_criterion_rows(&m, path)) return 1;
@@ -306,14 +313,9 @@ static int check_hops(const jc_Run *run, const char *path)
 
 static int test_run_data(void)
 {
-    char args[2048], out[1100], path[1200];
-    snprintf(out, sizeof out, "%s/f45.png", dir);
-    snprintf(args, sizeof args, "plot --incline 45 --what overview --keep-script --output '%s'", out);
-    ENSURE(plot_ok(args));
+    char script[1200], path[1200], events[1200], hops[1200];
     jc_Model m;
-    if (init_model(&m, 45)) return 1;
-    char script[1200], events[1200], hops[1200];
-    snprintf(script, sizeof script, "%s/f45.gp", dir);
+    if (plot_kept("f45", "--incline 45 --what overview", 45, &m, script, sizeof script)) return 1;
     snprintf(path, sizeof path, "%s/f45-run.dat", dir);
     snprintf(events, sizeof events, "%s/f45-events.dat", dir);
     snprintf(hops, sizeof hops, "%s/f45-hops.dat", dir);
@@ -477,9 +479,13 @@ static int test_kept_script_reruns(void)
     return 0;
 }
 
-/* Exit 2, a one-line message naming the value, and no file. */
-static int usage_error(const char *args, const char *out, const char *needle)
+/* plot with opts and the output file in the scratch directory: exit 2, a
+ * one-line message naming the value, and no file. */
+static int usage_error(const char *opts, const char *file, const char *needle)
 {
+    char args[2400], out[1100];
+    snprintf(out, sizeof out, "%s/%s", dir, file);
+    snprintf(args, sizeof args, "plot %s --output '%s'", opts, out);
     cli_result r = cli_run_line(cli, NULL, args);
     const int ok = r.status == 2 && r.err && strstr(r.err, needle) && strchr(r.err, '\n') == r.err + strlen(r.err) - 1;
     if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
@@ -491,20 +497,11 @@ static int usage_error(const char *args, const char *out, const char *needle)
 
 static int test_bad_input(void)
 {
-    char args[2048], out[1100];
-    snprintf(out, sizeof out, "%s/bad.png", dir);
-    snprintf(args, sizeof args, "plot --what sideways --output '%s'", out);
-    if (usage_error(args, out, "'sideways'")) return 1;
-    snprintf(out, sizeof out, "%s/bad.jpg", dir);
-    snprintf(args, sizeof args, "plot --what path --output '%s'", out);
-    if (usage_error(args, out, ".jpg")) return 1;
-    snprintf(out, sizeof out, "%s/bad", dir);
-    snprintf(args, sizeof args, "plot --what path --output '%s'", out);
-    if (usage_error(args, out, "no extension")) return 1;
-    snprintf(out, sizeof out, "%s/bad.png", dir);
-    snprintf(args, sizeof args, "plot --what path --incline 95 --output '%s'", out);
-    if (usage_error(args, out, "95")) return 1;
+    if (usage_error("--what sideways", "bad.png", "'sideways'") || usage_error("--what path", "bad.jpg", ".jpg") ||
+        usage_error("--what path", "bad", "no extension") || usage_error("--what path --incline 95", "bad.png", "95"))
+        return 1;
     /* An output directory that does not exist: exit 1 naming the path. */
+    char args[2048], out[1100];
     snprintf(out, sizeof out, "%s/no/such/dir/x.png", dir);
     snprintf(args, sizeof args, "plot --what path --output '%s'", out);
     cli_result r = cli_run_line(cli, NULL, args);
