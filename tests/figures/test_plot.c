@@ -240,10 +240,20 @@ static double header_dt(const char *path)
     return dt;
 }
 
-static int check_run_rows(const jc_Model *m, const jc_Run *run, const char *path)
+/* A check of a data file against the run, the file open (check_file opens and closes it). */
+typedef int (*data_check)(const jc_Model *m, const jc_Run *run, FILE *f);
+
+static int check_file(const char *path, data_check check, const jc_Model *m, const jc_Run *run)
 {
     FILE *f = fopen(path, "r");
-    ENSURE(f);
+    ENSURE_MSG(f, "%s missing", path);
+    const int bad = check(m, run, f);
+    fclose(f);
+    return bad;
+}
+
+static int check_run_rows(const jc_Model *m, const jc_Run *run, FILE *f)
+{
     const double weight = m->body.mass_kg * m->setup.gravity_mps2 * m->cos_incline;
     double v[16];
     int i = 0, n;
@@ -261,15 +271,13 @@ static int check_run_rows(const jc_Model *m, const jc_Run *run, const char *path
             ENSURE_MSG(close_to(v[k], want[k], DATA_REL, 1e-12), "row %d column %d: %.12g vs %.12g", i, k + 1, v[k],
                        want[k]);
     }
-    fclose(f);
     ENSURE_MSG(i == run->sample_count, "%d rows for %d samples", i, run->sample_count);
     return 0;
 }
 
-static int check_events(const jc_Run *run, const char *path)
+static int check_events(const jc_Model *m, const jc_Run *run, FILE *f)
 {
-    FILE *f = fopen(path, "r");
-    ENSURE(f);
+    (void)m;
     char line[1024];
     int i = 0;
     while (fgets(line, sizeof line, f)) {
@@ -281,15 +289,13 @@ static int check_events(const jc_Run *run, const char *path)
         ENSURE_MSG(strcmp(kind, jc_event_name(e->kind)) == 0, "event %d: %s vs %s", i, kind, jc_event_name(e->kind));
         ENSURE(close_to(x, e->state.x_m * 100, DATA_REL, 1e-12) && close_to(t, e->state.t_s, 1e-11, 1e-12));
     }
-    fclose(f);
     ENSURE_MSG(i == run->event_count, "%d events written, %d in the run", i, run->event_count);
     return 0;
 }
 
-static int check_hops(const jc_Run *run, const char *path)
+static int check_hops(const jc_Model *m, const jc_Run *run, FILE *f)
 {
-    FILE *f = fopen(path, "r");
-    ENSURE(f);
+    (void)m;
     double v[5];
     int e = 0, hops = 0;
     while (read_row(f, v, 5) == 5) {
@@ -302,7 +308,6 @@ static int check_hops(const jc_Run *run, const char *path)
         ++e;
         ++hops;
     }
-    fclose(f);
     int flights = 0;
     for (int i = 0; i < run->event_count; ++i)
         flights += run->events[i].kind == JC_EVENT_LIFTOFF ||
@@ -329,9 +334,9 @@ static int test_run_data(void)
     const int st = jc_simulate(&m, &o, &run, err, sizeof err);
     int bad = st != JC_OK;
     if (bad) fprintf(stderr, "jc_simulate: %s\n", err);
-    if (!bad) bad = check_run_rows(&m, &run, path);
-    if (!bad) bad = check_events(&run, events);
-    if (!bad) bad = check_hops(&run, hops);
+    if (!bad) bad = check_file(path, check_run_rows, &m, &run);
+    if (!bad) bad = check_file(events, check_events, &m, &run);
+    if (!bad) bad = check_file(hops, check_hops, &m, &run);
     jc_run_free(&run);
     return bad;
 }
