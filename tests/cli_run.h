@@ -170,4 +170,14 @@ static inline int cli_one_line(const char *s)
     return nl && nl[1] == '\0';
 }
 
+/* A fresh scratch directory from the template dir ("/tmp/name_XXXXXX",
+ * filled in place) and path, the file name inside it; 0, or -1 when the
+ * directory could not be made. The test removes both. */
+static inline int cli_scratch(char *dir, char *path, size_t path_len, const char *name)
+{
+    if (!mkdtemp(dir)) return -1;
+    snprintf(path, path_len, "%s/%s", dir, name);
+    return 0;
+}
+
 #endif

@@ -8,6 +8,7 @@
 #define JC_TEST_H
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -61,6 +62,17 @@ static int jc_test_passed_count, jc_test_failed_count;
         const int ens_st_ = (call);                                                     \
         if (ens_st_ != 0) ENSURE_FAIL_(#call, " returned %d: %s", ens_st_, (err));      \
     } while (0)
+
+/* Deterministic pseudo-random numbers (xorshift64*), uniform in [lo, hi),
+ * from the caller's state: each test seeds its own (a fixed, portable stream). */
+static inline double test_uniform(uint64_t *state, double lo, double hi)
+{
+    *state ^= *state >> 12;
+    *state ^= *state << 25;
+    *state ^= *state >> 27;
+    const uint64_t x = *state * 2685821657736338717ull;
+    return lo + (hi - lo) * (double)(x >> 11) * (1.0 / 9007199254740992.0);
+}
 
 #define RUN_TEST(fn)                                                                    \
     do {                                                                                \

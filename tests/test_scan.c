@@ -224,15 +224,6 @@ static int test_scan_fns_callback(void)
     return 0;
 }
 
-/* Uniform in [lo, hi) from a seeded xorshift64* state. */
-static double uniform_s(uint64_t *state, double lo, double hi)
-{
-    *state ^= *state >> 12;
-    *state ^= *state << 25;
-    *state ^= *state >> 27;
-    return lo + (hi - lo) * (double)((*state * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
-}
-
 /* The safe step's cubic root against GSL's gsl_poly_solve_cubic, on random
  * cubics of the form the search makes (c < 0: a positive root exists) and on
  * the degenerate ones (double and triple roots). */
@@ -250,10 +241,10 @@ static int test_cubic_root_matches_gsl(void)
             b = r[i][0] * r[i][1] + r[i][1] * r[i][2] + r[i][0] * r[i][2];
             c = -r[i][0] * r[i][1] * r[i][2];
         } else {
-            const double scale = pow(10.0, uniform_s(&state, -6.0, 6.0));
-            a = uniform_s(&state, -10.0, 10.0) * scale;
-            b = uniform_s(&state, -10.0, 10.0) * scale * scale;
-            c = -uniform_s(&state, 0.0, 10.0) * scale * scale * scale;
+            const double scale = pow(10.0, test_uniform(&state, -6.0, 6.0));
+            a = test_uniform(&state, -10.0, 10.0) * scale;
+            b = test_uniform(&state, -10.0, 10.0) * scale * scale;
+            c = -test_uniform(&state, 0.0, 10.0) * scale * scale * scale;
         }
         double x[3];
         const int n = gsl_poly_solve_cubic(a, b, c, &x[0], &x[1], &x[2]);
@@ -310,12 +301,12 @@ static int test_newton_polish_matches_brent(void)
         for (int i = 0; i < 3; ++i) {
             jc_tl_zero(&f[i]);
             /* Positive at th = 0 (the constant dominates there), crossing later. */
-            jc_tl_add_cos(&f[i], 0, 0, uniform_s(&state, 0.5, 2.0));
+            jc_tl_add_cos(&f[i], 0, 0, test_uniform(&state, 0.5, 2.0));
             for (int k = 1; k <= JC_TRIG_DEGREE; ++k) {
-                jc_tl_add_cos(&f[i], 0, k, uniform_s(&state, -0.3, 0.3));
-                jc_tl_add_sin(&f[i], 0, k, uniform_s(&state, -0.3, 0.3));
+                jc_tl_add_cos(&f[i], 0, k, test_uniform(&state, -0.3, 0.3));
+                jc_tl_add_sin(&f[i], 0, k, test_uniform(&state, -0.3, 0.3));
             }
-            jc_tl_add_cos(&f[i], 1, 0, -uniform_s(&state, 0.01, 0.3));
+            jc_tl_add_cos(&f[i], 1, 0, -test_uniform(&state, 0.01, 0.3));
             set.f[i] = &f[i];
             set.sign[i] = 1.0;
         }

@@ -8,15 +8,8 @@
 #include <float.h>
 
 /* xorshift64*: a fixed, portable stream of angles. */
-static unsigned long long rng_state = 0x9E3779B97F4A7C15ull;
-static double uniform(double lo, double hi)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    const unsigned long long x = rng_state * 2685821657736338717ull;
-    return lo + (hi - lo) * (double)(x >> 11) * (1.0 / 9007199254740992.0);
-}
+static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
+static double uniform(double lo, double hi) { return test_uniform(&rng_state, lo, hi); }
 
 /* |a - ref| in units in the last place of ref. */
 static double ulps(double a, double ref)

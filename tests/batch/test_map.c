@@ -7,7 +7,6 @@
  * are refused with one line, exit 2 and no file. */
 #include "../figures/fig_common.h"
 
-#include <errno.h>
 
 static const char *cli;
 static char dir[1024];
@@ -18,14 +17,20 @@ static char dir[1024];
 #define NX 5
 #define NY 4
 
-static int run_ok(const char *args)
+/* The tool run with args: exit 0, and standard output holding say and also
+ * where they are not NULL. */
+static int run_says(const char *args, const char *say, const char *also)
 {
     cli_result r = cli_run_line(cli, NULL, args);
-    const int ok = r.status == 0;
-    if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
+    const int ok = r.status == 0 && (!say || (r.out && strstr(r.out, say))) && (!also || (r.out && strstr(r.out, also)));
+    if (!ok)
+        fprintf(stderr, "'%s': status %d, stdout: %s, stderr: %s\n", args, r.status, r.out ? r.out : "?",
+                r.err ? r.err : "?");
     cli_result_free(&r);
     return ok;
 }
+
+static int run_ok(const char *args) { return run_says(args, NULL, NULL); }
 
 /* A PNG of w x h that ends with its IEND chunk. */
 static int whole_png(const char *path, int w, int h)
@@ -55,22 +60,27 @@ static int ends_with(const char *path, const char *end)
     return n >= m && memcmp(tail + n - m, end, m) == 0;
 }
 
+/* Neither the script nor the rows (stem.gp, stem.csv) that --keep-script keeps are in dir. */
+static int no_script_or_rows(const char *stem)
+{
+    static const char *const kept[] = {"gp", "csv"};
+    for (int i = 0; i < 2; ++i) {
+        char path[1100];
+        snprintf(path, sizeof path, "%s/%s.%s", dir, stem, kept[i]);
+        ENSURE_MSG(!fig_exists(path), "%s was written", path);
+    }
+    return 0;
+}
+
 static int test_small_map_png(void)
 {
     char out[1100], args[2400];
     snprintf(out, sizeof out, "%s/small.png", dir);
     snprintf(args, sizeof args, "map --x " X_AXIS " --y " Y_AXIS " --output '%s'", out);
-    cli_result r = cli_run_line(cli, NULL, args);
-    ENSURE_MSG(r.status == 0, "status %d: %s", r.status, r.err ? r.err : "?");
-    ENSURE(r.out && strstr(r.out, "Map: 20 cases (5 x 4)") && strstr(r.out, "Figure: "));
-    cli_result_free(&r);
+    ENSURE(run_says(args, "Map: 20 cases (5 x 4)", "Figure: "));
     ENSURE(whole_png(out, 1200, 750));
     /* Without --keep-script: the figure alone. */
-    snprintf(out, sizeof out, "%s/small.gp", dir);
-    ENSURE(!fig_exists(out));
-    snprintf(out, sizeof out, "%s/small.csv", dir);
-    ENSURE(!fig_exists(out));
-    return 0;
+    return no_script_or_rows("small");
 }
 
 static int test_svg_and_pdf(void)
@@ -96,10 +106,7 @@ static int test_kept_csv_is_the_sweep(void)
     snprintf(gp, sizeof gp, "%s/kept.gp", dir);
     snprintf(sweep, sizeof sweep, "%s/sweep.csv", dir);
     snprintf(args, sizeof args, "map --x " X_AXIS " --y " Y_AXIS " --output '%s' --keep-script --threads 2", out);
-    cli_result r = cli_run_line(cli, NULL, args);
-    ENSURE_MSG(r.status == 0, "status %d: %s", r.status, r.err ? r.err : "?");
-    ENSURE(r.out && strstr(r.out, "Script: ") && strstr(r.out, "Rows: "));
-    cli_result_free(&r);
+    ENSURE(run_says(args, "Script: ", "Rows: "));
     ENSURE(whole_png(out, 1200, 750));
     ENSURE(fig_exists(gp));
     snprintf(args, sizeof args, "sweep --vary " Y_AXIS " --vary " X_AXIS " --output '%s' --threads 1", sweep);
@@ -318,7 +325,7 @@ static int test_categories(void)
 /* Exit 2, one line naming the value, and no file at all. */
 static int refused(const char *axes, const char *needle)
 {
-    char out[1100], args[2400], kept[1100];
+    char out[1100], args[2400];
     snprintf(out, sizeof out, "%s/bad.png", dir);
     snprintf(args, sizeof args, "map %s --output '%s' --keep-script", axes, out);
     cli_result r = cli_run_line(cli, NULL, args);
@@ -327,11 +334,7 @@ static int refused(const char *axes, const char *needle)
     cli_result_free(&r);
     ENSURE(ok);
     ENSURE_MSG(!fig_exists(out), "%s was written", out);
-    snprintf(kept, sizeof kept, "%s/bad.gp", dir);
-    ENSURE(!fig_exists(kept));
-    snprintf(kept, sizeof kept, "%s/bad.csv", dir);
-    ENSURE(!fig_exists(kept));
-    return 0;
+    return no_script_or_rows("bad");
 }
 
 static int test_bad_axes(void)
@@ -378,16 +381,10 @@ static int test_bad_axes(void)
 
 static int test_missing_gnuplot(void)
 {
-    char empty[1100], out[1100], args[2400];
-    if (fig_empty_path(empty, sizeof empty, dir) != 0 && errno != EEXIST) return 1;
+    char out[1100], args[2400];
     snprintf(out, sizeof out, "%s/nognuplot.png", dir);
     snprintf(args, sizeof args, "map --x " X_AXIS " --y " Y_AXIS " --output '%s' --keep-script", out);
-    cli_result r = cli_run_line(cli, empty, args);
-    const int ok = r.status == 1 && cli_one_line(r.err) && strstr(r.err, "gnuplot was not found");
-    if (!ok) fprintf(stderr, "status %d, stderr: %s", r.status, r.err ? r.err : "?\n");
-    cli_result_free(&r);
-    ENSURE(ok);
-    ENSURE(!fig_exists(out));
+    if (fig_without_tools(cli, dir, args, out, "gnuplot was not found", NULL, 1)) return 1;
     snprintf(out, sizeof out, "%s/nognuplot.csv", dir);
     ENSURE(!fig_exists(out));
     return 0;

@@ -200,16 +200,31 @@ static int test_gap_at_20_deg(void)
     return 0;
 }
 
+/* design's document for args and its first leap (the discontinuity) with
+ * the parameter's value at the leap's lower side; NULL, after a message,
+ * without the document or without a leap. */
+static cJSON *design_with_leap(const char *args, const cJSON **leap, double *edge)
+{
+    cJSON *doc = design_json(args, NULL);
+    *leap = doc ? cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(doc, "discontinuities"), 0) : NULL;
+    if (doc && !*leap) {
+        fprintf(stderr, "'%s': no discontinuity listed\n", args);
+        cJSON_Delete(doc);
+        return NULL;
+    }
+    *edge = *leap ? num(cJSON_GetObjectItemCaseSensitive(*leap, "below"), "value") : NAN;
+    return doc;
+}
+
 /* A target between the branch's turning point and its side at the edge:
  * two roots, the second a few micrometres of x before the leap. Both are
  * inside the branch, neither is the edge. */
 static int test_near_edge_not_edge(void)
 {
-    cJSON *doc = design_json("--free rod-offset --incline 20 --jump-at 1.80837m --range 3.7cm:4.1cm", NULL);
+    const cJSON *e;
+    double edge;
+    cJSON *doc = design_with_leap("--free rod-offset --incline 20 --jump-at 1.80837m --range 3.7cm:4.1cm", &e, &edge);
     ENSURE(doc);
-    const cJSON *e = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(doc, "discontinuities"), 0);
-    ENSURE(e);
-    const double edge = num(cJSON_GetObjectItemCaseSensitive(e, "below"), "value");
     const cJSON *s;
     int rc = check_solutions(doc, "rod-offset", 20, 2);
     cJSON_ArrayForEach(s, cJSON_GetObjectItemCaseSensitive(doc, "solutions"))
@@ -225,13 +240,12 @@ static int test_near_edge_not_edge(void)
  * said (at_edge) and never listed; a root farther inside the branch is. */
 static int test_edge_limit_not_listed(void)
 {
-    cJSON *doc = design_json("--free rod-offset --incline 20 --jump-at 1.50m --range 3.7cm:4.1cm", NULL);
+    const cJSON *e;
+    double edge;
+    cJSON *doc = design_with_leap("--free rod-offset --incline 20 --jump-at 1.50m --range 3.7cm:4.1cm", &e, &edge);
     ENSURE(doc);
-    const cJSON *e = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(doc, "discontinuities"), 0);
-    ENSURE(e);
     const double below = num(cJSON_GetObjectItemCaseSensitive(e, "below"), "x_m");
     const double above = num(cJSON_GetObjectItemCaseSensitive(e, "above"), "x_m");
-    const double edge = num(cJSON_GetObjectItemCaseSensitive(e, "below"), "value");
     cJSON_Delete(doc);
     const double sides[2] = {above, below};
     const int listed[2] = {0, 1}; /* above: the branch's top, reached only at the edge; below: one root inside */

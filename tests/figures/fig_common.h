@@ -11,6 +11,7 @@
 #include <gsl/gsl_errno.h>
 
 #include <dirent.h>
+#include <errno.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -97,6 +98,24 @@ static inline int fig_empty_path(char *path, size_t len, const char *tmpdir)
 {
     snprintf(path, len, "%s/empty-bin", tmpdir);
     return mkdir(path, 0755);
+}
+
+/* The tool run with args and an empty PATH (no gnuplot, no ffmpeg): exit 1,
+ * a message that holds need and also (when not NULL), on one line when
+ * one_line, and no file out. */
+static inline int fig_without_tools(const char *cli, const char *dir, const char *args, const char *out,
+                                    const char *need, const char *also, int one_line)
+{
+    char empty[1100];
+    if (fig_empty_path(empty, sizeof empty, dir) != 0 && errno != EEXIST) return 1;
+    cli_result r = cli_run_line(cli, empty, args);
+    const int ok = r.status == 1 && r.err && strstr(r.err, need) && (!also || strstr(r.err, also)) &&
+                   (!one_line || cli_one_line(r.err));
+    if (!ok) fprintf(stderr, "'%s' without tools: status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
+    cli_result_free(&r);
+    ENSURE(ok);
+    ENSURE_MSG(!fig_exists(out), "%s was written", out);
+    return 0;
 }
 
 /* The start of a figure test's main: the tool's path from argv[1], GSL's

@@ -59,6 +59,18 @@ static int plot_ok(const char *args)
     return ok;
 }
 
+/* plot with opts and --keep-script to stem.png in the scratch directory; the
+ * kept script's path (stem.gp) and the library's model at incline_deg. */
+static int plot_kept(const char *stem, const char *opts, double incline_deg, jc_Model *m, char *script, size_t len)
+{
+    char args[2400], out[1100];
+    snprintf(out, sizeof out, "%s/%s.png", dir, stem);
+    snprintf(args, sizeof args, "plot %s --keep-script --output '%s'", opts, out);
+    ENSURE(plot_ok(args));
+    snprintf(script, len, "%s/%s.gp", dir, stem);
+    return init_model(m, incline_deg);
+}
+
 static int test_every_kind_png(void)
 {
     static const char *kinds[] = {"paper-criterion", "forces", "gap", "path", "energy", "trajectory", "overview"};
@@ -201,14 +213,9 @@ static int extract_block(const char *script, const char *name, const char *out)
 
 static int test_criterion_data(void)
 {
-    char args[2048], out[1100], path[1200];
-    snprintf(out, sizeof out, "%s/c30.png", dir);
-    snprintf(args, sizeof args, "plot --what paper-criterion --keep-script --output '%s'", out);
-    ENSURE(plot_ok(args));
+    char script[1200], path[1200];
     jc_Model m;
-    if (init_model(&m, 30)) return 1;
-    char script[1200];
-    snprintf(script, sizeof script, "%s/c30.gp", dir);
+    if (plot_kept("c30", "--what paper-criterion", 30, &m, script, sizeof script)) return 1;
     snprintf(path, sizeof path, "%s/c30-criterion.dat", dir);
     ENSURE(extract_block(script, "criterion", path) == 0);
     if (check_criterion_rows(&m, path)) return 1;
@@ -233,10 +240,20 @@ static double header_dt(const char *path)
     return dt;
 }
 
-static int check_run_rows(const jc_Model *m, const jc_Run *run, const char *path)
+/* A check of a data file against the run, the file open (check_file opens and closes it). */
+typedef int (*data_check)(const jc_Model *m, const jc_Run *run, FILE *f);
+
+static int check_file(const char *path, data_check check, const jc_Model *m, const jc_Run *run)
 {
     FILE *f = fopen(path, "r");
-    ENSURE(f);
+    ENSURE_MSG(f, "%s missing", path);
+    const int bad = check(m, run, f);
+    fclose(f);
+    return bad;
+}
+
+static int check_run_rows(const jc_Model *m, const jc_Run *run, FILE *f)
+{
     const double weight = m->body.mass_kg * m->setup.gravity_mps2 * m->cos_incline;
     double v[16];
     int i = 0, n;
@@ -254,15 +271,13 @@ static int check_run_rows(const jc_Model *m, const jc_Run *run, const char *path
             ENSURE_MSG(close_to(v[k], want[k], DATA_REL, 1e-12), "row %d column %d: %.12g vs %.12g", i, k + 1, v[k],
                        want[k]);
     }
-    fclose(f);
     ENSURE_MSG(i == run->sample_count, "%d rows for %d samples", i, run->sample_count);
     return 0;
 }
 
-static int check_events(const jc_Run *run, const char *path)
+static int check_events(const jc_Model *m, const jc_Run *run, FILE *f)
 {
-    FILE *f = fopen(path, "r");
-    ENSURE(f);
+    (void)m;
     char line[1024];
     int i = 0;
     while (fgets(line, sizeof line, f)) {
@@ -274,15 +289,13 @@ static int check_events(const jc_Run *run, const char *path)
         ENSURE_MSG(strcmp(kind, jc_event_name(e->kind)) == 0, "event %d: %s vs %s", i, kind, jc_event_name(e->kind));
         ENSURE(close_to(x, e->state.x_m * 100, DATA_REL, 1e-12) && close_to(t, e->state.t_s, 1e-11, 1e-12));
     }
-    fclose(f);
     ENSURE_MSG(i == run->event_count, "%d events written, %d in the run", i, run->event_count);
     return 0;
 }
 
-static int check_hops(const jc_Run *run, const char *path)
+static int check_hops(const jc_Model *m, const jc_Run *run, FILE *f)
 {
-    FILE *f = fopen(path, "r");
-    ENSURE(f);
+    (void)m;
     double v[5];
     int e = 0, hops = 0;
     while (read_row(f, v, 5) == 5) {
@@ -295,7 +308,6 @@ static int check_hops(const jc_Run *run, const char *path)
         ++e;
         ++hops;
     }
-    fclose(f);
     int flights = 0;
     for (int i = 0; i < run->event_count; ++i)
         flights += run->events[i].kind == JC_EVENT_LIFTOFF ||
@@ -306,14 +318,9 @@ static int check_hops(const jc_Run *run, const char *path)
 
 static int test_run_data(void)
 {
-    char args[2048], out[1100], path[1200];
-    snprintf(out, sizeof out, "%s/f45.png", dir);
-    snprintf(args, sizeof args, "plot --incline 45 --what overview --keep-script --output '%s'", out);
-    ENSURE(plot_ok(args));
+    char script[1200], path[1200], events[1200], hops[1200];
     jc_Model m;
-    if (init_model(&m, 45)) return 1;
-    char script[1200], events[1200], hops[1200];
-    snprintf(script, sizeof script, "%s/f45.gp", dir);
+    if (plot_kept("f45", "--incline 45 --what overview", 45, &m, script, sizeof script)) return 1;
     snprintf(path, sizeof path, "%s/f45-run.dat", dir);
     snprintf(events, sizeof events, "%s/f45-events.dat", dir);
     snprintf(hops, sizeof hops, "%s/f45-hops.dat", dir);
@@ -327,9 +334,9 @@ static int test_run_data(void)
     const int st = jc_simulate(&m, &o, &run, err, sizeof err);
     int bad = st != JC_OK;
     if (bad) fprintf(stderr, "jc_simulate: %s\n", err);
-    if (!bad) bad = check_run_rows(&m, &run, path);
-    if (!bad) bad = check_events(&run, events);
-    if (!bad) bad = check_hops(&run, hops);
+    if (!bad) bad = check_file(path, check_run_rows, &m, &run);
+    if (!bad) bad = check_file(events, check_events, &m, &run);
+    if (!bad) bad = check_file(hops, check_hops, &m, &run);
     jc_run_free(&run);
     return bad;
 }
@@ -477,9 +484,13 @@ static int test_kept_script_reruns(void)
     return 0;
 }
 
-/* Exit 2, a one-line message naming the value, and no file. */
-static int usage_error(const char *args, const char *out, const char *needle)
+/* plot with opts and the output file in the scratch directory: exit 2, a
+ * one-line message naming the value, and no file. */
+static int usage_error(const char *opts, const char *file, const char *needle)
 {
+    char args[2400], out[1100];
+    snprintf(out, sizeof out, "%s/%s", dir, file);
+    snprintf(args, sizeof args, "plot %s --output '%s'", opts, out);
     cli_result r = cli_run_line(cli, NULL, args);
     const int ok = r.status == 2 && r.err && strstr(r.err, needle) && strchr(r.err, '\n') == r.err + strlen(r.err) - 1;
     if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
@@ -491,20 +502,11 @@ static int usage_error(const char *args, const char *out, const char *needle)
 
 static int test_bad_input(void)
 {
-    char args[2048], out[1100];
-    snprintf(out, sizeof out, "%s/bad.png", dir);
-    snprintf(args, sizeof args, "plot --what sideways --output '%s'", out);
-    if (usage_error(args, out, "'sideways'")) return 1;
-    snprintf(out, sizeof out, "%s/bad.jpg", dir);
-    snprintf(args, sizeof args, "plot --what path --output '%s'", out);
-    if (usage_error(args, out, ".jpg")) return 1;
-    snprintf(out, sizeof out, "%s/bad", dir);
-    snprintf(args, sizeof args, "plot --what path --output '%s'", out);
-    if (usage_error(args, out, "no extension")) return 1;
-    snprintf(out, sizeof out, "%s/bad.png", dir);
-    snprintf(args, sizeof args, "plot --what path --incline 95 --output '%s'", out);
-    if (usage_error(args, out, "95")) return 1;
+    if (usage_error("--what sideways", "bad.png", "'sideways'") || usage_error("--what path", "bad.jpg", ".jpg") ||
+        usage_error("--what path", "bad", "no extension") || usage_error("--what path --incline 95", "bad.png", "95"))
+        return 1;
     /* An output directory that does not exist: exit 1 naming the path. */
+    char args[2048], out[1100];
     snprintf(out, sizeof out, "%s/no/such/dir/x.png", dir);
     snprintf(args, sizeof args, "plot --what path --output '%s'", out);
     cli_result r = cli_run_line(cli, NULL, args);
@@ -516,17 +518,10 @@ static int test_bad_input(void)
 
 static int test_missing_gnuplot(void)
 {
-    char empty[1100], args[2048], out[1100];
-    ENSURE(fig_empty_path(empty, sizeof empty, dir) == 0);
+    char args[2048], out[1100];
     snprintf(out, sizeof out, "%s/nognuplot.png", dir);
     snprintf(args, sizeof args, "plot --what energy --output '%s'", out);
-    cli_result r = cli_run_line(cli, empty, args);
-    const int ok = r.status == 1 && r.err && strstr(r.err, "gnuplot") && strstr(r.err, "not found");
-    if (!ok) fprintf(stderr, "status %d, stderr: %s\n", r.status, r.err ? r.err : "?");
-    cli_result_free(&r);
-    ENSURE(ok);
-    ENSURE(!fig_exists(out));
-    return 0;
+    return fig_without_tools(cli, dir, args, out, "gnuplot", "not found", 0);
 }
 
 /* Nothing but the figure and the script (which holds the data) is left (no temporaries). */

@@ -146,10 +146,8 @@ static int exists(const char *p)
 
 static int test_bad_options(void)
 {
-    char dir[] = "/tmp/jc_fit_cli_XXXXXX";
-    ENSURE(mkdtemp(dir) != NULL);
-    char track[256], fig[256];
-    snprintf(track, sizeof track, "%s/track.txt", dir);
+    char dir[] = "/tmp/jc_fit_cli_XXXXXX", track[256], fig[256];
+    ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     snprintf(fig, sizeof fig, "%s/out.png", dir);
     ENSURE(write_table(track, 1e-3) == 0);
     const char *cases[][12] = {
@@ -201,10 +199,8 @@ static int test_bad_options(void)
  * the table's rounding, the lift-off of simulate to a micron. */
 static int test_noise_free_compare_tool(void)
 {
-    char dir[] = "/tmp/jc_fit_cli_XXXXXX";
-    ENSURE(mkdtemp(dir) != NULL);
-    char track[256];
-    snprintf(track, sizeof track, "%s/track.txt", dir);
+    char dir[] = "/tmp/jc_fit_cli_XXXXXX", track[256];
+    ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     ENSURE(write_table(track, 0.0) == 0);
     const char *args[] = {"compare", "--track", track, "--axes", "incline", "--mu-k", "0.4", "--from-setup-start", NULL};
     cli_result r = cli_run(args);

@@ -21,17 +21,6 @@
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
 
-/* Deterministic pseudo-random numbers (xorshift64*), uniform in [lo, hi),
- * from the caller's state: each test seeds its own. */
-static inline double sim_uniform(uint64_t *state, double lo, double hi)
-{
-    *state ^= *state >> 12;
-    *state ^= *state << 25;
-    *state ^= *state >> 27;
-    const uint64_t x = *state * 2685821657736338717ull;
-    return lo + (hi - lo) * (double)(x >> 11) * (1.0 / 9007199254740992.0);
-}
-
 /* The seed of a random test: JC_TEST_SEED if set, else the test's own;
  * seeds *state and returns the seed (printed on a failure). */
 static inline uint64_t sim_seed(uint64_t fallback, uint64_t *state)

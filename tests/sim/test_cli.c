@@ -272,10 +272,8 @@ static int check_csv_rows(const char *path, const jc_Run *run)
 
 static int test_csv(void)
 {
-    char dir[] = "/tmp/jc_sim_cli_XXXXXX";
-    ENSURE(mkdtemp(dir) != NULL);
-    char path[256], args[512];
-    snprintf(path, sizeof path, "%s/trajectory.csv", dir);
+    char dir[] = "/tmp/jc_sim_cli_XXXXXX", path[256], args[512];
+    ENSURE(cli_scratch(dir, path, sizeof path, "trajectory.csv") == 0);
     snprintf(args, sizeof args, "simulate --preset paper --incline 30 --mu 0.5 --sample-dt 0.01 --csv '%s'", path);
     cli_result r = run_cli(args);
     const int status = r.status;
@@ -327,10 +325,8 @@ static int test_csv_unwritable(void)
 
     /* A target that cannot be replaced (a directory): the write goes to a
      * temporary file beside it, and the failure must remove that. */
-    char dir[] = "/tmp/jc_sim_cli_XXXXXX";
-    ENSURE(mkdtemp(dir) != NULL);
-    char target[256], args[512];
-    snprintf(target, sizeof target, "%s/out.csv", dir);
+    char dir[] = "/tmp/jc_sim_cli_XXXXXX", target[256], args[512];
+    ENSURE(cli_scratch(dir, target, sizeof target, "out.csv") == 0);
     int bad = mkdir(target, 0700) != 0;
     snprintf(args, sizeof args, "simulate --preset paper --incline 30 --mu 0.5 --csv '%s'", target);
     r = run_cli(args);

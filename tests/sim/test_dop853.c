@@ -138,15 +138,15 @@ static int test_sliding_phases_match_gsl_rk8pd(void)
     long dop_steps = 0, phases = 0;
     for (int i = 0; i < 1000; ++i) {
         jc_Setup s = jc_paper_setup();
-        s.incline_rad = sim_uniform(&rng, 0.0, 60.0) * DEG;
-        s.mu_static = sim_uniform(&rng, 0.05, 1.0);
-        s.mu_kinetic = s.mu_static * sim_uniform(&rng, 0.3, 1.0);
-        s.body.parts[1].offset_m = sim_uniform(&rng, 0.0, 0.09);
+        s.incline_rad = test_uniform(&rng, 0.0, 60.0) * DEG;
+        s.mu_static = test_uniform(&rng, 0.05, 1.0);
+        s.mu_kinetic = s.mu_static * test_uniform(&rng, 0.3, 1.0);
+        s.body.parts[1].offset_m = test_uniform(&rng, 0.0, 0.09);
         jc_Model m;
         char err[256];
         ENSURE_OK(jc_model_init(&m, &s, err, sizeof err), err);
         const double r = m.body.radius_m;
-        double y[4] = {0.0, sim_uniform(&rng, -PI, PI), sim_uniform(&rng, -3.0, 3.0), sim_uniform(&rng, -30.0, 30.0)};
+        double y[4] = {0.0, test_uniform(&rng, -PI, PI), test_uniform(&rng, -3.0, 3.0), test_uniform(&rng, -30.0, 30.0)};
         const double slip = y[2] - r * y[3];
         slide c = {&m, slip > 0.0 ? 1 : -1};
         jc_SlidingForces f0;

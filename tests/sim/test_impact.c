@@ -179,7 +179,7 @@ static int test_disc_stick_and_slide(void)
 
 /* Deterministic pseudo-random numbers (xorshift64*), uniform in [lo, hi). */
 static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
-static double uniform(double lo, double hi) { return sim_uniform(&rng_state, lo, hi); }
+static double uniform(double lo, double hi) { return test_uniform(&rng_state, lo, hi); }
 
 /* A random approaching state: v_Pn < 0. */
 static jc_State random_approach(const jc_Model *m)

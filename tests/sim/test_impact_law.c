@@ -33,7 +33,7 @@
 static uint64_t rng_state;
 static uint64_t seed_used;
 
-static double uniform(double lo, double hi) { return sim_uniform(&rng_state, lo, hi); }
+static double uniform(double lo, double hi) { return test_uniform(&rng_state, lo, hi); }
 
 /* A random body: a disc, a hoop and a point mass in random proportions (each
  * may be absent), the point anywhere from the axis to the rim. */

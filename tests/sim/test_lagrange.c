@@ -35,7 +35,7 @@
 #define REL_TOL 1e-10
 
 static uint64_t rng_state = 0xD1B54A32D192ED03ull;
-static double uniform(double lo, double hi) { return sim_uniform(&rng_state, lo, hi); }
+static double uniform(double lo, double hi) { return test_uniform(&rng_state, lo, hi); }
 
 #include "lagrange.h"
 

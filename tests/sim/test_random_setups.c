@@ -28,7 +28,7 @@
 
 static uint64_t rng_state;
 
-static double uniform(double lo, double hi) { return sim_uniform(&rng_state, lo, hi); }
+static double uniform(double lo, double hi) { return test_uniform(&rng_state, lo, hi); }
 
 static jc_Setup random_setup(void)
 {

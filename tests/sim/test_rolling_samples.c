@@ -42,7 +42,7 @@
 
 static uint64_t rng_state, seed_used;
 
-static double uniform(double lo, double hi) { return sim_uniform(&rng_state, lo, hi); }
+static double uniform(double lo, double hi) { return test_uniform(&rng_state, lo, hi); }
 
 static int rhs(double t, const double y[], double dydt[], void *params)
 {

@@ -237,6 +237,23 @@ static inline void syn_point_mass(FILE *f, const char *name, const syn_Camera *c
     fputs("            </property>\n        </object>\n        </property>\n", f);
 }
 
+/* One element of the axes' framedata array: the origin (px), angle and scale at frame index. */
+static inline void syn_frame_data(char *buf, size_t len, long index, double origin_x_px, double origin_y_px,
+                                  const syn_Experiment *e)
+{
+    snprintf(buf, len,
+             "            <property name=\"[%ld]\" type=\"object\">\n"
+             "            <object class=\"org.opensourcephysics.media.core.ImageCoordSystem$FrameData\">\n"
+             "                <property name=\"xorigin\" type=\"double\">%.17g</property>\n"
+             "                <property name=\"yorigin\" type=\"double\">%.17g</property>\n"
+             "                <property name=\"angle\" type=\"double\">%.17g</property>\n"
+             "                <property name=\"xscale\" type=\"double\">%.17g</property>\n"
+             "                <property name=\"yscale\" type=\"double\">%.17g</property>\n"
+             "            </object>\n"
+             "            </property>\n",
+             index, origin_x_px, origin_y_px, e->axes_angle_deg, e->scale_px_per_m, e->scale_px_per_m);
+}
+
 /* A .trk file as Tracker 6 writes one (the parts a reader needs, and some it does not). */
 static inline int syn_write_trk(const char *path, const syn_Camera *c, const syn_Experiment *e,
                                 const char *centre_name, const char *mark_name)
@@ -244,21 +261,12 @@ static inline int syn_write_trk(const char *path, const syn_Camera *c, const syn
     FILE *f = fopen(path, "w");
     if (!f) return -1;
     const double video_dt_ms = 1000.0 / (c->fps * c->stepsize);
-    /* A key frame of the axes where the camera moved (frame numbers index the array). */
-    char key[1024] = "";
+    /* The axes at frame 0, and a key frame where the camera moved (frame numbers index the array). */
+    char first[1024], key[1024] = "";
+    syn_frame_data(first, sizeof first, 0, e->origin_x_px, e->origin_y_px, e);
     if (c->pan_from_step > 0)
-        snprintf(key, sizeof key,
-                 "            <property name=\"[%ld]\" type=\"object\">\n"
-                 "            <object class=\"org.opensourcephysics.media.core.ImageCoordSystem$FrameData\">\n"
-                 "                <property name=\"xorigin\" type=\"double\">%.17g</property>\n"
-                 "                <property name=\"yorigin\" type=\"double\">%.17g</property>\n"
-                 "                <property name=\"angle\" type=\"double\">%.17g</property>\n"
-                 "                <property name=\"xscale\" type=\"double\">%.17g</property>\n"
-                 "                <property name=\"yscale\" type=\"double\">%.17g</property>\n"
-                 "            </object>\n"
-                 "            </property>\n",
-                 c->startframe + c->pan_from_step * c->stepsize, e->origin_x_px + c->pan_dx_px,
-                 e->origin_y_px + c->pan_dy_px, e->axes_angle_deg, e->scale_px_per_m, e->scale_px_per_m);
+        syn_frame_data(key, sizeof key, c->startframe + c->pan_from_step * c->stepsize, e->origin_x_px + c->pan_dx_px,
+                       e->origin_y_px + c->pan_dy_px, e);
     fprintf(f,
             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
             "<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\">\n"
@@ -290,16 +298,7 @@ static inline int syn_write_trk(const char *path, const syn_Camera *c, const syn
             "        <property name=\"locked\" type=\"boolean\">false</property>\n"
             "        <property name=\"framedata\" type=\"array\" "
             "class=\"[Lorg.opensourcephysics.media.core.ImageCoordSystem$FrameData;\">\n"
-            "            <property name=\"[0]\" type=\"object\">\n"
-            "            <object class=\"org.opensourcephysics.media.core.ImageCoordSystem$FrameData\">\n"
-            "                <property name=\"xorigin\" type=\"double\">%.17g</property>\n"
-            "                <property name=\"yorigin\" type=\"double\">%.17g</property>\n"
-            "                <property name=\"angle\" type=\"double\">%.17g</property>\n"
-            "                <property name=\"xscale\" type=\"double\">%.17g</property>\n"
-            "                <property name=\"yscale\" type=\"double\">%.17g</property>\n"
-            "            </object>\n"
-            "            </property>\n"
-            "%s"
+            "%s%s"
             "        </property>\n"
             "    </object>\n"
             "    </property>\n"
@@ -319,8 +318,7 @@ static inline int syn_write_trk(const char *path, const syn_Camera *c, const syn
             "            </property>\n"
             "        </object>\n"
             "        </property>\n",
-            c->startframe + e->n * c->stepsize + 10, c->startframe, c->stepsize, e->n, video_dt_ms, e->origin_x_px,
-            e->origin_y_px, e->axes_angle_deg, e->scale_px_per_m, e->scale_px_per_m, key);
+            c->startframe + e->n * c->stepsize + 10, c->startframe, c->stepsize, e->n, video_dt_ms, first, key);
     syn_point_mass(f, centre_name, c, e, e->cx_px, e->cy_px);
     if (mark_name) syn_point_mass(f, mark_name, c, e, e->mx_px, e->my_px);
     fputs("    </property>\n</object>\n", f);

@@ -289,6 +289,13 @@ static int refused(const char *name, const char *want, const char *extra)
     return ok ? 0 : 1;
 }
 
+/* A file of text that the tool must refuse, naming want (as refused). */
+static int put_refused(const char *name, const char *text, const char *want)
+{
+    put(name, text);
+    return refused(name, want, NULL);
+}
+
 #define TRK_HEAD                                                                                                   \
     "<?xml version=\"1.0\"?>\n<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\">\n"
 #define TRK_CLIP                                                                                                   \
@@ -374,47 +381,40 @@ static int test_table_forms(void)
 static int test_refusals(void)
 {
     int bad = 0;
-    put("empty.trk", "");
-    bad += refused("empty.trk", "empty", NULL);
-    put("truncated.trk", TRK_HEAD TRK_CLIP TRK_DT("40") "<property name=\"coords\" type=\"obj");
-    bad += refused("truncated.trk", "line", NULL);
-    put("laughs.trk", "<?xml version=\"1.0\"?>\n<!DOCTYPE lolz [<!ENTITY lol \"lol\">"
-                      "<!ENTITY lol2 \"&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;\">"
-                      "<!ENTITY lol3 \"&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;\">]>\n"
-                      "<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\">&lol3;</object>\n");
-    bad += refused("laughs.trk", "DTD", NULL);
-    put("external.trk", "<?xml version=\"1.0\"?>\n<!DOCTYPE x SYSTEM \"http://example.invalid/x.dtd\">\n"
-                        "<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\"></object>\n");
-    bad += refused("external.trk", "DTD", NULL);
-    put("nocoords.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_TRACK("30") TRK_TAIL);
-    bad += refused("nocoords.trk", "coordinate system", NULL);
-    put("nodt.trk", TRK_HEAD TRK_CLIP TRK_COORDS("100") TRK_TRACK("30") TRK_TAIL);
-    bad += refused("nodt.trk", "frame duration", NULL);
-    put("zeroscale.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("0") TRK_TRACK("30") TRK_TAIL);
-    bad += refused("zeroscale.trk", "scale", NULL);
-    put("nan.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("100") TRK_TRACK("NaN") TRK_TAIL);
-    bad += refused("nan.trk", "not a finite number", NULL);
-    put("negdt.trk", TRK_HEAD TRK_CLIP TRK_DT("-40") TRK_COORDS("100") TRK_TRACK("30") TRK_TAIL);
-    bad += refused("negdt.trk", "delta_t", NULL);
-    put("notracker.trk", "<?xml version=\"1.0\"?>\n<svg></svg>\n");
-    bad += refused("notracker.trk", "TrackerPanel", NULL);
-    put("notracks.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("100") TRK_TAIL);
-    bad += refused("notracks.trk", "no point-mass track", NULL);
-    put("backwards.txt", "t\tx\ty\n0\t0\t0\n0.04\t0.01\t0\n0.03\t0.02\t0\n0.12\t0.03\t0\n");
-    bad += refused("backwards.txt", "does not increase", NULL);
-    put("nan.txt", "t;x;y\n0;0;0\n0,04;NaN;0\n0,08;0,02;0\n0,12;0,03;0\n");
-    bad += refused("nan.txt", "not a number", NULL);
-    put("xonly.txt", "t,x\n0,0\n0.04,0.01\n0.08,0.02\n");
-    bad += refused("xonly.txt", "but no", NULL);
-    put("noheader.txt", "1 2 3\n4 5 6\n");
-    bad += refused("noheader.txt", "header", NULL);
-    put("short.txt", "t\tx\ty\n0\t0\t0\n");
-    bad += refused("short.txt", "fewer than 3", NULL);
-    put("binary.txt", "t\tx\ty\n\x01\x02\x7f\xff\n");
-    bad += refused("binary.txt", "not a number", NULL);
-    put("two.txt", "\tmass A\t\tmass B\t\t\nt\tx\ty\tx\ty\t\n0\t0\t0\t0\t0.05\n0.1\t0.1\t0\t0.1\t0.05\n"
-                   "0.2\t0.2\t0\t0.2\t0.05\n0.3\t0.3\t0\t0.3\t0.05\n");
-    bad += refused("two.txt", "which track is the centre", NULL);
+    bad += put_refused("empty.trk", "", "empty");
+    bad += put_refused("truncated.trk", TRK_HEAD TRK_CLIP TRK_DT("40") "<property name=\"coords\" type=\"obj", "line");
+    bad += put_refused("laughs.trk",
+                       "<?xml version=\"1.0\"?>\n<!DOCTYPE lolz [<!ENTITY lol \"lol\">"
+                       "<!ENTITY lol2 \"&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;\">"
+                       "<!ENTITY lol3 \"&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;\">]>\n"
+                       "<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\">&lol3;</object>\n",
+                       "DTD");
+    bad += put_refused("external.trk",
+                       "<?xml version=\"1.0\"?>\n<!DOCTYPE x SYSTEM \"http://example.invalid/x.dtd\">\n"
+                       "<object class=\"org.opensourcephysics.cabrillo.tracker.TrackerPanel\"></object>\n",
+                       "DTD");
+    bad += put_refused("nocoords.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_TRACK("30") TRK_TAIL, "coordinate system");
+    bad += put_refused("nodt.trk", TRK_HEAD TRK_CLIP TRK_COORDS("100") TRK_TRACK("30") TRK_TAIL, "frame duration");
+    bad +=
+        put_refused("zeroscale.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("0") TRK_TRACK("30") TRK_TAIL, "scale");
+    bad += put_refused("nan.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("100") TRK_TRACK("NaN") TRK_TAIL,
+                       "not a finite number");
+    bad +=
+        put_refused("negdt.trk", TRK_HEAD TRK_CLIP TRK_DT("-40") TRK_COORDS("100") TRK_TRACK("30") TRK_TAIL, "delta_t");
+    bad += put_refused("notracker.trk", "<?xml version=\"1.0\"?>\n<svg></svg>\n", "TrackerPanel");
+    bad +=
+        put_refused("notracks.trk", TRK_HEAD TRK_CLIP TRK_DT("40") TRK_COORDS("100") TRK_TAIL, "no point-mass track");
+    bad += put_refused("backwards.txt", "t\tx\ty\n0\t0\t0\n0.04\t0.01\t0\n0.03\t0.02\t0\n0.12\t0.03\t0\n",
+                       "does not increase");
+    bad += put_refused("nan.txt", "t;x;y\n0;0;0\n0,04;NaN;0\n0,08;0,02;0\n0,12;0,03;0\n", "not a number");
+    bad += put_refused("xonly.txt", "t,x\n0,0\n0.04,0.01\n0.08,0.02\n", "but no");
+    bad += put_refused("noheader.txt", "1 2 3\n4 5 6\n", "header");
+    bad += put_refused("short.txt", "t\tx\ty\n0\t0\t0\n", "fewer than 3");
+    bad += put_refused("binary.txt", "t\tx\ty\n\x01\x02\x7f\xff\n", "not a number");
+    bad += put_refused("two.txt",
+                       "\tmass A\t\tmass B\t\t\nt\tx\ty\tx\ty\t\n0\t0\t0\t0\t0.05\n0.1\t0.1\t0\t0.1\t0.05\n"
+                       "0.2\t0.2\t0\t0.2\t0.05\n0.3\t0.3\t0\t0.3\t0.05\n",
+                       "which track is the centre");
     bad += refused("two.txt", "no track named", "--centre=wheel");
     /* Larger than the bound: a sparse file of 65 MiB. */
     char path[256];
