@@ -282,7 +282,6 @@ int cmd_mc(int argc, char **argv)
     int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
     if (st != CLI_GO_ON) return st;
     cli_Batch b;
-    memset(&b, 0, sizeof b);
     long samples;
     uint64_t seed;
     double gap;
@@ -296,8 +295,7 @@ int cmd_mc(int argc, char **argv)
     jc_Setup setup;
     jc_SimOptions sim;
     jc_Model model;
-    if ((st = cli_batch_refuse_samples("mc", &sim_args)) != EXIT_OK) return st;
-    if ((st = cli_build_inputs("mc", &sa, &sim_args, &setup, &sim, &model)) != 0) return st;
+    if ((st = cli_batch_build_inputs("mc", &sa, &sim_args, &setup, &sim, &model)) != 0) return st;
     cli_McJob job;
     if ((st = cli_mc_job_init(&job, "mc", &sa, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != 0)
         return st;

@@ -126,7 +126,6 @@ int cmd_sweep(int argc, char **argv)
     int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
     if (st != CLI_GO_ON) return st;
     cli_Batch b;
-    memset(&b, 0, sizeof b);
     if ((st = cli_batch_configure("sweep", &o.batch, &b)) != EXIT_OK) return st;
     if (!o.batch.output) {
         cli_error("sweep: --output FILE.csv is required (- for standard output)");
@@ -135,8 +134,7 @@ int cmd_sweep(int argc, char **argv)
     sweep_job job;
     memset(&job, 0, sizeof job);
     jc_SimOptions sim;
-    if ((st = cli_batch_refuse_samples("sweep", &sim_args)) != EXIT_OK) return st;
-    if ((st = cli_build_inputs("sweep", &sa, &sim_args, &job.base, &sim, NULL)) != 0) return st;
+    if ((st = cli_batch_build_inputs("sweep", &sa, &sim_args, &job.base, &sim, NULL)) != 0) return st;
     char err[512];
     if (cli_setup_base(&sa, &job.base, err, sizeof err) != 0) {
         cli_error("sweep: %s", err);
