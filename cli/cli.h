@@ -132,6 +132,11 @@ int cli_sim_given(const cli_SimArgs *args, const char *long_name);
  * for a value out of range); 0 when all is well. */
 int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
                      jc_SimOptions *sim, jc_Model *model);
+/* cli_build_inputs for a command that needs no jc_Setup of its own (the
+ * model holds it): the model, and the simulation options when sim_args and
+ * sim are not NULL. */
+int cli_build_model(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_SimOptions *sim,
+                    jc_Model *model);
 /* A single-valued option: stores arg in *slot, or refuses a second value. */
 int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg);
 void cli_sim_help(FILE *out);

@@ -178,8 +178,7 @@ static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, an
         cli_error("animate: --sample-dt is set by --fps and --slowmo (dt = 1/(fps slowmo)); leave it out");
         return EXIT_USAGE;
     }
-    jc_Setup setup;
-    const int rc = cli_build_inputs("animate", sa, sim_args, &setup, sim, model);
+    const int rc = cli_build_model("animate", sa, sim_args, sim, model);
     if (rc == 0) sim->sample_dt_s = 1.0 / (o->fps * o->slowmo);
     return rc;
 }

@@ -431,6 +431,13 @@ int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs
     return 0;
 }
 
+int cli_build_model(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_SimOptions *sim,
+                    jc_Model *model)
+{
+    jc_Setup setup;
+    return cli_build_inputs(cmd, sa, sim_args, &setup, sim, model);
+}
+
 int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg)
 {
     if (*slot) {

@@ -230,12 +230,6 @@ static int make_figure(fig_Data *d, const plot_opts *o, const plot_kind *kind, f
     return rc;
 }
 
-static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Model *model, jc_SimOptions *sim)
-{
-    jc_Setup setup;
-    return cli_build_inputs("plot", sa, sim_args, &setup, sim, model);
-}
-
 int cmd_plot(int argc, char **argv)
 {
     plot_opts o = {0};
@@ -250,7 +244,7 @@ int cmd_plot(int argc, char **argv)
     memset(&d, 0, sizeof d);
     jc_Model model;
     jc_SimOptions sim;
-    if ((st = build_inputs(&sa, &sim_args, &model, &sim)) != 0) return st;
+    if ((st = cli_build_model("plot", &sa, &sim_args, &sim, &model)) != 0) return st;
     double max_samples = DEFAULT_MAX_SAMPLES;
     if (o.max_samples) {
         char msg[256];

@@ -190,10 +190,9 @@ int cmd_simulate(int argc, char **argv)
     cli_SimArgs sim_args;
     int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
     if (st != CLI_GO_ON) return st;
-    jc_Setup setup;
     jc_SimOptions opts;
     jc_Model model;
-    if ((st = cli_build_inputs("simulate", &sa, &sim_args, &setup, &opts, &model)) != 0) return st;
+    if ((st = cli_build_model("simulate", &sa, &sim_args, &opts, &model)) != 0) return st;
     if (o.csv && o.json && strcmp(o.csv, "-") == 0) {
         cli_error("simulate: --csv - and --json would both write to standard output; give --csv a file");
         return EXIT_USAGE;
