@@ -162,6 +162,16 @@ int cli_batch_configure(const char *cmd, const cli_BatchArgs *a, cli_Batch *b)
     return EXIT_OK;
 }
 
+int cli_batch_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, const cli_BatchArgs *batch_args,
+                            cli_BatchInputs *in)
+{
+    const int st = cli_command_parse(argc, argv, cmd, ctx, &in->args, &in->sim_args);
+    if (st != CLI_GO_ON) return st;
+    /* argv[0] is the command's name, as in the parse's messages. */
+    const int configured = cli_batch_configure(argv[0], batch_args, &in->job);
+    return configured == EXIT_OK ? CLI_GO_ON : configured;
+}
+
 int cli_batch_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
                            jc_SimOptions *sim, jc_Model *model)
 {

@@ -165,6 +165,18 @@ int cli_batch_configure(const char *cmd, const cli_BatchArgs *a, cli_Batch *b);
  * case records no trajectory). EXIT_OK, or the exit status after a message. */
 int cli_batch_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
                            jc_SimOptions *sim, jc_Model *model);
+/* A batch command's inputs (mc, sweep): its setup and simulation options as
+ * given, and the job configured from its batch options. */
+typedef struct {
+    cli_SetupArgs args;
+    cli_SimArgs sim_args;
+    cli_Batch job;
+} cli_BatchInputs;
+/* cli_command_parse into in's options, then cli_batch_configure of
+ * batch_args (the command's batch options, in ctx: filled by the parse)
+ * into in->job. CLI_GO_ON, or the exit status after --help or a message. */
+int cli_batch_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, const cli_BatchArgs *batch_args,
+                            cli_BatchInputs *in);
 /* Their help lines. */
 void cli_batch_help(void);
 
