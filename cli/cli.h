@@ -132,6 +132,24 @@ int cli_sim_given(const cli_SimArgs *args, const char *long_name);
  * for a value out of range); 0 when all is well. */
 int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
                      jc_SimOptions *sim, jc_Model *model);
+/* cli_build_inputs for a command that needs no jc_Setup of its own (the
+ * model holds it): the model, and the simulation options when sim_args and
+ * sim are not NULL. */
+int cli_build_model(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_SimOptions *sim,
+                    jc_Model *model);
+/* The shared inputs of a command that runs one simulation (simulate, plot,
+ * animate): the setup and simulation options as given, then the model and
+ * the simulation options built from them. */
+typedef struct {
+    cli_SetupArgs args;
+    cli_SimArgs sim_args;
+    jc_SimOptions sim;
+    jc_Model model;
+} cli_RunInputs;
+/* cli_command_parse into in's options. */
+int cli_run_inputs_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_RunInputs *in);
+/* cli_build_model from in's options into in's model and simulation options. */
+int cli_run_inputs_build(const char *cmd, cli_RunInputs *in);
 /* A single-valued option: stores arg in *slot, or refuses a second value. */
 int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg);
 void cli_sim_help(FILE *out);

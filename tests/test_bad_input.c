@@ -34,7 +34,9 @@ typedef struct {
 
 #define A(...) {__VA_ARGS__, NULL}
 #define SIM(...) A("simulate", __VA_ARGS__)
-#define INI SIM("--config", "@case.ini"), 2
+/* An experiment file (written to case.ini) that simulate --config refuses
+ * with the message. */
+#define INI_CASE(message, file) {SIM("--config", "@case.ini"), 2, message, CSV, file, 0, NULL}
 #define LONG_LINE "[body]\nradius = 0.1 m ; " \
     "xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\n"
 
@@ -113,37 +115,36 @@ static const bad_case cases[] = {
     {SIM("--config", "@case.ini", "--config", "@case.ini"), 2, "--config given twice", CSV, "", 0, NULL},
     {A("predict", "--dump-config", "--mu", "nan"), 2, "'nan'", NO_CSV, NULL, 0, NULL},
     /* ---- experiment files: FILE:LINE: and the bad key or value ---- */
-    {INI, "case.ini:3: unknown key 'colour' in [body] (allowed: radius, length, disc_mass, rod_mass, rod_offset, rod_radius)", CSV,
-     "[body]\nradius = 10 cm\ncolour = red\n", 0, NULL},
-    {INI, "case.ini:2: unknown section [bodyy]", CSV, "; a comment\n[bodyy]\nradius = 1\n", 0, NULL},
-    {INI, "case.ini:5: section [body] given twice (first on line 1)", CSV,
-     "[body]\nradius = 10 cm\n[incline]\nangle = 5\n[body]\n", 0, NULL},
-    {INI, "case.ini:3: key 'mu_s' given twice in [contact] (first on line 2)", CSV,
-     "[contact]\nmu_s = 0.1\nmu_s = 0.2\n", 0, NULL},
-    {INI, "case.ini:1: key 'radius' before any section", CSV, "radius = 1\n", 0, NULL},
-    {INI, "case.ini:2: angle: 'steep' is not a number", CSV, "[incline]\nangle = steep\n", 0, NULL},
-    {INI, "case.ini:2: radius: '10 furlongs' has an unknown unit 'furlongs'", CSV,
-     "[body]\nradius = 10 furlongs\n", 0, NULL},
-    {INI, "case.ini:2: mu_k: 'nan' is not a number", CSV, "[contact]\nmu_k = nan\n", 0, NULL},
-    {INI, "case.ini:2: restitution: empty value", CSV, "[contact]\nrestitution =\n", 0, NULL},
-    {INI, "case.ini:2: restitution: '0.5 0.6' has an unknown unit '0.6'", CSV,
-     "[contact]\nrestitution = 0.5 0.6\n", 0, NULL},
-    {INI, "case.ini:2: gravity: '1e999 m/s2' is too large", CSV, "[incline]\ngravity = 1e999 m/s2\n", 0, NULL},
-    {INI, "case.ini:2: expected 'key = value', '[section]' or a comment", CSV, "[body]\njust words\n", 0, NULL},
-    {INI, "case.ini:3: expected 'key = value'", CSV, "[contact]\nmu_s = 0.3\n    0.4\n", 0, NULL},
-    {INI, "case.ini:1: section header without ']'", CSV, "[body\nradius = 1\n", 0, NULL},
-    {INI, "case.ini:1: unexpected text after ']'", CSV, "[body] radius = 1\n", 0, NULL},
-    {INI, "case.ini:4: [part.3] without [part.2]", CSV,
-     "[part.1]\nkind = disc\nmass = 1 g\n[part.3]\nkind = rod\nmass = 1 g\n", 0, NULL},
-    {INI, "case.ini:1: [part.1] needs 'mass'", CSV, "[part.1]\nkind = disc\n", 0, NULL},
-    {INI, "case.ini:2: kind: unknown part kind 'cube'", CSV, "[part.1]\nkind = cube\nmass = 1 g\n", 0, NULL},
-    {INI, "case.ini:1: unknown section [part.0]", CSV, "[part.0]\n", 0, NULL},
-    {INI, "case.ini:1: unknown section [part.17]", CSV, "[part.17]\n", 0, NULL},
-    {INI, "case.ini:2: line too long (allowed: at most 160 characters)", CSV, LONG_LINE, 0, NULL},
-    {INI, "case.ini:2: NUL byte", CSV, "[body]\nradius\0 = 1\n", 19, NULL},
-    {INI, "restitution 2 is out of range (allowed: [0, 1])", CSV, "[contact]\nrestitution = 2\n", 0, NULL},
-    {INI, "reaches outside the rim", CSV, "[body]\nradius = 5 cm\n", 0, NULL},
-    {INI, "air density 5000 kg/m3", CSV, "[air]\ndensity = 5 g/cm3\n", 0, NULL},
+    INI_CASE("case.ini:3: unknown key 'colour' in [body] (allowed: radius, length, disc_mass, rod_mass, rod_offset, rod_radius)",
+             "[body]\nradius = 10 cm\ncolour = red\n"),
+    INI_CASE("case.ini:2: unknown section [bodyy]", "; a comment\n[bodyy]\nradius = 1\n"),
+    INI_CASE("case.ini:5: section [body] given twice (first on line 1)",
+             "[body]\nradius = 10 cm\n[incline]\nangle = 5\n[body]\n"),
+    INI_CASE("case.ini:3: key 'mu_s' given twice in [contact] (first on line 2)",
+             "[contact]\nmu_s = 0.1\nmu_s = 0.2\n"),
+    INI_CASE("case.ini:1: key 'radius' before any section", "radius = 1\n"),
+    INI_CASE("case.ini:2: angle: 'steep' is not a number", "[incline]\nangle = steep\n"),
+    INI_CASE("case.ini:2: radius: '10 furlongs' has an unknown unit 'furlongs'", "[body]\nradius = 10 furlongs\n"),
+    INI_CASE("case.ini:2: mu_k: 'nan' is not a number", "[contact]\nmu_k = nan\n"),
+    INI_CASE("case.ini:2: restitution: empty value", "[contact]\nrestitution =\n"),
+    INI_CASE("case.ini:2: restitution: '0.5 0.6' has an unknown unit '0.6'", "[contact]\nrestitution = 0.5 0.6\n"),
+    INI_CASE("case.ini:2: gravity: '1e999 m/s2' is too large", "[incline]\ngravity = 1e999 m/s2\n"),
+    INI_CASE("case.ini:2: expected 'key = value', '[section]' or a comment", "[body]\njust words\n"),
+    INI_CASE("case.ini:3: expected 'key = value'", "[contact]\nmu_s = 0.3\n    0.4\n"),
+    INI_CASE("case.ini:1: section header without ']'", "[body\nradius = 1\n"),
+    INI_CASE("case.ini:1: unexpected text after ']'", "[body] radius = 1\n"),
+    INI_CASE("case.ini:4: [part.3] without [part.2]",
+             "[part.1]\nkind = disc\nmass = 1 g\n[part.3]\nkind = rod\nmass = 1 g\n"),
+    INI_CASE("case.ini:1: [part.1] needs 'mass'", "[part.1]\nkind = disc\n"),
+    INI_CASE("case.ini:2: kind: unknown part kind 'cube'", "[part.1]\nkind = cube\nmass = 1 g\n"),
+    INI_CASE("case.ini:1: unknown section [part.0]", "[part.0]\n"),
+    INI_CASE("case.ini:1: unknown section [part.17]", "[part.17]\n"),
+    INI_CASE("case.ini:2: line too long (allowed: at most 160 characters)", LONG_LINE),
+    /* INI_CASE but for the length: the file goes on past its NUL byte. */
+    {SIM("--config", "@case.ini"), 2, "case.ini:2: NUL byte", CSV, "[body]\nradius\0 = 1\n", 19, NULL},
+    INI_CASE("restitution 2 is out of range (allowed: [0, 1])", "[contact]\nrestitution = 2\n"),
+    INI_CASE("reaches outside the rim", "[body]\nradius = 5 cm\n"),
+    INI_CASE("air density 5000 kg/m3", "[air]\ndensity = 5 g/cm3\n"),
     /* ---- the figure commands share the options and the checks ---- */
     {A("plot", "--what", "nosuch", "--output", "@fig.png"), 2, "'nosuch'", NO_CSV, NULL, 0, NULL},
     {A("plot", "--what", "overview", "--output", "@fig.png", "--mu", "nan"), 2, "'nan'", NO_CSV, NULL, 0, NULL},

@@ -1,6 +1,7 @@
 /* src/body.c: mass properties of composite bodies, checked against sums done
  * by hand here, and every validation path of jc_body_compute. */
 #include "test.h"
+#include "bad_values.h"
 
 #include <jumpcyl/jumpcyl.h>
 
@@ -196,39 +197,23 @@ static int check_bad(const bad_case *c)
     return 0;
 }
 
-#define BAD_PART(label, field, v, key, shown)                                   \
-    do {                                                                        \
-        bad_case c = {label, paper_body(), key, shown};                         \
-        c.def.parts[1].field = (v);                                             \
-        if (check_bad(&c)) return 1;                                            \
-    } while (0)
+/* A case from the paper's body (a disc, part 1, and a rod, part 2). */
+#define PAPER_BODY ((bad_case){.def = paper_body()})
 
 static int test_invalid_parts(void)
 {
-    BAD_PART("negative mass", mass_kg, -0.01, "mass", "-0.01");
-    BAD_PART("NaN mass", mass_kg, NAN, "mass", "nan");
-    BAD_PART("inf mass", mass_kg, INFINITY, "mass", "inf");
-    BAD_PART("negative offset", offset_m, -0.02, "offset", "-0.02");
-    BAD_PART("NaN offset", offset_m, NAN, "offset", "nan");
-    BAD_PART("inf offset", offset_m, INFINITY, "offset", "inf");
-    BAD_PART("NaN angle", angle_rad, NAN, "angle", "nan");
-    BAD_PART("inf angle", angle_rad, -INFINITY, "angle", "inf");
-    BAD_PART("NaN radius", radius_m, NAN, "radius", "nan");
-    BAD_PART("inf radius", radius_m, INFINITY, "radius", "inf");
-    BAD_PART("rod radius negative", radius_m, -0.001, "radius", "-0.001");
-    BAD_PART("rod outside the rim", offset_m, 0.098, "rim", "0.098");
-    BAD_PART("unknown kind", kind, (jc_PartKind)7, "kind", "7");
+    BAD_VALUES(PAPER_BODY, def.parts[1].mass_kg, "mass", {-0.01, "-0.01"}, {NAN, "nan"}, {INFINITY, "inf"});
+    BAD_VALUES(PAPER_BODY, def.parts[1].offset_m, "offset", {-0.02, "-0.02"}, {NAN, "nan"}, {INFINITY, "inf"});
+    BAD_VALUES(PAPER_BODY, def.parts[1].angle_rad, "angle", {NAN, "nan"}, {-INFINITY, "inf"});
+    BAD_VALUES(PAPER_BODY, def.parts[1].radius_m, "radius", {NAN, "nan"}, {INFINITY, "inf"}, {-0.001, "-0.001"});
+    BAD_VALUES(PAPER_BODY, def.parts[1].offset_m, "rim", {0.098, "0.098"} /* the rod outside the rim */);
     /* The message says which part: the rod is part 2. */
-    BAD_PART("part index", mass_kg, -1.0, "part 2", NULL);
+    BAD_VALUES(PAPER_BODY, def.parts[1].mass_kg, "part 2", {-1.0, NULL});
+    BAD_VALUES(PAPER_BODY, def.parts[0].radius_m, "radius", {0.0, "0"}, {-0.05, "-0.05"});
+    BAD_VALUES(PAPER_BODY, def.parts[0].radius_m, "rim", {0.11, "0.11"} /* the disc larger than the rim */);
 
-    bad_case c = {"disc radius 0", paper_body(), "radius", "0"};
-    c.def.parts[0].radius_m = 0.0;
-    if (check_bad(&c)) return 1;
-    c = (bad_case){"disc radius negative", paper_body(), "radius", "-0.05"};
-    c.def.parts[0].radius_m = -0.05;
-    if (check_bad(&c)) return 1;
-    c = (bad_case){"disc larger than the rim", paper_body(), "rim", "0.11"};
-    c.def.parts[0].radius_m = 0.11;
+    bad_case c = {"unknown kind", paper_body(), "kind", "7"};
+    c.def.parts[1].kind = (jc_PartKind)7;
     if (check_bad(&c)) return 1;
     c = (bad_case){"hoop radius 0", disc_plus((jc_Part){JC_PART_HOOP, 0.01, 0.0, 0.0, 0.0}), "radius", NULL};
     if (check_bad(&c)) return 1;
@@ -243,17 +228,9 @@ static int test_invalid_parts(void)
 
 static int test_invalid_body(void)
 {
-    bad_case c = {"rim radius 0", paper_body(), "radius", "0"};
-    c.def.radius_m = 0.0;
-    if (check_bad(&c)) return 1;
-    c.what = "rim radius negative", c.def.radius_m = -0.1, c.value = "-0.1";
-    if (check_bad(&c)) return 1;
-    c.what = "rim radius NaN", c.def.radius_m = NAN, c.value = "nan";
-    if (check_bad(&c)) return 1;
-    c.what = "rim radius inf", c.def.radius_m = INFINITY, c.value = "inf";
-    if (check_bad(&c)) return 1;
+    BAD_VALUES(PAPER_BODY, def.radius_m, "radius", {0.0, "0"}, {-0.1, "-0.1"}, {NAN, "nan"}, {INFINITY, "inf"});
 
-    c = (bad_case){"no parts", paper_body(), "parts", "0"};
+    bad_case c = {"no parts", paper_body(), "parts", "0"};
     c.def.part_count = 0;
     if (check_bad(&c)) return 1;
     c.what = "negative part count", c.def.part_count = -3, c.value = "-3";

@@ -2,6 +2,7 @@
  * and src/status.c: the paper's numbers as physics.md states them, every
  * validation path, and what the model precomputes. */
 #include "test.h"
+#include "bad_values.h"
 
 #include <jumpcyl/jumpcyl.h>
 
@@ -107,47 +108,29 @@ static int check_bad(const bad_case *c)
     return 0;
 }
 
-#define BAD(label, field, v, key, shown)                           \
-    do {                                                           \
-        bad_case c = {label, jc_paper_setup(), key, shown};        \
-        c.s.field = (v);                                           \
-        if (check_bad(&c)) return 1;                               \
-    } while (0)
+/* A case from the paper's setup. */
+#define PAPER ((bad_case){.s = jc_paper_setup()})
 
 static int test_invalid_setups(void)
 {
-    BAD("incline < 0", incline_rad, -0.01, "incline", NULL);
-    BAD("incline 90 deg", incline_rad, PI / 2, "incline", "90");
-    BAD("incline above 90", incline_rad, 100 * DEG, "incline", "100");
-    BAD("incline NaN", incline_rad, NAN, "incline", "nan");
-    BAD("incline inf", incline_rad, INFINITY, "incline", "inf");
-    BAD("gravity 0", gravity_mps2, 0.0, "gravity", "0");
-    BAD("gravity < 0", gravity_mps2, -9.8, "gravity", "-9.8");
-    BAD("gravity NaN", gravity_mps2, NAN, "gravity", "nan");
-    BAD("gravity inf", gravity_mps2, INFINITY, "gravity", "inf");
-    BAD("mu_s < 0", mu_static, -0.1, "static friction", "-0.1");
-    BAD("mu_s NaN", mu_static, NAN, "static friction", "nan");
-    BAD("mu_s inf", mu_static, INFINITY, "static friction", "inf");
-    BAD("mu_k < 0", mu_kinetic, -0.2, "kinetic friction", "-0.2");
-    BAD("mu_k NaN", mu_kinetic, NAN, "kinetic friction", "nan");
-    BAD("restitution < 0", restitution, -0.1, "restitution", "-0.1");
-    BAD("restitution > 1", restitution, 1.5, "restitution", "1.5");
-    BAD("restitution NaN", restitution, NAN, "restitution", "nan");
-    BAD("theta0 NaN", theta0_rad, NAN, "initial angle", "nan");
-    BAD("theta0 inf", theta0_rad, -INFINITY, "initial angle", "inf");
-    BAD("omega0 NaN", omega0_radps, NAN, "angular velocity", "nan");
-    BAD("omega0 inf", omega0_radps, INFINITY, "angular velocity", "inf");
-    BAD("ramp 0", ramp_length_m, 0.0, "ramp length", "0");
-    BAD("ramp < 0", ramp_length_m, -1.0, "ramp length", "-1");
-    BAD("ramp NaN", ramp_length_m, NAN, "ramp length", "nan");
-    BAD("ramp inf", ramp_length_m, INFINITY, "ramp length", "inf");
-    BAD("ramp beyond the turn limit", ramp_length_m, 2 * PI * 0.1 * JC_MAX_RAMP_TURNS * 1.01, "ramp length", NULL);
-    BAD("paper d < 0", paper_cm_offset_m, -0.01, "CM offset", "-0.01");
-    BAD("paper d NaN", paper_cm_offset_m, NAN, "CM offset", "nan");
-    BAD("paper d beyond the rim", paper_cm_offset_m, 0.2, "CM offset", "0.2");
+    BAD_VALUES(PAPER, s.incline_rad, "incline", {-0.01, NULL}, {PI / 2, "90"}, {100 * DEG, "100"}, {NAN, "nan"},
+               {INFINITY, "inf"});
+    BAD_VALUES(PAPER, s.gravity_mps2, "gravity", {0.0, "0"}, {-9.8, "-9.8"}, {NAN, "nan"}, {INFINITY, "inf"});
+    BAD_VALUES(PAPER, s.mu_static, "static friction", {-0.1, "-0.1"}, {NAN, "nan"}, {INFINITY, "inf"});
+    BAD_VALUES(PAPER, s.mu_kinetic, "kinetic friction", {-0.2, "-0.2"}, {NAN, "nan"});
+    BAD_VALUES(PAPER, s.restitution, "restitution", {-0.1, "-0.1"}, {1.5, "1.5"}, {NAN, "nan"});
+    BAD_VALUES(PAPER, s.theta0_rad, "initial angle", {NAN, "nan"}, {-INFINITY, "inf"});
+    BAD_VALUES(PAPER, s.omega0_radps, "angular velocity", {NAN, "nan"}, {INFINITY, "inf"});
+    BAD_VALUES(PAPER, s.ramp_length_m, "ramp length", {0.0, "0"}, {-1.0, "-1"}, {NAN, "nan"}, {INFINITY, "inf"},
+               {2 * PI * 0.1 * JC_MAX_RAMP_TURNS * 1.01, NULL} /* beyond the turn limit */);
+    BAD_VALUES(PAPER, s.paper_cm_offset_m, "CM offset", {-0.01, "-0.01"}, {NAN, "nan"},
+               {0.2, "0.2"} /* beyond the rim */);
     /* Body errors come through with the body's message. */
-    BAD("body: negative mass", body.parts[1].mass_kg, -0.5, "mass", "-0.5");
-    BAD("body: no parts", body.part_count, 0, "parts", NULL);
+    BAD_VALUES(PAPER, s.body.parts[1].mass_kg, "mass", {-0.5, "-0.5"});
+    bad_case c = PAPER;
+    c.what = "body: no parts", c.key = "parts";
+    c.s.body.part_count = 0;
+    if (check_bad(&c)) return 1;
     return 0;
 }
 

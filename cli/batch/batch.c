@@ -148,12 +148,8 @@ int cli_batch_take(const char *cmd, cli_BatchArgs *a, int opt, const char *arg)
 int cli_batch_configure(const char *cmd, const cli_BatchArgs *a, cli_Batch *b)
 {
     char err[256];
-    b->cmd = cmd;
-    b->output = a->output;
-    b->resume = a->resume;
-    b->quiet = a->quiet;
-    b->shard = (cli_Shard){1, 1};
-    b->threads = 0;
+    /* The whole job starts here: what the command adds later is zero until then. */
+    *b = (cli_Batch){.cmd = cmd, .output = a->output, .resume = a->resume, .quiet = a->quiet, .shard = {1, 1}};
     if ((a->threads && cli_threads_parse(a->threads, &b->threads, err, sizeof err) != 0) ||
         (a->shard && cli_shard_parse(a->shard, &b->shard, err, sizeof err) != 0)) {
         cli_error("%s: %s", cmd, err);
@@ -166,13 +162,26 @@ int cli_batch_configure(const char *cmd, const cli_BatchArgs *a, cli_Batch *b)
     return EXIT_OK;
 }
 
-int cli_batch_refuse_samples(const char *cmd, const cli_SimArgs *sim_args)
+int cli_batch_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, const cli_BatchArgs *batch_args,
+                            cli_BatchInputs *in)
 {
-    if (!cli_sim_given(sim_args, "sample-dt")) return EXIT_OK;
-    cli_error("%s: --sample-dt has no effect here: a case keeps its events' summary, not a trajectory "
-              "(use 'jumpcyl simulate --sample-dt' for one run)",
-              cmd);
-    return EXIT_USAGE;
+    const int st = cli_command_parse(argc, argv, cmd, ctx, &in->args, &in->sim_args);
+    if (st != CLI_GO_ON) return st;
+    /* argv[0] is the command's name, as in the parse's messages. */
+    const int configured = cli_batch_configure(argv[0], batch_args, &in->job);
+    return configured == EXIT_OK ? CLI_GO_ON : configured;
+}
+
+int cli_batch_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
+                           jc_SimOptions *sim, jc_Model *model)
+{
+    if (cli_sim_given(sim_args, "sample-dt")) {
+        cli_error("%s: --sample-dt has no effect here: a case keeps its events' summary, not a trajectory "
+                  "(use 'jumpcyl simulate --sample-dt' for one run)",
+                  cmd);
+        return EXIT_USAGE;
+    }
+    return cli_build_inputs(cmd, sa, sim_args, setup, sim, model);
 }
 
 void cli_batch_help(void)

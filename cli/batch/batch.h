@@ -158,11 +158,25 @@ typedef struct {
         {"shard", required_argument, 0, 's'}, {"resume", no_argument, 0, 'r'}, {"quiet", no_argument, 0, 'q'}
 /* Takes one of them: 0 when taken, EXIT_USAGE after a message, 1 if opt is not one. */
 int cli_batch_take(const char *cmd, cli_BatchArgs *a, int opt, const char *arg);
-/* Their values into the job: EXIT_OK, or EXIT_USAGE after a message. */
-int cli_batch_configure(const char *cmd, const cli_BatchArgs *a, cli_Batch *b);
-/* --sample-dt is refused: a case records no trajectory. EXIT_OK, or
+/* Their values into a new job (every other field zero): EXIT_OK, or
  * EXIT_USAGE after a message. */
-int cli_batch_refuse_samples(const char *cmd, const cli_SimArgs *sim_args);
+int cli_batch_configure(const char *cmd, const cli_BatchArgs *a, cli_Batch *b);
+/* cli_build_inputs for a batch command: --sample-dt is refused first (a
+ * case records no trajectory). EXIT_OK, or the exit status after a message. */
+int cli_batch_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
+                           jc_SimOptions *sim, jc_Model *model);
+/* A batch command's inputs (mc, sweep): its setup and simulation options as
+ * given, and the job configured from its batch options. */
+typedef struct {
+    cli_SetupArgs args;
+    cli_SimArgs sim_args;
+    cli_Batch job;
+} cli_BatchInputs;
+/* cli_command_parse into in's options, then cli_batch_configure of
+ * batch_args (the command's batch options, in ctx: filled by the parse)
+ * into in->job. CLI_GO_ON, or the exit status after --help or a message. */
+int cli_batch_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, const cli_BatchArgs *batch_args,
+                            cli_BatchInputs *in);
 /* Their help lines. */
 void cli_batch_help(void);
 

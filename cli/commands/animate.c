@@ -170,17 +170,15 @@ static int check_args(const animate_args *a, animate_opts *o)
     return 0;
 }
 
-static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, animate_opts *o,
-                        jc_Model *model, jc_SimOptions *sim)
+static int build_inputs(cli_RunInputs *in, animate_opts *o)
 {
-    o->t_max_given = cli_sim_given(sim_args, "t-max");
-    if (cli_sim_given(sim_args, "sample-dt")) {
+    o->t_max_given = cli_sim_given(&in->sim_args, "t-max");
+    if (cli_sim_given(&in->sim_args, "sample-dt")) {
         cli_error("animate: --sample-dt is set by --fps and --slowmo (dt = 1/(fps slowmo)); leave it out");
         return EXIT_USAGE;
     }
-    jc_Setup setup;
-    const int rc = cli_build_inputs("animate", sa, sim_args, &setup, sim, model);
-    if (rc == 0) sim->sample_dt_s = 1.0 / (o->fps * o->slowmo);
+    const int rc = cli_run_inputs_build("animate", in);
+    if (rc == 0) in->sim.sample_dt_s = 1.0 / (o->fps * o->slowmo);
     return rc;
 }
 
@@ -450,28 +448,25 @@ static int animate_run(const jc_Model *model, const jc_Run *run, const animate_o
 int cmd_animate(int argc, char **argv)
 {
     animate_args a = {0};
-    cli_SetupArgs sa;
-    cli_SimArgs sim_args;
-    int st = cli_command_parse(argc, argv, &command, &a, &sa, &sim_args);
+    cli_RunInputs in;
+    int st = cli_run_inputs_parse(argc, argv, &command, &a, &in);
     if (st != CLI_GO_ON) return st;
     animate_opts o;
-    jc_Model model;
-    jc_SimOptions sim;
-    if ((st = check_args(&a, &o)) != 0 || (st = build_inputs(&sa, &sim_args, &o, &model, &sim)) != 0) return st;
+    if ((st = check_args(&a, &o)) != 0 || (st = build_inputs(&in, &o)) != 0) return st;
     /* The target is checked before the work: a read-only file is refused at once. */
     if ((o.format == VID_FRAMES ? cli_check_output_dir(o.output) : cli_output_check_target(o.output)) != 0)
         return EXIT_FAIL;
     jc_Run run;
     double film_end = 0;
-    if ((st = check_length(&model, &sim, &o, &film_end)) != 0) return st;
+    if ((st = check_length(&in.model, &in.sim, &o, &film_end)) != 0) return st;
     /* The film's run stops where the film does: the same run up to there. */
-    sim.t_max_s = fmin(sim.t_max_s, film_end);
-    sim.max_samples = (int)fmin(1e8, (double)o.max_frames + sim.max_events + 16.0);
-    if ((st = cli_simulate(&model, &sim, &run, "animate")) != JC_OK) {
+    in.sim.t_max_s = fmin(in.sim.t_max_s, film_end);
+    in.sim.max_samples = (int)fmin(1e8, (double)o.max_frames + in.sim.max_events + 16.0);
+    if ((st = cli_simulate(&in.model, &in.sim, &run, "animate")) != JC_OK) {
         jc_run_free(&run);
         return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
     }
-    st = animate_run(&model, &run, &o);
+    st = animate_run(&in.model, &run, &o);
     jc_run_free(&run);
     return st != EXIT_OK && cli_stop_requested() ? cli_stop_status() : st;
 }

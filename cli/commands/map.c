@@ -579,15 +579,13 @@ int cmd_map(int argc, char **argv)
     memset(&files, 0, sizeof files);
     if ((st = check_output(&o, &files)) != EXIT_OK) return st;
     cli_Batch b;
-    memset(&b, 0, sizeof b);
     if ((st = cli_batch_configure("map", &o.batch, &b)) != EXIT_OK) return st;
     b.output = NULL; /* the rows go to the consumer (the map, STEM.csv), not to a file of the engine's */
     map_job job;
     memset(&job, 0, sizeof job);
     jc_Setup fixed;
     jc_SimOptions sim;
-    if ((st = cli_batch_refuse_samples("map", &sim_args)) != EXIT_OK) return st;
-    if ((st = cli_build_inputs("map", &sa, &sim_args, &fixed, &sim, NULL)) != 0) return st;
+    if ((st = cli_batch_build_inputs("map", &sa, &sim_args, &fixed, &sim, NULL)) != 0) return st;
     char err[512];
     if (cli_setup_base(&sa, &job.base, err, sizeof err) != 0) {
         cli_error("map: %s", err);

@@ -277,29 +277,24 @@ int cmd_mc(int argc, char **argv)
 {
     mc_opts o;
     memset(&o, 0, sizeof o);
-    cli_SetupArgs sa;
-    cli_SimArgs sim_args;
-    int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
+    cli_BatchInputs in;
+    int st = cli_batch_command_parse(argc, argv, &command, &o, &o.batch, &in);
     if (st != CLI_GO_ON) return st;
-    cli_Batch b;
-    memset(&b, 0, sizeof b);
     long samples;
     uint64_t seed;
     double gap;
-    if ((st = cli_batch_configure("mc", &o.batch, &b)) != EXIT_OK || (st = parse_numbers(&o, &samples, &seed, &gap)))
-        return st;
+    if ((st = parse_numbers(&o, &samples, &seed, &gap)) != EXIT_OK) return st;
     if (o.summarize) return summarize(&o, gap);
-    if (b.output && strcmp(b.output, "-") == 0) {
+    if (in.job.output && strcmp(in.job.output, "-") == 0) {
         cli_error("mc: --output - is not allowed: the summary goes to standard output; give --output FILE.csv");
         return EXIT_USAGE;
     }
     jc_Setup setup;
     jc_SimOptions sim;
     jc_Model model;
-    if ((st = cli_batch_refuse_samples("mc", &sim_args)) != EXIT_OK) return st;
-    if ((st = cli_build_inputs("mc", &sa, &sim_args, &setup, &sim, &model)) != 0) return st;
+    if ((st = cli_batch_build_inputs("mc", &in.args, &in.sim_args, &setup, &sim, &model)) != 0) return st;
     cli_McJob job;
-    if ((st = cli_mc_job_init(&job, "mc", &sa, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != 0)
+    if ((st = cli_mc_job_init(&job, "mc", &in.args, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != 0)
         return st;
     char *header = cli_batch_header(job.params, job.n);
     cli_McTally tally;
@@ -309,11 +304,11 @@ int cmd_mc(int argc, char **argv)
         cli_mc_tally_free(&tally);
         return EXIT_FAIL;
     }
-    cli_mc_batch(&b, &job, &tally, samples, &sim);
-    b.header = header;
-    st = cli_batch_run(&b);
+    cli_mc_batch(&in.job, &job, &tally, samples, &sim);
+    in.job.header = header;
+    st = cli_batch_run(&in.job);
     long lo, hi;
-    cli_shard_range(&b.shard, samples, &lo, &hi);
+    cli_shard_range(&in.job.shard, samples, &lo, &hi);
     if (st == EXIT_OK && cli_batch_is_writer()) {
         if (!o.json) {
             printf("Monte Carlo: %ld samples (seed %llu) of the full model about this setup:\n", hi - lo,
@@ -321,7 +316,7 @@ int cmd_mc(int argc, char **argv)
             cli_print_setup(stdout, &model, 1);
             printf("\n");
         }
-        st = report(&job, &tally, hi - lo, gap, o.json, &b.shard);
+        st = report(&job, &tally, hi - lo, gap, o.json, &in.job.shard);
     }
     cli_mc_tally_free(&tally);
     free(header);

@@ -431,6 +431,23 @@ int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs
     return 0;
 }
 
+int cli_build_model(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_SimOptions *sim,
+                    jc_Model *model)
+{
+    jc_Setup setup;
+    return cli_build_inputs(cmd, sa, sim_args, &setup, sim, model);
+}
+
+int cli_run_inputs_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_RunInputs *in)
+{
+    return cli_command_parse(argc, argv, cmd, ctx, &in->args, &in->sim_args);
+}
+
+int cli_run_inputs_build(const char *cmd, cli_RunInputs *in)
+{
+    return cli_build_model(cmd, &in->args, &in->sim_args, &in->sim, &in->model);
+}
+
 int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg)
 {
     if (*slot) {

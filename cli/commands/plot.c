@@ -230,27 +230,18 @@ static int make_figure(fig_Data *d, const plot_opts *o, const plot_kind *kind, f
     return rc;
 }
 
-static int build_inputs(const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Model *model, jc_SimOptions *sim)
-{
-    jc_Setup setup;
-    return cli_build_inputs("plot", sa, sim_args, &setup, sim, model);
-}
-
 int cmd_plot(int argc, char **argv)
 {
     plot_opts o = {0};
-    cli_SetupArgs sa;
-    cli_SimArgs sim_args;
-    int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
+    cli_RunInputs in;
+    int st = cli_run_inputs_parse(argc, argv, &command, &o, &in);
     if (st != CLI_GO_ON) return st;
     const plot_kind *kind;
     fig_Format format;
     if ((st = check_opts(&o, &kind, &format)) != 0) return st;
     fig_Data d;
     memset(&d, 0, sizeof d);
-    jc_Model model;
-    jc_SimOptions sim;
-    if ((st = build_inputs(&sa, &sim_args, &model, &sim)) != 0) return st;
+    if ((st = cli_run_inputs_build("plot", &in)) != 0) return st;
     double max_samples = DEFAULT_MAX_SAMPLES;
     if (o.max_samples) {
         char msg[256];
@@ -273,17 +264,17 @@ int cmd_plot(int argc, char **argv)
         cli_error("plot: gnuplot was not found in PATH; install it (Debian: sudo apt-get install gnuplot-nox)");
         return EXIT_FAIL;
     }
-    if ((kind->needs & NEED_UNCERTAINTY) && cli_setup_given(&sa, "incline")) {
+    if ((kind->needs & NEED_UNCERTAINTY) && cli_setup_given(&in.args, "incline")) {
         cli_error("plot: --what %s shows the table's inclines (15, 30, 45 deg); leave out --incline", kind->name);
         return EXIT_USAGE;
     }
-    d.model = &model;
-    d.setup_args = &sa;
-    fig_caption(&model, d.caption, sizeof d.caption);
+    d.model = &in.model;
+    d.setup_args = &in.args;
+    fig_caption(&in.model, d.caption, sizeof d.caption);
     if (kind->panel == NULL) d.caption[0] = '\0';
     char cmdline[2048];
     fig_command_line(argc, argv, cmdline, sizeof cmdline);
-    st = make_figure(&d, &o, kind, format, &sim, cli_sim_given(&sim_args, "sample-dt"), max_samples, cmdline);
+    st = make_figure(&d, &o, kind, format, &in.sim, cli_sim_given(&in.sim_args, "sample-dt"), max_samples, cmdline);
     if (d.have_run) jc_run_free(&d.run);
     if (st == EXIT_OK) printf("Figure: %s\n", o.output);
     return st;

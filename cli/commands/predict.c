@@ -125,9 +125,8 @@ int cmd_predict(int argc, char **argv)
     int st = cli_json_command_parse(argc, argv, help, &json, &sa);
     if (st != CLI_GO_ON) return st;
 
-    jc_Setup setup;
     jc_Model model;
-    if ((st = cli_build_inputs("predict", &sa, NULL, &setup, NULL, &model)) != 0) return st;
+    if ((st = cli_build_model("predict", &sa, NULL, NULL, &model)) != 0) return st;
     char err[512];
     jc_PaperResult paper;
     jc_RollingResult rolling;

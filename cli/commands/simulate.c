@@ -186,21 +186,17 @@ static int on_event(void *ctx, const jc_Event *e)
 int cmd_simulate(int argc, char **argv)
 {
     simulate_opts o = {0};
-    cli_SetupArgs sa;
-    cli_SimArgs sim_args;
-    int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
+    cli_RunInputs in;
+    int st = cli_run_inputs_parse(argc, argv, &command, &o, &in);
     if (st != CLI_GO_ON) return st;
-    jc_Setup setup;
-    jc_SimOptions opts;
-    jc_Model model;
-    if ((st = cli_build_inputs("simulate", &sa, &sim_args, &setup, &opts, &model)) != 0) return st;
+    if ((st = cli_run_inputs_build("simulate", &in)) != 0) return st;
     if (o.csv && o.json && strcmp(o.csv, "-") == 0) {
         cli_error("simulate: --csv - and --json would both write to standard output; give --csv a file");
         return EXIT_USAGE;
     }
     cli_Output csv;
     memset(&csv, 0, sizeof csv);
-    sim_stream out = {&model, o.json, !o.json, o.csv ? &csv : NULL, {0}, 0, 0, 0, 0};
+    sim_stream out = {&in.model, o.json, !o.json, o.csv ? &csv : NULL, {0}, 0, 0, 0, 0};
     jc_summary_init(&out.sum);
     if (o.csv) {
         if (cli_output_begin(&csv, o.csv, 1) != 0) return EXIT_FAIL;
@@ -214,12 +210,12 @@ int cmd_simulate(int argc, char **argv)
             return EXIT_FAIL;
         }
     }
-    if (out.json && cli_sim_json_begin(stdout, &model) != 0) out.write_failed = 1;
-    if (out.text) print_head(&model, &opts);
+    if (out.json && cli_sim_json_begin(stdout, &in.model) != 0) out.write_failed = 1;
+    if (out.text) print_head(&in.model, &in.sim);
     check_stdout(&out);
     const jc_Recorder rec = {&out, on_event, o.csv ? on_sample : NULL};
     jc_Run run;
-    st = out.write_failed ? JC_ESTOPPED : cli_simulate_stream(&model, &opts, &rec, &run, "simulate");
+    st = out.write_failed ? JC_ESTOPPED : cli_simulate_stream(&in.model, &in.sim, &rec, &run, "simulate");
     if (st == JC_OK && o.csv && cli_output_commit(&csv, CLI_CHECK_WRITES) != 0) return EXIT_FAIL;
     if (st != JC_OK) {
         if (out.csv_errno)
@@ -230,11 +226,11 @@ int cmd_simulate(int argc, char **argv)
         else if (out.write_failed && !out.csv_errno) cli_error("simulate: out of memory for the JSON document");
         return EXIT_FAIL;
     }
-    warn_energy_gain(&model, &run);
+    warn_energy_gain(&in.model, &run);
     if (out.json) {
-        cli_sim_json_end(stdout, &model, &run, &out.sum);
+        cli_sim_json_end(stdout, &in.model, &run, &out.sum);
     } else if (out.text) {
-        print_tail(&model, &run, &out.sum);
+        print_tail(&in.model, &run, &out.sum);
         if (o.csv) printf("Trajectory: %d samples written to %s\n", run.sample_count, o.csv);
     }
     check_stdout(&out);
@@ -244,6 +240,6 @@ int cmd_simulate(int argc, char **argv)
     }
     if (run.termination == JC_END_SAMPLE_LIMIT)
         cli_error("simulate: the run stopped at the sample limit (%d samples); raise --sample-dt or lower --t-max",
-                  opts.max_samples);
+                  in.sim.max_samples);
     return cli_stdout_finish();
 }

@@ -121,13 +121,9 @@ int cmd_sweep(int argc, char **argv)
 {
     sweep_opts o;
     memset(&o, 0, sizeof o);
-    cli_SetupArgs sa;
-    cli_SimArgs sim_args;
-    int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
+    cli_BatchInputs in;
+    int st = cli_batch_command_parse(argc, argv, &command, &o, &o.batch, &in);
     if (st != CLI_GO_ON) return st;
-    cli_Batch b;
-    memset(&b, 0, sizeof b);
-    if ((st = cli_batch_configure("sweep", &o.batch, &b)) != EXIT_OK) return st;
     if (!o.batch.output) {
         cli_error("sweep: --output FILE.csv is required (- for standard output)");
         return EXIT_USAGE;
@@ -135,15 +131,14 @@ int cmd_sweep(int argc, char **argv)
     sweep_job job;
     memset(&job, 0, sizeof job);
     jc_SimOptions sim;
-    if ((st = cli_batch_refuse_samples("sweep", &sim_args)) != EXIT_OK) return st;
-    if ((st = cli_build_inputs("sweep", &sa, &sim_args, &job.base, &sim, NULL)) != 0) return st;
+    if ((st = cli_batch_build_inputs("sweep", &in.args, &in.sim_args, &job.base, &sim, NULL)) != 0) return st;
     char err[512];
-    if (cli_setup_base(&sa, &job.base, err, sizeof err) != 0) {
+    if (cli_setup_base(&in.args, &job.base, err, sizeof err) != 0) {
         cli_error("sweep: %s", err);
         return EXIT_USAGE;
     }
-    job.args = &sa;
-    if ((st = parse_params(&o, &sa, &job)) != EXIT_OK) {
+    job.args = &in.args;
+    if ((st = parse_params(&o, &in.args, &job)) != EXIT_OK) {
         free_params(&job);
         return st;
     }
@@ -160,18 +155,18 @@ int cmd_sweep(int argc, char **argv)
         free_params(&job);
         return EXIT_FAIL;
     }
-    b.total = (long)total;
-    b.input_columns = job.n;
-    b.header = header;
-    b.sim = &sim;
-    b.make_case = make_case;
-    b.ctx = &job;
+    in.job.total = (long)total;
+    in.job.input_columns = job.n;
+    in.job.header = header;
+    in.job.sim = &sim;
+    in.job.make_case = make_case;
+    in.job.ctx = &job;
     const double t0 = cli_now_s();
-    st = cli_batch_run(&b);
+    st = cli_batch_run(&in.job);
     long lo, hi;
-    cli_shard_range(&b.shard, b.total, &lo, &hi);
-    if (st == EXIT_OK && cli_batch_is_writer() && strcmp(b.output, "-") != 0)
-        printf("Sweep: %ld cases%s in %s (%.1f s)\n", hi - lo, b.shard.n > 1 ? " (this shard)" : "", b.output,
+    cli_shard_range(&in.job.shard, in.job.total, &lo, &hi);
+    if (st == EXIT_OK && cli_batch_is_writer() && strcmp(in.job.output, "-") != 0)
+        printf("Sweep: %ld cases%s in %s (%.1f s)\n", hi - lo, in.job.shard.n > 1 ? " (this shard)" : "", in.job.output,
                cli_now_s() - t0);
     free(header);
     free_params(&job);

@@ -373,46 +373,59 @@ static int test_mc_shards_are_the_whole_job(void)
     return 0;
 }
 
+/* A case's words (the test's own, one space apart) as arguments, in place;
+ * returns how many. */
+static int split_words(char *words, const char **args, int max)
+{
+    int n = 0;
+    char *save = NULL;
+    for (char *w = strtok_r(words, " ", &save); w && n < max; w = strtok_r(NULL, " ", &save)) args[n++] = w;
+    return n;
+}
+
 static int test_bad_values(void)
 {
     char out[128];
     path_in(out, sizeof out, "bad.csv");
-    static const char *const cases[][8] = {
-        {"sweep", "--vary", "incline=95", "--output", NULL},
-        {"sweep", "--vary", "incline=30:10:5", "--output", NULL},
-        {"sweep", "--vary", "incline=10:30:0", "--output", NULL},
-        {"sweep", "--vary", "incline=", "--output", NULL},
-        {"sweep", "--vary", "incline=10,,20", "--output", NULL},
-        {"sweep", "--vary", "wheels=3", "--output", NULL},
-        {"sweep", "--vary", "preset=paper", "--output", NULL},
-        {"sweep", "--vary", "mu=-0.5", "--output", NULL},
-        {"sweep", "--vary", "impact-law=elastic", "--output", NULL},
-        {"sweep", "--vary", "incline=0:80:1e-9", "--output", NULL},
-        {"sweep", "--vary", "incline=10", "--incline", "20", "--output", NULL},
-        {"sweep", "--vary", "incline=10", "--shard", "0/3", "--output", NULL},
-        {"sweep", "--vary", "incline=10", "--shard", "4/3", "--output", NULL},
-        {"sweep", "--vary", "incline=10", "--shard", "1/x", "--output", NULL},
-        {"sweep", "--vary", "incline=10", "--threads", "0", "--output", NULL},
-        {"mc", "--sigma", "mu=-1", "--output", NULL},
-        {"mc", "--sigma", "impact-law=1", "--output", NULL},
-        {"mc", "--range", "mu=1:0.5", "--output", NULL},
-        {"mc", "--range", "mu=0.5", "--output", NULL},
-        {"mc", "--samples", "0", "--output", NULL},
-        {"mc", "--samples", "10", "--seed", "-4", "--output", NULL},
-        {"mc", "--sigma", "rod-offset=1mm", "--sigma", "rod-offset=2mm", "--output", NULL},
-        {"sweep", "--vary", "incline=10", "--sample-dt", "0.01", "--output", NULL},
-        {"mc", "--samples", "10", "--sample-dt", "0.01", "--output", NULL},
+    /* Each is refused with --output FILE added, and FILE is not written. */
+    static const char *const cases[] = {
+        "sweep --vary incline=95",
+        "sweep --vary incline=30:10:5",
+        "sweep --vary incline=10:30:0",
+        "sweep --vary incline=",
+        "sweep --vary incline=10,,20",
+        "sweep --vary wheels=3",
+        "sweep --vary preset=paper",
+        "sweep --vary mu=-0.5",
+        "sweep --vary impact-law=elastic",
+        "sweep --vary incline=0:80:1e-9",
+        "sweep --vary incline=10 --incline 20",
+        "sweep --vary incline=10 --shard 0/3",
+        "sweep --vary incline=10 --shard 4/3",
+        "sweep --vary incline=10 --shard 1/x",
+        "sweep --vary incline=10 --threads 0",
+        "mc --sigma mu=-1",
+        "mc --sigma impact-law=1",
+        "mc --range mu=1:0.5",
+        "mc --range mu=0.5",
+        "mc --samples 0",
+        "mc --samples 10 --seed -4",
+        "mc --sigma rod-offset=1mm --sigma rod-offset=2mm",
+        "sweep --vary incline=10 --sample-dt 0.01",
+        "mc --samples 10 --sample-dt 0.01",
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
-        const char *args[10];
-        int n = 0;
-        for (; cases[i][n]; ++n) args[n] = cases[i][n];
+        char words[256];
+        snprintf(words, sizeof words, "%s", cases[i]);
+        const char *args[16];
+        int n = split_words(words, args, 13);
+        args[n++] = "--output";
         args[n++] = out;
         args[n] = NULL;
         remove(out);
         cli_result r = cli_run(args);
-        ENSURE_MSG(r.status == 2 && cli_one_line(r.err), "case %zu (%s %s %s): exit %d, stderr: %s", i, args[0],
-                   args[1], args[2], r.status, r.err);
+        ENSURE_MSG(r.status == 2 && cli_one_line(r.err), "case %zu (%s): exit %d, stderr: %s", i, cases[i], r.status,
+                   r.err);
         ENSURE_MSG(!file_exists(out), "case %zu left a file", i);
         cli_result_free(&r);
     }

@@ -59,9 +59,33 @@ static double landing_x(const flight *f, double t_open)
     return NAN;
 }
 
-static int run_setup(const jc_Setup *s, jc_Model *m, jc_Run *run)
+/* The issue's `--preset hoop` (the former preset: hoop_with_mass, a 10 g
+ * hoop of radius 10 cm with 100 g on its rim) with `--incline A --mu MU
+ * --restitution E --omega0 W --theta0 THrad`. */
+static jc_Setup issue_hoop(double incline_deg, double mu, double restitution, double omega0, double theta0)
 {
-    if (sim_model(m, s)) return 1;
+    jc_Setup s = hoop_with_mass(0.10, 0.010, 0.100, omega0);
+    s.incline_rad = incline_deg * DEG;
+    s.mu_static = s.mu_kinetic = mu;
+    s.restitution = restitution;
+    s.theta0_rad = theta0;
+    return s;
+}
+
+/* The paper's body on a floor (mu 0.5), started at theta0: `--incline 0
+ * --theta0 THrad`. */
+static jc_Setup paper_on_floor(double theta0)
+{
+    jc_Setup s = paper_at(0.0, 0.5);
+    s.theta0_rad = theta0;
+    return s;
+}
+
+/* Runs setup s with the default options into *m and *run and checks the
+ * run's invariants: 0, or 1 (run freed) after a failure. */
+static int run_setup(jc_Setup s, jc_Model *m, jc_Run *run)
+{
+    if (sim_model(m, &s)) return 1;
     const jc_SimOptions o = jc_default_sim_options();
     if (sim_run(m, &o, run)) return 1;
     if (check_run_invariants(&o, run)) {
@@ -79,7 +103,7 @@ static int test_paper_45_elastic_gains_nothing(void)
     s.restitution = 1.0;
     jc_Model m;
     jc_Run run;
-    if (run_setup(&s, &m, &run)) return 1;
+    if (run_setup(s, &m, &run)) return 1;
     const int gains = run.energy_gaining_impacts, impacts = count_events(&run, JC_EVENT_BOUNCE) +
                                                            count_events(&run, JC_EVENT_TOUCHDOWN);
     const double loss = run.energy.impact_loss_J, bal = sim_balance_rel(&m, &run);
@@ -97,12 +121,9 @@ static int test_paper_45_elastic_gains_nothing(void)
  * here: 106.63 cm. */
 static int test_hoop_no_impulse_without_approach(void)
 {
-    jc_Setup s = hoop_with_mass(0.10, 0.010, 0.100, 50.0);
-    s.mu_static = s.mu_kinetic = 1e6;
-    s.restitution = 0.5;
     jc_Model m;
     jc_Run run;
-    if (run_setup(&s, &m, &run)) return 1;
+    if (run_setup(issue_hoop(0.0, 1e6, 0.5, 50.0, 0.0), &m, &run)) return 1;
     const jc_State start = {.y_m = 0.10, .vx_mps = 0.10 * 50.0, .theta_rad = 0.0, .omega_radps = 50.0};
     const flight f = flight_from(&m, &start);
     const double want = landing_x(&f, 1e-3);
@@ -156,7 +177,7 @@ static int test_no_zero_length_bounces(void)
     for (int k = 0; k < 2; ++k) {
         jc_Model m;
         jc_Run run;
-        if (run_setup(setups[k], &m, &run)) return 1;
+        if (run_setup(*setups[k], &m, &run)) return 1;
         const jc_SimOptions o = jc_default_sim_options();
         const int bad = check_real_flights(&m, &run, &o);
         const jc_Termination t = run.termination;
@@ -185,14 +206,9 @@ static double sliding_d(const jc_Model *m, const jc_State *st)
  * Painleve's dynamic jam (D -> 0+, N -> infinity). Now a named end. */
 static int test_painleve_is_a_named_end(void)
 {
-    jc_Setup s = hoop_with_mass(0.10, 0.010, 0.100, 3.3201);
-    s.incline_rad = 75.0 * DEG;
-    s.mu_static = s.mu_kinetic = 0.8;
-    s.restitution = 0.0;
-    s.theta0_rad = -1.7108;
     jc_Model m;
     jc_Run run;
-    if (run_setup(&s, &m, &run)) return 1;
+    if (run_setup(issue_hoop(75.0, 0.8, 0.0, 3.3201, -1.7108), &m, &run)) return 1;
     const jc_Termination t = run.termination;
     const jc_State fin = run.final_state;
     const jc_Mode mode = run.final_mode;
@@ -211,14 +227,9 @@ static int test_painleve_is_a_named_end(void)
  * consistent: the free gap acceleration d w^2 cos th - g cos a is >= 0 there. */
 static int test_liftoff_where_consistent(void)
 {
-    jc_Setup s = hoop_with_mass(0.10, 0.010, 0.100, 2.14129);
-    s.incline_rad = 45.0 * DEG;
-    s.mu_static = s.mu_kinetic = 1000.0;
-    s.restitution = 0.6;
-    s.theta0_rad = 1.43336;
     jc_Model m;
     jc_Run run;
-    if (run_setup(&s, &m, &run)) return 1;
+    if (run_setup(issue_hoop(45.0, 1000.0, 0.6, 2.14129, 1.43336), &m, &run)) return 1;
     const int pv = count_events(&run, JC_EVENT_PAINLEVE);
     jc_RunSummary sum;
     jc_run_summarize(&run, &sum);
@@ -241,11 +252,9 @@ static int test_liftoff_where_consistent(void)
  * of r * 7e-9 rad = 0.7 nm: rest, at t = 0. */
 static int test_rest_near_equilibrium(void)
 {
-    jc_Setup s = paper_at(0.0, 0.5);
-    s.theta0_rad = 3.14159265;
     jc_Model m;
     jc_Run run;
-    if (run_setup(&s, &m, &run)) return 1;
+    if (run_setup(paper_on_floor(3.14159265), &m, &run)) return 1;
     const jc_Termination t = run.termination;
     const double tf = run.final_state.t_s;
     jc_run_free(&run);
@@ -267,9 +276,9 @@ static int test_faint_uphill_spin_rolls_back(void)
     jc_Model m;
     jc_Run up, down;
     s.omega0_radps = -w;
-    if (run_setup(&s, &m, &up)) return 1;
+    if (run_setup(s, &m, &up)) return 1;
     s.omega0_radps = w;
-    if (run_setup(&s, &m, &down)) {
+    if (run_setup(s, &m, &down)) {
         jc_run_free(&up);
         return 1;
     }
@@ -310,7 +319,7 @@ static int test_rest_under_rolling_resistance(void)
     s.rolling_resistance_m = 1e-3;
     jc_Model m;
     jc_Run run;
-    if (run_setup(&s, &m, &run)) return 1;
+    if (run_setup(s, &m, &run)) return 1;
     const double dec = s.rolling_resistance_m * s.gravity_mps2 / (1.5 * s.body.radius_m * s.body.radius_m);
     const double want = s.omega0_radps / dec;
     const jc_Termination t = run.termination;
@@ -321,10 +330,9 @@ static int test_rest_under_rolling_resistance(void)
     ENSURE_NEAR(tf, want, 1e-3 / dec + 1e-9);
     ENSURE(bal <= 1e-9);
 
-    jc_Setup p = paper_at(0.0, 0.5);
-    p.theta0_rad = 1.0;
+    jc_Setup p = paper_on_floor(1.0);
     p.rolling_resistance_m = 1e-3;
-    if (run_setup(&p, &m, &run)) return 1;
+    if (run_setup(p, &m, &run)) return 1;
     const jc_Termination tp = run.termination;
     const double tpf = run.final_state.t_s, balp = sim_balance_rel(&m, &run);
     jc_run_free(&run);
@@ -348,7 +356,7 @@ static int test_rocking_hoop_goes_on(void)
     ENSURE_OK(jc_preset_setup("rocking-hoop", &s, err, sizeof err), err);
     jc_Model m;
     jc_Run run;
-    if (run_setup(&s, &m, &run)) return 1;
+    if (run_setup(s, &m, &run)) return 1;
     const double M = m.body.mass_kg, d = m.body.cm_offset_m, r = m.body.radius_m, g = s.gravity_mps2;
     const double ig = m.body.inertia_g_kgm2, mu = s.mu_static;
     double lo = PI + 1e-6, hi = 2 * PI - 1e-6; /* |F|/N rises from 0 past the bottom */
@@ -495,7 +503,7 @@ static int test_slip_excursion_from_zero(void)
     s.paper_cm_offset_m = 0.0;
     jc_Model m;
     jc_Run run;
-    if (run_setup(&s, &m, &run)) return 1;
+    if (run_setup(s, &m, &run)) return 1;
     const jc_Termination t = run.termination;
     int reversal = -1;
     for (int k = 0; k < run.event_count && reversal < 0; ++k)

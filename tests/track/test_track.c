@@ -24,23 +24,24 @@ static void scratch_path(char *buf, size_t len, const char *name) { snprintf(buf
 
 static syn_Camera camera(double noise_px, uint64_t seed)
 {
-    syn_Camera c;
-    memset(&c, 0, sizeof c);
-    c.fps = 60;
-    c.stepsize = 1;
-    c.startframe = 5;
-    c.px_per_m = 560;
-    c.roll_deg = 3.5;
-    c.cx_px = 110;
-    c.cy_px = 160;
-    c.noise_px = noise_px;
-    c.mark_offset_m = 0.055; /* the paper's rod: on the direction C -> G */
-    c.missing_centre[0] = 17, c.missing_centre[1] = 40, c.missing_centre[2] = 41;
-    c.n_missing_centre = 3;
-    c.missing_mark[0] = 23, c.missing_mark[1] = 51;
-    c.n_missing_mark = 2;
-    c.seed = seed;
-    return c;
+    /* Rolled, scaled and offset, with a few frames of each track missing;
+     * the rest of the camera model (jitter, mirror, pan) is off. */
+    return (syn_Camera){
+        .fps = 60,
+        .stepsize = 1,
+        .startframe = 5,
+        .px_per_m = 560,
+        .roll_deg = 3.5,
+        .cx_px = 110,
+        .cy_px = 160,
+        .noise_px = noise_px,
+        .mark_offset_m = 0.055, /* the paper's rod: on the direction C -> G */
+        .missing_centre = {17, 40, 41},
+        .n_missing_centre = 3,
+        .missing_mark = {23, 51},
+        .n_missing_mark = 2,
+        .seed = seed,
+    };
 }
 
 /* What a load must recover, measured against the truth. */
