@@ -303,8 +303,8 @@ static ALWAYS_INLINE int stages_n(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, int fr
 }
 
 /* The stages with the phases' ranges as constants ([0, 7): sliding,
- * [0, 9): sliding with resistance, [3, 9): rolling with resistance,
- * [1, 11): flight with air), so that each sum is unrolled over the
+ * [0, 9): sliding with resistance, [2, 9): rolling with resistance,
+ * [0, 11): flight with air), so that each sum is unrolled over the
  * components without alias checks; any other range by the general loop.
  * Measured with callgrind: a paper run 231.1k -> 223.8k instructions, a
  * drag run 1.206M -> 1.150M, the same numbers; in wall time no difference
@@ -317,8 +317,8 @@ static int stages(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, int from, int to, doub
     switch (d->first * 16 + d->dim) {
     case 7: return stages_n(d, rhs, ctx, from, to, h, 0, 7);
     case 9: return stages_n(d, rhs, ctx, from, to, h, 0, 9);
-    case 1 * 16 + 10: return stages_n(d, rhs, ctx, from, to, h, 1, 10);
-    case 3 * 16 + 6: return stages_n(d, rhs, ctx, from, to, h, 3, 6);
+    case 11: return stages_n(d, rhs, ctx, from, to, h, 0, 11);
+    case 2 * 16 + 7: return stages_n(d, rhs, ctx, from, to, h, 2, 7);
     default: return stages_n(d, rhs, ctx, from, to, h, d->first, d->dim);
     }
 }

@@ -408,10 +408,10 @@ static int flight_ode_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, cha
     flight_ode_consts(sim->m, &ctx);
     sim->hop_height_m = fmax(sim->s.y_m - r, 0.0);
     for (long k = 0; k < FLIGHT_MAX_APEXES; ++k) {
-        const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx,
-                                   JC_Y_DIM - JC_Y_X, flight_ode_event_rates};
+        const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx, JC_Y_DIM,
+                                   flight_ode_event_rates};
         int which;
-        const jc_OdeExtras passing = {JC_Y_X, flight_ode_pass};
+        const jc_OdeExtras passing = {0, flight_ode_pass};
         int st = jc_ode_run_with(sim, &phase, &passing, &which, err, err_len);
         if (st != JC_OK) return st;
         sim->hop_height_m = fmax(sim->hop_height_m, sim->s.y_m - r);

@@ -229,16 +229,11 @@ typedef struct jc_Sim {
  * cos th and sin th (cos' = -w sin, sin' = w cos), so that no right-hand side
  * computes a sine (measured: sincos was 26 % of a run's time before). */
 /* Ordered so that a phase integrates a range of the vector and carries the
- * rest unchanged, and integrates no component that stays constant in it:
- * sliding without resistance the first 7 (y, vy are constant in contact;
- * measured: 7 components instead of 11 take a quarter fewer instructions
- * per step), with it the first 9, rolling with resistance th to rr (x and
- * vx follow from th and w; the friction loss stays), flight x to vy (the
- * friction loss stays; rr, constant too, is the one left inside). Leaving
- * the friction loss out of rolling and flight: callgrind, a drag run
- * 0.832M -> 0.786M instructions, 466 -> 471 steps (the error norm's mean
- * no longer counts a component without error). */
-enum { JC_Y_FRICTION, JC_Y_X, JC_Y_VX, JC_Y_TH, JC_Y_W, JC_Y_COS, JC_Y_SIN, JC_Y_AIR, JC_Y_RR, JC_Y_Y, JC_Y_VY,
+ * rest unchanged: sliding without resistance the first 7 (y, vy are
+ * constant in contact; measured: 7 components instead of 11 take a
+ * quarter fewer instructions per step), with it the first 9, rolling with
+ * resistance th to rr (x and vx follow from th and w), flight all. */
+enum { JC_Y_X, JC_Y_VX, JC_Y_TH, JC_Y_W, JC_Y_COS, JC_Y_SIN, JC_Y_FRICTION, JC_Y_AIR, JC_Y_RR, JC_Y_Y, JC_Y_VY,
        JC_Y_DIM };
 #define JC_ODE_MAX_EVENTS 8
 #define JC_ODE_TIME_LIMIT (-1)

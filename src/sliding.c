@@ -207,7 +207,7 @@ int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
                       m->setup.gravity_mps2 * m->sin_incline, mu_dir * tb->inv_mass_per_kg, mu_dir,
                       m->body.radius_m}};
     const jc_OdePhase phase = {ctx.loaded ? slide_rhs : slide_rhs_free, slide_events, EV_COUNT, slide_sample, &ctx,
-                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_SIN + 1, ctx.loaded ? NULL : slide_event_rates};
+                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1, ctx.loaded ? NULL : slide_event_rates};
     int which;
     int st = jc_ode_run(sim, &phase, &which, err, err_len);
     if (st != JC_OK) return st;
