@@ -105,8 +105,11 @@ static double log2_pos(double x)
         e += 1;
     }
     /* ln m = 2 atanh(s), s = (m - 1)/(m + 1), |s| < 0.172: the series to s^9. */
-    const double s = (m - 1.0) / (m + 1.0), s2 = s * s;
-    const double ln_m = 2.0 * s * (1.0 + s2 * (1.0 / 3 + s2 * (1.0 / 5 + s2 * (1.0 / 7 + s2 * (1.0 / 9)))));
+    const double s = (m - 1.0) / (m + 1.0), s2 = s * s, s4 = s2 * s2;
+    /* Estrin's grouping, here and in exp2_small: the next step's size waits
+     * on these chains (measured with make bench, alternated with Horner's
+     * form: a drag run 70.4 -> 69.1 us median of 7, the paper's 21.8 -> 21.3). */
+    const double ln_m = 2.0 * s * ((1.0 + s2 * (1.0 / 3)) + s4 * ((1.0 / 5 + s2 * (1.0 / 7)) + s4 * (1.0 / 9)));
     return e + ln_m * 1.4426950408889634074;
 }
 
@@ -115,8 +118,10 @@ static double exp2_small(double y)
 {
     const int n = (int)(y + 1024.5) - 1024; /* nearest integer: truncation of a positive number */
     const double f = (y - n) * 0.69314718055994530942; /* |f| <= ln 2 / 2: Taylor to f^9 */
-    const double p = 1.0 + f * (1.0 + f * (1.0 / 2 + f * (1.0 / 6 + f * (1.0 / 24 + f * (1.0 / 120 +
-                     f * (1.0 / 720 + f * (1.0 / 5040 + f * (1.0 / 40320 + f * (1.0 / 362880)))))))));
+    const double f2 = f * f, f4 = f2 * f2, f8 = f4 * f4;
+    const double p = ((1.0 + f) + f2 * (1.0 / 2 + f * (1.0 / 6))) +
+                     f4 * ((1.0 / 24 + f * (1.0 / 120)) + f2 * (1.0 / 720 + f * (1.0 / 5040))) +
+                     f8 * (1.0 / 40320 + f * (1.0 / 362880));
     const uint64_t b = (uint64_t)(n + 1023) << 52;
     double scale;
     memcpy(&scale, &b, sizeof scale);
