@@ -333,6 +333,8 @@ int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
 /* flight.c */
 double jc_flight_gap(const jc_Model *m, const jc_State *s); /* rim's lowest point above the incline */
 int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len);
+/* flight_air.c: the same with air or rolling resistance on (an ODE), called by jc_flight_phase. */
+int jc_flight_air_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len);
 
 /* impact.c */
 /* The contact point's velocity before an impact and the inverse effective
