@@ -188,7 +188,10 @@ static inline void jc_air_loads(const jc_AirConsts *k, double sin_th, double cos
     const double fy = speed * (-k->qcd_kgpm * vy - k->qcl_kgpm * spin * vx);
     *fx_N = fx;
     *fy_N = fy;
-    *torque_Nm = k->d_m * (sin_th * fy - cos_th * fx) - k->spin_drag_Nms2 * w * fabs(w);
+    /* d (sin th fy - cos th fx) - k w |w|, grouped so that the forces (late:
+     * they wait for the speed's square root) pass two operations only. */
+    const double spin_torque = k->spin_drag_Nms2 * w * fabs(w);
+    *torque_Nm = ((k->d_m * sin_th) * fy - spin_torque) - (k->d_m * cos_th) * fx;
     *air_power_W = k->qcd_kgpm * speed * speed * speed + k->spin_drag_Nms2 * fabs(w) * w * w;
 }
 

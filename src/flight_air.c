@@ -35,10 +35,15 @@ static void flight_ode_accel(const flight_ode *k, const double y[], double acc[3
 {
     const double d = k->air.d_m, w = y[JC_Y_W], s = y[JC_Y_SIN], c = y[JC_Y_COS];
     double fx, fy, torque;
+    /* The terms that do not wait for the air's loads first: each stage
+     * waits for the last one's rates, and the loads wait for a square root
+     * (the speed). */
+    const double ds = d * s, dc = d * c, w2 = w * w;
+    const double free_x = k->g_sin_mps2 + ds * w2, free_y = dc * w2 - k->g_cos_mps2;
     jc_air_loads(&k->air, s, c, y[JC_Y_VX], y[JC_Y_VY], w, &fx, &fy, &torque, air_power);
     const double thdd = torque * k->inv_ig;
-    acc[0] = k->g_sin_mps2 + fx * k->inv_m_per_kg - d * c * thdd + d * s * w * w;  /* x_C'' */
-    acc[1] = -k->g_cos_mps2 + fy * k->inv_m_per_kg + d * s * thdd + d * c * w * w; /* y_C'' */
+    acc[0] = (free_x + fx * k->inv_m_per_kg) - dc * thdd; /* x_C'' */
+    acc[1] = (free_y + fy * k->inv_m_per_kg) + ds * thdd; /* y_C'' */
     acc[2] = thdd;
 }
 
