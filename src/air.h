@@ -120,15 +120,19 @@ static inline void jc_roll_core(const jc_RollConsts *k, double s, double c, doub
     const double rw = r * w, speed = fabs(rw), w2 = w * w;
     const double fx = -k->qcd_kgpm * speed * rw; /* drag against the centre's velocity */
     const double fy = -k->qcl_kgpm * rw * rw;    /* Magnus, into the incline for w > 0 */
-    const double torque = d * (s * fy - c * fx) - k->spin_drag_Nms2 * w * fabs(w);
+    const double torque = ((d * s) * fy - k->spin_drag_Nms2 * w * fabs(w)) - (d * c) * fx;
     /* b times clamp(w / band, -1, 1), as jc_loads_at; dir at w = 0 */
     const double roll = w == 0.0 ? (double)dir
                                  : (!(w < JC_RR_BAND_RADPS) ? 1.0 : (w > -JC_RR_BAND_RADPS ? w / JC_RR_BAND_RADPS : -1.0));
     const double bs = k->rr_m * roll;
-    const double ieff = k->ip0_kgm2 + k->mrd2_kgm2 * c - bs * md * s;
-    const double rhs = (d * s - bs) * (k->mg_cos_N - md * c * w2 - fy) + (r + d * c) * (md * s * w2 + k->mg_sin_N + fx) +
-                       torque;
-    const double acc = rhs / ieff;
+    /* 1/I_eff and the products that wait for w alone first, the drag's
+     * terms last: each stage waits for the last one's rates (measured with
+     * make bench, alternated with the build before: a drag run 67.2 -> 66.3
+     * us, median of 7; 2 more steps of 468, from the rounding). */
+    const double inv_ieff = 1.0 / (k->ip0_kgm2 + k->mrd2_kgm2 * c - bs * md * s);
+    const double rhs = (d * s - bs) * ((k->mg_cos_N - (md * c) * w2) - fy) +
+                       (r + d * c) * (((md * s) * w2 + k->mg_sin_N) + fx) + torque;
+    const double acc = rhs * inv_ieff;
     *thdd = acc;
     *normal = k->mg_cos_N - md * (s * acc + c * w2) - fy;
     *fx_N = fx;
