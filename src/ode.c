@@ -25,6 +25,12 @@
  * multiply it into hours. A run that reaches it ends with step_limit. */
 #define ODE_MAX_STEPS 10000000L
 
+/* The smaller and larger of two numbers that are not NaN, inline: libm's
+ * fmin and fmax are calls (GCC keeps them for their NaN rule), and the
+ * step's own bound sits on the path each step waits for. */
+static inline double min_d(double a, double b) { return b < a ? b : a; }
+static inline double max_d(double a, double b) { return b > a ? b : a; }
+
 void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM])
 {
     const jc_State *s = &sim->s;
@@ -125,14 +131,14 @@ static double locate_dense(const jc_Sim *sim, const jc_OdePhase *p, int k, doubl
  * lowest, if it dips markedly; -1 otherwise. */
 static double hermite_min_tau(double f0, double d0, double f1, double d1, double h)
 {
-    double best_tau = -1.0, best = fmin(f0, f1);
+    double best_tau = -1.0, best = min_d(f0, f1);
     for (int k = 1; k < 16; ++k) {
         const double s = k / 16.0, s2 = s * s, s3 = s2 * s;
         const double v = (2 * s3 - 3 * s2 + 1) * f0 + (s3 - 2 * s2 + s) * h * d0 +
                          (-2 * s3 + 3 * s2) * f1 + (s3 - s2) * h * d1;
         if (v < best) { best = v; best_tau = s * h; }
     }
-    return best < 0.5 * fmin(f0, f1) ? best_tau : -1.0;
+    return best < 0.5 * min_d(f0, f1) ? best_tau : -1.0;
 }
 
 /* The earliest event inside the accepted step after lo (its start, or a
@@ -296,8 +302,9 @@ int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, in
             y_to_sim(sim, d->y0, t0);
             return JC_OK;
         }
-        const double h_rot = MAX_ROTATION_PER_STEP / fmax(fabs(d->y0[JC_Y_W]), 1e-3);
-        h = fmin(h, h_rot);
+        /* y0 is finite here (the last step's end passed end_rate) */
+        const double h_rot = MAX_ROTATION_PER_STEP / max_d(fabs(d->y0[JC_Y_W]), 1e-3);
+        h = min_d(h, h_rot);
         const int last = t0 + h >= t_max;
         if (last) h = t_max - t0;
         double h_next;

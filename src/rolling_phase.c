@@ -573,7 +573,7 @@ static void roll_ode_event_rates(void *params, const double y[], const double f[
         roll_ode_events(c, y, ev);
     }
     const double n0 = c->at_n, f0 = c->at_f;
-    const double h = 1e-6 / fmax(fabs(y[JC_Y_W]), 1.0);
+    const double aw = fabs(y[JC_Y_W]), h = 1e-6 / (aw > 1.0 ? aw : 1.0); /* no libm call: a NaN w gives h NaN either way */
     double yp[JC_Y_DIM];
     yp[JC_Y_SIN] = y[JC_Y_SIN] + h * f[JC_Y_SIN];
     yp[JC_Y_COS] = y[JC_Y_COS] + h * f[JC_Y_COS];
