@@ -65,8 +65,9 @@ static inline void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, 
     out->fx_N = q * (-cd * vx + cl * spin * vy);
     out->fy_N = q * (-cd * vy - cl * spin * vx);
     /* Torque about G in the th sense (clockwise-positive): the moment of the
-     * air force acting at C, R = C - G = -d (sin th, cos th), plus spin drag. */
-    out->torque_Nm = d * sin_th * out->fy_N - d * cos_th * out->fx_N - s->spin_drag_Nms2 * w * fabs(w);
+     * air force acting at C, R = C - G = -d (sin th, cos th), plus spin drag;
+     * grouped so that the forces pass two operations only. */
+    out->torque_Nm = ((d * sin_th) * out->fy_N - s->spin_drag_Nms2 * w * fabs(w)) - (d * cos_th) * out->fx_N;
     out->rr_torque_per_N = -s->rolling_resistance_m * roll;
     /* Power lost to the air: drag on the centre and spin drag (Magnus does no work). */
     out->air_power_W = q * cd * speed * speed + s->spin_drag_Nms2 * fabs(w) * w * w;
