@@ -267,6 +267,11 @@ typedef struct {
 int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, int *which, char *err,
                     size_t err_len);
 
+/* run.c: jc_kinetic_energy and jc_potential_energy of a state whose th has
+ * sine sn and cosine cs (the same values). */
+void jc_energies_sc(const jc_Model *m, const jc_State *s, double sn, double cs, double *kinetic_J,
+                    double *potential_J);
+
 /* record.c: pushes a trajectory sample (derived fields computed here). */
 int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);
 /* The sample with the losses carried in y (ode phases). */

@@ -72,9 +72,7 @@ jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_rol
     }
     double thdd, normal, friction;
     const int roll_dir = s->omega_radps > 0.0 ? 1 : (s->omega_radps < 0.0 ? -1 : 0);
-    double sn, cs;
-    jc_sincos(s->theta_rad, &sn, &cs); /* jc_rolling_at with the inline sincos, not libm's pair */
-    jc_rolling_at_sc(m, sn, cs, s->omega_radps, roll_dir, &thdd, &normal, &friction, NULL);
+    jc_rolling_at(m, s->theta_rad, s->omega_radps, roll_dir, &thdd, &normal, &friction, NULL);
     if (allow_roll && normal > 0.0 && fabs(friction) <= m->setup.mu_static * normal) {
         if (s->omega_radps == 0.0 && thdd == 0.0) return CHOICE_REST;
         return CHOICE_ROLL;

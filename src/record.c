@@ -61,26 +61,6 @@ static long long grid_index_after(double t, double dt)
     return k > 0.0 ? (long long)k : 0;
 }
 
-/* K and U - U(start) of a state whose sin th, cos th the caller has: the
- * formulas of jc_kinetic_energy and jc_potential_energy (run.c), written
- * in the same order (the same values to the last bit), with th's sine and
- * cosine taken once for the sample instead of three times more (the start's
- * are the one left). Callgrind: jc_record_sample 490 -> 313 instructions;
- * with 12.7 samples a paper run, 222.6k -> 220.4k instructions. */
-static void sample_energies(const jc_Model *m, const jc_State *s, double sn, double cs, double *kinetic_J,
-                            double *potential_J)
-{
-    const double d = m->body.cm_offset_m, w = s->omega_radps, M = m->body.mass_kg, g = m->setup.gravity_mps2;
-    const double vgx = s->vx_mps + d * cs * w, vgy = s->vy_mps - d * sn * w;
-    *kinetic_J = 0.5 * M * (vgx * vgx + vgy * vgy) + 0.5 * m->body.inertia_g_kgm2 * w * w;
-    double s0, c0;
-    jc_sincos(m->setup.theta0_rad, &s0, &c0);
-    const double xg = s->x_m + d * sn, yg = s->y_m + d * cs;
-    const double xg0 = 0.0 + d * s0, yg0 = m->body.radius_m + d * c0;
-    *potential_J = M * g * (yg * m->cos_incline - xg * m->sin_incline) -
-                   M * g * (yg0 * m->cos_incline - xg0 * m->sin_incline);
-}
-
 int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N)
 {
     if (!sim->trace.rec->sample || sim->trace.sample_limit_hit) return JC_OK;
@@ -102,7 +82,9 @@ int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal
     p.friction_N = friction_N;
     p.slip_mps = mode == JC_MODE_FLIGHT ? 0.0 : s->vx_mps - m->body.radius_m * s->omega_radps;
     p.gap_m = mode == JC_MODE_FLIGHT ? jc_flight_gap(m, s) : 0.0;
-    sample_energies(m, s, sn, cs, &p.kinetic_J, &p.potential_J);
+    /* the sample's own sine and cosine, not three more (callgrind:
+     * jc_record_sample 490 -> 313 instructions) */
+    jc_energies_sc(m, s, sn, cs, &p.kinetic_J, &p.potential_J);
     p.friction_loss_J = sim->friction_loss_J;
     p.impact_loss_J = sim->impact_loss_J;
     p.air_loss_J = sim->air_loss_J;

@@ -84,7 +84,11 @@ void jc_rolling_forces(const jc_Model *m, double th, double w, double *thdd, dou
 void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
                 jc_Loads *loads)
 {
-    jc_rolling_at_sc(m, sin(th), cos(th), w, dir, thdd, normal, friction, loads);
+    /* The inline sincos, not libm's sin and cos (calls through the PLT;
+     * callgrind: a paper run 215.8k -> 215.1k instructions). */
+    double s, c;
+    jc_sincos(th, &s, &c);
+    jc_rolling_at_sc(m, s, c, w, dir, thdd, normal, friction, loads);
 }
 
 void jc_rolling_at_sc(const jc_Model *m, double s, double c, double w, int dir, double *thdd, double *normal,

@@ -78,28 +78,48 @@ const char *jc_termination_name(jc_Termination t)
 
 /* ---- energy ---- */
 
-double jc_kinetic_energy(const jc_Model *m, const jc_State *s)
+/* K and M g h(G) of a state whose th has sine sn and cosine cs. */
+static double kinetic_sc(const jc_Model *m, const jc_State *s, double sn, double cs)
 {
-    const double d = m->body.cm_offset_m, th = s->theta_rad, w = s->omega_radps;
-    double sn, cs;
-    jc_sincos(th, &sn, &cs);
+    const double d = m->body.cm_offset_m, w = s->omega_radps;
     const double vgx = s->vx_mps + d * cs * w, vgy = s->vy_mps - d * sn * w;
     return 0.5 * m->body.mass_kg * (vgx * vgx + vgy * vgy) + 0.5 * m->body.inertia_g_kgm2 * w * w;
 }
 
-static double potential_abs(const jc_Model *m, const jc_State *s)
+static double potential_abs_sc(const jc_Model *m, const jc_State *s, double sn, double cs)
 {
     const double d = m->body.cm_offset_m;
-    double sn, cs;
-    jc_sincos(s->theta_rad, &sn, &cs);
     const double xg = s->x_m + d * sn, yg = s->y_m + d * cs;
     return m->body.mass_kg * m->setup.gravity_mps2 * (yg * m->cos_incline - xg * m->sin_incline);
 }
 
-double jc_potential_energy(const jc_Model *m, const jc_State *s)
+static double potential_start(const jc_Model *m)
 {
     const jc_State start = {.y_m = m->body.radius_m, .theta_rad = m->setup.theta0_rad};
-    return potential_abs(m, s) - potential_abs(m, &start);
+    double sn, cs;
+    jc_sincos(start.theta_rad, &sn, &cs);
+    return potential_abs_sc(m, &start, sn, cs);
+}
+
+double jc_kinetic_energy(const jc_Model *m, const jc_State *s)
+{
+    double sn, cs;
+    jc_sincos(s->theta_rad, &sn, &cs);
+    return kinetic_sc(m, s, sn, cs);
+}
+
+double jc_potential_energy(const jc_Model *m, const jc_State *s)
+{
+    double sn, cs;
+    jc_sincos(s->theta_rad, &sn, &cs);
+    return potential_abs_sc(m, s, sn, cs) - potential_start(m);
+}
+
+void jc_energies_sc(const jc_Model *m, const jc_State *s, double sn, double cs, double *kinetic_J,
+                    double *potential_J)
+{
+    *kinetic_J = kinetic_sc(m, s, sn, cs);
+    *potential_J = potential_abs_sc(m, s, sn, cs) - potential_start(m);
 }
 
 /* ---- summary ---- */

@@ -14,17 +14,6 @@
 #include <string.h>
 
 /* Contact force in the current mode at the current state. */
-/* jc_rolling_at (rolling.c) with the inline sincos, not libm's sin and cos
- * (calls through the PLT): with the same in mode.c, a paper run 215.8k ->
- * 215.1k instructions (callgrind). */
-static void rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal,
-                       double *friction)
-{
-    double sn, cs;
-    jc_sincos(th, &sn, &cs);
-    jc_rolling_at_sc(m, sn, cs, w, dir, thdd, normal, friction, NULL);
-}
-
 static void contact_force(const jc_Sim *sim, double *normal, double *friction)
 {
     *normal = *friction = 0.0;
@@ -33,7 +22,7 @@ static void contact_force(const jc_Sim *sim, double *normal, double *friction)
     const double w = sim->s.omega_radps;
     switch (sim->mode) {
     case JC_MODE_ROLLING:
-        rolling_at(sim->m, sim->s.theta_rad, w, (w > 0.0) - (w < 0.0), &thdd, normal, friction);
+        jc_rolling_at(sim->m, sim->s.theta_rad, w, (w > 0.0) - (w < 0.0), &thdd, normal, friction, NULL);
         break;
     case JC_MODE_SLIDING:
         jc_sliding_at(sim->m, &sim->s, sim->slip_dir, &f, NULL);
@@ -306,8 +295,8 @@ static int start_mode(jc_Sim *sim, int *from_liftoff, int *stop)
     }
     double thdd, n_roll, f_roll;
     const double w = sim->s.omega_radps;
-    rolling_at(model, sim->s.theta_rad, w, w > 0.0 || (w == 0.0 && model->setup.omega0_radps >= 0.0) ? 1 : -1, &thdd,
-               &n_roll, &f_roll);
+    jc_rolling_at(model, sim->s.theta_rad, w, w > 0.0 || (w == 0.0 && model->setup.omega0_radps >= 0.0) ? 1 : -1, &thdd,
+                  &n_roll, &f_roll, NULL);
     if (kind >= 0) st = jc_record_event(sim, (jc_EventKind)kind, JC_MODE_ROLLING, n_roll, f_roll, 0.0, NULL);
     if (kind == JC_EVENT_LIFTOFF) {
         jc_record_open_flight(sim);
