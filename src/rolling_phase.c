@@ -93,10 +93,17 @@ static double dt_du(double u, void *params)
 typedef void gk_rule(const gsl_function *f, double a, double b, double *result, double *abserr, double *resabs,
                      double *resasc);
 
+/* Neither end of a piece near a turning point: I_P w^2 positive at both,
+ * each at least a quarter of the other. */
+static int smooth_between(double p_a, double p_b)
+{
+    return p_a > 0.0 && p_b > 0.0 && fmin(p_a, p_b) >= 0.25 * fmax(p_a, p_b);
+}
+
 static int roll_time_one_piece_with(gk_rule *rule, const jc_Model *m, double th_a, double p_a, double th_b,
                                     double p_b, double *dt)
 {
-    if (!(p_a > 0.0 && p_b > 0.0 && fmin(p_a, p_b) >= 0.25 * fmax(p_a, p_b))) return 0;
+    if (!smooth_between(p_a, p_b)) return 0;
     time_integrand ti = time_integrand_at(m, th_b > th_a ? 1.0 : -1.0, th_a, p_a, 0.0, 1);
     gsl_function fn = {dt_du, &ti};
     double result, abserr, resabs, resasc;
@@ -191,7 +198,7 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
      * halves (found: a 3.2 rad swing of the paper's runs took 21 + 43 + 21
      * integrand values that way). Callgrind: a paper run 215.1k -> 212.4k
      * instructions. */
-    if (p[0] > 0.0 && p[1] > 0.0 && fmin(p[0], p[1]) >= 0.25 * fmax(p[0], p[1])) {
+    if (smooth_between(p[0], p[1])) {
         if (roll_piece_with(sim, th_a, p[0], dp[0], sig[0], len, 1, 1, dt, NULL, 0) == JC_OK) return JC_OK;
         *dt = 0.0;
     }
@@ -378,15 +385,15 @@ static int walk_piece(const jc_Model *m, double th_a, double p_a, double th_b, d
  * 2.6e-12 of it, which put an event 1.1e-11 rad off the ODE from the last
  * sample before it; at 1e-2 the worst over eight seeds of
  * tests/sim/test_rolling_samples.c is 0.31 of that test's bound (0.1: 0.07,
- * at 4.9M instructions). 1 when the time is known. */
+ * at 4.9M instructions). p_th: I_P w^2 at th (path_p). 1 when the time
+ * is known. */
 #define JC_WALK_P_FLOOR 1e-2
 static int roll_time_from_anchor(jc_Sim *sim, const jc_RollingPath *path, const jc_State *start, double p_start,
-                                 int dir, const roll_anchor *an, double th, double *tau)
+                                 int dir, const roll_anchor *an, double th, double p_th, double *tau)
 {
     const jc_Model *m = sim->m;
     const double p_floor = JC_WALK_P_FLOOR * (p_start + 2.0 * m->body.mass_kg * m->setup.gravity_mps2 *
                                                           (m->body.radius_m + m->body.cm_offset_m));
-    const double p_th = path_p(m, start, p_start, th);
     double piece;
     if (an->p >= p_floor && p_th >= p_floor && walk_piece(m, an->th, an->p, th, p_th, &piece)) {
         *tau = an->tau + ((th - an->th) * dir >= 0.0 ? piece : -piece);
@@ -421,19 +428,20 @@ static int roll_theta_walk(jc_Sim *sim, const jc_RollingPath *path, const jc_Sta
     for (int it = 0; it < SAMPLE_WALK_MAX_ITER; ++it) {
         const double h = dt - an->tau;
         const double pred = fmin(fmax(an->th + h * (an->d[0] + h * (0.5 * an->d[1] + h * an->d[2] / 6.0)), lo), hi);
+        const double p_pred = path_p(m, start, p_start, pred); /* once: the time and the anchor both use it */
         roll_anchor next;
         next.th = pred;
         if (pred == th_b) {
             next.tau = dt_end;
         } else if (pred == an->th) {
             next.tau = an->tau;
-        } else if (!roll_time_from_anchor(sim, path, start, p_start, dir, an, pred, &next.tau)) {
+        } else if (!roll_time_from_anchor(sim, path, start, p_start, dir, an, pred, p_pred, &next.tau)) {
             break;
         }
         if (pred == start->theta_rad)
             anchor_at_start(m, start, dir, &next);
         else {
-            next.p = path_p(m, start, p_start, pred);
+            next.p = p_pred;
             roll_derivs(m, pred, next.p, dir, next.d);
         }
         const double e = dt - next.tau;
@@ -497,9 +505,9 @@ typedef struct {
  * x = x0 + r (th - th0) and vx = r w, and were a third of the stages' work
  * (callgrind: a drag run 1.061M -> 0.995M instructions with the stages'
  * range chosen once per step, dop853.c; 470 -> 466 steps). */
-static double roll_ode_x(const roll_ode *c, const double y[])
+static double roll_ode_x(const roll_ode *c, double th)
 {
-    return c->x0_m + c->m->body.radius_m * (y[JC_Y_TH] - c->th0_rad);
+    return c->x0_m + c->m->body.radius_m * (th - c->th0_rad);
 }
 
 /* rad/s: rolling resistance ramps to 0 below 1 mrad/s (JC_RR_BAND_RADPS), which lets a
@@ -552,7 +560,7 @@ static void roll_ode_events(void *params, const double y[], double ev[])
     ev[RE_SLIP_POS] = mu * n - f;
     ev[RE_SLIP_NEG] = mu * n + f;
     ev[RE_TURN] = c->dir * y[JC_Y_W];
-    const double x = roll_ode_x(c, y);
+    const double x = roll_ode_x(c, y[JC_Y_TH]);
     ev[RE_END] = c->m->setup.ramp_length_m - x;
     ev[RE_TOP] = x + JC_RAMP_TOP_SLACK_M;
     /* Armed: w falls into the band. Not armed: w leaves twice the band (then armed). */
@@ -598,7 +606,7 @@ static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[]
     roll_ode_forces(c, y, &thdd, &n, &f);
     double ys[JC_Y_DIM];
     for (int i = 0; i < JC_Y_DIM; ++i) ys[i] = y[i];
-    ys[JC_Y_X] = roll_ode_x(c, y);
+    ys[JC_Y_X] = roll_ode_x(c, y[JC_Y_TH]);
     ys[JC_Y_VX] = c->m->body.radius_m * y[JC_Y_W];
     jc_State s;
     jc_y_to_state(ys, t, &s);
@@ -639,7 +647,7 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
         int which;
         int st = jc_ode_run_with(sim, &phase, &range, &which, err, err_len);
         if (st != JC_OK) return st;
-        sim->s.x_m = ctx.x0_m + sim->m->body.radius_m * (sim->s.theta_rad - ctx.th0_rad);
+        sim->s.x_m = roll_ode_x(&ctx, sim->s.theta_rad);
         sim->s.y_m = sim->m->body.radius_m;
         sim->s.vy_mps = 0.0;
         sim->s.vx_mps = sim->m->body.radius_m * sim->s.omega_radps;
