@@ -6,6 +6,7 @@
  * through for the hop's height. flight.c has the closed form without air.
  */
 #include "internal.h"
+#include "dop853_kernel.h"
 
 #include <math.h>
 
@@ -67,6 +68,8 @@ static int flight_ode_rhs(double t, const double y[], double dydt[], void *param
     return 0;
 }
 
+JC_DOP853_TRY_INSTANCE(flight_ode_try, flight_ode_rhs, 0, JC_Y_DIM)
+
 enum { FE_GAP, FE_END, FE_TOP, FE_APEX, FE_COUNT };
 
 static void flight_ode_events(void *params, const double y[], double ev[])
@@ -125,7 +128,7 @@ int jc_flight_air_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *e
     sim->hop_height_m = fmax(sim->s.y_m - r, 0.0);
     for (long k = 0; k < FLIGHT_MAX_APEXES; ++k) {
         const jc_OdePhase phase = {flight_ode_rhs, flight_ode_events, FE_COUNT, flight_ode_sample, &ctx,
-                                   JC_Y_DIM, flight_ode_event_rates};
+                                   JC_Y_DIM, flight_ode_event_rates, flight_ode_try};
         int which;
         const jc_OdeExtras passing = {0, flight_ode_pass};
         int st = jc_ode_run_with(sim, &phase, &passing, &which, err, err_len);

@@ -249,6 +249,9 @@ typedef struct {
     /* The events' rates along the flow at y, f = f(y) given, in closed form;
      * NULL: by a central difference of events. */
     void (*event_rates)(void *ctx, const double y[], const double f[], double dev[]);
+    /* jc_dop853_try with rhs inlined (JC_DOP853_TRY_INSTANCE), for the
+     * phase's range; NULL: jc_dop853_try itself. */
+    jc_DopTry try_step;
 } jc_OdePhase;
 void jc_state_to_y(const jc_Sim *sim, double y[JC_Y_DIM]);
 void jc_y_to_state(const double y[JC_Y_DIM], double t, jc_State *s);

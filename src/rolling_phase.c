@@ -6,6 +6,7 @@
  * resistance, an ODE phase instead (no energy integral).
  */
 #include "internal.h"
+#include "dop853_kernel.h"
 
 #include <float.h>
 #include <gsl/gsl_errno.h>
@@ -543,6 +544,8 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     return 0;
 }
 
+JC_DOP853_TRY_INSTANCE(roll_ode_try, roll_ode_rhs, JC_Y_TH, JC_Y_RR + 1 - JC_Y_TH)
+
 enum { RE_NORMAL, RE_SLIP_POS, RE_SLIP_NEG, RE_TURN, RE_END, RE_TOP, RE_SLOW, RE_COUNT };
 
 static void roll_ode_events(void *params, const double y[], double ev[])
@@ -640,7 +643,7 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
             return JC_OK;
         }
         const jc_OdePhase phase = {roll_ode_rhs, roll_ode_events, RE_COUNT, roll_ode_sample, &ctx,
-                                   JC_Y_RR + 1 - JC_Y_TH, roll_ode_event_rates};
+                                   JC_Y_RR + 1 - JC_Y_TH, roll_ode_event_rates, roll_ode_try};
         const jc_OdeExtras range = {JC_Y_TH, NULL};
         ctx.x0_m = sim->s.x_m;
         ctx.th0_rad = sim->s.theta_rad;

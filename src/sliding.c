@@ -12,6 +12,7 @@
  * reported, never divided through. Integrated by ode.c.
  */
 #include "internal.h"
+#include "dop853_kernel.h"
 
 #include <math.h>
 
@@ -159,6 +160,9 @@ static int slide_rhs_free(double t, const double y[], double dydt[], void *param
     return 0;
 }
 
+JC_DOP853_TRY_INSTANCE(slide_try, slide_rhs, 0, JC_Y_RR + 1)
+JC_DOP853_TRY_INSTANCE(slide_try_free, slide_rhs_free, 0, JC_Y_FRICTION + 1)
+
 enum { EV_SLIP, EV_LIFT, EV_PAINLEVE, EV_END, EV_TOP, EV_COUNT };
 
 static void slide_events(void *params, const double y[], double ev[])
@@ -214,7 +218,8 @@ int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
                       m->setup.gravity_mps2 * m->sin_incline, mu_dir * tb->inv_mass_per_kg, mu_dir,
                       m->body.radius_m}};
     const jc_OdePhase phase = {ctx.loaded ? slide_rhs : slide_rhs_free, slide_events, EV_COUNT, slide_sample, &ctx,
-                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1, ctx.loaded ? NULL : slide_event_rates};
+                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1, ctx.loaded ? NULL : slide_event_rates,
+                               ctx.loaded ? slide_try : slide_try_free};
     int which;
     int st = jc_ode_run(sim, &phase, &which, err, err_len);
     if (st != JC_OK) return st;

@@ -11,6 +11,7 @@
 #include "sim_common.h"
 
 #include "../../src/internal.h"
+#include "../../src/dop853_kernel.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -106,19 +107,33 @@ static int slide_rhs(double t, const double y[], double f[], void *ctx)
     return 0;
 }
 
-/* Adaptive DOP853 from y to time T (no events). */
-static int dop_to(slide *c, double y[4], double T, long *steps)
+/* The same equations one place further on, after a carried component
+ * (y[0], held at its start value): a range that starts past 0, as rolling's. */
+static int slide_rhs_shifted(double t, const double y[], double f[], void *ctx)
+{
+    f[0] = 0.0;
+    return slide_rhs(t, y + 1, f + 1, ctx);
+}
+
+JC_DOP853_TRY_INSTANCE(slide_try, slide_rhs, 0, 4)
+JC_DOP853_TRY_INSTANCE(slide_try_shifted, slide_rhs_shifted, 1, 4)
+
+/* Adaptive DOP853 from y to time T (no events), by jc_dop853_try or by an
+ * instance of it (try_step; first: where the 4 integrated components start). */
+static int dop_to_with(slide *c, jc_DopTry try_step, int first, double y[4], double T, long *steps)
 {
     jc_Dop853 d;
-    jc_dop853_init(&d, 4, 4, 1e-12, 1e-14);
-    jc_dop853_start(&d, slide_rhs, c, 0.0, y);
+    jc_dop853_init_range(&d, first, 4, first + 4, 1e-12, 1e-14);
+    double y_full[5] = {42.0};
+    for (int i = 0; i < 4; ++i) y_full[first + i] = y[i];
+    jc_dop853_start(&d, first ? slide_rhs_shifted : slide_rhs, c, 0.0, y_full);
     double h = 1e-4;
     *steps = 0;
     while (d.t0 < T && *steps < 1000000) {
         const int last = d.t0 + h >= T;
         if (last) h = T - d.t0;
         double h_next;
-        const double e = jc_dop853_try(&d, slide_rhs, c, h, &h_next);
+        const double e = try_step ? try_step(&d, c, h, &h_next) : jc_dop853_try(&d, slide_rhs, c, h, &h_next);
         ++*steps;
         if (e <= 1.0) {
             jc_dop853_advance(&d);
@@ -126,9 +141,12 @@ static int dop_to(slide *c, double y[4], double T, long *steps)
         }
         h = h_next;
     }
-    for (int i = 0; i < 4; ++i) y[i] = d.y0[i];
+    for (int i = 0; i < 4; ++i) y[i] = d.y0[first + i];
+    if (first && d.y0[0] != 42.0) return 1; /* the carried component moved */
     return d.t0 >= T ? 0 : 1;
 }
+
+static int dop_to(slide *c, double y[4], double T, long *steps) { return dop_to_with(c, NULL, 0, y, T, steps); }
 
 static int test_sliding_phases_match_gsl_rk8pd(void)
 {
@@ -181,11 +199,56 @@ static int test_sliding_phases_match_gsl_rk8pd(void)
     return 0;
 }
 
+/* The phases step with instances of jc_dop853_try whose right-hand side is
+ * inlined (JC_DOP853_TRY_INSTANCE): the same operations in the same order
+ * as the generic stepper, so the same steps and the same numbers to the
+ * last bit, on ranges from 0 and from past it. */
+static int test_inlined_instances_match_generic_stepper(void)
+{
+    uint64_t rng;
+    const uint64_t seed = sim_seed(8530, &rng);
+    int compared = 0;
+    for (int i = 0; i < 200; ++i) {
+        jc_Setup s = jc_paper_setup();
+        s.incline_rad = test_uniform(&rng, 0.0, 60.0) * DEG;
+        s.body.parts[1].offset_m = test_uniform(&rng, 0.0, 0.09);
+        jc_Model m;
+        char err[256];
+        ENSURE_OK(jc_model_init(&m, &s, err, sizeof err), err);
+        const double y0[4] = {0.0, test_uniform(&rng, -PI, PI), test_uniform(&rng, -3.0, 3.0),
+                              test_uniform(&rng, -30.0, 30.0)};
+        slide c = {&m, y0[2] - m.body.radius_m * y0[3] > 0.0 ? 1 : -1};
+        jc_SlidingForces f0;
+        jc_sliding_accel(&m, sin(y0[1]), cos(y0[1]), y0[3], c.dir, NULL, &f0);
+        if (!(f0.denominator > 0.2)) continue;
+        double y_gen[4], y_inst[4], y_shift[4];
+        long n_gen, n_inst, n_shift;
+        memcpy(y_gen, y0, sizeof y_gen);
+        memcpy(y_inst, y0, sizeof y_inst);
+        memcpy(y_shift, y0, sizeof y_shift);
+        ENSURE(dop_to(&c, y_gen, 0.05, &n_gen) == 0);
+        ENSURE(dop_to_with(&c, slide_try, 0, y_inst, 0.05, &n_inst) == 0);
+        ENSURE_MSG(dop_to_with(&c, slide_try_shifted, 1, y_shift, 0.05, &n_shift) == 0,
+                   "seed %llu case %d: the shifted range failed or moved its carried component",
+                   (unsigned long long)seed, i);
+        ENSURE_MSG(n_inst == n_gen && n_shift == n_gen, "seed %llu case %d: %ld, %ld and %ld steps",
+                   (unsigned long long)seed, i, n_gen, n_inst, n_shift);
+        for (int k = 0; k < 4; ++k)
+            ENSURE_MSG(y_inst[k] == y_gen[k] && y_shift[k] == y_gen[k],
+                       "seed %llu case %d component %d: generic %.17g, instance %.17g, shifted %.17g",
+                       (unsigned long long)seed, i, k, y_gen[k], y_inst[k], y_shift[k]);
+        compared++;
+    }
+    ENSURE(compared >= 100);
+    return 0;
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
     RUN_TEST(test_order_eight);
     RUN_TEST(test_continuous_extension_order_seven);
     RUN_TEST(test_sliding_phases_match_gsl_rk8pd);
+    RUN_TEST(test_inlined_instances_match_generic_stepper);
     TEST_MAIN_END();
 }
