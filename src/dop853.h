@@ -64,8 +64,9 @@ int jc_dop853_start(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double t, const doub
  * returned as INFINITY (rejected). */
 double jc_dop853_try(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h, double *h_next);
 /* The step size control of jc_dop853_try after a step with scaled error
- * err (INFINITY: failed): the next step in *h_next; returns err. */
-double jc_dop853_control(jc_Dop853 *d, double err, double h, double *h_next);
+ * err (INFINITY: failed), err^2 = err2_num / err2_den: the next step in
+ * *h_next; returns err. */
+double jc_dop853_control(jc_Dop853 *d, double err, double err2_num, double err2_den, double h, double *h_next);
 /* jc_dop853_try of one right-hand side (dop853_kernel.h makes them). */
 typedef double (*jc_DopTry)(jc_Dop853 *d, void *ctx, double h, double *h_next);
 /* One step of size h with no error control (y1, f1 at t0 + h): for a step

@@ -210,8 +210,9 @@ static JC_ALWAYS_INLINE int jc_dop853_stages(jc_Dop853 *d, jc_DopRhs rhs, void *
 
 
 /* After the stages of a step of size h: y1 and the scaled error estimate
- * (INFINITY when it is not finite). */
-static JC_ALWAYS_INLINE double jc_dop853_error_sum(jc_Dop853 *d, double h, const int o, const int n)
+ * (INFINITY when it is not finite); its square as err2[0] / err2[1], for
+ * the step size control. */
+static JC_ALWAYS_INLINE double jc_dop853_error_sum(jc_Dop853 *d, double h, const int o, const int n, double err2[2])
 {
     /* The integrated components [o, o + n) of every vector, from 0. */
     double inc[JC_DOP_MAX_DIM], e5[JC_DOP_MAX_DIM];
@@ -239,18 +240,21 @@ static JC_ALWAYS_INLINE double jc_dop853_error_sum(jc_Dop853 *d, double h, const
     }
     double deno = err5 + 0.01 * err3;
     if (deno <= 0.0) deno = 1.0;
-    const double err = fabs(h) * err5 * sqrt(1.0 / (n * deno));
+    const double num = fabs(h) * err5;
+    err2[0] = num * num;
+    err2[1] = n * deno;
+    const double err = num * sqrt(1.0 / (n * deno));
     return isfinite(err) ? err : INFINITY;
 }
 
 /* The stages of a step of size h, y1, and the scaled error estimate
  * (INFINITY when a stage failed or is not finite). */
 static JC_ALWAYS_INLINE double jc_dop853_error_n(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h, const int o,
-                                                 const int n)
+                                                 const int n, double err2[2])
 {
     d->dense_ready = 0;
     if (jc_dop853_stages(d, rhs, ctx, 2, 12, h, o, n) != 0) return INFINITY;
-    return jc_dop853_error_sum(d, h, o, n);
+    return jc_dop853_error_sum(d, h, o, n, err2);
 }
 
 /* f1 at the step's end; 0 when it and y1 are finite. */
@@ -269,9 +273,10 @@ static JC_ALWAYS_INLINE int jc_dop853_end_rate(jc_Dop853 *d, jc_DopRhs rhs, void
 static JC_ALWAYS_INLINE double jc_dop853_try_n(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, double h, double *h_next,
                                                const int o, const int n)
 {
-    double err = jc_dop853_error_n(d, rhs, ctx, h, o, n);
+    double err2[2] = {0.0, 1.0};
+    double err = jc_dop853_error_n(d, rhs, ctx, h, o, n, err2);
     if (err <= 1.0 && jc_dop853_end_rate(d, rhs, ctx, h, o, n) != 0) err = INFINITY;
-    return jc_dop853_control(d, err, h, h_next);
+    return jc_dop853_control(d, err, err2[0], err2[1], h, h_next);
 }
 
 #if defined(__GNUC__)
