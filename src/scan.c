@@ -240,7 +240,22 @@ static inline double max_d(double a, double b) { return b > a ? b : a; }
  * that shares work between its functions (the trigonometric sets below). */
 typedef void (*scan_eval_all)(void *ctx, double u, double d[][3]);
 
-static int scan_core(const jc_ScanFn *fns, int count, scan_eval_all eval_all, void *all_ctx, double u_from,
+/* The scan, inlined into its two callers: jc_scan_fns_with (each function
+ * evaluated by its own eval) and jc_trig_scan_run, where the shared
+ * evaluation trig_eval_all is inlined into each step as well (SCAN_FLATTEN):
+ * each step's size waits for its values, which no longer pass through a
+ * call and memory. Measured with make bench, alternated with the scan
+ * calling it through the pointer: a rolling prediction 1.468 -> 1.447 us
+ * (median of 9), callgrind 5.64M -> 5.46M instructions for 300; the same
+ * results. */
+#if defined(__GNUC__)
+#define SCAN_INLINE inline __attribute__((always_inline))
+#define SCAN_FLATTEN __attribute__((flatten))
+#else
+#define SCAN_INLINE inline
+#define SCAN_FLATTEN
+#endif
+static SCAN_INLINE int scan_core(const jc_ScanFn *fns, int count, scan_eval_all eval_all, void *all_ctx, double u_from,
                      double u_to, double tol_in, gsl_root_fsolver *brent, jc_ScanHit *hit, char *err,
                      size_t err_len)
 {
@@ -456,8 +471,8 @@ void jc_trig_scan_init(jc_TrigScan *s, const jc_ScanSet *set)
     }
 }
 
-int jc_trig_scan_run(const jc_TrigScan *s, unsigned active, double th_from, double th_to, double tol_rad,
-                     jc_ScanHit *hit, char *err, size_t err_len)
+SCAN_FLATTEN int jc_trig_scan_run(const jc_TrigScan *s, unsigned active, double th_from, double th_to,
+                                  double tol_rad, jc_ScanHit *hit, char *err, size_t err_len)
 {
     const double th_abs_max = fmax(fabs(th_from), fabs(th_to));
     jc_TrigBasis basis;
