@@ -308,7 +308,8 @@ int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, in
         const int last = t0 + h >= t_max;
         if (last) h = t_max - t0;
         double h_next;
-        const double e = p->try_step ? p->try_step(d, p->ctx, h, &h_next) : jc_dop853_try(d, p->rhs, p->ctx, h, &h_next);
+        const double e =
+            p->try_step ? p->try_step(d, p->ctx, h, &h_next) : jc_dop853_try(d, p->rhs, p->ctx, h, &h_next);
         sim->run->ode_steps++;
         if (!(e <= 1.0)) {
             /* Rejected, or a stage that overflowed (a stiff spin drag on a

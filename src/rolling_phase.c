@@ -544,7 +544,9 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     return 0;
 }
 
-JC_DOP853_TRY_INSTANCE(roll_ode_try, roll_ode_rhs, JC_Y_TH, JC_Y_RR + 1 - JC_Y_TH)
+/* The range integrated, given once to the step's instance and to ode.c. */
+enum { ROLL_ODE_FIRST = JC_Y_TH, ROLL_ODE_DIM = JC_Y_RR + 1 - JC_Y_TH };
+JC_DOP853_TRY_INSTANCE(roll_ode_try, roll_ode_rhs, ROLL_ODE_FIRST, ROLL_ODE_DIM)
 
 enum { RE_NORMAL, RE_SLIP_POS, RE_SLIP_NEG, RE_TURN, RE_END, RE_TOP, RE_SLOW, RE_COUNT };
 
@@ -643,8 +645,8 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
             return JC_OK;
         }
         const jc_OdePhase phase = {roll_ode_rhs, roll_ode_events, RE_COUNT, roll_ode_sample, &ctx,
-                                   JC_Y_RR + 1 - JC_Y_TH, roll_ode_event_rates, roll_ode_try};
-        const jc_OdeExtras range = {JC_Y_TH, NULL};
+                                   ROLL_ODE_DIM, roll_ode_event_rates, roll_ode_try};
+        const jc_OdeExtras range = {ROLL_ODE_FIRST, NULL};
         ctx.x0_m = sim->s.x_m;
         ctx.th0_rad = sim->s.theta_rad;
         int which;

@@ -160,8 +160,10 @@ static int slide_rhs_free(double t, const double y[], double dydt[], void *param
     return 0;
 }
 
-JC_DOP853_TRY_INSTANCE(slide_try, slide_rhs, 0, JC_Y_RR + 1)
-JC_DOP853_TRY_INSTANCE(slide_try_free, slide_rhs_free, 0, JC_Y_FRICTION + 1)
+/* The ranges integrated, [0, dim), given once to the steps' instances and to ode.c. */
+enum { SLIDE_DIM = JC_Y_RR + 1, SLIDE_DIM_FREE = JC_Y_FRICTION + 1 };
+JC_DOP853_TRY_INSTANCE(slide_try, slide_rhs, 0, SLIDE_DIM)
+JC_DOP853_TRY_INSTANCE(slide_try_free, slide_rhs_free, 0, SLIDE_DIM_FREE)
 
 enum { EV_SLIP, EV_LIFT, EV_PAINLEVE, EV_END, EV_TOP, EV_COUNT };
 
@@ -218,7 +220,7 @@ int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
                       m->setup.gravity_mps2 * m->sin_incline, mu_dir * tb->inv_mass_per_kg, mu_dir,
                       m->body.radius_m}};
     const jc_OdePhase phase = {ctx.loaded ? slide_rhs : slide_rhs_free, slide_events, EV_COUNT, slide_sample, &ctx,
-                               ctx.loaded ? JC_Y_RR + 1 : JC_Y_FRICTION + 1, ctx.loaded ? NULL : slide_event_rates,
+                               ctx.loaded ? SLIDE_DIM : SLIDE_DIM_FREE, ctx.loaded ? NULL : slide_event_rates,
                                ctx.loaded ? slide_try : slide_try_free};
     int which;
     int st = jc_ode_run(sim, &phase, &which, err, err_len);
