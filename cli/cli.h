@@ -11,7 +11,7 @@
 #include <sys/types.h>
 
 /* Exit statuses. */
-enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2 };
+enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_MISFIT = 3 /* fit: the model does not describe the video */ };
 
 /* ---- units.c ---- */
 typedef enum {
@@ -240,5 +240,7 @@ int cmd_simulate(int argc, char **argv);
 int cmd_plot(int argc, char **argv);    /* commands/plot.c: figures with gnuplot */
 int cmd_animate(int argc, char **argv); /* commands/animate.c: films with cairo and ffmpeg */
 int cmd_track(int argc, char **argv);   /* commands/track.c: a video's tracked points (Tracker) */
+int cmd_compare(int argc, char **argv); /* commands/compare.c: a tracked video against the model */
+int cmd_fit(int argc, char **argv);     /* commands/fit.c: setup values fitted to a tracked video */
 
 #endif

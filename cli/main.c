@@ -3,7 +3,6 @@
 #include "cli.h"
 #include "batch.h"
 #include "design.h"
-#include "track_fit.h"
 
 #include <gsl/gsl_errno.h>
 #include <signal.h>

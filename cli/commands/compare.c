@@ -1,6 +1,6 @@
-/* jumpcyl compare: a tracked video against the model run from the first
- * tracked state (docs/tracker.md, "Compare"). */
-#include "track_fit.h"
+/* jumpcyl compare: a tracked video against the model run from the state the
+ * frames show where the free motion starts (docs/tracker.md, "Compare"). */
+#include "track_input.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -10,11 +10,12 @@ static void help(void)
 {
     puts("Usage: jumpcyl compare --track FILE [--from T] [--to T] [--from-setup-start] [--output FIG]\n"
          "                       [SETUP OPTIONS] [SIMULATION OPTIONS]\n"
-         "Runs the model from the first tracked state (the position, angle and velocities the\n"
-         "first frames show; in contact it rolls) and reports measured against simulated: the\n"
-         "first lift-off, the hops and their heights, and the residuals of the centre's path and\n"
-         "of the mark's angle (docs/tracker.md).\n");
-    cli_track_args_help();
+         "Runs the model from the state the frames show where the free motion starts (frames a hand\n"
+         "pushes are found and left out; x0, omega0 and theta0 fitted to the next 0.4 s, as fit\n"
+         "starts) and reports measured against simulated: the first lift-off, the hops and their\n"
+         "heights, and the residuals of the centre's path and of the mark's angle\n"
+         "(docs/tracker.md). The incline is the video's unless --incline is given.\n");
+    cli_track_args_help(1);
     puts("  -h, --help          this help\n");
 }
 
@@ -47,11 +48,17 @@ static void print_liftoff(const char *label, const cli_TrackHops *h)
 
 static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, int setup_start)
 {
-    const jc_State *s = &c->start;
+    const jc_State *s = &c->launch.start;
+    if (c->launch.pushed > 0)
+        printf("Launch: the first %ld frame(s) (to t = %.4f s) show a push the model cannot follow (chi2/dof %.3g\n"
+               "        with them, %.3g from frame %ld): the free motion starts at t = %.4f s\n",
+               c->launch.pushed, t->t_s[c->launch.frame - 1], c->launch.chi2_dof_with, c->launch.chi2_dof,
+               c->launch.frame, t->t_s[c->launch.frame]);
     printf("Start (%s) at t = %.4f s: x = %.2f cm, %s, theta = %.4f rad, omega = %.4f rad/s\n\n",
-           setup_start ? "the setup's theta0 and omega0" : "the first tracked state", s->t_s, s->x_m * 100,
-           s->y_m > m->body.radius_m ? "in flight" : "rolling", s->theta_rad, s->omega_radps);
-    printf("Hops: the centre more than %.2f mm above contact in consecutive frames\n", c->threshold_m * 1e3);
+           setup_start ? "the setup's theta0 and omega0" : "the state the frames show, fitted to the next 0.4 s",
+           s->t_s, s->x_m * 100, s->y_m > m->body.radius_m ? "in flight" : "rolling", s->theta_rad, s->omega_radps);
+    printf("Hops: the centre more than %.2f mm (%.0f sigma) above contact in 2 frames or more\n", c->threshold_m * 1e3,
+           t->hop_sigmas);
     print_liftoff("measured first lift-off", &c->measured);
     print_liftoff("simulated first lift-off", &c->simulated);
     if (isnan(c->model_liftoff_t_s)) printf("  %-28s none\n", "model's own lift-off event");
@@ -61,13 +68,15 @@ static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, 
     print_hops("simulated hops", &c->simulated);
     printf("  %-28s %d lift-off(s), %d bounce(s), largest %.2f mm\n\n", "model's own events", c->model_liftoffs,
            c->model_bounces, c->model_largest_hop_m * 1e3);
-    printf("Residuals (tracked - model) over %ld frames:\n  centre's path: RMS %.3f mm, largest %.3f mm\n", c->count,
-           c->rms_path_m * 1e3, c->max_path_m * 1e3);
-    if (t->has_mark) printf("  mark's angle:  RMS %.4f rad\n", c->rms_theta_rad);
+    printf("Residuals (tracked - model) over %ld frames:\n  centre's path: RMS %.3f mm (%.2f sigma), largest %.3f mm\n",
+           c->count, c->rms_path_m * 1e3, c->rms_path_m / t->sigma_m, c->max_path_m * 1e3);
+    if (t->has_mark && isfinite(c->rms_theta_rad)) printf("  mark's angle:  RMS %.4f rad\n", c->rms_theta_rad);
+    printf("  (agreement at the noise is an RMS of the path near sqrt(2) sigma%s)\n",
+           t->centre_source == CLI_CENTRE_FROM_MARK ? "; the centre here is recovered from the mark" : "");
 }
 
 static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, const cli_Track *t, const cli_Compare *c,
-                  const jc_SimOptions *o, int argc, char **argv)
+                  const jc_SimOptions *o, double mark_angle, int argc, char **argv)
 {
     cli_TrackFigure f;
     memset(&f, 0, sizeof f);
@@ -78,10 +87,13 @@ static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, con
     f.sim_y = c->y_m;
     f.sim_theta = c->theta_rad;
     f.mark_radius_m = t->has_mark ? cli_track_mark_radius(t, m) : 0.0;
+    f.mark_offset_rad = 0.0; /* c->theta_rad holds the mark's angle already */
+    f.sigma_m = t->sigma_m;
     f.hop_threshold_m = c->threshold_m;
-    snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; residuals RMS %.2f mm (centre)",
-             cli_deg(m->setup.incline_rad), c->rms_path_m * 1e3);
-    const int rc = cli_track_figure_draw("compare", &f, setup, m, &c->start, o, out, argc, argv);
+    (void)mark_angle;
+    snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; path residuals RMS %.2f mm (%.2f σ)",
+             cli_deg(t->incline_rad), c->rms_path_m * 1e3, c->rms_path_m / t->sigma_m);
+    const int rc = cli_track_figure_draw("compare", &f, setup, &c->launch.start, NULL, o, out, argc, argv);
     if (rc != CLI_TRACK_FIGURE_NO_PATH) return rc;
     cli_error("compare: out of memory for the figure's path");
     return EXIT_FAIL;
@@ -95,27 +107,35 @@ int cmd_compare(int argc, char **argv)
     cli_SimArgs sim_args;
     int st = cli_command_parse(argc, argv, &command, &a, &sa, &sim_args);
     if (st != CLI_GO_ON) return st;
-    double from_s, to_s;
-    if ((st = cli_track_args_check("compare", &a, &from_s, &to_s)) != 0) return st;
+    if ((st = cli_track_args_check("compare", &a)) != 0) return st;
     jc_Setup setup;
     jc_SimOptions opts;
-    jc_Model model;
-    if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, &model)) != 0) return st;
+    if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
     cli_Track t;
-    if ((st = cli_track_args_load("compare", &a, &model, &t)) != 0) return st;
-    cli_Compare c;
+    if ((st = cli_track_args_load_for_model("compare", &a, &sa, &setup, &t)) != 0) return st;
+    const jc_Setup used = cli_track_setup(&setup, &t);
+    jc_Model model;
     char err[512];
-    if (cli_track_compare(&setup, &t, &opts, a.from_setup_start ? CLI_START_SETUP : CLI_START_TRACKED, from_s, to_s,
-                          &c, err, sizeof err) != 0) {
+    if (jc_model_init(&model, &used, err, sizeof err) != JC_OK) {
+        cli_error("compare: %s", err);
+        cli_track_free(&t);
+        return EXIT_USAGE;
+    }
+    cli_Compare c;
+    if (cli_track_compare(&setup, &t, &opts, a.from_setup_start ? CLI_START_SETUP : CLI_START_TRACKED, a.from_s,
+                          a.to_s, a.mark_angle_rad, &c, err, sizeof err) != 0) {
         cli_error("compare: %s", err);
         cli_track_free(&t);
         return EXIT_USAGE;
     }
     cli_track_print_head(a.track, &t, c.first, c.count);
-    cli_print_setup(stdout, &model, 1);
+    jc_Setup shown = used;
+    shown.ramp_length_m -= CLI_TRACK_RAMP_MARGIN_M;
+    jc_Model shown_model;
+    if (jc_model_init(&shown_model, &shown, err, sizeof err) == JC_OK) cli_print_setup(stdout, &shown_model, 1);
     putchar('\n');
     report(&model, &t, &c, a.from_setup_start);
-    st = a.output ? figure(a.output, &setup, &model, &t, &c, &opts, argc, argv) : EXIT_OK;
+    st = a.output ? figure(a.output, &setup, &model, &t, &c, &opts, a.mark_angle_rad, argc, argv) : EXIT_OK;
     if (st == EXIT_OK && a.output) printf("Figure: %s\n", a.output);
     cli_compare_free(&c);
     cli_track_free(&t);

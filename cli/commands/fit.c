@@ -1,6 +1,7 @@
 /* jumpcyl fit: setup values and the start fitted to a tracked video by
- * nonlinear least squares (docs/tracker.md, "Fit"). */
-#include "track_fit.h"
+ * nonlinear least squares from many start points, with what the video
+ * determines and a verdict on the fit (docs/tracker.md, "Fit"). */
+#include "track_input.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -8,33 +9,50 @@
 
 #define DEFAULT_MAX_ITER 100
 #define MAX_MAX_ITER 10000
+#define MAX_STARTS 10000
 
 typedef struct {
     cli_TrackArgs track;
-    const char *free_list, *loss, *max_iter, *sigma;
+    const char *free_list, *loss, *max_iter, *sigma, *starts, *seed;
+    int allow_misfit, hold_start;
 } fit_opts;
 
 static void help(void)
 {
     puts("Usage: jumpcyl fit --track FILE --free LIST [--loss linear|huber|cauchy] [--max-iter N]\n"
-         "                   [--sigma LEN] [--from T] [--to T] [--output FIG] [SETUP OPTIONS]\n"
+         "                   [--sigma LEN] [--starts N] [--seed N] [--hold-start] [--allow-misfit]\n"
+         "                   [--from T] [--to T] [--output FIG] [SETUP OPTIONS]\n"
          "Fits setup values and the start to the tracked frames by nonlinear least squares (GSL,\n"
-         "Levenberg-Marquardt): the residuals are the centre's x and y at every frame and, where\n"
-         "the mark was tracked, the mark's displacement across its radius, in units of the\n"
-         "position noise. Reports each value with its standard error (covariance scaled by\n"
-         "chi2/dof), their correlations, chi2/dof, the iterations and why they stopped, and the\n"
-         "predicted first lift-off with its standard error (docs/tracker.md).\n"
+         "Levenberg-Marquardt), from many start points: a Latin hypercube over the bounded values\n"
+         "is screened and the best few descended from, as the first lift-off leaps between\n"
+         "branches when the values change. The residuals are the centre's x and y at every frame\n"
+         "and the mark's displacement across its radius (or the mark's x and y, when the centre\n"
+         "was recovered from it), in units of the noise. Reports each value with its standard\n"
+         "error (scaled by chi2/dof when the noise is the measured one), their correlations, the\n"
+         "minima that compete with the best, the values the video does not determine (held, with a\n"
+         "chi2 profile along their range), the predicted first lift-off, and a verdict: whether the\n"
+         "model describes the video (chi2/dof at most 3, no long runs of same-sign residuals, the\n"
+         "same hops). Exit 3 when it does not, unless --allow-misfit (docs/tracker.md).\n"
          "\n"
-         "  --free LIST         comma-separated values to fit: mu_s, mu_k, restitution (bounded:\n"
-         "                      0 <= mu_k <= mu_s, 0 <= e <= 1), theta0, omega0, x0 (the state\n"
-         "                      at the first frame; without them, the state the first frames show)\n"
+         "  --free LIST         comma-separated values to fit (- or _): mu_s, mu_k, restitution,\n"
+         "                      mark_angle, and the body's: disc_mass, hoop_mass, rod_mass,\n"
+         "                      rod_offset, point_mass, point_offset (those its parts have); each\n"
+         "                      kept in its physical range (0 <= mu_k <= mu_s <= 2, 0 <= e <= 1,\n"
+         "                      offsets inside the rim). The start (x0, theta0, omega0 at the first\n"
+         "                      frame of the free motion) is always fitted with them\n"
+         "  --hold-start        hold the start at the state the frames show instead\n"
          "  --loss KIND         linear (default), huber or cauchy: robust, by reweighting\n"
-         "  --max-iter N        trust-region iterations per pass (default 100; reported if reached)\n"
-         "  --sigma LEN         the position noise (default: the track's)");
-    cli_track_args_help();
+         "  --max-iter N        trust-region iterations per descent (default 100)\n"
+         "  --sigma LEN         the position noise (default: the track's, measured from the frames in\n"
+         "                      contact; standard errors are then scaled by chi2/dof)\n"
+         "  --starts N          start points screened (default: 8 per bounded value + 8, 16 to 64)\n"
+         "  --seed N            the screening's Latin hypercube (default 1)\n"
+         "  --allow-misfit      exit 0 even when the verdict is that the model does not describe the\n"
+         "                      video (the report says so all the same)");
+    cli_track_args_help(1);
     puts("  -h, --help          this help\n"
-         "The other setup values are held at the setup options' values; mu_s, mu_k and\n"
-         "restitution start from them.\n");
+         "The other setup values are held at the setup options' values; the free ones start from\n"
+         "them.\n");
 }
 
 static int take(int opt, const char *arg, void *ctx)
@@ -42,11 +60,17 @@ static int take(int opt, const char *arg, void *ctx)
     fit_opts *o = ctx;
     const int rc = cli_track_args_take("fit", &o->track, opt, arg);
     if (rc != 1) return rc;
-    if (opt == 'f') return cli_take_once("fit", &o->free_list, "free", arg);
-    if (opt == 'l') return cli_take_once("fit", &o->loss, "loss", arg);
-    if (opt == 'i') return cli_take_once("fit", &o->max_iter, "max-iter", arg);
-    if (opt == 's') return cli_take_once("fit", &o->sigma, "sigma", arg);
-    return EXIT_USAGE;
+    switch (opt) {
+    case 'f': return cli_take_once("fit", &o->free_list, "free", arg);
+    case 'l': return cli_take_once("fit", &o->loss, "loss", arg);
+    case 'i': return cli_take_once("fit", &o->max_iter, "max-iter", arg);
+    case 's': return cli_take_once("fit", &o->sigma, "sigma", arg);
+    case 'n': return cli_take_once("fit", &o->starts, "starts", arg);
+    case 'r': return cli_take_once("fit", &o->seed, "seed", arg);
+    case 'a': o->allow_misfit = 1; return 0;
+    case 'H': o->hold_start = 1; return 0;
+    default: return EXIT_USAGE;
+    }
 }
 
 static const struct option own[] = {CLI_TRACK_ARG_OPTIONS,
@@ -54,19 +78,35 @@ static const struct option own[] = {CLI_TRACK_ARG_OPTIONS,
                                     {"loss", required_argument, 0, 'l'},
                                     {"max-iter", required_argument, 0, 'i'},
                                     {"sigma", required_argument, 0, 's'},
+                                    {"starts", required_argument, 0, 'n'},
+                                    {"seed", required_argument, 0, 'r'},
+                                    {"allow-misfit", no_argument, 0, 'a'},
+                                    {"hold-start", no_argument, 0, 'H'},
                                     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
-/* The fit's own options into fo; 0 or EXIT_USAGE after a one-line message. */
-static int check(const fit_opts *o, cli_FitOptions *fo)
+static int whole(const char *text, const char *name, double lo, double hi, double *v)
 {
-    char err[512];
-    memset(fo, 0, sizeof *fo);
-    if (!o->free_list) {
-        cli_error("fit: --free LIST is required (allowed: mu_s, mu_k, restitution, theta0, omega0, x0)");
+    char err[256];
+    if (cli_parse_quantity(text, Q_NUMBER, v, err, sizeof err) != 0 || !(*v >= lo && *v <= hi) || *v != floor(*v)) {
+        cli_error("fit: --%s '%s' (allowed: a whole number from %.0f to %.0f)", name, text, lo, hi);
         return EXIT_USAGE;
     }
-    if (cli_fit_parse_free(o->free_list, &fo->free_mask, err, sizeof err) != 0) {
+    return 0;
+}
+
+/* The fit's own options into fo; 0 or EXIT_USAGE after a one-line message. */
+static int check(const fit_opts *o, const jc_Setup *setup, cli_FitOptions *fo)
+{
+    char err[1024];
+    cli_fit_options_default(fo);
+    if (!o->free_list) {
+        char allowed[512];
+        cli_fit_allowed(setup, allowed, sizeof allowed);
+        cli_error("fit: --free LIST is required (allowed: %s)", allowed);
+        return EXIT_USAGE;
+    }
+    if (cli_fit_parse_free(o->free_list, setup, fo->free, &fo->free_count, err, sizeof err) != 0) {
         cli_error("fit: %s", err);
         return EXIT_USAGE;
     }
@@ -74,58 +114,150 @@ static int check(const fit_opts *o, cli_FitOptions *fo)
         cli_error("fit: --loss '%s' (allowed: linear, huber, cauchy)", o->loss);
         return EXIT_USAGE;
     }
-    double v = DEFAULT_MAX_ITER;
-    if (o->max_iter && (cli_parse_quantity(o->max_iter, Q_NUMBER, &v, err, sizeof err) != 0 || !(v >= 1) ||
-                        v > MAX_MAX_ITER || v != floor(v))) {
-        cli_error("fit: --max-iter '%s' (allowed: a whole number from 1 to %d)", o->max_iter, MAX_MAX_ITER);
-        return EXIT_USAGE;
+    double v;
+    if (o->max_iter) {
+        if (whole(o->max_iter, "max-iter", 1, MAX_MAX_ITER, &v) != 0) return EXIT_USAGE;
+        fo->max_iter = (int)v;
     }
-    fo->max_iter = (int)v;
+    if (o->starts) {
+        if (whole(o->starts, "starts", 1, MAX_STARTS, &v) != 0) return EXIT_USAGE;
+        fo->starts = (int)v;
+    }
+    if (o->seed) {
+        if (whole(o->seed, "seed", 0, 9007199254740992.0, &v) != 0) return EXIT_USAGE;
+        fo->seed = (uint64_t)v;
+    }
     if (o->sigma && (cli_parse_quantity(o->sigma, Q_LENGTH, &fo->sigma_m, err, sizeof err) != 0 ||
                      !(fo->sigma_m > 0.0 && fo->sigma_m <= 1.0))) {
         cli_error("fit: --sigma '%s' (allowed: a length in (0, 1] m, e.g. 1mm)", o->sigma);
         return EXIT_USAGE;
     }
+    fo->hold_start = o->hold_start;
+    fo->from_s = o->track.from_s;
+    fo->to_s = o->track.to_s;
+    fo->mark_angle_rad = o->track.mark_angle_rad;
+    fo->start = o->track.from_setup_start ? CLI_START_SETUP : CLI_START_TRACKED;
     return 0;
 }
 
-static const char *unit_of(cli_FitParam p)
+static void name_of(const cli_FitResult *r, int k, char *buf, size_t len)
 {
-    return p == CLI_FIT_THETA0 ? "rad" : p == CLI_FIT_OMEGA0 ? "rad/s" : p == CLI_FIT_X0 ? "m" : "";
+    char base[48];
+    cli_fit_param_name(&r->setup, r->param[k], base, sizeof base);
+    const cli_FitKind kind = r->param[k].kind;
+    snprintf(buf, len, "%s%s", base,
+             !r->start_value[k] ? "" : kind == CLI_FIT_TILT || kind == CLI_FIT_SURFACE ? " (frame)" : " (start)");
+}
+
+static void print_values(const cli_FitResult *r)
+{
+    printf("  %-20s %13s   %13s %s\n", "value", "initial", "fitted", "+- standard error");
+    for (int k = 0; k < r->count; ++k) {
+        char nm[64];
+        name_of(r, k, nm, sizeof nm);
+        printf("  %-20s %13.6g   %13.6g ", nm, r->initial[k], r->value[k]);
+        if (r->flag[k] == CLI_FIT_DETERMINED) printf("+- %.3g %s\n", r->sigma[k], cli_fit_param_unit(r->param[k]));
+        else printf("held: not determined %s\n", cli_fit_param_unit(r->param[k]));
+    }
+}
+
+static void print_held(const cli_FitResult *r)
+{
+    int any = 0;
+    for (int k = 0; k < r->count; ++k) any |= r->flag[k] != CLI_FIT_DETERMINED;
+    if (!any) return;
+    printf("\nNot determined by this video (held, and the other values fitted again without it):\n");
+    for (int k = 0; k < r->count; ++k) {
+        if (r->flag[k] == CLI_FIT_DETERMINED) continue;
+        char nm[64];
+        name_of(r, k, nm, sizeof nm);
+        printf("  %s: %s", nm, cli_fit_flag_text(r->flag[k]));
+        if (r->flag[k] == CLI_FIT_WIDER_THAN_RANGE)
+            printf(" (%.3g against [%.3g, %.3g])", r->sigma[k], r->lo[k], r->hi[k]);
+        if (r->flag[k] == CLI_FIT_CORRELATED && r->other[k] >= 0) {
+            char on[64];
+            name_of(r, r->other[k], on, sizeof on);
+            printf(" (%s, rho = %.4f)", on, r->rho[k]);
+        }
+        printf("; held at %.6g %s\n", r->value[k], cli_fit_param_unit(r->param[k]));
+        if (r->profiled[k]) {
+            printf("    chi2 along it (the others fitted):");
+            for (int i = 0; i < CLI_FIT_PROFILE_POINTS; ++i)
+                printf("%s %.3g: %.5g", i ? "," : "", r->profile_x[k][i], r->profile_chi2[k][i]);
+            printf("\n");
+        }
+    }
+}
+
+static void print_minima(const cli_FitResult *r)
+{
+    if (r->minima <= 1) {
+        printf("\nOther minima within chi2 + %.3g of the best: none of the %d descents found one\n", r->delta_chi2,
+               r->descents);
+        return;
+    }
+    printf("\nMinima within chi2 + %.3g of the best (the video does not tell them apart):\n", r->delta_chi2);
+    for (int m = 0; m < r->minima; ++m) {
+        printf("  chi2 %-10.5g", r->minimum[m].chi2);
+        for (int k = 0; k < r->count; ++k) {
+            char nm[64];
+            cli_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
+            printf(" %s %.5g", nm, r->minimum[m].value[k]);
+        }
+        putchar('\n');
+    }
+}
+
+static void print_correlations(const cli_FitResult *r)
+{
+    printf("\nCorrelations (of the values fitted at the end):\n  %-14s", "");
+    for (int k = 0; k < r->count; ++k) {
+        if (r->flag[k] != CLI_FIT_DETERMINED) continue;
+        char nm[48];
+        cli_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
+        printf(" %12.12s", nm);
+    }
+    putchar('\n');
+    for (int i = 0; i < r->count; ++i) {
+        if (r->flag[i] != CLI_FIT_DETERMINED) continue;
+        char nm[48];
+        cli_fit_param_name(&r->setup, r->param[i], nm, sizeof nm);
+        printf("  %-14.14s", nm);
+        for (int j = 0; j < r->count; ++j)
+            if (r->flag[j] == CLI_FIT_DETERMINED) printf(" %12.3f", cli_shown(r->corr[i][j], 3));
+        putchar('\n');
+    }
 }
 
 static void report(const char *file, const cli_Track *t, const cli_FitResult *r, const cli_FitOptions *fo)
 {
     static const char *const loss_names[] = {"linear", "huber", "cauchy"};
     cli_track_print_head(file, t, r->first, r->frames);
-    printf("Fit: %ld residuals (sigma %.3g mm), %d free value(s), loss %s", r->residuals, r->sigma_m * 1e3, r->count,
-           loss_names[fo->loss]);
-    if (fo->loss != CLI_LOSS_LINEAR) printf(", %d reweighting pass(es)", r->passes);
-    printf("\nStopped after %d iteration(s): %s\n", r->iterations, cli_fit_stop_text(r->stop));
+    const cli_Launch *L = &r->launch;
+    if (L->pushed > 0)
+        printf("Launch: the first %ld frame(s) show a push the model cannot follow (chi2/dof %.3g with them,\n"
+               "        %.3g without): the fit starts at t = %.4f s\n",
+               L->pushed, L->chi2_dof_with, L->chi2_dof, t->t_s[r->first]);
+    int asked = 0;
+    for (int k = 0; k < r->count; ++k) asked += !r->start_value[k];
+    printf("Fit: %ld residuals (sigma %.3g mm, %s), %d value(s) asked for%s, loss %s\n", r->residuals,
+           r->sigma_m * 1e3, r->noise_measured ? "measured" : "given", asked,
+           fo->hold_start ? " (the start held)" : " and the start's x0, theta0, omega0", loss_names[fo->loss]);
+    printf("Search: %d start points screened, %d descents, %d iterations in all\n", r->screened, r->descents,
+           r->iterations);
     printf("chi2/dof = %.4g (chi2 %.4g, dof %ld)\n\n", r->chi2_dof, r->chi2, r->residuals - r->count);
-    printf("  %-12s %14s   %14s %s\n", "value", "initial", "fitted", "+- standard error");
-    for (int k = 0; k < r->count; ++k)
-        printf("  %-12s %14.6g   %14.6g +- %.3g %s\n", cli_fit_param_name(r->param[k]), r->initial[k], r->value[k],
-               r->sigma[k], unit_of(r->param[k]));
-    if (r->singular)
-        printf("  (a standard error is undefined: that value does not change the residuals here; hold it\n"
-               "   fixed, or fit a window where it acts: mu_s only if the body slips, restitution only if it lands)\n");
-    printf("\nCorrelations:\n  %-12s", "");
-    for (int k = 0; k < r->count; ++k) printf(" %12s", cli_fit_param_name(r->param[k]));
-    putchar('\n');
-    for (int i = 0; i < r->count; ++i) {
-        printf("  %-12s", cli_fit_param_name(r->param[i]));
-        for (int j = 0; j < r->count; ++j) printf(" %12.3f", cli_shown(r->corr[i][j], 3));
-        putchar('\n');
-    }
+    print_values(r);
+    print_held(r);
+    print_minima(r);
+    print_correlations(r);
     if (r->has_liftoff)
         printf("\nPredicted first lift-off: x = %.2f +- %.2f cm along the track (t = %.4f s)\n", r->liftoff_x_m * 100,
                r->liftoff_sigma_m * 100, r->liftoff_t_s);
     else
         printf("\nPredicted first lift-off: none (the fitted model does not lift off)\n");
     printf("Residuals at the fit: centre's path RMS %.3f mm", r->rms_path_m * 1e3);
-    if (t->has_mark) printf(", mark's angle RMS %.4f rad", r->rms_theta_rad);
-    printf("\n");
+    if (t->has_mark && isfinite(r->rms_theta_rad)) printf(", mark's angle RMS %.4f rad", r->rms_theta_rad);
+    printf("\n\nVerdict: %s\n", r->verdict);
 }
 
 static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, const jc_SimOptions *o, int argc,
@@ -133,7 +265,7 @@ static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, c
 {
     jc_Model m;
     char err[256];
-    if (cli_track_model(&r->setup, &m, err, sizeof err) != 0) {
+    if (cli_track_model(&r->setup, t, &m, err, sizeof err) != 0) {
         cli_error("fit: %s", err);
         return EXIT_FAIL;
     }
@@ -149,19 +281,22 @@ static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, c
         cli_track_sim_free(&sim);
     }
     if (rc == 0) {
-        for (size_t i = 0; i < n; ++i) th[i] -= cli_track_mark_offset_rad(&m);
+        cli_fit_to_video(&r->frame, &r->start, x, y, th, r->frames);
+        const double off = cli_track_mark_offset_rad(&m, r->frame.mark_angle_rad);
+        for (size_t i = 0; i < n; ++i) th[i] -= off;
         f.track = t;
         f.first = r->first;
         f.count = r->frames;
         f.sim_x = x;
         f.sim_y = y;
         f.sim_theta = th;
-        f.mark_radius_m = t->has_mark ? r->mark_radius_m : 0.0;
-        f.hop_threshold_m = fmax(5.0 * r->sigma_m, 1e-4);
-        snprintf(f.title, sizeof f.title,
-                 "jumpcyl fit: μ_s = %.4g, μ_k = %.4g, e = %.4g; χ²/dof = %.3g, residuals RMS %.2f mm",
-                 r->setup.mu_static, r->setup.mu_kinetic, r->setup.restitution, r->chi2_dof, r->rms_path_m * 1e3);
-        rc = cli_track_figure_draw("fit", &f, &r->setup, &m, &r->start, o, out, argc, argv);
+        f.mark_radius_m = r->mark_radius_m;
+        f.sigma_m = r->sigma_m;
+        f.hop_threshold_m = t->hop_threshold_m;
+        snprintf(f.title, sizeof f.title, "jumpcyl fit: μ_s = %.4g, μ_k = %.4g, e = %.4g; χ²/dof = %.3g%s",
+                 r->setup.mu_static, r->setup.mu_kinetic, r->setup.restitution, r->chi2_dof,
+                 r->misfit ? " (the model does not describe the video)" : "");
+        rc = cli_track_figure_draw("fit", &f, &r->setup, &r->start, &r->frame, o, out, argc, argv);
     } else {
         rc = CLI_TRACK_FIGURE_NO_PATH;
     }
@@ -183,26 +318,42 @@ int cmd_fit(int argc, char **argv)
     cli_SimArgs sim_args;
     int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
     if (st != CLI_GO_ON) return st;
-    cli_FitOptions fo;
-    if ((st = check(&o, &fo)) != 0) return st;
-    if ((st = cli_track_args_check("fit", &o.track, &fo.from_s, &fo.to_s)) != 0) return st;
-    fo.start = o.track.from_setup_start ? CLI_START_SETUP : CLI_START_TRACKED;
+    if ((st = cli_track_args_check("fit", &o.track)) != 0) return st;
     jc_Setup setup;
     jc_SimOptions opts;
-    jc_Model model;
-    if ((st = cli_build_inputs("fit", &sa, &sim_args, &setup, &opts, &model)) != 0) return st;
+    if ((st = cli_build_inputs("fit", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
+    cli_FitOptions fo;
+    if ((st = check(&o, &setup, &fo)) != 0) return st;
     cli_Track t;
-    if ((st = cli_track_args_load("fit", &o.track, &model, &t)) != 0) return st;
-    cli_FitResult r;
+    if ((st = cli_track_args_load_for_model("fit", &o.track, &sa, &setup, &t)) != 0) return st;
     char err[512];
+    /* The free motion's first frame: --from's, or the first the model follows. */
+    cli_Launch launch;
+    memset(&launch, 0, sizeof launch);
+    if (!o.track.from_setup_start && isnan(fo.from_s)) {
+        if (cli_track_launch(&setup, &t, &opts, 0, 1, fo.mark_angle_rad, &launch, err, sizeof err) != 0) {
+            cli_error("fit: %s", err);
+            cli_track_free(&t);
+            return EXIT_USAGE;
+        }
+        fo.from_s = t.t_s[launch.frame];
+    }
+    cli_FitResult r;
     if (cli_track_fit(&setup, &t, &fo, &opts, &r, err, sizeof err) != 0) {
         cli_error("fit: %s", err);
         cli_track_free(&t);
         return EXIT_USAGE;
     }
+    r.launch = launch;
     report(o.track.track, &t, &r, &fo);
     st = o.track.output ? figure(o.track.output, &t, &r, &opts, argc, argv) : EXIT_OK;
     if (st == EXIT_OK && o.track.output) printf("Figure: %s\n", o.track.output);
     cli_track_free(&t);
-    return st == EXIT_OK ? cli_stdout_finish() : st;
+    if (st != EXIT_OK) return st;
+    st = cli_stdout_finish();
+    if (st == EXIT_OK && r.misfit && !o.allow_misfit) {
+        cli_error("fit: the model does not describe this video (see the verdict); --allow-misfit to exit 0");
+        return EXIT_MISFIT;
+    }
+    return st;
 }

@@ -1,8 +1,9 @@
 /* jumpcyl track FILE: a video's tracked points (Tracker) read, put in the
- * incline frame, with θ, ω, the centre's height and its hops derived
- * (docs/tracker.md). */
-#include "cli.h"
-#include "track.h"
+ * incline frame, and a report of what they tell: the centre (tracked or
+ * recovered from a mark), the surface and the incline, the noise, the hops
+ * and θ, each with how well it is known or why it is not
+ * (docs/tracker.md). Every readable file gives a report. */
+#include "track_input.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -10,8 +11,8 @@
 #include <string.h>
 
 typedef struct {
-    const char *centre, *mark, *axes, *hop_sigmas, *csv, *json;
-    int fit_tilt;
+    cli_TrackArgs read;
+    const char *csv, *json;
 } track_opts;
 
 static void help(void)
@@ -20,26 +21,17 @@ static void help(void)
          "                     [--csv FILE] [--json FILE] [SETUP OPTIONS]\n"
          "Reads the points tracked in a video with Tracker (Open Source Physics): its .trk file or\n"
          "a data table it exported (File > Export > Data: tab, comma or semicolon separated,\n"
-         "decimal point or comma). Reports the tracks, frames, frame rate, time step jitter,\n"
-         "gaps and scale; puts the centre and the off-centre mark in the incline frame\n"
-         "(docs/physics.md: x down the incline, y its normal) and derives theta (unwrapped),\n"
-         "omega, the centre's height above the surface and the hops (docs/tracker.md).\n"
-         "The incline angle and the radius come from the setup options (--incline, --radius,\n"
-         "--preset, --config).\n"
-         "\n"
-         "  --centre TRACK      the track of the axle (default: the track named centre, center,\n"
-         "                      axle, axis or hub, or the only track)\n"
-         "  --mass TRACK        the track of the off-centre mass or a mark on the body (default:\n"
-         "                      the track named mark, rod, dot or off, or the other of two tracks\n"
-         "                      when the centre is named); --mass '' for none\n"
-         "  --axes level        Tracker's axes are level, y up (Tracker's default; the default)\n"
-         "  --axes incline      Tracker's x axis was laid along the incline (y its outward normal)\n"
-         "  --hop-sigmas K      a hop: the centre higher than r + K sigma above the surface\n"
-         "                      (sigma: the position noise; default 5)\n"
-         "  --fit-tilt          the surface is the line through the frames in contact, tilted as\n"
-         "                      they say (axes set by eye); without it, parallel to the incline\n"
-         "                      at the angle given, only its height fitted (the tilt is reported)\n"
-         "  --csv FILE          t_s,x_m,y_m,height_m,theta_rad,omega_radps,airborne per frame\n"
+         "decimal point or comma). Reports the tracks, frames, frame rate, time step jitter, gaps\n"
+         "and scale, then what the video tells and what it cannot, and why: the centre (tracked,\n"
+         "or recovered from a mark on the rim by fitting rolling), the surface and the incline's\n"
+         "angle (measured from the frames in contact, or checked against --incline), the noise\n"
+         "(the scatter of those frames), theta and omega, and the hops with their heights'\n"
+         "uncertainties (docs/tracker.md). The radius and g come from the setup options.\n"
+         "Exit 0 for a report; 2 for a file that cannot be read, an incline the video refuses, or\n"
+         "an output that needs what the video does not tell.\n");
+    cli_track_args_help(0);
+    puts("  --csv FILE          per frame: t_s,x_m,y_m,height_m,centre_sigma_m,mark_x_m,mark_y_m,\n"
+         "                      theta_rad,omega_radps,contact,airborne (needs the centre)\n"
          "  --json FILE         the report and the frames as JSON\n"
          "  -h, --help          this help\n");
 }
@@ -47,22 +39,17 @@ static void help(void)
 static int take(int opt, const char *arg, void *ctx)
 {
     track_opts *o = ctx;
-    switch (opt) {
-    case 'c': o->centre = arg; return 0;
-    case 'm': o->mark = arg; return 0;
-    case 'a': o->axes = arg; return 0;
-    case 'k': o->hop_sigmas = arg; return 0;
-    case 'v': o->csv = arg; return 0;
-    case 'j': o->json = arg; return 0;
-    case 't': o->fit_tilt = 1; return 0;
-    default: return EXIT_USAGE;
-    }
+    const int rc = cli_track_args_take("track", &o->read, opt, arg);
+    if (rc != 1) return rc;
+    if (opt == 'v') return cli_take_once("track", &o->csv, "csv", arg);
+    if (opt == 'j') return cli_take_once("track", &o->json, "json", arg);
+    return EXIT_USAGE;
 }
 
-static const struct option own[] = {{"centre", required_argument, 0, 'c'}, {"mass", required_argument, 0, 'm'},
-                                    {"axes", required_argument, 0, 'a'},   {"hop-sigmas", required_argument, 0, 'k'},
-                                    {"csv", required_argument, 0, 'v'},    {"json", required_argument, 0, 'j'},
-                                    {"fit-tilt", no_argument, 0, 't'},     {"help", no_argument, 0, 'h'}};
+static const struct option own[] = {CLI_TRACK_READ_OPTIONS,
+                                    {"csv", required_argument, 0, 'v'},
+                                    {"json", required_argument, 0, 'j'},
+                                    {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
 /* Whether the long option written as text ("--inc", "--incline=30") takes
@@ -123,26 +110,25 @@ static cJSON *series(const double *v, long n)
     return a;
 }
 
-/* A hop: a run of airborne frames [a, b]. */
-typedef struct {
-    long a, b, peak;
-} hop_span;
+static const char *const quantity_names[CLI_Q_COUNT] = {"centre", "surface", "hops", "theta"};
+static const char *const centre_sources[] = {"none", "tracked", "recovered from the mark"};
+static const char *const incline_sources[] = {"unknown", "measured", "given"};
 
-static int next_hop(const cli_Track *t, long from, hop_span *h)
+static cJSON *hop_json(const cli_Track *t, const cli_TrackHop *h)
 {
-    long i = from;
-    while (i < t->n && !t->airborne[i]) i++;
-    if (i >= t->n) return 0;
-    h->a = h->peak = i;
-    while (i < t->n && t->airborne[i]) {
-        if (t->y_m[i] > t->y_m[h->peak]) h->peak = i;
-        i++;
-    }
-    h->b = i - 1;
-    return 1;
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddItemToObject(o, "start_s", num(t->t_s[h->first]));
+    cJSON_AddItemToObject(o, "end_s", num(t->t_s[h->last]));
+    cJSON_AddItemToObject(o, "x_m", num(t->x_m[h->first]));
+    cJSON_AddItemToObject(o, "peak_height_m", num(h->height_m));
+    cJSON_AddItemToObject(o, "peak_height_sigma_m", num(h->height_sigma_m));
+    cJSON_AddItemToObject(o, "bound_m", num(h->bound_m));
+    cJSON_AddBoolToObject(o, "resolved", !isnan(h->height_m));
+    cJSON_AddBoolToObject(o, "fitted_flight", h->fitted_flight);
+    return o;
 }
 
-static cJSON *track_json(const char *file, const cli_Track *t, const cli_TrackOptions *opt)
+static cJSON *track_json(const char *file, const cli_Track *t)
 {
     cJSON *d = cJSON_CreateObject();
     cJSON_AddStringToObject(d, "file", file);
@@ -154,7 +140,9 @@ static cJSON *track_json(const char *file, const cli_Track *t, const cli_TrackOp
         cJSON_AddNumberToObject(o, "frames", (double)t->track_frames[i]);
         cJSON_AddItemToArray(tr, o);
     }
-    cJSON_AddStringToObject(d, "centre", t->centre_name);
+    if (t->centre_name[0]) cJSON_AddStringToObject(d, "centre", t->centre_name);
+    else cJSON_AddNullToObject(d, "centre");
+    cJSON_AddStringToObject(d, "centre_source", centre_sources[t->centre_source]);
     if (t->has_mark) cJSON_AddStringToObject(d, "mark", t->mark_name);
     else cJSON_AddNullToObject(d, "mark");
     cJSON_AddNumberToObject(d, "clip_frames", (double)t->clip_frames);
@@ -165,34 +153,45 @@ static cJSON *track_json(const char *file, const cli_Track *t, const cli_TrackOp
     cJSON_AddItemToObject(d, "scale_px_per_m", num(t->scale_px_per_m));
     cJSON_AddBoolToObject(d, "scale_varies", t->scale_varies);
     cJSON_AddItemToObject(d, "tape_length_m", num(t->tape_length_m));
+    cJSON_AddStringToObject(d, "axes", t->axes == CLI_TRACK_AXES_INCLINE ? "incline" : "level");
     cJSON_AddItemToObject(d, "incline_rad", num(t->incline_rad));
-    cJSON_AddStringToObject(d, "axes", opt->axes == CLI_TRACK_AXES_INCLINE ? "incline" : "level");
-    cJSON_AddBoolToObject(d, "fit_tilt", opt->fit_tilt);
+    cJSON_AddItemToObject(d, "incline_sigma_rad", num(t->incline_sigma_rad));
+    cJSON_AddStringToObject(d, "incline_source", incline_sources[t->incline_source]);
+    cJSON_AddItemToObject(d, "given_incline_rad", num(t->given_incline_rad));
     cJSON_AddItemToObject(d, "radius_m", num(t->radius_m));
     cJSON_AddItemToObject(d, "x0_m", num(t->x0_m));
     cJSON_AddItemToObject(d, "sigma_m", num(t->sigma_m));
-    cJSON_AddItemToObject(d, "noise_m", num(t->noise_m));
+    cJSON_AddNumberToObject(d, "contact_frames", (double)t->contact_frames);
     cJSON_AddItemToObject(d, "surface_tilt_rad", num(t->surface_tilt_rad));
+    cJSON_AddItemToObject(d, "surface_tilt_sigma_rad", num(t->surface_tilt_sigma_rad));
+    cJSON_AddItemToObject(d, "surface_sigma_m", num(t->surface_sigma_m));
     cJSON_AddItemToObject(d, "mark_radius_m", num(t->mark_radius_m));
+    cJSON_AddItemToObject(d, "mark_radius_sigma_m", num(t->mark_radius_sigma_m));
+    cJSON_AddItemToObject(d, "centre_rms_sigma_m", num(t->centre_rms_sigma_m));
     cJSON_AddItemToObject(d, "hop_threshold_m", num(t->hop_threshold_m));
-    cJSON *hops = cJSON_AddArrayToObject(d, "hops");
-    hop_span h;
-    for (long from = 0; next_hop(t, from, &h); from = h.b + 1) {
+    cJSON *notes = cJSON_AddObjectToObject(d, "derived");
+    for (int q = 0; q < CLI_Q_COUNT; ++q) {
         cJSON *o = cJSON_CreateObject();
-        cJSON_AddItemToObject(o, "start_s", num(t->t_s[h.a]));
-        cJSON_AddItemToObject(o, "end_s", num(t->t_s[h.b]));
-        cJSON_AddItemToObject(o, "x_m", num(t->x_m[h.a]));
-        cJSON_AddItemToObject(o, "peak_height_m", num(t->y_m[h.peak] - t->radius_m));
-        cJSON_AddItemToArray(hops, o);
+        cJSON_AddBoolToObject(o, "known", t->note[q].ok);
+        cJSON_AddStringToObject(o, "how", t->note[q].text);
+        cJSON_AddItemToObject(notes, quantity_names[q], o);
     }
+    cJSON *hops = cJSON_AddArrayToObject(d, "hops");
+    for (long k = 0; k < t->hops; ++k) cJSON_AddItemToArray(hops, hop_json(t, &t->hop[k]));
     cJSON *fr = cJSON_AddObjectToObject(d, "frames_data");
     cJSON_AddItemToObject(fr, "t_s", series(t->t_s, t->n));
     cJSON_AddItemToObject(fr, "x_m", series(t->x_m, t->n));
     cJSON_AddItemToObject(fr, "y_m", series(t->y_m, t->n));
+    cJSON_AddItemToObject(fr, "centre_sigma_m", series(t->centre_sigma_m, t->n));
+    cJSON_AddItemToObject(fr, "mark_x_m", series(t->mark_x_m, t->n));
+    cJSON_AddItemToObject(fr, "mark_y_m", series(t->mark_y_m, t->n));
     cJSON_AddItemToObject(fr, "theta_rad", series(t->theta_rad, t->n));
     cJSON_AddItemToObject(fr, "omega_radps", series(t->omega_radps, t->n));
-    cJSON *air = cJSON_AddArrayToObject(fr, "airborne");
-    for (long i = 0; air && i < t->n; ++i) cJSON_AddItemToArray(air, cJSON_CreateBool(t->airborne[i]));
+    cJSON *con = cJSON_AddArrayToObject(fr, "contact"), *air = cJSON_AddArrayToObject(fr, "airborne");
+    for (long i = 0; i < t->n; ++i) {
+        cJSON_AddItemToArray(con, cJSON_CreateBool(t->contact[i]));
+        cJSON_AddItemToArray(air, cJSON_CreateBool(t->airborne[i]));
+    }
     return d;
 }
 
@@ -204,19 +203,66 @@ static void csv_value(FILE *f, double v)
 
 static void write_csv(FILE *f, const cli_Track *t)
 {
-    fputs("t_s,x_m,y_m,height_m,theta_rad,omega_radps,airborne\n", f);
+    fputs("t_s,x_m,y_m,height_m,centre_sigma_m,mark_x_m,mark_y_m,theta_rad,omega_radps,contact,airborne\n", f);
     for (long i = 0; i < t->n; ++i) {
         fprintf(f, "%.10g", t->t_s[i]);
         csv_value(f, t->x_m[i]);
         csv_value(f, t->y_m[i]);
         csv_value(f, t->y_m[i] - t->radius_m);
+        csv_value(f, t->centre_sigma_m[i]);
+        csv_value(f, t->mark_x_m[i]);
+        csv_value(f, t->mark_y_m[i]);
         csv_value(f, t->theta_rad[i]);
         csv_value(f, t->omega_radps[i]);
-        fprintf(f, ",%d\n", t->airborne[i]);
+        fprintf(f, ",%d,%d\n", t->contact[i], t->airborne[i]);
     }
 }
 
-static void print_report(const char *file, const cli_Track *t, cli_TrackAxes axes, int fit_tilt)
+/* A note, wrapped at 96 columns under its label. */
+static void print_wrapped(const char *label, const char *text)
+{
+    printf("  %-9s", label);
+    int col = 11, first = 1;
+    const char *p = text;
+    while (*p) {
+        while (*p == ' ') p++;
+        const char *sp = strchr(p, ' ');
+        const int w = sp ? (int)(sp - p) : (int)strlen(p);
+        if (w == 0) break;
+        if (!first && col + 1 + w > 96) {
+            printf("\n           ");
+            col = 11;
+        } else if (!first) {
+            putchar(' ');
+            col++;
+        }
+        printf("%.*s", w, p);
+        col += w;
+        p += w;
+        first = 0;
+    }
+    putchar('\n');
+}
+
+static void print_hops(const cli_Track *t)
+{
+    if (t->hops == 0) return;
+    printf("\n%s:\n    #   from (s)     to (s)   x (cm)   peak above contact\n",
+           t->centre_source == CLI_CENTRE_FROM_MARK ? "Departures from rolling" : "Hops");
+    for (long k = 0; k < t->hops; ++k) {
+        const cli_TrackHop *h = &t->hop[k];
+        printf("  %3ld %10.4f %10.4f ", k + 1, t->t_s[h->first], t->t_s[h->last]);
+        if (isfinite(t->x_m[h->first])) printf("%8.2f", t->x_m[h->first] * 100);
+        else printf("%8s", "?");
+        if (!isnan(h->height_m))
+            printf("   %.1f +- %.1f mm%s\n", h->height_m * 1e3, h->height_sigma_m * 1e3,
+                   h->fitted_flight ? " (a flight fitted to the mark)" : "");
+        else
+            printf("   a slip or a hop: at most %.0f mm (the mark alone)\n", h->bound_m * 1e3);
+    }
+}
+
+static void print_report(const char *file, const cli_Track *t)
 {
     printf("Track file: ");
     cli_shell_word(stdout, file);
@@ -224,42 +270,41 @@ static void print_report(const char *file, const cli_Track *t, cli_TrackAxes axe
     printf("Tracks:");
     for (int i = 0; i < t->track_count; ++i)
         printf("%s '%s' %ld frames", i ? "," : "", t->track_names[i], t->track_frames[i]);
-    printf("\nFrames: %ld in the %s at %.3f frames/s (step %.4f ms); time step jitter %.4f ms\n", t->clip_frames,
-           strcmp(t->format, "trk") == 0 ? "clip" : "table", t->frame_rate_hz, 1e3 / t->frame_rate_hz,
-           t->dt_jitter_s * 1e3);
-    printf("Centre '%s': %ld frames kept, %ld missing between its first and last\n", t->centre_name, t->n, t->gaps);
-    if (t->has_mark)
-        printf("Mark '%s': at %.2f cm from the centre (median)\n", t->mark_name, t->mark_radius_m * 100);
-    else printf("Mark: none (no theta, omega)\n");
+    if (isfinite(t->frame_rate_hz))
+        printf("\nFrames: %ld in the %s at %.3f frames/s (step %.4f ms); time step jitter %.4f ms; %ld missing\n",
+               t->clip_frames, strcmp(t->format, "trk") == 0 ? "clip" : "table", t->frame_rate_hz,
+               1e3 / t->frame_rate_hz, t->dt_jitter_s * 1e3, t->gaps);
+    else
+        printf("\nFrames: %ld in the %s; no time step\n", t->clip_frames,
+               strcmp(t->format, "trk") == 0 ? "clip" : "table");
     if (isfinite(t->scale_px_per_m))
         printf("Scale: %.4g px/m (1 px = %.3f mm)%s", t->scale_px_per_m, 1e3 / t->scale_px_per_m,
                t->scale_varies ? "; the axes or scale change between frames" : "");
     else printf("Scale: the table is in metres already");
     if (isfinite(t->tape_length_m)) printf("; calibration tape %.4g m", t->tape_length_m);
-    printf("\nIncline frame: incline %.2f deg, Tracker's axes %s; radius r = %.2f cm\n", cli_deg(t->incline_rad),
-           axes == CLI_TRACK_AXES_INCLINE ? "along the incline" : "level", t->radius_m * 100);
-    printf("Position noise: %.3f mm estimated (sigma used %.3f mm); the centres in contact lie on a line\n"
-           "  tilted %+.3f deg from the incline's x axis (%s)\n",
-           t->noise_m * 1e3, t->sigma_m * 1e3, cli_deg(t->surface_tilt_rad),
-           fit_tilt ? "removed: --fit-tilt" : "a check of --incline and --axes; --fit-tilt removes it");
-    printf("Start: x0 = %.2f cm", t->x0_m * 100);
-    if (t->has_mark) {
-        long i = 0;
-        while (i < t->n && isnan(t->theta_rad[i])) i++;
-        if (i < t->n) printf(", theta = %.4f rad at t = %.4f s", t->theta_rad[i], t->t_s[i]);
+    printf("\nAxes: %s; radius r = %.2f cm (the setup's)\n",
+           t->axes == CLI_TRACK_AXES_INCLINE ? "along the incline" : "level", t->radius_m * 100);
+    printf("\nWhat the video tells:\n");
+    for (int q = 0; q < CLI_Q_COUNT; ++q) {
+        char label[16];
+        snprintf(label, sizeof label, "%s:", quantity_names[q]);
+        print_wrapped(label, t->note[q].text[0] ? t->note[q].text : "not known");
     }
-    printf("; end: t = %.4f s, x = %.2f cm\n", t->t_s[t->n - 1], t->x_m[t->n - 1] * 100);
-    printf("Hops (centre above r + %.2f mm): %ld\n", t->hop_threshold_m * 1e3, t->hops);
-    hop_span h;
-    int k = 0;
-    if (t->hops > 0) printf("    #   from (s)     to (s)   x (cm)  peak (mm)  frames\n");
-    for (long from = 0; next_hop(t, from, &h); from = h.b + 1)
-        printf("  %3d %10.4f %10.4f %8.2f %10.3f %7ld\n", ++k, t->t_s[h.a], t->t_s[h.b], t->x_m[h.a] * 100,
-               (t->y_m[h.peak] - t->radius_m) * 1e3, h.b - h.a + 1);
+    if (t->centre_source == CLI_CENTRE_NONE || t->n == 0) return;
+    long i = 0;
+    while (i < t->n && isnan(t->x_m[i])) i++;
+    long e = t->n - 1;
+    while (e > 0 && isnan(t->x_m[e])) e--;
+    if (i < t->n) {
+        printf("\nStart: x0 = %.2f cm", t->x_m[i] * 100);
+        if (isfinite(t->theta_rad[i])) printf(", theta = %.4f rad", t->theta_rad[i]);
+        printf(" at t = %.4f s; end: t = %.4f s, x = %.2f cm\n", t->t_s[i], t->t_s[e], t->x_m[e] * 100);
+    }
+    print_hops(t);
 }
 
 /* Both files made whole, then both published: neither or both appear. */
-static int write_outputs(const track_opts *o, const char *file, const cli_Track *t, const cli_TrackOptions *opt)
+static int write_outputs(const track_opts *o, const char *file, const cli_Track *t)
 {
     cli_Output csv, json;
     memset(&csv, 0, sizeof csv);
@@ -275,7 +320,7 @@ static int write_outputs(const track_opts *o, const char *file, const cli_Track 
         ok = cli_output_finish(&csv, CLI_CHECK_WRITES) == 0;
     }
     if (ok && o->json) {
-        cJSON *doc = track_json(file, t, opt);
+        cJSON *doc = track_json(file, t);
         char *text = doc ? cJSON_Print(doc) : NULL;
         cJSON_Delete(doc);
         if (!text) {
@@ -310,36 +355,14 @@ int cmd_track(int argc, char **argv)
         free(args);
         return EXIT_USAGE;
     }
-    track_opts o = {0};
+    track_opts o;
+    memset(&o, 0, sizeof o);
     cli_SetupArgs sa;
     int st = cli_command_parse(n, args, &command, &o, &sa, NULL);
     free(args);
     if (st != CLI_GO_ON) return st;
     jc_Setup setup;
     if ((st = cli_build_inputs("track", &sa, NULL, &setup, NULL, NULL)) != 0) return st;
-    cli_TrackOptions opt;
-    cli_track_options_default(&opt);
-    opt.centre = o.centre;
-    opt.mark = o.mark;
-    opt.incline_rad = setup.incline_rad;
-    opt.radius_m = setup.body.radius_m;
-    opt.fit_tilt = o.fit_tilt;
-    if (o.axes) {
-        if (strcmp(o.axes, "level") == 0) opt.axes = CLI_TRACK_AXES_LEVEL;
-        else if (strcmp(o.axes, "incline") == 0) opt.axes = CLI_TRACK_AXES_INCLINE;
-        else {
-            cli_error("track: --axes '%s' (allowed: level, incline)", o.axes);
-            return EXIT_USAGE;
-        }
-    }
-    if (o.hop_sigmas) {
-        char err[256];
-        if (cli_parse_quantity(o.hop_sigmas, Q_NUMBER, &opt.hop_sigmas, err, sizeof err) != 0 ||
-            !(opt.hop_sigmas >= 1 && opt.hop_sigmas <= 100)) {
-            cli_error("track: --hop-sigmas '%s': a number from 1 to 100", o.hop_sigmas);
-            return EXIT_USAGE;
-        }
-    }
     if ((o.csv && strcmp(o.csv, "-") == 0) || (o.json && strcmp(o.json, "-") == 0)) {
         cli_error("track: --csv and --json write files; the report goes to standard output");
         return EXIT_USAGE;
@@ -349,16 +372,15 @@ int cmd_track(int argc, char **argv)
         return EXIT_USAGE;
     }
     cli_Track t;
-    char err[1024];
-    if (cli_track_load(file, &opt, &t, err, sizeof err) != 0) {
-        for (char *p = err; *p; ++p)
-            if (*p == '\n' || *p == '\r') *p = ' ';
-        cli_error("track: %s", err);
+    if ((st = cli_track_args_load("track", file, &o.read, &sa, &setup, &t)) != 0) return st;
+    if (o.csv && t.centre_source == CLI_CENTRE_NONE) {
+        cli_error("track: --csv needs the centre's path, which is %s", t.note[CLI_Q_CENTRE].text);
+        cli_track_free(&t);
         return EXIT_USAGE;
     }
-    st = write_outputs(&o, file, &t, &opt);
+    st = write_outputs(&o, file, &t);
     if (st == EXIT_OK) {
-        print_report(file, &t, opt.axes, opt.fit_tilt);
+        print_report(file, &t);
         if (o.csv) printf("CSV: %ld frames written to %s\n", t.n, o.csv);
         if (o.json) printf("JSON written to %s\n", o.json);
     }

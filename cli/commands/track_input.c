@@ -1,8 +1,9 @@
-/* What compare and fit share: the track file and how to read it, the time
- * window, the figure's file, and the model's fine path for the figure. */
+/* What track, compare and fit share: the track file and how to read it, the
+ * time window, the mark's angle, the figure's file, and the model's fine
+ * path for the figure. */
+#include "track_input.h"
 #include "figures.h"
 #include "plot.h"
-#include "track_fit.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -19,22 +20,44 @@ int cli_track_args_take(const char *cmd, cli_TrackArgs *a, int opt, const char *
     case CLI_TRACK_OPT_FROM: return cli_take_once(cmd, &a->from, "from", arg);
     case CLI_TRACK_OPT_TO: return cli_take_once(cmd, &a->to, "to", arg);
     case CLI_TRACK_OPT_OUTPUT: return cli_take_once(cmd, &a->output, "output", arg);
+    case CLI_TRACK_OPT_MARK_ANGLE: return cli_take_once(cmd, &a->mark_angle, "mark-angle", arg);
+    case CLI_TRACK_OPT_HOP_SIGMAS: return cli_take_once(cmd, &a->hop_sigmas, "hop-sigmas", arg);
     case CLI_TRACK_OPT_SETUP_START: a->from_setup_start = 1; return 0;
+    case CLI_TRACK_OPT_FIT_TILT: a->fit_tilt = 1; return 0;
     default: return 1; /* not one of these */
     }
 }
 
-void cli_track_args_help(void)
+void cli_track_args_help(int window)
 {
-    puts("  --track FILE        the tracked video: a Tracker .trk file or a data table it exported\n"
-         "                      (see 'jumpcyl track --help'); required\n"
-         "  --centre TRACK      the axle's track (default: as 'jumpcyl track' picks it)\n"
-         "  --mass TRACK        the off-centre mark's track; --mass '' for none\n"
-         "  --axes level|incline  how Tracker's axes were laid (default: level, y up)\n"
-         "  --from T, --to T    the frames from T to T (s; default: all)\n"
+    if (window)
+        puts("  --track FILE        the tracked video: a Tracker .trk file or a data table it exported\n"
+             "                      (see 'jumpcyl track --help'); required");
+    puts("  --centre TRACK      the axle's track (default: the track named centre, center, axle, axis\n"
+         "                      or hub; or told by its motion: the one that keeps to a line)\n"
+         "  --mass TRACK        the off-centre mark's track (default: the track named mark, rod, dot,\n"
+         "                      off, led, rim, light, lamp or spot, or the other of two); --mass ''\n"
+         "                      for none. A file with a mark alone (an LED on the rim) is read too:\n"
+         "                      the centre is recovered by fitting rolling to it\n"
+         "  --axes level        Tracker's axes are level, y up (Tracker's default; the default): the\n"
+         "                      incline's angle is measured from the frames in contact\n"
+         "  --axes incline      Tracker's x axis was laid along the incline (its angle is then not\n"
+         "                      in the video: give --incline for compare and fit)\n"
+         "  --incline ANGLE     (a setup option) checked against the video's: refused when the frames\n"
+         "                      in contact lie more than 3 sigma and 2 deg away; without it the\n"
+         "                      video's angle is used, never a preset's\n"
+         "  --hop-sigmas K      a hop: the centre more than K sigma above the surface for 2 frames or\n"
+         "                      more (sigma: the noise of the frames in contact; default 5)\n"
+         "  --fit-tilt          the surface is the line through the frames in contact even where it\n"
+         "                      agrees with the incline given");
+    if (!window) return;
+    puts("  --from T, --to T    the frames from T to T (s; default: all). --from sets where the free\n"
+         "                      motion starts; without it, frames at the start that the model cannot\n"
+         "                      follow (a hand's push) are found and left out\n"
          "  --from-setup-start  start the model with the setup's theta0 and omega0 at the first\n"
-         "                      frame's position, not with the state the first frames show\n"
-         "                      (with --theta0 and --omega0: a start of your own)\n"
+         "                      frame's position, not with the state the frames show\n"
+         "  --mark-angle ANGLE  the tracked mark's angle on the body, as a part's angle (default 0:\n"
+         "                      the reference direction, where the paper's rod and the hoop's mass sit)\n"
          "  --output FILE       the figure (gnuplot): .png, .svg or .pdf, written whole or not at all");
 }
 
@@ -52,22 +75,46 @@ static int parse_time(const char *cmd, const char *name, const char *text, doubl
     return 0;
 }
 
-int cli_track_args_check(const char *cmd, const cli_TrackArgs *a, double *from_s, double *to_s)
+static int check_reading(const char *cmd, const cli_TrackArgs *a)
 {
-    if (!a->track || !*a->track) {
-        cli_error("%s: --track FILE is required (a Tracker .trk file or an exported data table)", cmd);
-        return EXIT_USAGE;
-    }
     if (a->axes && strcmp(a->axes, "level") != 0 && strcmp(a->axes, "incline") != 0) {
         cli_error("%s: --axes '%s' (allowed: level, incline)", cmd, a->axes);
         return EXIT_USAGE;
     }
-    int rc = parse_time(cmd, "from", a->from, from_s);
-    if (rc == 0) rc = parse_time(cmd, "to", a->to, to_s);
-    if (rc != 0) return rc;
-    if (!isnan(*from_s) && !isnan(*to_s) && !(*from_s < *to_s)) {
-        cli_error("%s: --from %g s is not before --to %g s", cmd, *from_s, *to_s);
+    if (a->hop_sigmas) {
+        char err[256];
+        double k;
+        if (cli_parse_quantity(a->hop_sigmas, Q_NUMBER, &k, err, sizeof err) != 0 || !(k >= 1 && k <= 100)) {
+            cli_error("%s: --hop-sigmas '%s': a number from 1 to 100", cmd, a->hop_sigmas);
+            return EXIT_USAGE;
+        }
+    }
+    return 0;
+}
+
+int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
+{
+    a->from_s = a->to_s = NAN;
+    a->mark_angle_rad = 0.0;
+    if (!a->track || !*a->track) {
+        cli_error("%s: --track FILE is required (a Tracker .trk file or an exported data table)", cmd);
         return EXIT_USAGE;
+    }
+    int rc = check_reading(cmd, a);
+    if (rc == 0) rc = parse_time(cmd, "from", a->from, &a->from_s);
+    if (rc == 0) rc = parse_time(cmd, "to", a->to, &a->to_s);
+    if (rc != 0) return rc;
+    if (!isnan(a->from_s) && !isnan(a->to_s) && !(a->from_s < a->to_s)) {
+        cli_error("%s: --from %g s is not before --to %g s", cmd, a->from_s, a->to_s);
+        return EXIT_USAGE;
+    }
+    if (a->mark_angle) {
+        char err[256];
+        if (cli_parse_quantity(a->mark_angle, Q_ANGLE, &a->mark_angle_rad, err, sizeof err) != 0 ||
+            !(fabs(a->mark_angle_rad) <= 2 * CLI_PI)) {
+            cli_error("%s: --mark-angle '%s': an angle from -360 to 360 deg", cmd, a->mark_angle);
+            return EXIT_USAGE;
+        }
     }
     if (a->output) {
         const char *ext = cli_path_ext(a->output);
@@ -87,34 +134,69 @@ int cli_track_args_check(const char *cmd, const cli_TrackArgs *a, double *from_s
     return 0;
 }
 
-int cli_track_args_load(const char *cmd, const cli_TrackArgs *a, const jc_Model *m, cli_Track *t)
+/* Whether the incline was given: --incline, or an experiment file's key. */
+static int incline_given(const cli_SetupArgs *sa)
 {
+    if (cli_setup_given(sa, "incline")) return 1;
+    const int cfg = cli_setup_option_index("config");
+    if (cfg < 0 || !sa->value[cfg]) return 0;
+    jc_Setup probe;
+    memset(&probe, 0, sizeof probe);
+    probe.incline_rad = NAN;
+    char err[256];
+    return cli_config_load(sa->value[cfg], &probe, err, sizeof err) == 0 && !isnan(probe.incline_rad);
+}
+
+int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *a, const cli_SetupArgs *sa,
+                        const jc_Setup *setup, cli_Track *t)
+{
+    int rc = check_reading(cmd, a);
+    if (rc != 0) return rc;
     cli_TrackOptions opt;
     cli_track_options_default(&opt);
     opt.centre = a->centre;
     opt.mark = a->mass;
-    opt.incline_rad = m->setup.incline_rad;
-    opt.radius_m = m->body.radius_m;
+    opt.incline_rad = incline_given(sa) ? setup->incline_rad : NAN;
+    opt.radius_m = setup->body.radius_m;
+    opt.gravity_mps2 = setup->gravity_mps2;
+    opt.fit_tilt = a->fit_tilt;
     opt.axes = a->axes && strcmp(a->axes, "incline") == 0 ? CLI_TRACK_AXES_INCLINE : CLI_TRACK_AXES_LEVEL;
-    char err[512];
-    if (cli_track_load(a->track, &opt, t, err, sizeof err) != 0) {
-        cli_error("%s: %s", cmd, err);
-        return EXIT_USAGE;
+    if (a->hop_sigmas) {
+        char err[64];
+        cli_parse_quantity(a->hop_sigmas, Q_NUMBER, &opt.hop_sigmas, err, sizeof err);
     }
-    if (!(t->sigma_m > 0.0)) {
-        cli_track_free(t);
-        cli_error("%s: %s: no position noise could be told (no scale, too few frames)", cmd, a->track);
+    char err[1024];
+    if (cli_track_load(path, &opt, t, err, sizeof err) != 0) {
+        cli_error("%s: %s", cmd, err);
         return EXIT_USAGE;
     }
     return 0;
 }
 
+int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const cli_SetupArgs *sa, jc_Setup *setup,
+                                  cli_Track *t)
+{
+    int rc = cli_track_args_load(cmd, a->track, a, sa, setup, t);
+    if (rc != 0) return rc;
+    char err[1024];
+    if (cli_track_require(a->track, t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, sizeof err) != 0) {
+        cli_track_free(t);
+        cli_error("%s: %s", cmd, err);
+        return EXIT_USAGE;
+    }
+    setup->incline_rad = t->incline_rad;
+    return 0;
+}
+
 void cli_track_print_head(const char *file, const cli_Track *t, long first, long count)
 {
+    static const char *const source[] = {"none", "tracked", "recovered from the mark"};
     printf("Track: %s: %ld of %ld frames used (t = %.4f to %.4f s), %.4g fps nominal, %ld gap(s);\n"
-           "       noise sigma %.3g mm; mark %s\n",
+           "       noise sigma %.3g mm (the frames in contact); centre %s; mark %s\n",
            file, count, t->n, t->t_s[first], t->t_s[first + count - 1], t->frame_rate_hz, t->gaps, t->sigma_m * 1e3,
-           t->has_mark ? "tracked" : "not tracked (theta is not compared)");
+           source[t->centre_source], t->has_mark ? "tracked" : "not tracked (theta is not compared)");
+    printf("       incline %.2f deg (%s)\n", cli_deg(t->incline_rad),
+           t->incline_source == CLI_INCLINE_MEASURED ? "measured from the video" : "as given");
 }
 
 /* The model's path every quarter frame, for the figure's curves. */
@@ -126,7 +208,7 @@ int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_Stat
     at_start.omega0_radps = start->omega_radps;
     jc_Model model;
     char err[256];
-    if (cli_track_model(&at_start, &model, err, sizeof err) != 0) return -1;
+    if (cli_track_model(&at_start, t, &model, err, sizeof err) != 0) return -1;
     const double dt = 0.25 / (t->frame_rate_hz > 0.0 ? t->frame_rate_hz : 60.0);
     const double span = t_end_s - start->t_s;
     *n = span > 0.0 ? (long)fmin(floor(span / dt) + 1.0, 2e6) : 1;
@@ -142,18 +224,19 @@ int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_Stat
     return rc;
 }
 
-int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_Model *m,
-                          const jc_State *start, const jc_SimOptions *o, const char *out, int argc, char **argv)
+int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_State *start,
+                          const cli_FitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv)
 {
     const cli_Track *t = f->track;
     double *pt = NULL, *px = NULL, *py = NULL;
     int rc = cli_track_fine_path(setup, t, start, o, t->t_s[f->first + f->count - 1], &pt, &px, &py, &f->path_n);
     if (rc == 0) {
+        if (frame) cli_fit_to_video(frame, start, px, py, NULL, f->path_n);
         f->path_t = pt;
         f->path_x = px;
         f->path_y = py;
-        f->radius_m = m->body.radius_m;
-        f->incline_rad = m->setup.incline_rad;
+        f->radius_m = t->radius_m;
+        f->incline_rad = t->incline_rad;
         char cmdline[2048];
         fig_command_line(argc, argv, cmdline, sizeof cmdline);
         rc = cli_track_figure(cmd, f, out, cmdline);

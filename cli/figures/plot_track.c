@@ -14,90 +14,88 @@ static void put(FILE *f, double v)
     else fputs(" NaN", f);
 }
 
-/* Incline frame -> laboratory frame, downhill to the right, y up. */
-static void lab(const cli_TrackFigure *f, double x, double y, double *X, double *Y)
+/* The frames' residuals in units of sigma: the centre along and across the
+ * incline and the mark across its radius (a tracked centre), or the mark
+ * along and across (a centre recovered from the mark). */
+static void residuals_at(const cli_TrackFigure *f, long i, double r[3])
 {
-    const double c = cos(f->incline_rad), s = sin(f->incline_rad);
-    *X = x * c + y * s;
-    *Y = -x * s + y * c;
+    const cli_Track *t = f->track;
+    const long j = f->first + i;
+    const double s = f->sigma_m > 0 ? f->sigma_m : t->sigma_m, a = f->mark_radius_m, thm = f->sim_theta[i];
+    r[0] = r[1] = r[2] = NAN;
+    if (t->centre_source == CLI_CENTRE_FROM_MARK) {
+        if (!isfinite(t->mark_x_m[j])) return;
+        r[0] = (t->mark_x_m[j] - (f->sim_x[i] + a * sin(thm))) / s;
+        r[1] = (t->mark_y_m[j] - (f->sim_y[i] + a * cos(thm))) / s;
+        return;
+    }
+    if (!isfinite(t->x_m[j])) return;
+    const double dx = t->x_m[j] - f->sim_x[i], dy = t->y_m[j] - f->sim_y[i], th = t->theta_rad[j];
+    r[0] = dx / s;
+    r[1] = dy / s;
+    if (a > 0.0 && isfinite(th)) r[2] = (a * (th - thm) + dx * cos(th) - dy * sin(th)) / s;
 }
 
 static void write_data(FILE *gp, const cli_TrackFigure *f)
 {
     const cli_Track *t = f->track;
-    double xmin = INFINITY, xmax = -INFINITY;
     fig_block_begin(gp, "frames");
-    fputs("# t_s X_lab_m Y_lab_m height_mm dx_mm dy_mm across_mm (the mark's residual across its radius)\n", gp);
+    fputs("# t_s x_cm height_mm height_sigma_mm r_along r_across r_mark (residuals in sigma)\n", gp);
     for (long i = 0; i < f->count; ++i) {
         const long j = f->first + i;
-        double X, Y;
-        lab(f, t->x_m[j], t->y_m[j], &X, &Y);
-        const double dx = t->x_m[j] - f->sim_x[i], dy = t->y_m[j] - f->sim_y[i], th = t->theta_rad[j];
-        const double across = f->mark_radius_m > 0.0 && isfinite(th)
-                                  ? f->mark_radius_m * (th - f->sim_theta[i]) + dx * cos(th) - dy * sin(th)
-                                  : NAN;
+        double r[3];
+        residuals_at(f, i, r);
         fprintf(gp, "%.10g", t->t_s[j]);
-        put(gp, X);
-        put(gp, Y);
+        put(gp, t->x_m[j] * 100);
         put(gp, (t->y_m[j] - f->radius_m) * 1e3);
-        put(gp, dx * 1e3);
-        put(gp, dy * 1e3);
-        put(gp, across * 1e3);
+        put(gp, t->centre_sigma_m[j] * 1e3);
+        put(gp, r[0]);
+        put(gp, r[1]);
+        put(gp, r[2]);
         fputc('\n', gp);
-        xmin = fmin(xmin, t->x_m[j]);
-        xmax = fmax(xmax, t->x_m[j]);
     }
     fig_block_end(gp);
     fig_block_begin(gp, "model");
-    fputs("# t_s X_lab_m Y_lab_m height_mm\n", gp);
+    fputs("# t_s x_cm height_mm\n", gp);
     for (long i = 0; i < f->path_n; ++i) {
-        double X, Y;
-        lab(f, f->path_x[i], f->path_y[i], &X, &Y);
         fprintf(gp, "%.10g", f->path_t[i]);
-        put(gp, X);
-        put(gp, Y);
+        put(gp, f->path_x[i] * 100);
         put(gp, (f->path_y[i] - f->radius_m) * 1e3);
         fputc('\n', gp);
-        xmin = fmin(xmin, f->path_x[i]);
-        xmax = fmax(xmax, f->path_x[i]);
     }
-    fig_block_end(gp);
-    /* The incline's surface under the frames (the centre is r above it). */
-    fig_block_begin(gp, "surface");
-    double X, Y;
-    lab(f, xmin - f->radius_m, 0.0, &X, &Y);
-    fprintf(gp, "%.10g %.10g\n", X, Y);
-    lab(f, xmax + f->radius_m, 0.0, &X, &Y);
-    fprintf(gp, "%.10g %.10g\n", X, Y);
     fig_block_end(gp);
 }
 
 static void write_panels(FILE *gp, const cli_TrackFigure *f)
 {
+    const int from_mark = f->track->centre_source == CLI_CENTRE_FROM_MARK;
     fputs("\nset multiplot layout 3,1 title ", gp);
     fig_quote(gp, f->title);
     fputs(" font F_TITLE\n", gp);
-    fig_panel_begin(gp, "the path in the laboratory frame, to scale");
-    fputs("set title 'Tracked centre over the model path (laboratory frame, to scale)'\n"
-          "set xlabel 'horizontal (m)'\nset ylabel 'height (m)'\nset size ratio -1\n"
-          "plot $surface u 1:2 w l lc rgb C_GREY lw 3 t 'incline surface', \\\n"
-          "     $model u 2:3 w l lc rgb C_BLUE lw LW t 'model: centre', \\\n"
-          "     $frames u 2:3 w p pt 6 ps 0.9*PS lc rgb C_RED t 'tracked centre'\n",
+    fig_panel_begin(gp, "the centre along the incline");
+    fputs("set title 'The centre along the incline'\nset xlabel 't (s)'\nset ylabel 'x (cm)'\n"
+          "plot $model u 1:2 w l lc rgb C_BLUE lw LW t 'model', \\\n"
+          "     $frames u 1:2 w p pt 6 ps 0.9*PS lc rgb C_RED t 'video'\n",
           gp);
     fig_panel_begin(gp, "the centre's height above the surface");
     fprintf(gp,
-            "set title 'Centre above the surface (hops show)'\nset xlabel 't (s)'\nset ylabel 'height above contact (mm)'\n"
-            "plot $model u 1:4 w l lc rgb C_BLUE lw LW t 'model', \\\n"
-            "     $frames u 1:4 w p pt 6 ps 0.9*PS lc rgb C_RED t 'tracked', \\\n"
+            "set title 'The centre above the surface (hops show as arches)'\nset xlabel 't (s)'\n"
+            "set ylabel 'height above contact (mm)'\n"
+            "plot $model u 1:3 w l lc rgb C_BLUE lw LW t 'model', \\\n"
+            "     $frames u 1:3:4 w yerrorbars pt 6 ps 0.9*PS lc rgb C_RED t '%s', \\\n"
             "     %.10g w l dt 2 lc rgb C_GREY lw 2 t 'hop threshold'\n",
-            f->hop_threshold_m * 1e3);
-    fig_panel_begin(gp, "residuals");
-    fputs("set title 'Residuals: tracked minus model'\nset xlabel 't (s)'\nset ylabel 'residual (mm)'\n"
-          "plot $frames u 1:5 w p pt 7 ps 0.6*PS lc rgb C_BLUE t 'centre, along the incline', \\\n"
-          "     $frames u 1:6 w p pt 5 ps 0.6*PS lc rgb C_ORANGE t 'centre, across the incline'",
-          gp);
-    if (f->mark_radius_m > 0.0)
-        fputs(", \\\n     $frames u 1:7 w p pt 9 ps 0.6*PS lc rgb C_GREEN t 'mark, across its radius (angle)'", gp);
+            from_mark ? "video (centre recovered from the mark)" : "video", f->hop_threshold_m * 1e3);
+    fig_panel_begin(gp, "residuals in units of sigma");
+    fprintf(gp, "set title 'Residuals: video minus model, in units of the noise (%.2f mm)'\nset xlabel 't (s)'\n"
+                "set ylabel 'residual / sigma'\n"
+                "plot 3 w l dt 2 lc rgb C_GREY lw 1 t '±3 sigma', -3 w l dt 2 lc rgb C_GREY lw 1 notitle, \\\n"
+                "     $frames u 1:5 w p pt 7 ps 0.6*PS lc rgb C_BLUE t '%s', \\\n"
+                "     $frames u 1:6 w p pt 5 ps 0.6*PS lc rgb C_ORANGE t '%s'",
+            (f->sigma_m > 0 ? f->sigma_m : f->track->sigma_m) * 1e3,
+            from_mark ? "mark, along the incline" : "centre, along the incline",
+            from_mark ? "mark, across the incline" : "centre, across the incline");
+    if (!from_mark && f->mark_radius_m > 0.0)
+        fputs(", \\\n     $frames u 1:7 w p pt 9 ps 0.6*PS lc rgb C_GREEN t 'mark, across its radius'", gp);
     fputs("\nunset multiplot\n", gp);
 }
 

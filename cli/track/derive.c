@@ -1,10 +1,38 @@
-/* What a track says beyond positions: the noise, the surface, the height of
- * the centre above it and the hops, θ unwrapped and ω. */
+/* What a track tells beyond positions: the surface and the incline's angle
+ * (from the frames in contact, checked against an angle given), the noise,
+ * the centre (tracked, or recovered from a mark by rim.c), the heights and
+ * the hops with their uncertainties, θ unwrapped and ω; and, for each
+ * quantity, a note saying how well it is known or why it is not. */
 #include "raw.h"
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define DEG (180.0 / CLI_TRACK_PI)
+#define NOISE_FLOOR_M 1e-5      /* no video resolves 10 µm */
+#define HOP_MIN_FRAMES 2
+#define CONTACT_RUN_FRAMES 4    /* a run of contact: 4 frames ... */
+#define CONTACT_RUN_S 0.1       /* ... and 0.1 s at least */
+#define CONTACT_ERODE_S 0.05    /* its ends next to a hop left out */
+#define TURN_PASSES 8
+/* A single track whose scatter about its line is this many times the
+ * frame-to-frame noise swings about the line: a mark, not a centre. */
+#define MARK_SWING_RATIO 4.0
+#define MARK_MIN_RADIUS_R 0.2   /* a recovered mark at least 0.2 r from C ... */
+#define MARK_MIN_NOISES 10.0    /* ... and 10 noises */
+#define MARK_MIN_ROLLING 0.5    /* rolling explains at least half the frames */
+
+static void note(cli_Track *t, cli_TrackQuantity q, int ok, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(t->note[q].text, sizeof t->note[q].text, fmt, ap);
+    va_end(ap);
+    t->note[q].ok = ok;
+}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -12,7 +40,6 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Median of v[0..n) (reordered); NaN for n = 0. */
 static double median(double *v, long n)
 {
     if (n <= 0) return NAN;
@@ -20,109 +47,346 @@ static double median(double *v, long n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/* The noise of the centre's coordinates: third differences of a smooth
- * path are small next to noise, whose third difference has variance 20 σ²;
- * the median absolute value (× 1.4826 for a Gaussian) ignores the impacts. */
-static double noise_estimate(const cli_Track *t, double *work)
+/* The noise of a path from its third differences: those of a smooth path
+ * are small next to noise, whose third difference has variance 20 σ²; the
+ * median absolute value (x 1.4826 for a Gaussian) ignores the impacts. */
+static double third_difference_noise(const double *x, const double *y, long n, double *work)
 {
     long m = 0;
-    for (long i = 0; i + 3 < t->n; ++i) {
-        work[m++] = fabs(t->x_m[i + 3] - 3 * t->x_m[i + 2] + 3 * t->x_m[i + 1] - t->x_m[i]);
-        work[m++] = fabs(t->y_m[i + 3] - 3 * t->y_m[i + 2] + 3 * t->y_m[i + 1] - t->y_m[i]);
+    for (long i = 0; i + 3 < n; ++i) {
+        work[m++] = fabs(x[i + 3] - 3 * x[i + 2] + 3 * x[i + 1] - x[i]);
+        work[m++] = fabs(y[i + 3] - 3 * y[i + 2] + 3 * y[i + 1] - y[i]);
     }
     return m > 0 ? 1.4826 * median(work, m) / sqrt(20.0) : NAN;
 }
 
-/* The line y = a + b x through the frames in contact. It starts level
- * through the first frames (the body is released on the surface); each pass
- * keeps the runs of at least SURFACE_RUN consecutive frames within cut of
- * the line and fits it again by least squares. A flight's low first and
- * last frames and a bounce seen between two frames make short runs: left
- * out, as they would tilt the line where the body is mostly in the air. */
-#define SURFACE_RUN 4
-#define SURFACE_START 8
-
-static int surface_line(const cli_Track *t, double cut, int fit_tilt, double *work, unsigned char *keep, double *a,
-                        double *b, double *tilt)
+static void turn(double *x, double *y, long n, double angle)
 {
-    const long first = t->n < SURFACE_START ? t->n : SURFACE_START;
-    for (long i = 0; i < first; ++i) work[i] = t->y_m[i];
-    *a = median(work, first);
-    *b = 0;
-    for (int pass = 0; pass < 6; ++pass) {
-        long run = 0;
-        for (long i = 0; i <= t->n; ++i) {
-            const int near = i < t->n && !(t->y_m[i] - (*a + *b * t->x_m[i]) > cut);
-            if (i < t->n) keep[i] = 0;
-            if (near) {
-                run++;
-                continue;
+    const double c = cos(angle), s = sin(angle);
+    for (long i = 0; i < n; ++i) {
+        if (isnan(x[i])) continue;
+        const double u = x[i] * c + y[i] * s, v = -x[i] * s + y[i] * c;
+        x[i] = u, y[i] = v;
+    }
+}
+
+/* The incline a measured one gives the model: a floor measured a hair
+ * below level (within 3 sigma or 2 deg) is level; a body that went up a
+ * slope leaves it unknown (NaN: the model takes inclines from 0). */
+static double measured_incline(double measured, double sig, cli_Track *t)
+{
+    if (measured >= 0.0) return measured;
+    if (-measured <= fmax(CLI_TRACK_INCLINE_SIGMAS * sig, CLI_TRACK_INCLINE_TOL_RAD)) return 0.0;
+    t->incline_source = CLI_INCLINE_UNKNOWN;
+    t->uphill = 1;
+    return NAN;
+}
+
+/* Whether a given incline is refused by a measured one (the frames in
+ * contact, sigma theirs): beyond 3 sigma and beyond 2 degrees. */
+static int refuses(double given, double measured, double sigma)
+{
+    const double d = fabs(given - measured);
+    return d > CLI_TRACK_INCLINE_SIGMAS * sigma && d > CLI_TRACK_INCLINE_TOL_RAD;
+}
+
+static int agrees(double given, double measured, double sigma)
+{
+    return fabs(given - measured) <= CLI_TRACK_INCLINE_SIGMAS * sigma;
+}
+
+/* ---- a tracked centre ---- */
+
+/* What a run of contact loses at an end next to a hop: 1 frame and 0.05 s. */
+static long contact_erode(const cli_Track *t)
+{
+    const double frames = isfinite(t->frame_rate_hz) ? ceil(CONTACT_ERODE_S * t->frame_rate_hz - 1e-9) : 1.0;
+    return frames > 1 ? (long)frames : 1;
+}
+
+/* The shortest run of frames taken as contact: 4 frames and 0.1 s. */
+static long contact_run(const cli_Track *t)
+{
+    const double frames = isfinite(t->frame_rate_hz) ? ceil(CONTACT_RUN_S * t->frame_rate_hz - 1e-9) : 0.0;
+    return frames > CONTACT_RUN_FRAMES ? (long)frames : CONTACT_RUN_FRAMES;
+}
+
+/* The incline and the frame's turn from the line through the frames in
+ * contact (tilt tau against the frame's x, sigma its error). *turn_by is
+ * the angle to turn the frame by so that the surface lies along x; *level
+ * is 1 when the surface is taken parallel to x as it is (a given incline
+ * the frames agree with). -1 with a message when the given one is refused. */
+static int decide_incline(const char *name, const cli_TrackOptions *opt, double frame_angle, double tau,
+                          double sig, long frames, cli_Track *t, double *turn_by, int *level, char *err,
+                          size_t err_len)
+{
+    const int given = !isnan(opt->incline_rad);
+    t->surface_tilt_rad = tau;
+    t->surface_tilt_sigma_rad = sig;
+    *turn_by = tau;
+    *level = 0;
+    if (opt->axes == CLI_TRACK_AXES_LEVEL) {
+        const double measured = frame_angle - tau;
+        if (given && refuses(opt->incline_rad, measured, sig)) {
+            snprintf(err, err_len,
+                     "%s: the incline given, %.2f deg, disagrees with the video: the centres in contact lie on a "
+                     "line at %.2f +- %.2f deg (%ld frames); leave the incline out to take the video's, or check "
+                     "the axes (level or incline)",
+                     name, opt->incline_rad * DEG, measured * DEG, sig * DEG, frames);
+            return -1;
+        }
+        t->incline_source = given ? CLI_INCLINE_GIVEN : CLI_INCLINE_MEASURED;
+        t->incline_rad = given ? opt->incline_rad : measured_incline(measured, sig, t);
+        t->incline_sigma_rad = given ? 0.0 : sig;
+        if (given && agrees(opt->incline_rad, measured, sig) && !opt->fit_tilt) *turn_by = 0.0, *level = 1;
+        return 0;
+    }
+    /* Axes along the incline: the line should lie along x. */
+    if (refuses(0.0, tau, sig)) {
+        snprintf(err, err_len,
+                 "%s: the axes are not along the incline: the centres in contact lie on a line at %+.2f +- %.2f deg "
+                 "to them (%ld frames); lay Tracker's x axis along the ramp, or use level axes",
+                 name, tau * DEG, sig * DEG, frames);
+        return -1;
+    }
+    t->incline_source = given ? CLI_INCLINE_GIVEN : CLI_INCLINE_UNKNOWN;
+    t->incline_rad = given ? opt->incline_rad : NAN;
+    t->incline_sigma_rad = given ? 0.0 : NAN;
+    if (agrees(0.0, tau, sig) && !opt->fit_tilt) *turn_by = 0.0, *level = 1;
+    return 0;
+}
+
+static void surface_note(cli_Track *t, const cli_TrackOptions *opt, double measured, int level)
+{
+    const double sig = t->surface_tilt_sigma_rad * DEG;
+    if (t->uphill)
+        note(t, CLI_Q_SURFACE, 1, "the body went up a slope: the frames in contact lie at %.2f +- %.2f deg against its "
+             "travel; noise %.2f mm; compare and fit read bodies that go downhill or along a floor",
+             measured * DEG, sig, t->sigma_m * 1e3);
+    else if (t->incline_source == CLI_INCLINE_MEASURED && measured < 0.0)
+        note(t, CLI_Q_SURFACE, 1, "incline 0 deg, a floor: the line through %ld frames in contact lies at %.3f +- %.3f "
+             "deg, level within its error; noise %.2f mm (their scatter about it)", t->contact_frames, measured * DEG,
+             sig, t->sigma_m * 1e3);
+    else if (t->incline_source == CLI_INCLINE_MEASURED)
+        note(t, CLI_Q_SURFACE, 1, "incline %.2f +- %.2f deg, measured: the line through %ld frames in contact; noise "
+             "%.2f mm (their scatter about it)", t->incline_rad * DEG, sig, t->contact_frames, t->sigma_m * 1e3);
+    else if (t->incline_source == CLI_INCLINE_UNKNOWN)
+        note(t, CLI_Q_SURFACE, 1, "the surface: the line through %ld frames in contact (%+.2f +- %.2f deg to the "
+             "axes); noise %.2f mm; the incline's angle is not known: the axes lie along it and none was given",
+             t->contact_frames, t->surface_tilt_rad * DEG, sig, t->sigma_m * 1e3);
+    else if (opt->axes == CLI_TRACK_AXES_LEVEL)
+        note(t, CLI_Q_SURFACE, 1, "incline %.2f deg as given; the %ld frames in contact lie at %.2f +- %.2f deg%s; "
+             "noise %.2f mm", t->incline_rad * DEG, t->contact_frames, measured * DEG, sig,
+             level ? " (agreed)" : ": the surface is their line, the model's incline the one given", t->sigma_m * 1e3);
+    else
+        note(t, CLI_Q_SURFACE, 1, "incline %.2f deg as given (axes along it); the %ld frames in contact lie at "
+             "%+.2f +- %.2f deg to the axes%s; noise %.2f mm", t->incline_rad * DEG, t->contact_frames,
+             t->surface_tilt_rad * DEG, sig, level ? "" : ": the surface is their line", t->sigma_m * 1e3);
+}
+
+/* The surface under a tracked centre, the frame turned onto it, heights. 1
+ * when no line holds the centre (too few frames in contact), 0 when placed,
+ * -1 with a message (refused incline, memory). */
+static int tracked_surface(const char *name, const cli_TrackOptions *opt, double frame_angle, cli_Track *t,
+                           char *err, size_t err_len)
+{
+    cli_SurfaceLine L;
+    double *work = malloc((size_t)(2 * t->n + 2) * sizeof *work);
+    const double start = work ? third_difference_noise(t->x_m, t->y_m, t->n, work) : 0.0;
+    free(work);
+    int st = cli_surface_fit(t->x_m, t->y_m, t->n, contact_run(t), contact_erode(t), NOISE_FLOOR_M, start, t->contact, &L);
+    if (st == -2) {
+        snprintf(err, err_len, "%s: out of memory", name);
+        return -1;
+    }
+    if (st != 0) return 1;
+    const double tau = atan(L.b), sig = sqrt(L.var_b) / (1.0 + L.b * L.b);
+    double turn_by;
+    int level;
+    if (decide_incline(name, opt, frame_angle, tau, sig, L.contact, t, &turn_by, &level, err, err_len) != 0) return -1;
+    /* Turned until the line through the frames in contact (which may change
+     * with the turn) lies along x: the frame is then the incline's exactly,
+     * not sheared onto it. */
+    double turned = 0.0;
+    for (int pass = 0; turn_by != 0.0 && pass < TURN_PASSES; ++pass) {
+        turn(t->x_m, t->y_m, t->n, turn_by);
+        turn(t->mark_x_m, t->mark_y_m, t->n, turn_by);
+        turned += turn_by;
+        if (cli_surface_fit(t->x_m, t->y_m, t->n, contact_run(t), contact_erode(t), NOISE_FLOOR_M, start, t->contact,
+                            &L) != 0)
+            return 1;
+        turn_by = fabs(L.b) > 1e-12 ? atan(L.b) : 0.0;
+    }
+    if (turned != 0.0) {
+        t->surface_tilt_rad = turned;
+        if (t->incline_source == CLI_INCLINE_MEASURED)
+            t->incline_rad = measured_incline(frame_angle - turned, t->surface_tilt_sigma_rad, t);
+    }
+    /* A level surface through the frames in contact: their mean height
+     * (the least-squares line's value at their mean x). */
+    const double b = level ? 0.0 : L.b;
+    for (long i = 0; i < t->n; ++i) {
+        const double s = L.a + b * (t->x_m[i] - L.x_mid) - t->radius_m;
+        t->y_m[i] -= s;
+        if (!isnan(t->mark_y_m[i])) t->mark_y_m[i] -= s;
+        t->centre_sigma_m[i] = L.sigma_m;
+    }
+    t->contact_frames = L.contact;
+    t->sigma_m = L.sigma_m;
+    t->surface_sigma_m = sqrt(L.var_a);
+    surface_note(t, opt, frame_angle - (turned != 0.0 ? turned : tau), level);
+    t->hop_threshold_m = t->hop_sigmas * t->sigma_m;
+    /* Hops: runs of at least 2 frames clearly above the surface; a peak's
+     * error holds the noise and the surface's, there. */
+    t->hops = 0;
+    long i = 0;
+    while (i < t->n) {
+        if (!(t->y_m[i] - t->radius_m > t->hop_threshold_m)) {
+            i++;
+            continue;
+        }
+        long j = i;
+        while (j + 1 < t->n && t->y_m[j + 1] - t->radius_m > t->hop_threshold_m) j++;
+        if (j - i + 1 >= HOP_MIN_FRAMES) {
+            cli_TrackHop *h = &t->hop[t->hops++];
+            memset(h, 0, sizeof *h);
+            h->first = i, h->last = j, h->peak = i;
+            for (long k = i; k <= j; ++k) {
+                if (t->y_m[k] > t->y_m[h->peak]) h->peak = k;
+                t->airborne[k] = 1;
             }
-            if (run >= SURFACE_RUN)
-                for (long k = i - run; k < i; ++k) keep[k] = 1;
-            run = 0;
+            const double dx = t->x_m[h->peak] - L.x_mid;
+            h->height_m = t->y_m[h->peak] - t->radius_m;
+            h->height_sigma_m = sqrt(t->sigma_m * t->sigma_m + L.var_a + (level ? 0.0 : L.var_b * dx * dx));
+            h->bound_m = NAN;
         }
-        double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-        for (long i = 0; i < t->n; ++i) {
-            if (!keep[i]) continue;
-            sw += 1;
-            sx += t->x_m[i];
-            sy += t->y_m[i];
-            sxx += t->x_m[i] * t->x_m[i];
-            sxy += t->x_m[i] * t->y_m[i];
-        }
-        if (sw < 3) return -1;
-        const double det = sw * sxx - sx * sx;
-        /* A centre that hardly moved along the incline: a level line. */
-        *tilt = det > 1e-12 * sw * sxx ? (sw * sxy - sx * sy) / det : 0.0;
-        /* Without fit_tilt the given incline and axes are trusted: a tilt
-         * fitted on the frames in contact, mostly before the first hop,
-         * would move the far end of the ramp by more than the noise. */
-        *b = fit_tilt ? *tilt : 0.0;
-        *a = (sy - *b * sx) / sw;
+        i = j + 1;
     }
     return 0;
 }
 
-int cli_track_derive(const char *name, const cli_TrackOptions *opt, cli_Track *t, char *err, size_t err_len)
+/* ---- a centre recovered from a mark ---- */
+
+static int alloc_rim(cli_RimResult *r, long n)
 {
-    double *work = malloc((size_t)(2 * t->n + 2) * sizeof *work);
-    if (!work) {
-        snprintf(err, err_len, "%s: out of memory", name);
+    memset(r, 0, sizeof *r);
+    double **a[] = {&r->mark_x, &r->mark_y, &r->cx, &r->cy, &r->c_sigma, &r->theta, &r->omega};
+    int ok = 1;
+    for (size_t k = 0; k < sizeof a / sizeof a[0]; ++k) ok = (*a[k] = malloc((size_t)n * sizeof(double))) && ok;
+    r->rolling = malloc((size_t)n);
+    r->dep = malloc((size_t)(n / 2 + 1) * sizeof *r->dep);
+    return ok && r->rolling && r->dep ? 0 : -1;
+}
+
+static void free_rim(cli_RimResult *r)
+{
+    free(r->mark_x), free(r->mark_y), free(r->cx), free(r->cy), free(r->c_sigma), free(r->theta), free(r->omega);
+    free(r->rolling), free(r->dep);
+}
+
+static int run_rim(const cli_TrackOptions *opt, double frame_angle, const cli_Track *t, cli_RimResult *r)
+{
+    if (alloc_rim(r, t->n) != 0) return -2;
+    cli_RimInput in = {t->t_s, t->mark_x_m, t->mark_y_m, t->n, opt->radius_m, NOISE_FLOOR_M,
+                       opt->gravity_mps2 > 0 ? opt->gravity_mps2 : 9.81, opt->axes == CLI_TRACK_AXES_LEVEL,
+                       frame_angle, opt->incline_rad};
+    return cli_rim_recover(&in, r);
+}
+
+/* Whether a recovered mark is one: far enough from C to be told from
+ * noise, with rolling explaining most frames. */
+static int plausible_mark(const cli_RimResult *r, const cli_Track *t)
+{
+    return r->ok && r->a_m >= MARK_MIN_RADIUS_R * t->radius_m && r->a_m >= MARK_MIN_NOISES * r->noise_m &&
+           (double)r->rolling_frames >= MARK_MIN_ROLLING * (double)t->n;
+}
+
+/* The recovered centre into the track: the surface frame, the incline
+ * (checked against one given), heights, the departures and hops. */
+static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame_angle, const cli_RimResult *r,
+                     cli_Track *t, char *err, size_t err_len)
+{
+    double turn_by;
+    int level;
+    if (decide_incline(name, opt, frame_angle, r->tilt_rad, r->tilt_sigma_rad, r->rolling_frames, t, &turn_by,
+                       &level, err, err_len) != 0)
         return -1;
+    t->centre_source = CLI_CENTRE_FROM_MARK;
+    t->has_mark = 1;
+    for (long i = 0; i < t->n; ++i) {
+        t->mark_x_m[i] = r->mark_x[i], t->mark_y_m[i] = r->mark_y[i];
+        t->x_m[i] = r->cx[i], t->y_m[i] = r->cy[i];
+        t->centre_sigma_m[i] = r->c_sigma[i];
+        t->theta_rad[i] = r->theta[i], t->omega_radps[i] = r->omega[i];
+        t->contact[i] = r->rolling[i];
     }
-    t->noise_m = noise_estimate(t, work);
-    double sigma = t->noise_m;
-    if (!isnan(t->sigma_m) && !(sigma >= t->sigma_m)) sigma = t->sigma_m;
-    /* Noiseless or very short data: no finer than 10 µm, beyond what any video resolves. */
-    if (!(sigma >= 1e-5)) sigma = 1e-5;
-    t->sigma_m = sigma;
-    const double k = opt->hop_sigmas >= 1 ? opt->hop_sigmas : 5.0;
-    double a, b, tilt;
-    if (surface_line(t, 3 * sigma, opt->fit_tilt, work, t->airborne, &a, &b, &tilt) != 0) {
-        free(work);
-        snprintf(err, err_len, "%s: too few frames in contact to place the surface (check --incline and --axes)", name);
-        return -1;
-    }
-    t->surface_tilt_rad = atan(tilt);
-    for (long i = 0; i < t->n; ++i) t->y_m[i] = t->radius_m + t->y_m[i] - (a + b * t->x_m[i]);
-    /* Hops: runs of frames with the centre clearly above r. */
-    t->hop_threshold_m = k * sigma;
+    t->sigma_m = r->noise_m;
+    t->contact_frames = t->rolling_frames = r->rolling_frames;
+    t->surface_sigma_m = r->line_sigma_m;
+    t->mark_radius_m = r->a_m;
+    t->mark_radius_sigma_m = r->a_sigma_m;
+    t->centre_rms_sigma_m = r->centre_rms_sigma_m;
+    t->hop_threshold_m = t->hop_sigmas * t->sigma_m;
+    /* A departure smaller than this leaves the mark within the outlier
+     * cut of the rolling path, and does not show. */
+    t->detect_m = t->hop_threshold_m;
+    surface_note(t, opt, frame_angle - r->tilt_rad, 0);
     t->hops = 0;
-    for (long i = 0; i < t->n; ++i) {
-        t->airborne[i] = t->y_m[i] > t->radius_m + t->hop_threshold_m;
-        if (t->airborne[i] && (i == 0 || !t->airborne[i - 1])) t->hops++;
+    for (long k = 0; k < r->departures; ++k) {
+        cli_TrackHop h = r->dep[k];
+        const int hop = h.fitted_flight && h.height_m > t->hop_threshold_m && h.height_m > 3.0 * h.height_sigma_m;
+        if (!hop) h.height_m = h.height_sigma_m = NAN;
+        t->hop[t->hops++] = h;
+        if (hop)
+            for (long i = h.first; i <= h.last; ++i) t->airborne[i] = 1;
     }
-    /* θ unwrapped along the frames that have it; ω by central differences. */
-    long prev = -1, m = 0;
+    return 0;
+}
+
+/* A single unnamed track that swings about its line by more than its
+ * frame-to-frame noise may be a mark on the body: rolling is fitted to it
+ * and kept if it fits (0, or -1 with a message); 1: a centre after all. */
+static int single_track_as_mark(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt,
+                                double frame_angle, cli_Track *t, double *work, char *err, size_t err_len)
+{
+    if (raw->track_count != 1 || t->has_mark || opt->centre || opt->mark) return 1;
+    const double frame_noise = third_difference_noise(t->x_m, t->y_m, t->n, work);
+    cli_SurfaceLine L;
+    const int st = cli_surface_fit(t->x_m, t->y_m, t->n, contact_run(t), contact_erode(t), NOISE_FLOOR_M, 0.0, t->contact, &L);
+    if (st == 0 && !(L.sigma_m > MARK_SWING_RATIO * frame_noise)) return 1;
+    for (long i = 0; i < t->n; ++i) t->mark_x_m[i] = t->x_m[i], t->mark_y_m[i] = t->y_m[i];
+    cli_RimResult r;
+    int rc = 1;
+    const int fit = run_rim(opt, frame_angle, t, &r);
+    if (fit == -2) {
+        snprintf(err, err_len, "%s: out of memory", name);
+        rc = -1;
+    } else if (fit == 0 && plausible_mark(&r, t)) {
+        memcpy(t->mark_name, t->centre_name, sizeof t->mark_name);
+        t->centre_name[0] = '\0';
+        rc = adopt_rim(name, opt, frame_angle, &r, t, err, err_len);
+    }
+    if (rc == 1)
+        for (long i = 0; i < t->n; ++i) t->mark_x_m[i] = t->mark_y_m[i] = NAN;
+    free_rim(&r);
+    return rc;
+}
+
+/* ---- θ, ω and the notes ---- */
+
+static void derive_angles(cli_Track *t, double *work)
+{
+    long m = 0, prev = -1;
     for (long i = 0; i < t->n; ++i) {
-        if (isnan(t->theta_rad[i])) continue;
-        if (prev >= 0) {
-            const double d = t->theta_rad[i] - t->theta_rad[prev];
-            t->theta_rad[i] -= 2 * CLI_PI * floor(d / (2 * CLI_PI) + 0.5);
-        }
+        if (isnan(t->mark_x_m[i]) || isnan(t->x_m[i])) continue;
+        const double dx = t->mark_x_m[i] - t->x_m[i], dy = t->mark_y_m[i] - t->y_m[i];
+        work[m++] = hypot(dx, dy);
+        double th = atan2(dx, dy);
+        if (prev >= 0) th += 2 * CLI_TRACK_PI * nearbyint((t->theta_rad[prev] - th) / (2 * CLI_TRACK_PI));
+        t->theta_rad[i] = th;
         prev = i;
     }
+    t->mark_radius_m = median(work, m);
     for (long i = 0; i < t->n; ++i) {
         t->omega_radps[i] = NAN;
         if (isnan(t->theta_rad[i])) continue;
@@ -130,15 +394,131 @@ int cli_track_derive(const char *name, const cli_TrackOptions *opt, cli_Track *t
         const long hi = i + 1 < t->n && !isnan(t->theta_rad[i + 1]) ? i + 1 : i;
         if (hi > lo) t->omega_radps[i] = (t->theta_rad[hi] - t->theta_rad[lo]) / (t->t_s[hi] - t->t_s[lo]);
     }
-    if (t->has_mark) {
-        for (long i = 0; i < t->n; ++i)
-            if (!isnan(t->theta_rad[i])) m++;
-        if (m < 2) {
-            free(work);
-            snprintf(err, err_len, "%s: the mark track '%s' has fewer than 2 frames with the centre", name, t->mark_name);
-            return -1;
+}
+
+static long resolved_hops(const cli_Track *t)
+{
+    long k = 0;
+    for (long i = 0; i < t->hops; ++i) k += !isnan(t->hop[i].height_m);
+    return k;
+}
+
+static void hop_note(cli_Track *t)
+{
+    const long hops = resolved_hops(t), open = t->hops - hops;
+    if (t->centre_source == CLI_CENTRE_TRACKED) {
+        note(t, CLI_Q_HOPS, 1, "%ld hop(s): the centre more than %.0f sigma (%.2f mm) above the surface in %d "
+             "frames or more", hops, t->hop_sigmas, t->hop_threshold_m * 1e3, HOP_MIN_FRAMES);
+        return;
+    }
+    char tail[160] = "";
+    if (t->hops > 0)
+        snprintf(tail, sizeof tail, "; %ld departure(s) from rolling: %ld fitted as flights (hops), %ld a slip or "
+                 "a hop the mark cannot resolve", t->hops, hops, open);
+    note(t, CLI_Q_HOPS, 1, "the only track is a mark on the body: hops cannot be told apart from the mark's own "
+         "motion to better than %.1f mm%s", t->detect_m * 1e3, tail);
+}
+
+static void theta_note(cli_Track *t)
+{
+    if (t->centre_source == CLI_CENTRE_FROM_MARK)
+        note(t, CLI_Q_THETA, 1, "theta and omega from the rolling fit of the mark '%s' (at %.2f +- %.2f cm from the "
+             "centre)", t->mark_name, t->mark_radius_m * 100, t->mark_radius_sigma_m * 100);
+    else if (t->has_mark)
+        note(t, CLI_Q_THETA, 1, "theta and omega from the mark '%s' at %.2f cm from the centre (median)", t->mark_name,
+             t->mark_radius_m * 100);
+    else
+        note(t, CLI_Q_THETA, 0, "no mark was tracked: theta and omega are not measured (compare and fit take the "
+             "start's theta from the centre's motion)");
+}
+
+static void centre_note(cli_Track *t, const cli_RawData *raw)
+{
+    if (t->centre_source == CLI_CENTRE_TRACKED) {
+        note(t, CLI_Q_CENTRE, 1, "tracked ('%s': %ld frames, %ld missing between its first and last)",
+             t->centre_name, t->n, t->gaps);
+    } else if (t->centre_source == CLI_CENTRE_FROM_MARK) {
+        note(t, CLI_Q_CENTRE, 1, "recovered from the mark '%s' by fitting rolling (the mark at a = %.2f +- %.2f cm "
+             "from it): %ld of %ld frames, standard error %.2f mm (RMS); noise %.2f mm", t->mark_name,
+             t->mark_radius_m * 100, t->mark_radius_sigma_m * 100, t->rolling_frames, t->n,
+             t->centre_rms_sigma_m * 1e3, t->sigma_m * 1e3);
+    } else if (t->centre_ambiguous) {
+        char names[400];
+        cli_track_list_names(raw, names, sizeof names);
+        note(t, CLI_Q_CENTRE, 0, "not known: which track is the centre? none is named like the axle (centre, "
+             "center, axle, axis, hub) and their motion does not tell; give --centre NAME (tracks: %s)", names);
+    } else {
+        note(t, CLI_Q_CENTRE, 0, "not known: the file has no frames with a position");
+    }
+}
+
+static void nothing_more(cli_Track *t, const char *why)
+{
+    note(t, CLI_Q_SURFACE, 0, "not known: %s", why);
+    note(t, CLI_Q_HOPS, 0, "not known: %s", why);
+}
+
+int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *t, char *err,
+                     size_t err_len)
+{
+    const double frame_angle = opt->axes == CLI_TRACK_AXES_LEVEL && !isnan(opt->incline_rad) ? opt->incline_rad : 0.0;
+    t->hop = calloc((size_t)(t->n / 2 + 1), sizeof *t->hop);
+    double *work = malloc((size_t)(2 * t->n + 2) * sizeof *work);
+    if (!t->hop || !work) {
+        free(work);
+        snprintf(err, err_len, "%s: out of memory", name);
+        return -1;
+    }
+    int rc = 0;
+    if (t->centre_source == CLI_CENTRE_TRACKED && t->n >= 3) {
+        rc = single_track_as_mark(name, raw, opt, frame_angle, t, work, err, err_len);
+        if (rc == 1) rc = tracked_surface(name, opt, frame_angle, t, err, err_len);
+        if (rc == 1) {
+            nothing_more(t, "the centre's frames lie on no line: fewer than 3 of them in runs of 4 within 3 "
+                            "sigma of one (is the track the axle?)");
+            rc = 0;
         }
+    } else if (t->centre_source == CLI_CENTRE_FROM_MARK && t->n >= 3) {
+        cli_RimResult r;
+        const int st = run_rim(opt, frame_angle, t, &r);
+        if (st == -2) {
+            rc = -1;
+            snprintf(err, err_len, "%s: out of memory", name);
+        } else if (st == 0) {
+            rc = adopt_rim(name, opt, frame_angle, &r, t, err, err_len);
+        } else {
+            t->centre_source = CLI_CENTRE_NONE;
+            if (t->n > CLI_RIM_MAX_FRAMES)
+                note(t, CLI_Q_CENTRE, 0, "not recovered: the mark '%s' has %ld frames, more than the rolling fit "
+                     "takes (%d); export a shorter clip from Tracker, or track the axle too",
+                     t->mark_name, t->n, CLI_RIM_MAX_FRAMES);
+            else
+                note(t, CLI_Q_CENTRE, 0, "not recovered: rolling does not explain the mark '%s' (in fewer than a "
+                     "quarter of its %ld frames, or not as a mark on a rolling body: the body slides or flies most "
+                     "of the time); track the axle too", t->mark_name, t->n);
+            nothing_more(t, "the centre is not known");
+        }
+        free_rim(&r);
+    } else if (t->centre_source != CLI_CENTRE_NONE) {
+        t->centre_source = CLI_CENTRE_NONE;
+        nothing_more(t, "fewer than 3 frames");
+    } else {
+        nothing_more(t, "no centre");
+    }
+    if (rc == 0) {
+        if (t->centre_source == CLI_CENTRE_TRACKED && t->has_mark) derive_angles(t, work);
+        if (t->centre_source == CLI_CENTRE_TRACKED && !t->has_mark) t->mark_radius_m = NAN;
+        for (long i = 0; i < t->n && isnan(t->x0_m); ++i) t->x0_m = t->x_m[i];
+        double ss = 0;
+        long m = 0;
+        for (long i = 0; i < t->n; ++i)
+            if (!isnan(t->x_m[i])) ss += t->centre_sigma_m[i] * t->centre_sigma_m[i], m++;
+        if (t->centre_source == CLI_CENTRE_TRACKED) t->centre_rms_sigma_m = m ? sqrt(ss / (double)m) : NAN;
+        if (!t->note[CLI_Q_CENTRE].text[0]) centre_note(t, raw);
+        if (t->centre_source != CLI_CENTRE_NONE && !isnan(t->sigma_m)) hop_note(t);
+        if (t->centre_source != CLI_CENTRE_NONE || !t->has_mark) theta_note(t);
+        else note(t, CLI_Q_THETA, 0, "not known: the mark's angle is seen from the centre, which is not known");
     }
     free(work);
-    return 0;
+    return rc;
 }

@@ -1,226 +1,200 @@
 /* Least squares of the model against a track (GSL's gsl_multifit_nlinear,
- * Levenberg-Marquardt trust region). The free values live in an
- * unconstrained space u: mu_s = exp(u) (>= 0), mu_k = mu_s sigmoid(u)
- * (0 <= mu_k <= mu_s), e = sigmoid(u) (0 <= e <= 1); theta0, omega0 and x0
- * (the start at the first frame fitted) as they are. The model is
- * discontinuous in its values where its sequence of events changes, so the
- * Jacobian is by central differences with steps far above the simulator's
- * own error (1e-11) and far below the values' uncertainties. */
+ * Levenberg-Marquardt trust region), and what the video determines.
+ *
+ * The free values live in an unconstrained space u: a bounded value is
+ * lo + (hi - lo) sigmoid(u) (mu_k: mu_s sigmoid(u), so that mu_k <= mu_s);
+ * angles, omega0 and x0 as they are. The first lift-off leaps between
+ * branches as the values change, so one descent is not enough: a Latin
+ * hypercube over the bounded values is screened (one run each), and the
+ * best few points and the user's are descended from; minima within a
+ * chi2 threshold of the best are reported. The Jacobian is by central
+ * differences with steps far above the simulator's own error (1e-11) and
+ * far below the values' uncertainties.
+ *
+ * A value is not determined by the video when it sits on a bound of its
+ * range, when its sigma exceeds its range, when the residuals do not change
+ * with it, or when it moves with another (|rho| > 0.99): it is held (at the
+ * bound, or at its starting value) and the others are fitted again, and a
+ * chi2 profile along its range shows why. The verdict judges the best fit:
+ * chi2/dof against the noise, the runs of same-sign residuals, and the hops
+ * of the video against the model's. */
 #include "track_fit.h"
+#include "batch.h"
 
 #include <gsl/gsl_blas.h>
+#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define START_SPAN 7
-#define HOP_SIGMAS 5.0
-#define HOP_MIN_M 1e-4
-/* Central-difference step in u, relative to max(1, |u|). */
-#define JAC_STEP 1e-5
-/* A run the model refuses (a start off the ramp) counts as this many sigma
- * per residual: the trust region then rejects the step. */
-#define FAILED_RESIDUAL 1e4
+#define REFINE_S 0.4             /* the start refined on the window's first 0.4 s ... */
+#define REFINE_MIN_FRAMES 8      /* ... and 8 frames at least */
+#define JAC_STEP 1e-5            /* central-difference step in u, relative to max(1, |u|) */
+#define FAILED_RESIDUAL 1e4      /* per residual, for a run the model refuses */
 #define MAX_PASSES 10            /* robust reweighting passes */
 #define HUBER_K 1.345            /* 95 % efficiency at the normal */
 #define CAUCHY_C 2.385
-#define SIGMOID_EDGE 1e-3        /* initial values at a bound start this far inside */
-
-static const char *const names[CLI_FIT_PARAMS] = {"mu_s", "mu_k", "restitution", "theta0", "omega0", "x0"};
-
-const char *cli_fit_param_name(cli_FitParam p) { return p < CLI_FIT_PARAMS ? names[p] : "?"; }
-
-int cli_fit_parse_free(const char *text, unsigned *mask, char *err, size_t err_len)
-{
-    *mask = 0;
-    const char *p = text;
-    while (*p) {
-        const char *comma = strchr(p, ',');
-        const size_t len = comma ? (size_t)(comma - p) : strlen(p);
-        int found = -1;
-        for (int k = 0; k < CLI_FIT_PARAMS; ++k)
-            if (strlen(names[k]) == len && strncmp(p, names[k], len) == 0) found = k;
-        if (found < 0) {
-            snprintf(err, err_len, "--free '%s': '%.*s' is not a value the fit can free (allowed: "
-                     "mu_s, mu_k, restitution, theta0, omega0, x0)", text, (int)(len > 40 ? 40 : len), p);
-            return -1;
-        }
-        if (*mask & (1u << found)) {
-            snprintf(err, err_len, "--free '%s': %s is named twice", text, names[found]);
-            return -1;
-        }
-        *mask |= 1u << found;
-        if (!comma) break;
-        p = comma + 1;
-        if (!*p) break;
-    }
-    if (*mask == 0) {
-        snprintf(err, err_len, "--free '%s' names no value (allowed: mu_s, mu_k, restitution, theta0, omega0, x0)",
-                 text);
-        return -1;
-    }
-    return 0;
-}
-
-int cli_fit_parse_loss(const char *text, cli_FitLoss *out)
-{
-    if (strcmp(text, "linear") == 0) *out = CLI_LOSS_LINEAR;
-    else if (strcmp(text, "huber") == 0) *out = CLI_LOSS_HUBER;
-    else if (strcmp(text, "cauchy") == 0) *out = CLI_LOSS_CAUCHY;
-    else return -1;
-    return 0;
-}
-
-const char *cli_fit_stop_text(cli_FitStop s)
-{
-    switch (s) {
-    case CLI_FIT_STOP_STEP: return "the step became small (converged)";
-    case CLI_FIT_STOP_GRADIENT: return "the gradient became small (converged)";
-    case CLI_FIT_STOP_ITERATIONS: return "the iteration limit was reached (not converged)";
-    case CLI_FIT_STOP_NO_PROGRESS: return "no step lowered the residual (stalled)";
-    }
-    return "?";
-}
+#define EDGE 1e-3                /* a value this close to a bound (of its range) sits on it */
+#define CORRELATED 0.99
+#define FLAG_ROUNDS 3
+#define MISFIT_CHI2_DOF 3.0      /* at the measured noise */
+#define MISFIT_RUNS_Z (-4.0)     /* too few runs of one sign: one in 30,000 for independent residuals */
+#define CLEAR_HOP_SIGMAS 3.0     /* a hop clearly above the threshold */
+#define DEFAULT_DESCENTS 3
+#define XTOL 1e-7                /* the descents' tests: step, gradient, chi2 */
+#define GTOL 1e-8
+#define FTOL 1e-9
+#define GIVE_UP_EVERY 8          /* a descent checked every 8 iterations ... */
+#define GIVE_UP_FACTOR 2.0       /* ... stops when its chi2 is above twice the best's (plus n) */
+#define START_EDGE 0.02          /* start points at a bound begin this far inside (of the range) */
+#define MIN_SCREEN 16
+#define MAX_SCREEN 64
 
 typedef struct {
     const cli_Track *t;
     const jc_SimOptions *sim;
-    jc_Setup base;
-    jc_State start0;          /* the start before the fit: estimated or the setup's */
-    double value0[CLI_FIT_PARAMS]; /* every value, SI: the fixed ones stay */
+    jc_Setup base;             /* the runs' setup (cli_track_setup): held values set in it */
+    jc_State start0;           /* the start before the fit: held start values set in it */
+    cli_FitFrame frame0;       /* the mark angle and frame before the fit: held ones set in it */
+    double incline_video;      /* the track's incline, measured (the model's is it plus the tilt) */
+    int tilt_tilts_gravity;    /* the incline was measured: the tilt turns the model's gravity too */
+    int mu_s_tied;             /* mu_s held at its bound mu_k: it follows mu_k */
     int np;
-    cli_FitParam param[CLI_FIT_PARAMS];
-    long first, count, nres;
-    double sigma;             /* metres per sigma */
-    double mark_radius;       /* the mark's distance from C; 0 without a mark */
-    double mark_offset;
-    double *x, *y, *th, *sw;  /* the run at the frames; sqrt of the robust weights */
+    cli_FitParam param[CLI_FIT_MAX_PARAMS];
+    cli_Residuals res;
+    long nres;
+    double *x, *y, *th, *sw, *f;
+    unsigned char *series;
     cli_TrackSim ts;
+    jc_RunSummary sum;
 } fit_ctx;
 
 static double sigmoid(double u) { return 1.0 / (1.0 + exp(-u)); }
 static double logit(double p) { return log(p / (1.0 - p)); }
 
-static int is_free(const fit_ctx *c, cli_FitParam p)
+static int bounded(cli_FitParam p)
 {
-    for (int k = 0; k < c->np; ++k)
-        if (c->param[k] == p) return k;
+    return p.kind == CLI_FIT_MU_S || p.kind == CLI_FIT_MU_K || p.kind == CLI_FIT_RESTITUTION ||
+           p.kind == CLI_FIT_PART_OFFSET || p.kind == CLI_FIT_PART_MASS;
+}
+
+static int index_of(const fit_ctx *c, cli_FitKind k)
+{
+    for (int i = 0; i < c->np; ++i)
+        if (c->param[i].kind == k) return i;
     return -1;
 }
 
-/* u -> every value (SI). */
+/* The range of free value i given mu_k (mu_k <= mu_s): mu_s lies above
+ * mu_k (free or held); mu_k lies below a held mu_s, or in its own range
+ * when mu_s is free too (mu_s = mu_k + the margin to slip). */
+static void range_of(const fit_ctx *c, int i, double mu_k, double *lo, double *hi)
+{
+    cli_fit_range(&c->base, c->param[i], lo, hi);
+    if (c->param[i].kind == CLI_FIT_MU_S) *lo = mu_k;
+    if (c->param[i].kind == CLI_FIT_MU_K && (index_of(c, CLI_FIT_MU_S) >= 0 || c->mu_s_tied))
+        cli_fit_range(&c->base, (cli_FitParam){CLI_FIT_MU_S, -1}, lo, hi);
+}
+
+/* u -> the free values (SI); mu_k first, as mu_s's range is above it. */
 static void values_of(const fit_ctx *c, const double *u, double *v)
 {
-    memcpy(v, c->value0, sizeof c->value0);
-    const int ks = is_free(c, CLI_FIT_MU_S), kk = is_free(c, CLI_FIT_MU_K);
-    if (ks >= 0 && kk >= 0) {
-        v[CLI_FIT_MU_S] = exp(u[ks]);
-        v[CLI_FIT_MU_K] = v[CLI_FIT_MU_S] * sigmoid(u[kk]);
-    } else if (ks >= 0) {
-        v[CLI_FIT_MU_S] = v[CLI_FIT_MU_K] + exp(u[ks]);
-    } else if (kk >= 0) {
-        v[CLI_FIT_MU_K] = v[CLI_FIT_MU_S] * sigmoid(u[kk]);
+    const int kk = index_of(c, CLI_FIT_MU_K);
+    double mu_k = c->base.mu_kinetic, lo, hi;
+    if (kk >= 0) {
+        range_of(c, kk, mu_k, &lo, &hi);
+        mu_k = v[kk] = lo + (hi - lo) * sigmoid(u[kk]);
     }
-    for (int k = 0; k < c->np; ++k) {
-        switch (c->param[k]) {
-        case CLI_FIT_RESTITUTION: v[CLI_FIT_RESTITUTION] = sigmoid(u[k]); break;
-        case CLI_FIT_THETA0:
-        case CLI_FIT_OMEGA0:
-        case CLI_FIT_X0: v[c->param[k]] = u[k]; break;
-        default: break;
+    for (int i = 0; i < c->np; ++i) {
+        if (i == kk) continue;
+        if (!bounded(c->param[i])) {
+            v[i] = u[i];
+            continue;
         }
+        range_of(c, i, mu_k, &lo, &hi);
+        v[i] = lo + (hi - lo) * sigmoid(u[i]);
     }
 }
 
-/* Every value -> u (initial values at a bound moved just inside it). */
-static void u_of(const fit_ctx *c, const double *v, double *u)
+/* The free values -> u (values at a bound moved inside it by edge of the range). */
+static void u_of(const fit_ctx *c, const double *v, double *u, double edge)
 {
-    const int ks = is_free(c, CLI_FIT_MU_S), kk = is_free(c, CLI_FIT_MU_K);
-    const double ms = fmax(v[CLI_FIT_MU_S], 1e-6);
-    const double ratio = fmin(fmax(v[CLI_FIT_MU_K] / ms, SIGMOID_EDGE), 1.0 - SIGMOID_EDGE);
-    if (ks >= 0) u[ks] = kk >= 0 ? log(ms) : log(fmax(v[CLI_FIT_MU_S] - v[CLI_FIT_MU_K], SIGMOID_EDGE * ms));
-    if (kk >= 0) u[kk] = logit(ratio);
-    for (int k = 0; k < c->np; ++k) {
-        const cli_FitParam p = c->param[k];
-        if (p == CLI_FIT_RESTITUTION)
-            u[k] = logit(fmin(fmax(v[p], SIGMOID_EDGE), 1.0 - SIGMOID_EDGE));
-        else if (p == CLI_FIT_THETA0 || p == CLI_FIT_OMEGA0 || p == CLI_FIT_X0)
-            u[k] = v[p];
+    const int kk = index_of(c, CLI_FIT_MU_K);
+    const double mu_k = kk >= 0 ? v[kk] : c->base.mu_kinetic;
+    for (int i = 0; i < c->np; ++i) {
+        if (!bounded(c->param[i])) {
+            u[i] = v[i];
+            continue;
+        }
+        double lo, hi;
+        range_of(c, i, mu_k, &lo, &hi);
+        const double q = hi > lo ? (v[i] - lo) / (hi - lo) : 0.5;
+        u[i] = logit(fmin(fmax(q, edge), 1.0 - edge));
     }
 }
 
-/* The setup and start that values describe. */
-static void setup_of(const fit_ctx *c, const double *v, jc_Setup *s, jc_State *start)
+/* The setup, start and mark angle the free values describe. */
+static void apply(const fit_ctx *c, const double *v, jc_Setup *s, jc_State *start, cli_FitFrame *frame)
 {
     *s = c->base;
-    s->mu_static = v[CLI_FIT_MU_S];
-    s->mu_kinetic = fmin(v[CLI_FIT_MU_K], v[CLI_FIT_MU_S]);
-    s->restitution = v[CLI_FIT_RESTITUTION];
-    s->ramp_length_m += CLI_TRACK_RAMP_MARGIN_M;
     *start = c->start0;
-    start->theta_rad = v[CLI_FIT_THETA0];
-    start->omega_radps = v[CLI_FIT_OMEGA0];
-    start->x_m = v[CLI_FIT_X0];
+    *frame = c->frame0;
+    for (int i = 0; i < c->np; ++i) cli_fit_set(s, start, frame, c->param[i], v[i]);
+    /* A floor stays a floor: the model takes no incline below 0. */
+    if (c->tilt_tilts_gravity) s->incline_rad = fmax(0.0, c->incline_video + frame->tilt_rad);
+    if (s->mu_kinetic > s->mu_static || c->mu_s_tied) s->mu_static = s->mu_kinetic;
     if (start->y_m <= s->body.radius_m) start->vx_mps = s->body.radius_m * start->omega_radps; /* rolling */
     s->theta0_rad = start->theta_rad;
     s->omega0_radps = start->omega_radps;
 }
 
-/* Runs the model for u into c->x, y, th; 0, or -1 when the model refuses. */
-static int run_u(fit_ctx *c, const double *u, jc_RunSummary *sum)
+void cli_fit_to_video(const cli_FitFrame *fr, const jc_State *start, double *x, double *y, double *th, long n)
 {
-    double v[CLI_FIT_PARAMS];
+    if (fr->tilt_rad == 0.0 && fr->surface_m == 0.0) return;
+    const double c = cos(fr->tilt_rad), s = sin(fr->tilt_rad);
+    for (long i = 0; i < n; ++i) {
+        const double dx = x[i] - start->x_m, dy = y[i] - start->y_m;
+        x[i] = start->x_m + dx * c + dy * s;
+        y[i] = start->y_m - dx * s + dy * c + fr->surface_m;
+        if (th) th[i] += fr->tilt_rad;
+    }
+}
+
+/* Runs the model for u; the raw residuals (unweighted) into c->f. 0, or -1
+ * when the model refuses the values. */
+static int run_u(fit_ctx *c, const double *u)
+{
+    double v[CLI_FIT_MAX_PARAMS];
     values_of(c, u, v);
     jc_Setup s;
     jc_State start;
-    setup_of(c, v, &s, &start);
+    cli_FitFrame fr;
+    apply(c, v, &s, &start, &fr);
     jc_Model m;
     char err[256];
     if (jc_model_init(&m, &s, err, sizeof err) != JC_OK) return -1;
-    if (cli_track_sim_run(&c->ts, &m, &start, c->sim, c->t->t_s + c->first, c->count, c->x, c->y, c->th, err,
+    if (cli_track_sim_run(&c->ts, &m, &start, c->sim, c->t->t_s + c->res.first, c->res.count, c->x, c->y, c->th, err,
                           sizeof err) != 0)
         return -1;
-    if (sum) *sum = c->ts.sum;
+    c->sum = c->ts.sum;
+    cli_fit_to_video(&fr, &start, c->x, c->y, c->th, c->res.count);
+    c->res.mark_offset = cli_track_mark_offset_rad(&m, fr.mark_angle_rad);
+    cli_residuals_eval(&c->res, c->x, c->y, c->th, c->f, c->series);
     return 0;
-}
-
-/* Residuals in units of sigma, unweighted: x, y per frame, then the mark
- * where it was tracked. The mark's angle is not compared alone: it was
- * measured from the tracked centre, so its error holds the centre's; the
- * mark's own displacement across its radius, a dth + (dx cos th - dy sin th)
- * (the mark's position error along (cos th, -sin th)), is independent of
- * the centre's residuals, with the noise sigma of one tracked point. */
-static void raw_residuals(const fit_ctx *c, double *f)
-{
-    const cli_Track *t = c->t;
-    long k = 0;
-    for (long i = 0; i < c->count; ++i) {
-        const long j = c->first + i;
-        f[k++] = (t->x_m[j] - c->x[i]) / c->sigma;
-        f[k++] = (t->y_m[j] - c->y[i]) / c->sigma;
-    }
-    if (c->mark_radius > 0.0)
-        for (long i = 0; i < c->count; ++i) {
-            const long j = c->first + i;
-            const double th = t->theta_rad[j];
-            if (!isfinite(th)) continue;
-            const double across = c->mark_radius * (th - (c->th[i] - c->mark_offset)) +
-                                  (t->x_m[j] - c->x[i]) * cos(th) - (t->y_m[j] - c->y[i]) * sin(th);
-            f[k++] = across / c->sigma;
-        }
 }
 
 static int f_eval(const gsl_vector *u, void *ctx, gsl_vector *f)
 {
     fit_ctx *c = ctx;
-    if (run_u(c, u->data, NULL) != 0) {
+    if (run_u(c, u->data) != 0) {
         gsl_vector_set_all(f, FAILED_RESIDUAL);
         return GSL_SUCCESS;
     }
-    raw_residuals(c, f->data);
-    for (long i = 0; i < c->nres; ++i) f->data[i * f->stride] *= c->sw[i];
+    for (long i = 0; i < c->nres; ++i) gsl_vector_set(f, (size_t)i, c->f[i] * c->sw[i]);
     return GSL_SUCCESS;
 }
 
@@ -253,6 +227,15 @@ static int df_eval(const gsl_vector *u, void *ctx, gsl_matrix *J)
     return GSL_SUCCESS;
 }
 
+/* chi2 of the weighted residuals at u (a refused run: FAILED_RESIDUAL each). */
+static double cost(fit_ctx *c, const double *u)
+{
+    if (run_u(c, u) != 0) return (double)c->nres * FAILED_RESIDUAL * FAILED_RESIDUAL;
+    double s = 0;
+    for (long i = 0; i < c->nres; ++i) s += c->f[i] * c->f[i] * c->sw[i] * c->sw[i];
+    return s;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -260,89 +243,529 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* Robust weights from the residuals at u, on a scale from their median
- * absolute value (a track's sigma is a pixel, which may not be its noise).
- * Returns the largest change of a weight. */
+ * absolute value. Returns the largest change of a weight. */
 static double reweight(fit_ctx *c, const double *u, cli_FitLoss loss, double *scratch)
 {
-    if (run_u(c, u, NULL) != 0) return 0.0;
-    raw_residuals(c, scratch);
-    double *a = scratch + c->nres;
-    for (long i = 0; i < c->nres; ++i) a[i] = fabs(scratch[i]);
-    qsort(a, (size_t)c->nres, sizeof *a, cmp_double);
-    const double s = fmax(1.4826 * a[c->nres / 2], 1e-12);
+    if (run_u(c, u) != 0) return 0.0;
+    for (long i = 0; i < c->nres; ++i) scratch[i] = fabs(c->f[i]);
+    qsort(scratch, (size_t)c->nres, sizeof *scratch, cmp_double);
+    const double s = fmax(1.4826 * scratch[c->nres / 2], 1e-12);
     double change = 0.0;
     for (long i = 0; i < c->nres; ++i) {
-        const double r = fabs(scratch[i]) / s;
+        const double r = fabs(c->f[i]) / s;
         const double w = loss == CLI_LOSS_HUBER ? (r <= HUBER_K ? 1.0 : HUBER_K / r) : 1.0 / (1.0 + pow(r / CAUCHY_C, 2));
-        const double sw = sqrt(w);
-        change = fmax(change, fabs(sw * sw - c->sw[i] * c->sw[i]));
-        c->sw[i] = sw;
+        change = fmax(change, fabs(w - c->sw[i] * c->sw[i]));
+        c->sw[i] = sqrt(w);
     }
     return change;
 }
 
-static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, char *err,
-                   size_t err_len)
+/* One pass of Levenberg-Marquardt from u (in place): at most max_iter
+ * iterations, abandoned once its chi2 stays far above give_up (a start in
+ * another valley: the search has a better one). The iterations. */
+static int lm_pass(fit_ctx *c, gsl_multifit_nlinear_workspace *w, gsl_vector *uv, int max_iter, double give_up)
+{
+    const size_t n = (size_t)c->nres, p = (size_t)c->np;
+    gsl_multifit_nlinear_fdf fdf = {f_eval, df_eval, NULL, n, p, c, 0, 0, 0};
+    if (gsl_multifit_nlinear_init(uv, &fdf, w) != GSL_SUCCESS) return 0;
+    int it = 0, info = 0;
+    for (; it < max_iter; ++it) {
+        const int st = gsl_multifit_nlinear_iterate(w);
+        if (st != GSL_SUCCESS) break; /* no step lowers chi2 (GSL_ENOPROG): as far as it goes */
+        if (gsl_multifit_nlinear_test(XTOL, GTOL, FTOL, &info, w) == GSL_SUCCESS && info != 0) {
+            ++it;
+            break;
+        }
+        if ((it + 1) % GIVE_UP_EVERY == 0 && isfinite(give_up)) {
+            double chi2;
+            gsl_blas_ddot(gsl_multifit_nlinear_residual(w), gsl_multifit_nlinear_residual(w), &chi2);
+            if (chi2 > GIVE_UP_FACTOR * give_up + (double)n) {
+                ++it;
+                break;
+            }
+        }
+    }
+    gsl_vector_memcpy(uv, gsl_multifit_nlinear_position(w));
+    return it;
+}
+
+/* One descent from u (in place), robust passes included. The iterations. */
+static int descend(fit_ctx *c, double *u, const cli_FitOptions *o, double *scratch, double give_up)
+{
+    if (c->np == 0) return 0;
+    const size_t n = (size_t)c->nres, p = (size_t)c->np;
+    gsl_multifit_nlinear_parameters fp = gsl_multifit_nlinear_default_parameters();
+    fp.trs = gsl_multifit_nlinear_trs_lm; /* no geodesic acceleration: its second derivative
+                                             would come from a discontinuous model */
+    gsl_multifit_nlinear_workspace *w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &fp, n, p);
+    if (!w) return 0;
+    gsl_vector_view uv = gsl_vector_view_array(u, p);
+    int iters = 0;
+    const int passes = o->loss == CLI_LOSS_LINEAR ? 1 : MAX_PASSES;
+    for (int pass = 0; pass < passes; ++pass) {
+        iters += lm_pass(c, w, &uv.vector, o->max_iter, pass == 0 ? give_up : INFINITY);
+        if (pass + 1 < passes && reweight(c, u, o->loss, scratch) < 1e-3) break;
+    }
+    gsl_multifit_nlinear_free(w);
+    return iters;
+}
+
+/* The covariance of u at u (JᵀJ)⁻¹, scaled by s2; 0, or -1. */
+static int covariance_u(fit_ctx *c, const double *u, double s2, gsl_matrix *cu)
+{
+    const size_t n = (size_t)c->nres, p = (size_t)c->np;
+    gsl_matrix *J = gsl_matrix_alloc(n, p);
+    if (!J) return -1;
+    gsl_vector_const_view uv = gsl_vector_const_view_array(u, p);
+    df_eval(&uv.vector, c, J);
+    gsl_multifit_nlinear_covar(J, 1e-10, cu);
+    gsl_matrix_scale(cu, s2);
+    gsl_matrix_free(J);
+    return 0;
+}
+
+/* The values' covariance C_v = T C_u Tᵀ, T = dv/du (differences of the
+ * transform: cheap and smooth); sigmas and correlations. */
+static void values_covariance(const fit_ctx *c, const double *u, const gsl_matrix *cu, double cov[][CLI_FIT_MAX_PARAMS],
+                              double *sigma, double corr[][CLI_FIT_MAX_PARAMS])
+{
+    const int p = c->np;
+    double T[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS];
+    double up[CLI_FIT_MAX_PARAMS], um[CLI_FIT_MAX_PARAMS], vp[CLI_FIT_MAX_PARAMS], vm[CLI_FIT_MAX_PARAMS];
+    for (int j = 0; j < p; ++j) {
+        const double h = 1e-6 * fmax(1.0, fabs(u[j]));
+        memcpy(up, u, (size_t)p * sizeof *u);
+        memcpy(um, u, (size_t)p * sizeof *u);
+        up[j] += h;
+        um[j] -= h;
+        values_of(c, up, vp);
+        values_of(c, um, vm);
+        for (int i = 0; i < p; ++i) T[i][j] = (vp[i] - vm[i]) / (2 * h);
+    }
+    for (int i = 0; i < p; ++i)
+        for (int j = 0; j < p; ++j) {
+            double s = 0.0;
+            for (int a = 0; a < p; ++a)
+                for (int b = 0; b < p; ++b) s += T[i][a] * gsl_matrix_get(cu, (size_t)a, (size_t)b) * T[j][b];
+            cov[i][j] = s;
+        }
+    for (int i = 0; i < p; ++i) sigma[i] = cov[i][i] > 0.0 ? sqrt(cov[i][i]) : NAN;
+    for (int i = 0; i < p; ++i)
+        for (int j = 0; j < p; ++j) corr[i][j] = cov[i][j] / (sigma[i] * sigma[j]);
+}
+
+/* ---- the search: a Latin hypercube screened, the best descended from ---- */
+
+/* The dimensions screened: the bounded values, and θ0 and the mark's
+ * angle when nothing in the video tells them. */
+static int screened(const fit_ctx *c, int i)
+{
+    const cli_FitKind k = c->param[i].kind;
+    return bounded(c->param[i]) || k == CLI_FIT_MARK_ANGLE || (k == CLI_FIT_THETA0 && !c->t->has_mark);
+}
+
+typedef struct {
+    double u[CLI_FIT_MAX_PARAMS];
+    double chi2;
+} point;
+
+static int cmp_point(const void *a, const void *b)
+{
+    const double x = ((const point *)a)->chi2, y = ((const point *)b)->chi2;
+    return (x > y) - (x < y);
+}
+
+/* The Latin hypercube: point k's coordinate in dimension d is in stratum
+ * perm_d(k) of N, at a Philox-drawn place in it. */
+static void hypercube(const fit_ctx *c, const double *u0, int npts, uint64_t seed, point *pts)
+{
+    int *perm = malloc((size_t)npts * sizeof *perm);
+    for (int k = 0; k < npts; ++k) memcpy(pts[k].u, u0, (size_t)c->np * sizeof *u0);
+    if (!perm) return;
+    for (int i = 0; i < c->np; ++i) {
+        if (!screened(c, i)) continue;
+        for (int k = 0; k < npts; ++k) perm[k] = k;
+        for (int k = npts - 1; k > 0; --k) { /* Fisher-Yates */
+            const int j = (int)(cli_random_uniform(seed, (uint64_t)i, (uint32_t)k) * (k + 1));
+            const int tmp = perm[k];
+            perm[k] = perm[j < k ? j : k];
+            perm[j < k ? j : k] = tmp;
+        }
+        for (int k = 0; k < npts; ++k) {
+            const double q = (perm[k] + cli_random_uniform(seed, 1000u + (uint64_t)i, (uint32_t)k)) / npts;
+            if (bounded(c->param[i])) {
+                pts[k].u[i] = logit(fmin(fmax(q, START_EDGE), 1.0 - START_EDGE));
+            } else {
+                pts[k].u[i] = -CLI_TRACK_PI + 2.0 * CLI_TRACK_PI * q;
+            }
+        }
+    }
+    free(perm);
+}
+
+static void finish_point(fit_ctx *c, point *p) { p->chi2 = cost(c, p->u); }
+
+/* Searches from u0 (the user's values): screens, descends, keeps the
+ * minima sorted by chi2 into mins (at most cap). Returns how many. */
+static int search(fit_ctx *c, const double *u0, const cli_FitOptions *o, point *mins, int cap, cli_FitResult *out,
+                  double *scratch)
+{
+    int dims = 0;
+    for (int i = 0; i < c->np; ++i) dims += screened(c, i);
+    int npts = o->starts > 0 ? o->starts : 8 * dims + 8;
+    if (o->starts <= 0) npts = npts < MIN_SCREEN ? MIN_SCREEN : npts > MAX_SCREEN ? MAX_SCREEN : npts;
+    if (dims == 0) npts = 0;
+    point *pts = calloc((size_t)npts + 1, sizeof *pts);
+    if (!pts) return 0;
+    memcpy(pts[0].u, u0, (size_t)c->np * sizeof *u0);
+    hypercube(c, u0, npts, o->seed, pts + 1);
+    for (int k = 0; k <= npts; ++k) finish_point(c, &pts[k]);
+    out->screened = npts + 1;
+    /* The user's point and the best screened ones. */
+    const int want = o->descents > 0 ? o->descents : DEFAULT_DESCENTS;
+    qsort(pts + 1, (size_t)npts, sizeof *pts, cmp_point);
+    int m = 0;
+    for (int k = 0; k <= npts && m < want && m < cap; ++k) {
+        point q = pts[k];
+        out->iterations += descend(c, q.u, o, scratch, m > 0 ? mins[0].chi2 : INFINITY);
+        q.chi2 = cost(c, q.u);
+        mins[m++] = q;
+        /* The best so far first: the next descents give up against it. */
+        for (int j = m - 1; j > 0 && mins[j].chi2 < mins[j - 1].chi2; --j) {
+            const point tmp = mins[j];
+            mins[j] = mins[j - 1];
+            mins[j - 1] = tmp;
+        }
+        out->descents++;
+    }
+    free(pts);
+    qsort(mins, (size_t)m, sizeof *mins, cmp_point);
+    return m;
+}
+
+/* ---- the fit's results ---- */
+
+/* The first lift-off's x for u; NaN without one. */
+static double liftoff_x(fit_ctx *c, const double *u, double *t_s)
+{
+    if (run_u(c, u) != 0 || c->sum.first_liftoff < 0) return NAN;
+    if (t_s) *t_s = c->sum.first_liftoff_state.t_s;
+    return c->sum.first_liftoff_state.x_m - c->ts.shift_m;
+}
+
+/* The predicted first lift-off and its standard error by the delta method. */
+static void predict_liftoff(fit_ctx *c, const double *u, const gsl_matrix *cu, cli_FitResult *out)
+{
+    out->liftoff_x_m = liftoff_x(c, u, &out->liftoff_t_s);
+    out->has_liftoff = isfinite(out->liftoff_x_m);
+    out->liftoff_sigma_m = NAN;
+    if (!out->has_liftoff) return;
+    double g[CLI_FIT_MAX_PARAMS], w[CLI_FIT_MAX_PARAMS];
+    for (int j = 0; j < c->np; ++j) {
+        const double h = step_of(u[j]);
+        memcpy(w, u, (size_t)c->np * sizeof *u);
+        w[j] = u[j] + h;
+        const double xp = liftoff_x(c, w, NULL);
+        w[j] = u[j] - h;
+        g[j] = (xp - liftoff_x(c, w, NULL)) / (2 * h);
+    }
+    double var = 0.0;
+    for (int i = 0; i < c->np; ++i)
+        for (int j = 0; j < c->np; ++j) var += g[i] * gsl_matrix_get(cu, (size_t)i, (size_t)j) * g[j];
+    out->liftoff_sigma_m = var >= 0.0 ? sqrt(var) : NAN;
+}
+
+/* The index of a free value in the result's list. */
+static int slot_of(const cli_FitResult *r, cli_FitParam p)
+{
+    for (int k = 0; k < r->count; ++k)
+        if (r->param[k].kind == p.kind && r->param[k].part == p.part) return k;
+    return -1;
+}
+
+/* Flags the values the video does not determine; the one to hold for a
+ * correlated pair is the less determined (sigma over range). Returns how many. */
+static int flag_values(const fit_ctx *c, const double *v, const double *sigma, double corr[][CLI_FIT_MAX_PARAMS],
+                       cli_FitFlag *flag, int *other, double *rho)
+{
+    const int kk = index_of(c, CLI_FIT_MU_K);
+    const double mu_k = kk >= 0 ? v[kk] : c->base.mu_kinetic;
+    int flagged = 0;
+    double rel[CLI_FIT_MAX_PARAMS];
+    for (int i = 0; i < c->np; ++i) {
+        double lo, hi;
+        range_of(c, i, mu_k, &lo, &hi);
+        const double span = isfinite(hi - lo) && c->param[i].kind != CLI_FIT_OMEGA0 ? hi - lo : INFINITY;
+        rel[i] = isfinite(span) ? sigma[i] / span : 0.0;
+        flag[i] = CLI_FIT_DETERMINED;
+        other[i] = -1;
+        rho[i] = NAN;
+        if (bounded(c->param[i]) && (v[i] - lo < EDGE * 1.01 * (hi - lo) || hi - v[i] < EDGE * 1.01 * (hi - lo)))
+            flag[i] = CLI_FIT_ON_BOUND;
+        else if (!(sigma[i] > 0.0) || !isfinite(sigma[i]))
+            flag[i] = CLI_FIT_NO_EFFECT;
+        else if (sigma[i] > span)
+            flag[i] = CLI_FIT_WIDER_THAN_RANGE;
+    }
+    for (int i = 0; i < c->np; ++i) {
+        if (flag[i] != CLI_FIT_DETERMINED) continue;
+        for (int j = 0; j < c->np; ++j) {
+            if (j == i || flag[j] != CLI_FIT_DETERMINED) continue;
+            const double r = corr[i][j];
+            if (!(fabs(r) > CORRELATED)) continue;
+            const int later = i > j; /* of two as little determined, the later one goes */
+            const int drop = rel[i] > rel[j] || (rel[i] == rel[j] && later);
+            if (drop) {
+                flag[i] = CLI_FIT_CORRELATED;
+                other[i] = j;
+                rho[i] = corr[i][j];
+                break;
+            }
+        }
+    }
+    for (int i = 0; i < c->np; ++i) flagged += flag[i] != CLI_FIT_DETERMINED;
+    return flagged;
+}
+
+/* Holds the flagged values: at the bound a value sits on, else at its
+ * starting value; the free list shrinks and u follows it. */
+static void hold(fit_ctx *c, double *u, const double *v, const double *v0, const cli_FitFlag *flag)
+{
+    double lo, hi;
+    const int kk = index_of(c, CLI_FIT_MU_K);
+    const double mu_k = kk >= 0 ? v[kk] : c->base.mu_kinetic;
+    int m = 0;
+    double keep_v[CLI_FIT_MAX_PARAMS];
+    for (int i = 0; i < c->np; ++i) {
+        if (flag[i] == CLI_FIT_DETERMINED) {
+            keep_v[m] = v[i];
+            c->param[m++] = c->param[i];
+            continue;
+        }
+        range_of(c, i, mu_k, &lo, &hi);
+        double at = v0[i];
+        if (flag[i] == CLI_FIT_ON_BOUND) at = v[i] - lo < hi - v[i] ? lo : hi;
+        /* mu_s on mu_k: no margin to slip, whatever mu_k becomes. */
+        if (flag[i] == CLI_FIT_ON_BOUND && c->param[i].kind == CLI_FIT_MU_S && at == lo) c->mu_s_tied = 1;
+        cli_fit_set(&c->base, &c->start0, &c->frame0, c->param[i], at);
+    }
+    /* A mu_s held below a free mu_k would break mu_k <= mu_s: apply() lifts it. */
+    c->np = m;
+    u_of(c, keep_v, u, EDGE);
+}
+
+/* chi2 along a held value's range, the others fitted at each point. */
+static void profile(fit_ctx *c, cli_FitParam p, const double *u_best, const cli_FitOptions *o, double *xs, double *chi2,
+                    double *scratch)
+{
+    double lo, hi, v[CLI_FIT_MAX_PARAMS];
+    cli_fit_range(&c->base, p, &lo, &hi);
+    values_of(c, u_best, v);
+    const int kk = index_of(c, CLI_FIT_MU_K);
+    if (p.kind == CLI_FIT_MU_S) lo = kk >= 0 ? v[kk] : c->base.mu_kinetic; /* mu_s above mu_k */
+    if (!isfinite(lo) || !isfinite(hi) || p.kind == CLI_FIT_OMEGA0) {
+        for (int k = 0; k < CLI_FIT_PROFILE_POINTS; ++k) xs[k] = chi2[k] = NAN;
+        return;
+    }
+    const jc_Setup base = c->base;
+    const jc_State s0 = c->start0;
+    const cli_FitFrame fr0 = c->frame0;
+    const int tied = c->mu_s_tied;
+    c->mu_s_tied = 0; /* mu_s goes along its range, not with mu_k */
+    cli_FitOptions q = *o;
+    q.loss = CLI_LOSS_LINEAR;
+    for (int k = 0; k < CLI_FIT_PROFILE_POINTS; ++k) {
+        xs[k] = lo + (hi - lo) * (k + 0.5) / CLI_FIT_PROFILE_POINTS;
+        cli_fit_set(&c->base, &c->start0, &c->frame0, p, xs[k]);
+        /* From the best values, in u as the ranges now are (mu_k's top is
+         * the held mu_s). */
+        double u[CLI_FIT_MAX_PARAMS];
+        u_of(c, v, u, EDGE);
+        descend(c, u, &q, scratch, INFINITY);
+        chi2[k] = cost(c, u);
+        c->base = base, c->start0 = s0, c->frame0 = fr0;
+    }
+    c->mu_s_tied = tied;
+}
+
+/* Clear hops (above the threshold by 3 of their sigma) of the video and
+ * the model in the window; a clear one with no hop of the other over its
+ * frames is a disagreement. Returns the text of the first, or NULL. */
+static int hops_agree(const fit_ctx *c, const cli_FitResult *r, char *why, size_t len, int *n_video, int *n_model)
+{
+    const cli_Track *t = c->t;
+    cli_TrackHops model;
+    cli_track_find_hops(t->t_s + r->first, c->x, c->y, r->frames, t->radius_m, t->hop_threshold_m, &model);
+    *n_video = *n_model = 0;
+    int ok = 1;
+    for (long k = 0; k < t->hops; ++k) {
+        const cli_TrackHop *h = &t->hop[k];
+        if (h->last < r->first || h->first >= r->first + r->frames || isnan(h->height_m)) continue;
+        if (!(h->height_m - t->hop_threshold_m > CLEAR_HOP_SIGMAS * h->height_sigma_m)) continue;
+        (*n_video)++;
+        int seen = 0;
+        for (int m = 0; m < model.hops && m < CLI_TRACK_MAX_HOPS; ++m)
+            seen |= model.first[m] + r->first <= h->last + 1 && model.last[m] + r->first + 1 >= h->first;
+        if (!seen && ok) {
+            snprintf(why, len, "the video shows a hop at t = %.3f s (%.1f +- %.1f mm) where the model does not",
+                     t->t_s[h->first], h->height_m * 1e3, h->height_sigma_m * 1e3);
+            ok = 0;
+        }
+    }
+    for (int m = 0; m < model.hops && m < CLI_TRACK_MAX_HOPS; ++m) {
+        if (!(model.height_m[m] - t->hop_threshold_m > CLEAR_HOP_SIGMAS * t->sigma_m)) continue;
+        (*n_model)++;
+        int seen = 0;
+        const long a = model.first[m] + r->first, b = model.last[m] + r->first;
+        for (long k = 0; k < t->hops; ++k)
+            seen |= t->hop[k].first <= b + 1 && t->hop[k].last + 1 >= a;
+        /* A mark-only video cannot show a hop below its detection bound. */
+        if (!seen && t->centre_source == CLI_CENTRE_FROM_MARK && model.height_m[m] < t->detect_m) seen = 1;
+        if (!seen && ok) {
+            snprintf(why, len, "the model hops at t = %.3f s (%.1f mm) where the video shows none",
+                     t->t_s[a], model.height_m[m] * 1e3);
+            ok = 0;
+        }
+    }
+    return ok;
+}
+
+static void judge(fit_ctx *c, const double *u, cli_FitResult *r)
+{
+    run_u(c, u);
+    const char *which = "";
+    r->runs_z = cli_residuals_runs_z(c->f, c->series, c->nres, &which);
+    snprintf(r->runs_series, sizeof r->runs_series, "%s", which);
+    char hop_why[200] = "";
+    const int hops_ok = hops_agree(c, r, hop_why, sizeof hop_why, &r->hops_measured, &r->hops_model);
+    char why[3][220];
+    int k = 0;
+    if (r->chi2_dof > MISFIT_CHI2_DOF)
+        snprintf(why[k++], sizeof why[0], "chi2/dof = %.3g at the %s noise of %.2f mm (at most %.0f expected)",
+                 r->chi2_dof, r->noise_measured ? "measured" : "given", r->sigma_m * 1e3, MISFIT_CHI2_DOF);
+    if (r->runs_z < MISFIT_RUNS_Z)
+        snprintf(why[k++], sizeof why[0], "the residuals %s run in long stretches of one sign (runs test z = %.1f)",
+                 r->runs_series, r->runs_z);
+    if (!hops_ok) snprintf(why[k++], sizeof why[0], "%s", hop_why);
+    r->misfit = k > 0;
+    if (!r->misfit) {
+        snprintf(r->verdict, sizeof r->verdict, "the model describes this video: chi2/dof = %.3g, residuals "
+                 "without runs (z = %.1f), %d hop(s) in both", r->chi2_dof, isfinite(r->runs_z) ? r->runs_z : 0.0,
+                 r->hops_measured);
+        return;
+    }
+    int used = snprintf(r->verdict, sizeof r->verdict, "the model does not describe this video: ");
+    for (int i = 0; i < k && used < (int)sizeof r->verdict; ++i)
+        used += snprintf(r->verdict + used, sizeof r->verdict - (size_t)used, "%s%s", i ? "; " : "", why[i]);
+}
+
+/* ---- setting up ---- */
+
+void cli_fit_options_default(cli_FitOptions *o)
+{
+    memset(o, 0, sizeof *o);
+    o->loss = CLI_LOSS_LINEAR;
+    o->from_s = o->to_s = NAN;
+    o->max_iter = 100;
+    o->start = CLI_START_TRACKED;
+    o->seed = 1;
+    o->profiles = 1;
+}
+
+static int add_param(cli_FitParam *list, int *n, cli_FitParam p)
+{
+    for (int i = 0; i < *n; ++i)
+        if (list[i].kind == p.kind && list[i].part == p.part) return 0;
+    if (*n == CLI_FIT_MAX_PARAMS) return -1;
+    list[(*n)++] = p;
+    return 1;
+}
+
+static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o,
+                   const jc_State *refined, cli_FitResult *out, char *err, size_t err_len)
 {
     c->t = t;
-    c->base = *setup;
-    cli_track_window(t, o->from_s, o->to_s, &c->first, &c->count);
-    if (c->count < 3) {
-        snprintf(err, err_len, "the fit window holds %ld frame(s); at least 3 are needed", c->count);
+    if (cli_track_require("the track", t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, err_len) != 0) return -1;
+    c->base = cli_track_setup(setup, t);
+    c->base.incline_rad = t->incline_rad; /* the frames' incline frame */
+    c->frame0.mark_angle_rad = o->mark_angle_rad;
+    c->incline_video = t->incline_rad;
+    c->tilt_tilts_gravity = t->incline_source == CLI_INCLINE_MEASURED;
+    cli_track_window(t, o->from_s, o->to_s, &c->res.first, &c->res.count);
+    if (c->res.count < 3) {
+        snprintf(err, err_len, "the fit window holds %ld frame(s); at least 3 are needed", c->res.count);
         return -1;
     }
     jc_Model m;
-    if (cli_track_model(setup, &m, err, err_len) != 0) return -1;
-    c->sigma = o->sigma_m > 0.0 ? o->sigma_m : t->sigma_m;
-    if (!(c->sigma > 0.0)) {
+    if (jc_model_init(&m, &c->base, err, err_len) != JC_OK) return -1;
+    const double sigma = o->sigma_m > 0.0 ? o->sigma_m : t->sigma_m;
+    if (!(sigma > 0.0)) {
         snprintf(err, err_len, "the track gives no position noise; give it with --sigma");
         return -1;
     }
-    const double r = m.body.radius_m, thr = fmax(HOP_SIGMAS * c->sigma, HOP_MIN_M);
-    c->mark_offset = cli_track_mark_offset_rad(&m);
+    c->res.t = t;
+    c->res.sigma = sigma;
+    const double r = m.body.radius_m;
+    const long first = c->res.first;
     if (o->start == CLI_START_SETUP) {
         memset(&c->start0, 0, sizeof c->start0);
-        c->start0.t_s = t->t_s[c->first];
-        c->start0.x_m = t->x_m[c->first];
+        c->start0.t_s = t->t_s[first];
+        c->start0.x_m = t->x_m[first];
         c->start0.y_m = r;
         c->start0.theta_rad = setup->theta0_rad;
         c->start0.omega_radps = setup->omega0_radps;
+    } else if (refined) {
+        c->start0 = *refined;
     } else {
-        if (cli_track_start_estimate(t, c->first, START_SPAN, r, setup->theta0_rad, thr, &c->start0) != 0) {
+        if (cli_track_start_estimate(t, first, START_SPAN, r, setup->theta0_rad, t->hop_threshold_m, &c->start0) != 0) {
             snprintf(err, err_len, "fewer than 3 frames to estimate the first tracked state from");
             return -1;
         }
-        if (t->has_mark) c->start0.theta_rad += c->mark_offset;
+        if (t->has_mark) c->start0.theta_rad += cli_track_mark_offset_rad(&m, o->mark_angle_rad);
     }
-    c->value0[CLI_FIT_MU_S] = setup->mu_static;
-    c->value0[CLI_FIT_MU_K] = setup->mu_kinetic;
-    c->value0[CLI_FIT_RESTITUTION] = setup->restitution;
-    c->value0[CLI_FIT_THETA0] = c->start0.theta_rad;
-    c->value0[CLI_FIT_OMEGA0] = c->start0.omega_radps;
-    c->value0[CLI_FIT_X0] = c->start0.x_m;
-    c->np = 0;
-    for (int k = 0; k < CLI_FIT_PARAMS; ++k)
-        if (o->free_mask & (1u << k)) c->param[c->np++] = (cli_FitParam)k;
+    /* The free list: the values asked for, then the start's. */
+    int n = 0;
+    for (int k = 0; k < o->free_count; ++k) add_param(c->param, &n, o->free[k]);
+    const cli_FitKind extra[5] = {CLI_FIT_THETA0, CLI_FIT_OMEGA0, CLI_FIT_X0, CLI_FIT_TILT, CLI_FIT_SURFACE};
+    for (int k = 0; k < 5; ++k) {
+        if (k < 3 ? o->hold_start : o->hold_frame) continue;
+        const cli_FitParam p = {extra[k], -1};
+        if (add_param(c->param, &n, p) > 0) out->start_value[n - 1] = 1;
+    }
+    c->np = n;
+    out->count = n;
+    memcpy(out->param, c->param, sizeof c->param);
+    for (int k = 0; k < n; ++k) {
+        out->initial[k] = cli_fit_get(&c->base, &c->start0, &c->frame0, c->param[k]);
+        cli_fit_range(&c->base, c->param[k], &out->lo[k], &out->hi[k]);
+    }
+    const double a = t->centre_source == CLI_CENTRE_FROM_MARK ? t->mark_radius_m : cli_track_mark_radius(t, &m);
     long marks = 0;
-    for (long i = 0; i < c->count; ++i) marks += t->has_mark && isfinite(t->theta_rad[c->first + i]);
-    const double a = cli_track_mark_radius(t, &m);
-    c->mark_radius = marks > 0 ? a : 0.0;
-    c->nres = 2 * c->count + marks;
+    for (long i = 0; i < c->res.count; ++i) marks += t->has_mark && isfinite(t->theta_rad[first + i]);
+    c->res.mark_radius = marks > 0 || t->centre_source == CLI_CENTRE_FROM_MARK ? a : 0.0;
+    c->nres = cli_residual_count(&c->res);
     if (c->nres <= c->np) {
         snprintf(err, err_len, "%ld residuals cannot fix %d free values", c->nres, c->np);
         return -1;
     }
-    const size_t n = (size_t)c->count;
-    c->x = malloc(n * sizeof *c->x);
-    c->y = malloc(n * sizeof *c->y);
-    c->th = malloc(n * sizeof *c->th);
-    c->sw = malloc((size_t)c->nres * sizeof *c->sw);
-    if (!c->x || !c->y || !c->th || !c->sw || cli_track_sim_init(&c->ts) != 0) {
+    const size_t fr = (size_t)c->res.count, nr = (size_t)c->nres;
+    c->x = malloc(fr * sizeof *c->x);
+    c->y = malloc(fr * sizeof *c->y);
+    c->th = malloc(fr * sizeof *c->th);
+    c->sw = malloc(nr * sizeof *c->sw);
+    c->f = malloc(nr * sizeof *c->f);
+    c->series = malloc(nr);
+    if (!c->x || !c->y || !c->th || !c->sw || !c->f || !c->series || cli_track_sim_init(&c->ts) != 0) {
         snprintf(err, err_len, "out of memory");
         return -1;
     }
     for (long i = 0; i < c->nres; ++i) c->sw[i] = 1.0;
     c->ts.shift_m = cli_track_sim_shift(t);
+    out->first = first;
+    out->frames = c->res.count;
+    out->sigma_m = sigma;
+    out->noise_measured = !(o->sigma_m > 0.0);
+    out->mark_radius_m = c->res.mark_radius;
     return 0;
 }
 
@@ -352,153 +775,178 @@ static void release(fit_ctx *c)
     free(c->y);
     free(c->th);
     free(c->sw);
+    free(c->f);
+    free(c->series);
     cli_track_sim_free(&c->ts);
 }
 
-/* The values' covariance: C_v = T C_u T' with T = dv/du (by differences of
- * the transform, which is cheap and smooth). */
-static void values_covariance(const fit_ctx *c, const double *u, const gsl_matrix *cu, cli_FitResult *out)
+/* The path's and the angle's RMS at u. */
+static void rms(fit_ctx *c, const double *u, cli_FitResult *out)
 {
-    const int p = c->np;
-    double T[CLI_FIT_PARAMS][CLI_FIT_PARAMS];
-    double up[CLI_FIT_PARAMS], um[CLI_FIT_PARAMS], vp[CLI_FIT_PARAMS], vm[CLI_FIT_PARAMS];
-    for (int j = 0; j < p; ++j) {
-        const double h = 1e-6 * fmax(1.0, fabs(u[j]));
-        memcpy(up, u, (size_t)p * sizeof *u);
-        memcpy(um, u, (size_t)p * sizeof *u);
-        up[j] += h;
-        um[j] -= h;
-        values_of(c, up, vp);
-        values_of(c, um, vm);
-        for (int i = 0; i < p; ++i) T[i][j] = (vp[c->param[i]] - vm[c->param[i]]) / (2 * h);
-    }
-    for (int i = 0; i < p; ++i)
-        for (int j = 0; j < p; ++j) {
-            double s = 0.0;
-            for (int a = 0; a < p; ++a)
-                for (int b = 0; b < p; ++b) s += T[i][a] * gsl_matrix_get(cu, (size_t)a, (size_t)b) * T[j][b];
-            out->cov[i][j] = s;
-        }
-    for (int i = 0; i < p; ++i) {
-        out->sigma[i] = out->cov[i][i] > 0.0 ? sqrt(out->cov[i][i]) : NAN;
-        if (!(out->cov[i][i] > 0.0)) out->singular = 1;
-    }
-    for (int i = 0; i < p; ++i)
-        for (int j = 0; j < p; ++j) out->corr[i][j] = out->cov[i][j] / (out->sigma[i] * out->sigma[j]);
-}
-
-/* The first lift-off's x for u; NaN without one. */
-static double liftoff_x(fit_ctx *c, const double *u, double *t_s)
-{
-    jc_RunSummary sum;
-    if (run_u(c, u, &sum) != 0 || sum.first_liftoff < 0) return NAN;
-    if (t_s) *t_s = sum.first_liftoff_state.t_s;
-    return sum.first_liftoff_state.x_m - c->ts.shift_m;
-}
-
-/* Predicted first lift-off and its standard error by the delta method:
- * var = g' C_u g with g its gradient in u (central differences). */
-static void predict_liftoff(fit_ctx *c, const double *u, const gsl_matrix *cu, cli_FitResult *out)
-{
-    out->liftoff_x_m = liftoff_x(c, u, &out->liftoff_t_s);
-    out->has_liftoff = isfinite(out->liftoff_x_m);
-    out->liftoff_sigma_m = NAN;
-    if (!out->has_liftoff) return;
-    double g[CLI_FIT_PARAMS], w[CLI_FIT_PARAMS];
-    for (int j = 0; j < c->np; ++j) {
-        const double h = step_of(u[j]);
-        memcpy(w, u, (size_t)c->np * sizeof *u);
-        w[j] = u[j] + h;
-        const double xp = liftoff_x(c, w, NULL);
-        w[j] = u[j] - h;
-        const double xm = liftoff_x(c, w, NULL);
-        g[j] = (xp - xm) / (2 * h);
-    }
-    double var = 0.0;
-    for (int i = 0; i < c->np; ++i)
-        for (int j = 0; j < c->np; ++j) var += g[i] * gsl_matrix_get(cu, (size_t)i, (size_t)j) * g[j];
-    out->liftoff_sigma_m = var >= 0.0 ? sqrt(var) : NAN;
-}
-
-static void final_state(fit_ctx *c, const double *u, cli_FitResult *out)
-{
-    double v[CLI_FIT_PARAMS];
-    values_of(c, u, v);
-    setup_of(c, v, &out->setup, &out->start);
-    out->setup.ramp_length_m -= CLI_TRACK_RAMP_MARGIN_M;
-    for (int k = 0; k < c->np; ++k) out->value[k] = v[c->param[k]];
+    run_u(c, u);
+    const cli_Track *t = c->t;
     double path = 0.0, th = 0.0;
-    long n_th = 0;
-    run_u(c, u, NULL);
-    for (long i = 0; i < c->count; ++i) {
-        const long j = c->first + i;
-        path += pow(c->t->x_m[j] - c->x[i], 2) + pow(c->t->y_m[j] - c->y[i], 2);
-        if (c->t->has_mark && isfinite(c->t->theta_rad[j])) {
-            th += pow(c->t->theta_rad[j] - (c->th[i] - c->mark_offset), 2);
+    long n_path = 0, n_th = 0;
+    for (long i = 0; i < c->res.count; ++i) {
+        const long j = c->res.first + i;
+        if (isfinite(t->x_m[j])) {
+            path += pow(t->x_m[j] - c->x[i], 2) + pow(t->y_m[j] - c->y[i], 2);
+            n_path++;
+        }
+        if (t->has_mark && isfinite(t->theta_rad[j])) {
+            th += pow(t->theta_rad[j] - (c->th[i] - c->res.mark_offset), 2);
             ++n_th;
         }
     }
-    out->rms_path_m = sqrt(path / (double)c->count);
+    out->rms_path_m = n_path ? sqrt(path / (double)n_path) : NAN;
     out->rms_theta_rad = n_th ? sqrt(th / (double)n_th) : NAN;
-}
-
-static cli_FitStop stop_of(int status, int info)
-{
-    if (status == GSL_EMAXITER) return CLI_FIT_STOP_ITERATIONS;
-    if (status != GSL_SUCCESS) return CLI_FIT_STOP_NO_PROGRESS;
-    return info == 2 ? CLI_FIT_STOP_GRADIENT : CLI_FIT_STOP_STEP;
 }
 
 static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *err, size_t err_len)
 {
-    const size_t n = (size_t)c->nres, p = (size_t)c->np;
-    gsl_multifit_nlinear_parameters fp = gsl_multifit_nlinear_default_parameters();
-    fp.trs = gsl_multifit_nlinear_trs_lm; /* geodesic acceleration off: its second
-                                             derivative would come from a discontinuous model */
-    gsl_multifit_nlinear_workspace *w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &fp, n, p);
-    gsl_vector *u = gsl_vector_alloc(p);
-    gsl_matrix *cu = gsl_matrix_alloc(p, p);
-    double *scratch = malloc(2 * n * sizeof *scratch);
-    if (!w || !u || !cu || !scratch) {
-        gsl_multifit_nlinear_free(w);
-        gsl_vector_free(u);
-        gsl_matrix_free(cu);
+    const size_t p_all = (size_t)c->np;
+    double *scratch = malloc((size_t)c->nres * sizeof *scratch);
+    gsl_matrix *cu = gsl_matrix_alloc(p_all, p_all);
+    point mins[DEFAULT_DESCENTS * 4 + 1];
+    if (!scratch || !cu) {
         free(scratch);
+        gsl_matrix_free(cu);
         snprintf(err, err_len, "out of memory");
         return -1;
     }
-    double u0[CLI_FIT_PARAMS];
-    u_of(c, c->value0, u0);
-    for (size_t k = 0; k < p; ++k) gsl_vector_set(u, k, u0[k]);
-    gsl_multifit_nlinear_fdf fdf = {f_eval, df_eval, NULL, n, p, c, 0, 0, 0};
-    int status = GSL_SUCCESS, info = 0;
-    const int passes = o->loss == CLI_LOSS_LINEAR ? 1 : MAX_PASSES;
-    for (int pass = 0; pass < passes; ++pass) {
-        gsl_multifit_nlinear_init(u, &fdf, w);
-        status = gsl_multifit_nlinear_driver((size_t)o->max_iter, 1e-8, 1e-8, 0.0, NULL, NULL, &info, w);
-        out->iterations += (int)gsl_multifit_nlinear_niter(w);
-        out->passes = pass + 1;
-        gsl_vector_memcpy(u, gsl_multifit_nlinear_position(w));
-        if (status != GSL_SUCCESS && status != GSL_EMAXITER && status != GSL_ENOPROG) break;
-        if (pass + 1 < passes && reweight(c, u->data, o->loss, scratch) < 1e-3) break;
+    double v0[CLI_FIT_MAX_PARAMS], u[CLI_FIT_MAX_PARAMS], v[CLI_FIT_MAX_PARAMS], sigma[CLI_FIT_MAX_PARAMS];
+    double cov[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS], corr[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS];
+    for (int i = 0; i < c->np; ++i) v0[i] = cli_fit_get(&c->base, &c->start0, &c->frame0, c->param[i]);
+    u_of(c, v0, u, START_EDGE);
+    const int cap = (int)(sizeof mins / sizeof mins[0]);
+    int nm = search(c, u, o, mins, cap, out, scratch);
+    if (nm == 0) {
+        mins[0].chi2 = cost(c, u);
+        memcpy(mins[0].u, u, sizeof u);
+        nm = 1;
     }
-    out->stop = stop_of(status, info);
-    /* The covariance at the solution, from a fresh Jacobian there. */
-    gsl_multifit_nlinear_init(u, &fdf, w);
-    gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(w), 1e-10, cu);
-    double chi2;
-    gsl_blas_ddot(gsl_multifit_nlinear_residual(w), gsl_multifit_nlinear_residual(w), &chi2);
+    memcpy(u, mins[0].u, sizeof u);
+    /* Scale: chi2/dof when the noise was measured. */
+    double chi2 = cost(c, u);
+    double dof = (double)(c->nres - c->np);
+    double s2 = out->noise_measured ? chi2 / dof : 1.0;
+    gsl_matrix_view cv = gsl_matrix_submatrix(cu, 0, 0, (size_t)c->np, (size_t)c->np);
+    covariance_u(c, u, s2, &cv.matrix);
+    values_of(c, u, v);
+    values_covariance(c, u, &cv.matrix, cov, sigma, corr);
+    /* The minima that compete with the best: within the chi2 threshold for
+     * the free values' count, and apart from it by more than 2 sigma. */
+    out->delta_chi2 = gsl_cdf_chisq_Qinv(0.05, (double)c->np) * fmax(1.0, s2);
+    out->minima = 0;
+    for (int k = 0; k < nm && out->minima < CLI_FIT_MAX_MINIMA; ++k) {
+        if (mins[k].chi2 - mins[0].chi2 > out->delta_chi2) break;
+        double vk[CLI_FIT_MAX_PARAMS];
+        values_of(c, mins[k].u, vk);
+        int apart = k == 0;
+        for (int i = 0; i < c->np && !apart; ++i)
+            apart = fabs(vk[i] - v[i]) > 2.0 * (isfinite(sigma[i]) ? sigma[i] : 0.0) + 1e-9 * fabs(v[i]);
+        for (int j = 0; j < out->minima && apart && k > 0; ++j) {
+            int same = 1;
+            for (int i = 0; i < c->np && same; ++i)
+                same = fabs(vk[i] - out->minimum[j].value[slot_of(out, c->param[i])]) <=
+                       2.0 * (isfinite(sigma[i]) ? sigma[i] : 0.0) + 1e-9 * fabs(vk[i]);
+            if (same) apart = 0;
+        }
+        if (!apart) continue;
+        cli_FitMinimum *mm = &out->minimum[out->minima++];
+        for (int i = 0; i < out->count; ++i) mm->value[i] = out->initial[i];
+        for (int i = 0; i < c->np; ++i) mm->value[slot_of(out, c->param[i])] = vk[i];
+        mm->chi2 = mins[k].chi2;
+    }
+    /* What the video does not determine: held, and the rest fitted again. */
+    for (int round = 0; round < FLAG_ROUNDS && c->np > 0; ++round) {
+        cli_FitFlag flag[CLI_FIT_MAX_PARAMS];
+        int other[CLI_FIT_MAX_PARAMS];
+        double rho[CLI_FIT_MAX_PARAMS];
+        if (flag_values(c, v, sigma, corr, flag, other, rho) == 0) break;
+        double v_init[CLI_FIT_MAX_PARAMS];
+        for (int i = 0; i < c->np; ++i) {
+            const int s = slot_of(out, c->param[i]);
+            v_init[i] = out->initial[s];
+            if (flag[i] == CLI_FIT_DETERMINED) continue;
+            out->flag[s] = flag[i];
+            out->value[s] = v[i];
+            out->sigma[s] = sigma[i];
+            out->other[s] = other[i] >= 0 ? slot_of(out, c->param[other[i]]) : -1;
+            out->rho[s] = rho[i];
+        }
+        cli_FitParam held[CLI_FIT_MAX_PARAMS];
+        int nheld = 0;
+        for (int i = 0; i < c->np; ++i)
+            if (flag[i] != CLI_FIT_DETERMINED) held[nheld++] = c->param[i];
+        hold(c, u, v, v_init, flag);
+        for (int h = 0; h < nheld; ++h) out->value[slot_of(out, held[h])] =
+            cli_fit_get(&c->base, &c->start0, &c->frame0, held[h]);
+        out->iterations += descend(c, u, o, scratch, INFINITY);
+        chi2 = cost(c, u);
+        dof = (double)(c->nres - c->np);
+        s2 = out->noise_measured ? chi2 / dof : 1.0;
+        cv = gsl_matrix_submatrix(cu, 0, 0, (size_t)(c->np > 0 ? c->np : 1), (size_t)(c->np > 0 ? c->np : 1));
+        if (c->np > 0) {
+            covariance_u(c, u, s2, &cv.matrix);
+            values_of(c, u, v);
+            values_covariance(c, u, &cv.matrix, cov, sigma, corr);
+        }
+    }
+    /* The values fitted at the end, and the correlations between them. */
+    for (int i = 0; i < out->count; ++i)
+        for (int j = 0; j < out->count; ++j) out->corr[i][j] = i == j ? 1.0 : NAN;
+    for (int i = 0; i < c->np; ++i) {
+        const int s = slot_of(out, c->param[i]);
+        out->value[s] = v[i];
+        out->sigma[s] = sigma[i];
+        for (int j = 0; j < c->np; ++j) out->corr[s][slot_of(out, c->param[j])] = corr[i][j];
+    }
     out->residuals = c->nres;
     out->chi2 = chi2;
-    out->chi2_dof = chi2 / (double)(n - p);
-    gsl_matrix_scale(cu, out->chi2_dof);
-    values_covariance(c, u->data, cu, out);
-    predict_liftoff(c, u->data, cu, out);
-    final_state(c, u->data, out);
-    gsl_multifit_nlinear_free(w);
-    gsl_vector_free(u);
-    gsl_matrix_free(cu);
+    out->chi2_dof = chi2 / dof;
+    if (c->np > 0) predict_liftoff(c, u, &cv.matrix, out);
+    else {
+        out->liftoff_x_m = liftoff_x(c, u, &out->liftoff_t_s);
+        out->has_liftoff = isfinite(out->liftoff_x_m);
+        out->liftoff_sigma_m = NAN;
+    }
+    values_of(c, u, v);
+    apply(c, v, &out->setup, &out->start, &out->frame);
+    const int kt = index_of(c, CLI_FIT_TILT);
+    out->incline_sigma_rad = c->tilt_tilts_gravity && kt >= 0 ? sigma[kt] : 0.0;
+    out->setup.ramp_length_m -= CLI_TRACK_RAMP_MARGIN_M;
+    rms(c, u, out);
+    judge(c, u, out);
+    /* Profiles of the held values' chi2 along their ranges. */
+    for (int k = 0; o->profiles && k < out->count; ++k) {
+        if (out->flag[k] == CLI_FIT_DETERMINED) continue;
+        profile(c, out->param[k], u, o, out->profile_x[k], out->profile_chi2[k], scratch);
+        out->profiled[k] = isfinite(out->profile_x[k][0]);
+    }
     free(scratch);
+    gsl_matrix_free(cu);
+    return 0;
+}
+
+const char *cli_fit_flag_text(cli_FitFlag f)
+{
+    switch (f) {
+    case CLI_FIT_DETERMINED: return "determined";
+    case CLI_FIT_ON_BOUND: return "it sits on a bound of its range";
+    case CLI_FIT_WIDER_THAN_RANGE: return "its standard error exceeds its range";
+    case CLI_FIT_CORRELATED: return "it moves with another value";
+    case CLI_FIT_NO_EFFECT: return "the residuals do not change with it";
+    }
+    return "?";
+}
+
+int cli_fit_parse_loss(const char *text, cli_FitLoss *out)
+{
+    if (strcmp(text, "linear") == 0) *out = CLI_LOSS_LINEAR;
+    else if (strcmp(text, "huber") == 0) *out = CLI_LOSS_HUBER;
+    else if (strcmp(text, "cauchy") == 0) *out = CLI_LOSS_CAUCHY;
+    else return -1;
     return 0;
 }
 
@@ -510,20 +958,42 @@ int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOption
         snprintf(err, err_len, "the iteration limit must be positive");
         return -1;
     }
+    /* The start alone first, on the window's first REFINE_S. */
+    jc_State refined;
+    int have_refined = 0;
+    long first, count;
+    cli_track_window(t, o->from_s, o->to_s, &first, &count);
+    if (!o->no_refine && !o->hold_start && o->start == CLI_START_TRACKED && count > 0) {
+        long last = first;
+        while (last + 1 < first + count &&
+               (t->t_s[last + 1] - t->t_s[first] <= REFINE_S || last + 1 - first < REFINE_MIN_FRAMES))
+            last++;
+        if (last + 1 < first + count) {
+            cli_FitOptions q;
+            cli_fit_options_default(&q);
+            q.from_s = t->t_s[first];
+            q.to_s = t->t_s[last];
+            q.max_iter = o->max_iter;
+            q.descents = 2;
+            q.profiles = 0;
+            q.hold_frame = 1;
+            q.no_refine = 1;
+            q.sigma_m = o->sigma_m;
+            q.seed = o->seed;
+            q.mark_angle_rad = o->mark_angle_rad;
+            cli_FitResult sub;
+            char sub_err[256];
+            if (cli_track_fit(setup, t, &q, sim, &sub, sub_err, sizeof sub_err) == 0) {
+                refined = sub.start;
+                have_refined = 1;
+            }
+        }
+    }
     fit_ctx c;
     memset(&c, 0, sizeof c);
     c.sim = sim;
-    int rc = prepare(&c, setup, t, o, err, err_len);
-    if (rc == 0) {
-        out->count = c.np;
-        memcpy(out->param, c.param, sizeof c.param);
-        for (int k = 0; k < c.np; ++k) out->initial[k] = c.value0[c.param[k]];
-        out->first = c.first;
-        out->frames = c.count;
-        out->sigma_m = c.sigma;
-        out->mark_radius_m = c.mark_radius;
-        rc = solve(&c, o, out, err, err_len);
-    }
+    int rc = prepare(&c, setup, t, o, have_refined ? &refined : NULL, out, err, err_len);
+    if (rc == 0) rc = solve(&c, o, out, err, err_len);
     release(&c);
     return rc;
 }

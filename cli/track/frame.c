@@ -1,10 +1,12 @@
-/* A file's tracks put in the incline frame of docs/physics.md §1: which
- * track is the centre and which the mark, the direction of "downhill", the
- * frame times and their gaps and jitter. */
+/* A file's tracks put in a frame turned by a given angle from Tracker's
+ * axes: which track is the centre and which the mark, the direction of
+ * "downhill", the frame times and their gaps and jitter. derive.c then
+ * finds the surface and turns the frame onto it. */
 #include "raw.h"
 
 #include <ctype.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,23 +29,31 @@ static int find_named(const cli_RawData *raw, const char *name)
     return -1;
 }
 
+static const char *const centre_words[] = {"centre", "center", "axle", "axis", "hub"};
+static const char *const mark_words[] = {"mark", "rod", "dot", "off", "led", "rim", "light", "lamp", "spot"};
+#define N_CENTRE_WORDS (int)(sizeof centre_words / sizeof centre_words[0])
+#define N_MARK_WORDS (int)(sizeof mark_words / sizeof mark_words[0])
+
+static int named_like(const char *name, const char *const *words, int nwords)
+{
+    for (int w = 0; w < nwords; ++w)
+        if (has_word(name, words[w])) return 1;
+    return 0;
+}
+
 /* The one track whose name holds one of words, other than skip; -1 if none or several. */
 static int find_by_words(const cli_RawData *raw, const char *const *words, int nwords, int skip)
 {
     int found = -1;
     for (int i = 0; i < raw->track_count; ++i) {
-        if (i == skip) continue;
-        int hit = 0;
-        for (int w = 0; w < nwords && !hit; ++w) hit = has_word(raw->tracks[i].name, words[w]);
-        if (hit) {
-            if (found >= 0) return -1;
-            found = i;
-        }
+        if (i == skip || !named_like(raw->tracks[i].name, words, nwords)) continue;
+        if (found >= 0) return -1;
+        found = i;
     }
     return found;
 }
 
-static void list_tracks(const cli_RawData *raw, char *buf, size_t len)
+void cli_track_list_names(const cli_RawData *raw, char *buf, size_t len)
 {
     buf[0] = '\0';
     size_t used = 0;
@@ -55,14 +65,48 @@ static void list_tracks(const cli_RawData *raw, char *buf, size_t len)
     }
 }
 
-static int pick_tracks(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, int *centre,
-                       int *mark, char *err, size_t err_len)
+/* RMS distance of a track's points from the least-squares line through
+ * them; NaN with fewer than 3 points. A centre rolls along a line; a mark
+ * on the body swings about it by its distance from the centre. */
+static double line_scatter(const cli_RawTrack *k, long frames)
 {
-    static const char *const centre_words[] = {"centre", "center", "axle", "axis", "hub"};
-    static const char *const mark_words[] = {"mark", "rod", "dot", "off"};
+    double sw = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    for (long f = 0; f < frames; ++f) {
+        if (isnan(k->x_m[f])) continue;
+        const double x = k->x_m[f], y = k->y_m[f];
+        sw += 1, sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+    }
+    if (sw < 3) return NAN;
+    const double cxx = sxx / sw - (sx / sw) * (sx / sw), cyy = syy / sw - (sy / sw) * (sy / sw);
+    const double cxy = sxy / sw - (sx / sw) * (sy / sw);
+    /* The smaller eigenvalue of the covariance: the spread across the line. */
+    const double tr = cxx + cyy, det = cxx * cyy - cxy * cxy;
+    const double small = 0.5 * tr - sqrt(fmax(0.25 * tr * tr - det, 0.0));
+    return sqrt(fmax(small, 0.0));
+}
+
+/* Two tracks, neither named: the centre is the one that keeps to a line,
+ * when the other swings about it at least twice as far. -1: not told. */
+static int centre_by_motion(const cli_RawData *raw)
+{
+    const double s0 = line_scatter(&raw->tracks[0], raw->frames), s1 = line_scatter(&raw->tracks[1], raw->frames);
+    if (!(s0 >= 0) || !(s1 >= 0)) return -1;
+    if (s1 > 2.0 * s0) return 0;
+    if (s0 > 2.0 * s1) return 1;
+    return -1;
+}
+
+/* Picks the tracks. The centre is -1 when the file has only a mark (a
+ * single track named as one, told by derive.c's rolling fit otherwise) or
+ * when it cannot be told (t->centre_ambiguous). -1 with a message only for
+ * a name the caller gave that is not in the file. */
+static int pick_tracks(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, int *centre,
+                       int *mark, int *ambiguous, char *err, size_t err_len)
+{
     char tracks[512];
-    list_tracks(raw, tracks, sizeof tracks);
+    cli_track_list_names(raw, tracks, sizeof tracks);
     *centre = *mark = -1;
+    *ambiguous = 0;
     if (opt->centre) {
         *centre = find_named(raw, opt->centre);
         if (*centre < 0) {
@@ -77,26 +121,33 @@ static int pick_tracks(const char *name, const cli_RawData *raw, const cli_Track
             return -1;
         }
     }
-    if (*centre < 0) *centre = find_by_words(raw, centre_words, 5, *mark);
-    if (*centre < 0 && raw->track_count == 1) *centre = 0;
+    if (*mark >= 0 && *mark == *centre) {
+        snprintf(err, err_len, "%s: --centre and --mass name the same track '%s'", name, raw->tracks[*mark].name);
+        return -1;
+    }
+    const int no_mark = opt->mark && !opt->mark[0];
+    if (*centre < 0) *centre = find_by_words(raw, centre_words, N_CENTRE_WORDS, *mark);
+    if (*centre < 0 && raw->track_count == 1 && !opt->mark) {
+        /* A single track: a centre, unless it is named as a mark (derive.c
+         * tells an unnamed one by its motion). */
+        if (named_like(raw->tracks[0].name, mark_words, N_MARK_WORDS)) *mark = 0;
+        else *centre = 0;
+        return 0;
+    }
+    if (*centre < 0 && raw->track_count == 1 && no_mark) *centre = 0;
     if (*centre < 0 && *mark >= 0 && raw->track_count == 2) *centre = 1 - *mark;
+    if (*centre < 0 && raw->track_count == 2 && !opt->mark && !opt->centre) {
+        *centre = centre_by_motion(raw);
+        if (*centre >= 0) *mark = 1 - *centre;
+    }
+    if (*centre < 0 && *mark >= 0 && raw->track_count == 1) return 0; /* --mass NAME alone: mark only */
     if (*centre < 0) {
-        snprintf(err, err_len, "%s: which track is the centre? give --centre NAME (tracks: %s)", name, tracks);
-        return -1;
+        *ambiguous = 1;
+        return 0;
     }
-    if (!opt->mark) {
-        *mark = find_by_words(raw, mark_words, 4, *centre);
-        if (*mark < 0 && raw->track_count == 2 && find_by_words(raw, centre_words, 5, -1) == *centre)
-            *mark = 1 - *centre;
-        if (*mark < 0 && raw->track_count > 1) {
-            snprintf(err, err_len, "%s: which track is the off-centre mass? give --mass NAME, or --mass '' for none (tracks: %s)",
-                     name, tracks);
-            return -1;
-        }
-    }
-    if (*mark == *centre) {
-        snprintf(err, err_len, "%s: the centre and the mass are the same track '%s'", name, raw->tracks[*centre].name);
-        return -1;
+    if (*mark < 0 && !no_mark && !opt->mark) {
+        *mark = find_by_words(raw, mark_words, N_MARK_WORDS, *centre);
+        if (*mark < 0 && raw->track_count == 2) *mark = 1 - *centre;
     }
     return 0;
 }
@@ -107,18 +158,40 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *out,
-                       char *err, size_t err_len)
+/* The frame duration: the clip's, or the median step of the table's times
+ * refined over the whole span (each step a whole number of frames, so that
+ * jitter averages out). NaN when the rows have no time step. */
+static double frame_step(const cli_RawData *raw)
 {
-    memset(out, 0, sizeof *out);
-    if (!(opt->radius_m > 0) || !(opt->incline_rad >= 0 && opt->incline_rad < CLI_PI / 2)) {
-        snprintf(err, err_len, "%s: the radius and incline angle must be given (r > 0, 0 <= incline < 90 deg)", name);
-        return -1;
-    }
-    int ci, mi;
-    if (pick_tracks(name, raw, opt, &ci, &mi, err, err_len) != 0) return -1;
-    const cli_RawTrack *C = &raw->tracks[ci];
-    const cli_RawTrack *K = mi >= 0 ? &raw->tracks[mi] : NULL;
+    if (!isnan(raw->nominal_dt_s)) return raw->nominal_dt_s;
+    if (raw->frames < 2) return NAN;
+    double *d = malloc((size_t)(raw->frames - 1) * sizeof *d);
+    if (!d) return NAN;
+    for (long f = 1; f < raw->frames; ++f) d[f - 1] = raw->t_s[f] - raw->t_s[f - 1];
+    qsort(d, (size_t)(raw->frames - 1), sizeof *d, cmp_double);
+    const double step = d[(raw->frames - 1) / 2];
+    free(d);
+    if (!(step > 0)) return NAN;
+    double frames_spanned = 0;
+    for (long f = 1; f < raw->frames; ++f)
+        frames_spanned += fmax(1.0, floor((raw->t_s[f] - raw->t_s[f - 1]) / step + 0.5));
+    return (raw->t_s[raw->frames - 1] - raw->t_s[0]) / frames_spanned;
+}
+
+static int alloc_frames(cli_Track *t, long n)
+{
+    const size_t bytes = (size_t)(n > 0 ? n : 1) * sizeof(double);
+    double **arrays[] = {&t->t_s, &t->x_m, &t->y_m, &t->centre_sigma_m, &t->mark_x_m, &t->mark_y_m, &t->theta_rad,
+                         &t->omega_radps};
+    int ok = 1;
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) ok = (*arrays[k] = malloc(bytes)) && ok;
+    t->contact = calloc((size_t)(n > 0 ? n : 1), 1);
+    t->airborne = calloc((size_t)(n > 0 ? n : 1), 1);
+    return ok && t->contact && t->airborne ? 0 : -1;
+}
+
+static void copy_report(const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *out)
+{
     snprintf(out->format, sizeof out->format, "%s", raw->format);
     out->track_count = raw->track_count;
     for (int i = 0; i < raw->track_count; ++i) {
@@ -131,93 +204,55 @@ int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_Track
     out->scale_px_per_m = raw->px_per_m;
     out->scale_varies = raw->scale_varies;
     out->tape_length_m = raw->tape_length_m;
-    out->incline_rad = opt->incline_rad;
     out->radius_m = opt->radius_m;
-    memcpy(out->centre_name, C->name, CLI_TRACK_NAME_LEN);
-    if (K) memcpy(out->mark_name, K->name, CLI_TRACK_NAME_LEN);
-    out->has_mark = K != NULL;
-    long first = -1, last = -1, kept = 0;
-    for (long f = 0; f < raw->frames; ++f)
-        if (!isnan(C->x_m[f])) {
-            if (first < 0) first = f;
-            last = f;
-            kept++;
-        }
-    if (kept < 3) {
-        snprintf(err, err_len, "%s: the centre track '%s' has %ld position(s); at least 3 are needed", name, C->name,
-                 kept);
-        return -1;
-    }
-    /* The frame duration: the clip's, or the median step of the table's times. */
-    double dt = raw->nominal_dt_s;
-    if (isnan(dt)) {
-        double *d = malloc((size_t)(raw->frames - 1) * sizeof *d);
-        if (!d) {
-            snprintf(err, err_len, "%s: out of memory", name);
-            return -1;
-        }
-        for (long f = 1; f < raw->frames; ++f) d[f - 1] = raw->t_s[f] - raw->t_s[f - 1];
-        qsort(d, (size_t)(raw->frames - 1), sizeof *d, cmp_double);
-        const double step = d[(raw->frames - 1) / 2];
-        free(d);
-        /* The median step, refined: the whole span over the frames it holds
-         * (each step a whole number of frames), so that jitter averages out. */
-        double frames_spanned = 0;
-        for (long f = 1; f < raw->frames; ++f) frames_spanned += fmax(1.0, floor((raw->t_s[f] - raw->t_s[f - 1]) / step + 0.5));
-        dt = (raw->t_s[raw->frames - 1] - raw->t_s[0]) / frames_spanned;
-    }
-    if (!(dt > 0) || !isfinite(1.0 / dt)) {
-        snprintf(err, err_len, "%s: the frames have no time step", name);
-        return -1;
-    }
-    out->frame_rate_hz = 1.0 / dt;
-    const size_t bytes = (size_t)kept * sizeof(double);
-    out->t_s = malloc(bytes);
-    out->x_m = malloc(bytes);
-    out->y_m = malloc(bytes);
-    out->theta_rad = malloc(bytes);
-    out->omega_radps = malloc(bytes);
-    out->airborne = calloc((size_t)kept, 1);
-    if (!out->t_s || !out->x_m || !out->y_m || !out->theta_rad || !out->omega_radps || !out->airborne) {
-        cli_track_free(out);
-        snprintf(err, err_len, "%s: out of memory", name);
-        return -1;
-    }
-    /* Downhill is where the centre went: Tracker's x may point either way. */
-    const double s = C->x_m[last] >= C->x_m[first] ? 1.0 : -1.0;
+    out->given_incline_rad = opt->incline_rad;
+    out->axes = opt->axes;
+    out->hop_sigmas = opt->hop_sigmas >= 1 ? opt->hop_sigmas : 5.0;
+    out->incline_rad = out->incline_sigma_rad = NAN;
+    out->mark_radius_m = out->mark_radius_sigma_m = out->centre_rms_sigma_m = out->detect_m = NAN;
+    out->surface_tilt_rad = out->surface_tilt_sigma_rad = out->surface_sigma_m = NAN;
+    out->sigma_m = out->x0_m = out->hop_threshold_m = NAN;
+}
+
+/* The frames of the primary track (the centre, or the mark without one),
+ * in the frame turned by angle_rad from Tracker's axes (level axes) or in
+ * Tracker's own (incline axes), x pointing where the primary track went.
+ * -1 when the time jumps by more frames than a clip may hold. */
+static int convert(const cli_RawData *raw, const cli_RawTrack *P, const cli_RawTrack *K, long first, long last,
+                    double dt, double angle_rad, cli_Track *out)
+{
+    const double s = P->x_m[last] >= P->x_m[first] ? 1.0 : -1.0;
     double xh[2], nh[2];
-    if (opt->axes == CLI_TRACK_AXES_INCLINE) {
+    if (out->axes == CLI_TRACK_AXES_INCLINE) {
         xh[0] = s, xh[1] = 0, nh[0] = 0, nh[1] = 1;
     } else {
-        const double ca = cos(opt->incline_rad), sa = sin(opt->incline_rad);
+        const double ca = cos(angle_rad), sa = sin(angle_rad);
         xh[0] = s * ca, xh[1] = -sa, nh[0] = s * sa, nh[1] = ca;
     }
     const double t0 = raw->t_s[0];
-    long n = 0, prev = -1, marks = 0;
+    const int primary_is_centre = out->centre_source == CLI_CENTRE_TRACKED;
+    long n = 0, prev = -1;
     for (long f = first; f <= last; ++f) {
-        if (isnan(C->x_m[f])) {
+        if (isnan(P->x_m[f])) {
             out->gaps++;
             continue;
         }
-        const double wx = C->x_m[f], wy = C->y_m[f];
         out->t_s[n] = raw->t_s[f] - t0;
-        out->x_m[n] = wx * xh[0] + wy * xh[1];
-        out->y_m[n] = wx * nh[0] + wy * nh[1]; /* the normal coordinate; derive.c makes it a height */
-        out->theta_rad[n] = NAN;
-        if (K && !isnan(K->x_m[f])) {
-            const double dx = K->x_m[f] - wx, dy = K->y_m[f] - wy;
-            out->theta_rad[n] = atan2(dx * xh[0] + dy * xh[1], dx * nh[0] + dy * nh[1]);
-            out->omega_radps[marks++] = hypot(dx, dy); /* scratch until derive.c */
+        out->x_m[n] = out->y_m[n] = out->mark_x_m[n] = out->mark_y_m[n] = NAN;
+        out->theta_rad[n] = out->omega_radps[n] = out->centre_sigma_m[n] = NAN;
+        const cli_RawTrack *C = primary_is_centre ? P : NULL, *M = primary_is_centre ? K : P;
+        if (C) {
+            out->x_m[n] = C->x_m[f] * xh[0] + C->y_m[f] * xh[1];
+            out->y_m[n] = C->x_m[f] * nh[0] + C->y_m[f] * nh[1];
+        }
+        if (M && !isnan(M->x_m[f])) {
+            out->mark_x_m[n] = M->x_m[f] * xh[0] + M->y_m[f] * xh[1];
+            out->mark_y_m[n] = M->x_m[f] * nh[0] + M->y_m[f] * nh[1];
         }
         if (prev >= 0) {
             const double step = out->t_s[n] - out->t_s[n - 1];
             const double k = fmax(1.0, floor(step / dt + 0.5));
-            if (!(k <= (double)CLI_TRACK_MAX_FRAMES)) {
-                snprintf(err, err_len, "%s: the time jumps by %g s after %g s, more than %ld frames of %g s", name,
-                         step, out->t_s[n - 1], CLI_TRACK_MAX_FRAMES, dt);
-                cli_track_free(out);
-                return -1;
-            }
+            if (!(k <= (double)CLI_TRACK_MAX_FRAMES)) return -1;
             const long missing_rows = (long)k - 1 - (f - prev - 1); /* rows a table left out */
             if (missing_rows > 0) out->gaps += missing_rows;
             const double j = fabs(step - k * dt);
@@ -227,12 +262,48 @@ int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_Track
         n++;
     }
     out->n = n;
-    out->mark_radius_m = NAN;
-    if (marks > 0) {
-        qsort(out->omega_radps, (size_t)marks, sizeof(double), cmp_double);
-        out->mark_radius_m = out->omega_radps[marks / 2];
+    return 0;
+}
+
+int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, double angle_rad,
+                       cli_Track *out, char *err, size_t err_len)
+{
+    memset(out, 0, sizeof *out);
+    if (!(opt->radius_m > 0) || !(isnan(opt->incline_rad) || (opt->incline_rad >= 0 && opt->incline_rad < CLI_TRACK_PI / 2))) {
+        snprintf(err, err_len, "%s: the radius must be > 0 and the incline angle in [0, 90) deg", name);
+        return -1;
     }
-    out->x0_m = out->x_m[0];
-    out->sigma_m = isnan(raw->px_per_m) ? NAN : 1.0 / raw->px_per_m;
+    copy_report(raw, opt, out);
+    int ci, mi, ambiguous;
+    if (pick_tracks(name, raw, opt, &ci, &mi, &ambiguous, err, err_len) != 0) return -1;
+    out->centre_ambiguous = ambiguous;
+    out->centre_source = ci >= 0 ? CLI_CENTRE_TRACKED : mi >= 0 ? CLI_CENTRE_FROM_MARK : CLI_CENTRE_NONE;
+    if (ci >= 0) memcpy(out->centre_name, raw->tracks[ci].name, CLI_TRACK_NAME_LEN);
+    if (mi >= 0) memcpy(out->mark_name, raw->tracks[mi].name, CLI_TRACK_NAME_LEN);
+    out->has_mark = mi >= 0;
+    const double dt = frame_step(raw);
+    out->frame_rate_hz = dt > 0 && isfinite(1.0 / dt) ? 1.0 / dt : NAN;
+    const cli_RawTrack *P = ci >= 0 ? &raw->tracks[ci] : mi >= 0 ? &raw->tracks[mi] : NULL;
+    long first = -1, last = -1, kept = 0;
+    for (long f = 0; P && f < raw->frames; ++f)
+        if (!isnan(P->x_m[f])) {
+            if (first < 0) first = f;
+            last = f;
+            kept++;
+        }
+    if (alloc_frames(out, kept) != 0) {
+        cli_track_free(out);
+        snprintf(err, err_len, "%s: out of memory", name);
+        return -1;
+    }
+    if (kept == 0 || !(dt > 0)) {
+        out->centre_source = ambiguous ? CLI_CENTRE_NONE : out->centre_source;
+        return 0;
+    }
+    if (convert(raw, P, mi >= 0 && ci >= 0 ? &raw->tracks[mi] : NULL, first, last, dt, angle_rad, out) != 0) {
+        snprintf(err, err_len, "%s: the time jumps by more than %ld frames of %g s", name, CLI_TRACK_MAX_FRAMES, dt);
+        cli_track_free(out);
+        return -1;
+    }
     return 0;
 }

@@ -3,6 +3,7 @@
  * then the incline frame (frame.c) and the derived quantities (derive.c). */
 #include "raw.h"
 
+#include <stdio.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -12,11 +13,25 @@
 void cli_track_options_default(cli_TrackOptions *opt)
 {
     memset(opt, 0, sizeof *opt);
-    opt->incline_rad = 30.0 * CLI_PI / 180.0;
+    opt->incline_rad = NAN;
     opt->radius_m = 0.10;
+    opt->gravity_mps2 = 9.81;
     opt->axes = CLI_TRACK_AXES_LEVEL;
     opt->hop_sigmas = 5.0;
     opt->max_bytes = CLI_TRACK_MAX_BYTES;
+}
+
+int cli_track_from_raw_data(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *out,
+                            char *err, size_t err_len)
+{
+    /* Level axes turned by the incline given (or not at all: the video's
+     * is measured); incline axes as they are. derive.c turns the frame
+     * onto the surface the frames in contact show. */
+    const double angle = opt->axes == CLI_TRACK_AXES_LEVEL && !isnan(opt->incline_rad) ? opt->incline_rad : 0.0;
+    int rc = cli_track_from_raw(name, raw, opt, angle, out, err, err_len);
+    if (rc == 0) rc = cli_track_derive(name, raw, opt, out, err, err_len);
+    if (rc != 0) cli_track_free(out);
+    return rc;
 }
 
 int cli_raw_alloc(cli_RawData *raw, long frames, int track_count)
@@ -91,10 +106,8 @@ static int parse(const char *name, const char *data, size_t len, const cli_Track
     const int st = i < len && data[i] == '<' ? cli_trk_parse(name, data, len, &raw, err, err_len)
                                              : cli_table_parse(name, data + bom, len - bom, &raw, err, err_len);
     if (st != 0) return -1;
-    int rc = cli_track_from_raw(name, &raw, opt, out, err, err_len);
+    const int rc = cli_track_from_raw_data(name, &raw, opt, out, err, err_len);
     cli_raw_free(&raw);
-    if (rc == 0) rc = cli_track_derive(name, opt, out, err, err_len);
-    if (rc != 0) cli_track_free(out);
     return rc;
 }
 
@@ -153,14 +166,34 @@ int cli_track_load(const char *path, const cli_TrackOptions *opt, cli_Track *out
     return st;
 }
 
+int cli_track_require(const char *name, const cli_Track *t, unsigned needs, char *err, size_t err_len)
+{
+    if ((needs & CLI_NEED_CENTRE) && (t->centre_source == CLI_CENTRE_NONE || !t->note[CLI_Q_SURFACE].ok)) {
+        const cli_TrackNote *n = t->centre_source == CLI_CENTRE_NONE ? &t->note[CLI_Q_CENTRE] : &t->note[CLI_Q_SURFACE];
+        snprintf(err, err_len, "%s: the centre's path is %s", name, n->text);
+        return -1;
+    }
+    if ((needs & CLI_NEED_INCLINE) && t->uphill) {
+        snprintf(err, err_len, "%s: the body went up a slope (%s); the model's inclines run downhill from the start",
+                 name, t->note[CLI_Q_SURFACE].text);
+        return -1;
+    }
+    if ((needs & CLI_NEED_INCLINE) && isnan(t->incline_rad)) {
+        snprintf(err, err_len, "%s: the incline's angle is not known: Tracker's axes lie along the incline, so the "
+                 "video does not show it; give --incline ANGLE", name);
+        return -1;
+    }
+    return 0;
+}
+
 void cli_track_free(cli_Track *t)
 {
     if (!t) return;
-    free(t->t_s);
-    free(t->x_m);
-    free(t->y_m);
-    free(t->theta_rad);
-    free(t->omega_radps);
+    double *arrays[] = {t->t_s, t->x_m, t->y_m, t->centre_sigma_m, t->mark_x_m, t->mark_y_m, t->theta_rad,
+                        t->omega_radps};
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) free(arrays[k]);
+    free(t->contact);
     free(t->airborne);
+    free(t->hop);
     memset(t, 0, sizeof *t);
 }

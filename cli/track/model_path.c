@@ -5,6 +5,8 @@
  * path is a parabola, and O(dt^4) while rolling or sliding). */
 #include "track_fit.h"
 
+#include <stdio.h>
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +15,9 @@
  * below 1 um for the paper's cylinder. */
 #define SAMPLES_PER_FRAME 8.0
 #define MIN_SAMPLE_DT_S 1e-5
+/* Frames within this fraction of a step of a grid are on it (a table's
+ * times written to a microsecond). */
+#define GRID_TOL 1e-3
 /* Uphill swings shorter than this are taken in closed form (below). */
 #define TINY_SWING_M 1e-6
 
@@ -37,10 +42,25 @@ void cli_track_sim_free(cli_TrackSim *s)
     memset(s, 0, sizeof *s);
 }
 
-int cli_track_model(const jc_Setup *setup, jc_Model *model, char *err, size_t err_len)
+/* Beyond the last frame the ramp goes on this far at least. */
+#define RAMP_BEYOND_M 0.5
+
+jc_Setup cli_track_setup(const jc_Setup *setup, const cli_Track *t)
 {
     jc_Setup s = *setup;
+    /* A video that goes on past the setup's ramp shows a longer one (a
+     * floor, most often): the ramp holds every frame. */
+    double far = 0.0;
+    for (long i = 0; t && i < t->n; ++i)
+        if (isfinite(t->x_m[i])) far = fmax(far, t->x_m[i] - t->x0_m);
+    if (far + RAMP_BEYOND_M > s.ramp_length_m) s.ramp_length_m = far + RAMP_BEYOND_M;
     s.ramp_length_m += CLI_TRACK_RAMP_MARGIN_M;
+    return s;
+}
+
+int cli_track_model(const jc_Setup *setup, const cli_Track *t, jc_Model *model, char *err, size_t err_len)
+{
+    const jc_Setup s = cli_track_setup(setup, t);
     return jc_model_init(model, &s, err, err_len) == JC_OK ? 0 : -1;
 }
 
@@ -103,6 +123,20 @@ static void fly_on(const jc_Model *m, const jc_State *f, double t, double *x, do
     *th = f->theta_rad + f->omega_radps * u;
 }
 
+/* The step dt of a grid the times lie on (each within GRID_TOL of a whole
+ * multiple of it), or 0 when they do not. */
+static double frame_grid(const double *t, long n, double dt_min)
+{
+    if (n < 2 || !(dt_min > 0)) return 0.0;
+    const double steps = nearbyint((t[n - 1] - t[0]) / dt_min);
+    if (!(steps >= 1 && steps < 1e8)) return 0.0;
+    const double dt = (t[n - 1] - t[0]) / steps;
+    /* Aligned to the absolute grid k dt, where the simulator samples. */
+    for (long i = 0; i < n; ++i)
+        if (fabs(t[i] / dt - nearbyint(t[i] / dt)) > GRID_TOL) return 0.0;
+    return dt;
+}
+
 static void at_time(const cli_TrackSim *s, const jc_Model *m, int *k, double t, double *x, double *y, double *th)
 {
     const jc_Sample *p = s->samples;
@@ -114,7 +148,12 @@ static void at_time(const cli_TrackSim *s, const jc_Model *m, int *k, double t, 
     while (*k + 1 < s->count - 1 && p[*k + 1].state.t_s <= t) ++*k;
     const jc_State *a = &p[*k].state, *b = &p[*k + 1].state;
     const double h = b->t_s - a->t_s, u = t - a->t_s;
-    if (!(h > 1e-15)) {
+    const jc_State *near = fabs(u) <= fabs(t - b->t_s) ? a : b;
+    if (fabs(t - near->t_s) <= GRID_TOL * h) {
+        /* A sample at the frame (up to a table's rounding of its time). */
+        const double d = t - near->t_s;
+        *x = near->x_m + near->vx_mps * d, *y = near->y_m + near->vy_mps * d, *th = near->theta_rad + near->omega_radps * d;
+    } else if (!(h > 1e-15)) {
         *x = b->x_m, *y = b->y_m, *th = b->theta_rad;
     } else if (is_impact(s, b->t_s)) {
         /* b carries the velocities after the impulse: positions are
@@ -168,7 +207,12 @@ int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *st
     for (long i = 1; i < n; ++i) dt_min = fmin(dt_min, t_s[i] - t_s[i - 1]);
     if (!isfinite(dt_min)) dt_min = 0.01;
     jc_SimOptions opt = *o;
-    opt.sample_dt_s = fmax(dt_min / SAMPLES_PER_FRAME, MIN_SAMPLE_DT_S);
+    /* Frames on a grid of whole steps (a camera's clip, dropped frames
+     * included) are sampled on it: the simulator's k-th sample is at exactly
+     * k dt, so each frame has its own sample. Others (a table's jittered
+     * times) are interpolated between samples a fraction of a frame apart. */
+    const double grid = frame_grid(t_s, n, dt_min);
+    opt.sample_dt_s = grid > 0 ? grid : fmax(dt_min / SAMPLES_PER_FRAME, MIN_SAMPLE_DT_S);
     opt.t_max_s = fmax(t_s[n - 1], start->t_s) + 2.0 * opt.sample_dt_s;
     const double samples = (opt.t_max_s - start->t_s) / opt.sample_dt_s + 1000.0;
     opt.max_samples = samples < 1e8 ? (int)samples : 100000000;

@@ -11,7 +11,7 @@ typedef struct {
     double *x_m, *y_m; /* world axes, metres; NaN where the frame has no position */
 } cli_RawTrack;
 
-typedef struct {
+typedef struct cli_RawData_s {
     long frames;          /* rows: clip steps or table rows */
     double *t_s;          /* time of each row */
     int track_count;
@@ -30,11 +30,73 @@ int cli_table_parse(const char *name, const char *data, size_t len, cli_RawData 
 int cli_raw_alloc(cli_RawData *raw, long frames, int track_count);
 void cli_raw_free(cli_RawData *raw);
 
-/* frame.c: the chosen tracks put in the incline frame, into out (whose
- * report fields are set here); 0 or -1 with a message. */
-int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *out,
-                       char *err, size_t err_len);
-/* derive.c: θ unwrapped, ω, the surface, heights and hops, the noise. 0 or -1. */
-int cli_track_derive(const char *name, const cli_TrackOptions *opt, cli_Track *t, char *err, size_t err_len);
+/* frame.c: the chosen tracks in a frame turned by angle_rad from
+ * Tracker's level axes (or in Tracker's own with incline axes), into out
+ * (whose report fields are set here). 0, or -1 with a message for a track
+ * name that is not in the file or a time that jumps too far. */
+int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, double angle_rad,
+                       cli_Track *out, char *err, size_t err_len);
+/* The whole of it: the frame for the incline given (or Tracker's level one
+ * turned by nothing, to measure it), then derive.c. 0, or -1 with a message
+ * (out then holds nothing to free). */
+int cli_track_from_raw_data(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *out,
+                            char *err, size_t err_len);
+/* The tracks' names, quoted and comma-separated, for messages. */
+void cli_track_list_names(const cli_RawData *raw, char *buf, size_t len);
+
+/* surface.c: the line y = a + b (x - x_mid) through the frames in contact
+ * (runs of at least min_run frames within 3 sigma of it, less erode frames
+ * at an end that meets a frame off it; sigma the scatter of
+ * those frames about it, at least floor_m; the first cut at 3 start_m, the
+ * frame-to-frame noise, when it is > 0). */
+typedef struct {
+    double a, b, x_mid;
+    double var_a, var_b; /* a and b are uncorrelated about x_mid */
+    double sxx;          /* sum of (x - x_mid)^2 over the frames in contact */
+    double sigma_m;      /* robust scatter (MAD x 1.4826) of those frames about the line */
+    long contact;
+} cli_SurfaceLine;
+/* 0; -1 with fewer than 3 frames in contact (contact[] all 0); -2 out of memory. */
+int cli_surface_fit(const double *x, const double *y, long n, long min_run, long erode, double floor_m,
+                    double start_m, unsigned char *contact, cli_SurfaceLine *out);
+
+/* rim.c: the centre recovered from a mark on the body by fitting rolling. */
+typedef struct {
+    const double *t_s, *x_m, *y_m; /* the mark in the frame of cli_track_from_raw (no NaN) */
+    long n;
+    double radius_m;               /* r */
+    double sigma_floor_m;          /* the noise is not taken below this */
+    double gravity_mps2;
+    int level_axes;                /* the frame is Tracker's level one turned by frame_angle_rad */
+    double frame_angle_rad;
+    double incline_rad;            /* with incline axes: the incline given, or NaN */
+} cli_RimInput;
+
+typedef struct {
+    int ok;
+    double tilt_rad, tilt_sigma_rad; /* the rolling line against the frame's x */
+    double incline_rad;              /* the incline it gives (level axes) or the one given; NaN */
+    double a_m, a_sigma_m;           /* the mark's distance from C */
+    double line_sigma_m;             /* standard error of the centre line's height */
+    double noise_m;                  /* the mark's position noise (per coordinate) */
+    double centre_rms_sigma_m;       /* RMS standard error of the recovered centre */
+    long rolling_frames;
+    /* Per frame, the caller's arrays of n: the surface frame (x along the
+     * rolling line, y from the surface). */
+    double *mark_x, *mark_y, *cx, *cy, *c_sigma, *theta, *omega;
+    unsigned char *rolling;
+    long departures;                 /* runs of frames rolling does not explain */
+    cli_TrackHop *dep;               /* the caller's array of n / 2 + 1 */
+} cli_RimResult;
+/* The frames a rolling fit takes at most (its Jacobian is dense: 2 n by n / 2). */
+#define CLI_RIM_MAX_FRAMES 3000
+/* 0, or -1 when the frames are too few or too many or the fit fails (out->ok 0). */
+int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out);
+
+/* derive.c: the surface, the incline, heights and hops, θ and ω, the
+ * noise, and the notes. 0, or -1 with a message (a given incline the
+ * frames in contact refuse, out of memory). */
+int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *t, char *err,
+                     size_t err_len);
 
 #endif

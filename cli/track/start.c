@@ -3,6 +3,7 @@
 #include "track_fit.h"
 
 #include <math.h>
+#include <string.h>
 
 /* Value and slope at t0 of the least-squares quadratic through (t, v):
  * over a few frames the motion is smooth enough for a parabola, and a
@@ -68,7 +69,10 @@ int cli_track_start_estimate(const cli_Track *t, long first, long span, double r
     return 0;
 }
 
-double cli_track_mark_offset_rad(const jc_Model *m) { return m->body.cm_angle_rad; }
+double cli_track_mark_offset_rad(const jc_Model *m, double mark_angle_rad)
+{
+    return m->body.cm_angle_rad - mark_angle_rad;
+}
 
 double cli_track_mark_radius(const cli_Track *t, const jc_Model *m)
 {
@@ -81,27 +85,31 @@ double cli_track_mark_radius(const cli_Track *t, const jc_Model *m)
 void cli_track_find_hops(const double *t_s, const double *x_m, const double *y_m, long n, double radius_m,
                          double threshold_m, cli_TrackHops *out)
 {
-    out->hops = 0;
+    memset(out, 0, sizeof *out);
     out->first_liftoff_t_s = out->first_liftoff_x_m = NAN;
-    int in_hop = 0;
-    for (long i = 0; i < n; ++i) {
-        const double h = y_m[i] - radius_m;
-        if (h > threshold_m) {
-            if (!in_hop) {
-                if (out->hops == 0) {
-                    const long j = i > 0 ? i - 1 : i; /* the last frame in contact */
-                    out->first_liftoff_t_s = t_s[j];
-                    out->first_liftoff_x_m = x_m[j];
-                }
-                if (out->hops < CLI_TRACK_MAX_HOPS) out->height_m[out->hops] = h;
-                out->hops++;
-                in_hop = 1;
-            } else if (out->hops <= CLI_TRACK_MAX_HOPS && h > out->height_m[out->hops - 1]) {
-                out->height_m[out->hops - 1] = h;
-            }
-        } else {
-            in_hop = 0;
+    long i = 0;
+    while (i < n) {
+        if (!(y_m[i] - radius_m > threshold_m)) {
+            i++;
+            continue;
         }
+        long j = i;
+        double top = y_m[i] - radius_m;
+        while (j + 1 < n && y_m[j + 1] - radius_m > threshold_m) top = fmax(top, y_m[++j] - radius_m);
+        if (j > i) {
+            if (out->hops == 0) {
+                const long c = i > 0 ? i - 1 : i; /* the last frame in contact */
+                out->first_liftoff_t_s = t_s[c];
+                out->first_liftoff_x_m = x_m[c];
+            }
+            if (out->hops < CLI_TRACK_MAX_HOPS) {
+                out->first[out->hops] = i;
+                out->last[out->hops] = j;
+                out->height_m[out->hops] = top;
+            }
+            out->hops++;
+        }
+        i = j + 1;
     }
 }
 

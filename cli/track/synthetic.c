@@ -1,11 +1,15 @@
 /* Synthetic experiments: the model filmed and tracked, with the noise a
- * tracker adds. They test the fit against known values (tests/fit) and make
- * the examples of docs/tracker.md. Random numbers are Philox draws
- * (cli/batch/random.c), so a track is a pure function of (seed, trial). */
+ * tracker adds, as Tracker's level axes hold them (world metres, the start's
+ * contact point at the origin, downhill to the right). They test the
+ * import and the fit against known values (tests/track, tests/fit) and make
+ * the sample experiments of examples/tracker. Random numbers are Philox
+ * draws (cli/batch/random.c), so a track is a pure function of (seed, trial). */
 #include "track_fit.h"
+#include "raw.h"
 #include "batch.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -20,21 +24,12 @@ static int check(const cli_SynthOptions *o, char *err, size_t err_len)
         return -1;
     }
     if (!(o->sigma_m >= 0.0 && o->sigma_m < 1.0) || !(o->t_end_s > 0.0 && o->t_end_s <= 3600.0) ||
-        !(o->mark_radius_m >= 0.0) || !(o->drop_fraction >= 0.0 && o->drop_fraction <= 0.5)) {
-        snprintf(err, err_len, "synthetic track: noise, duration, mark radius or drop fraction out of range");
+        !(o->mark_radius_m >= 0.0) || !(o->drop_fraction >= 0.0 && o->drop_fraction <= 0.5) ||
+        !(o->hand_s >= 0.0 && o->hand_s <= 10.0) || !isfinite(o->mark_angle_rad)) {
+        snprintf(err, err_len, "synthetic track: noise, duration, mark, drop fraction or push out of range");
         return -1;
     }
     return 0;
-}
-
-static int alloc_track(cli_Track *t, long cap)
-{
-    memset(t, 0, sizeof *t);
-    t->t_s = malloc((size_t)cap * sizeof *t->t_s);
-    t->x_m = malloc((size_t)cap * sizeof *t->x_m);
-    t->y_m = malloc((size_t)cap * sizeof *t->y_m);
-    t->theta_rad = malloc((size_t)cap * sizeof *t->theta_rad);
-    return t->t_s && t->x_m && t->y_m && t->theta_rad ? 0 : -1;
 }
 
 /* Whether a sample is on the frame grid k / fps (not one at an event). */
@@ -44,17 +39,39 @@ static int on_grid(double t, double dt)
     return fabs(k - nearbyint(k)) < 1e-6;
 }
 
-int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, cli_Track *out, char *err,
-                         size_t err_len)
+/* The incline frame into Tracker's level axes: downhill to the right. */
+static void world(double alpha, double x, double y, double *X, double *Y)
 {
-    memset(out, 0, sizeof *out);
+    *X = x * cos(alpha) + y * sin(alpha);
+    *Y = -x * sin(alpha) + y * cos(alpha);
+}
+
+/* The state at time u before the free start (u < 0): a hand pushing the
+ * body from rest, rolling, with a constant acceleration that reaches the
+ * start's spin at u = 0. */
+static void pushed(const jc_State *s0, double r, double hand_s, double u, jc_State *out)
+{
+    const double acc = s0->omega_radps / hand_s, v = u + hand_s; /* time since the push began */
+    *out = *s0;
+    out->t_s = u;
+    out->omega_radps = acc * v;
+    out->theta_rad = s0->theta_rad - 0.5 * acc * hand_s * hand_s + 0.5 * acc * v * v;
+    out->x_m = s0->x_m + r * (out->theta_rad - s0->theta_rad);
+    out->vx_mps = r * out->omega_radps;
+}
+
+int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_RawData *raw, char *err,
+                        size_t err_len)
+{
+    memset(raw, 0, sizeof *raw);
     if (check(o, err, err_len) != 0) return -1;
     jc_Model m;
     if (jc_model_init(&m, setup, err, err_len) != JC_OK) return -1;
     jc_SimOptions so = jc_default_sim_options();
     so.sample_dt_s = 1.0 / o->fps_hz;
     so.t_max_s = o->t_end_s;
-    const double frames = floor(o->t_end_s * o->fps_hz) + 1.0;
+    const double hand_frames = ceil(o->hand_s * o->fps_hz - 1e-9);
+    const double frames = floor(o->t_end_s * o->fps_hz) + 1.0 + hand_frames;
     if (frames > SYNTH_MAX_FRAMES) {
         snprintf(err, err_len, "synthetic track: %.0f frames, more than %.0f", frames, SYNTH_MAX_FRAMES);
         return -1;
@@ -65,58 +82,96 @@ int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, cli_T
         jc_run_free(&run);
         return -1;
     }
-    if (alloc_track(out, run.sample_count + 1) != 0) {
+    const int both = o->tracks == CLI_SYNTH_BOTH, centre = o->tracks != CLI_SYNTH_MARK_ONLY;
+    const int mark = o->tracks != CLI_SYNTH_CENTRE_ONLY && o->mark_radius_m > 0.0;
+    if (cli_raw_alloc(raw, run.sample_count + (long)hand_frames + 1, (centre ? 1 : 0) + (mark ? 1 : 0)) != 0) {
         jc_run_free(&run);
-        cli_track_free(out);
         snprintf(err, err_len, "out of memory for a synthetic track");
         return -1;
     }
-    const double mark_offset = cli_track_mark_offset_rad(&m), s = o->sigma_m;
+    (void)both;
+    snprintf(raw->format, sizeof raw->format, "model");
+    raw->px_per_m = raw->tape_length_m = NAN;
+    raw->nominal_dt_s = 1.0 / o->fps_hz;
+    int ci = centre ? 0 : -1, mi = mark ? (centre ? 1 : 0) : -1;
+    if (ci >= 0) snprintf(raw->tracks[ci].name, CLI_TRACK_NAME_LEN, "centre");
+    if (mi >= 0) snprintf(raw->tracks[mi].name, CLI_TRACK_NAME_LEN, "%s", centre ? "mark" : "LED");
+    const double mark_offset = m.body.cm_angle_rad + o->mark_angle_rad, s = o->sigma_m, r = m.body.radius_m;
+    const double alpha = setup->incline_rad, t0 = -hand_frames / o->fps_hz;
     long n = 0;
-    for (int i = 0; i < run.sample_count; ++i) {
-        const jc_State *p = &run.samples[i].state;
-        if (!on_grid(p->t_s, so.sample_dt_s)) continue;
-        const uint32_t d = (uint32_t)nearbyint(p->t_s * o->fps_hz) * DRAWS_PER_FRAME;
+    for (int i = -(int)hand_frames; i < run.sample_count; ++i) {
+        jc_State st;
+        if (i < 0) pushed(&run.samples[0].state, r, o->hand_s, (double)i / o->fps_hz, &st);
+        else st = run.samples[i].state;
+        const jc_State *p = &st;
+        if (i >= 0 && !on_grid(p->t_s, so.sample_dt_s)) continue;
+        const long frame = (long)nearbyint((p->t_s - t0) * o->fps_hz);
+        const uint32_t d = (uint32_t)frame * DRAWS_PER_FRAME;
+        raw->t_s[n] = p->t_s - t0;
         if (n > 0 && cli_random_uniform(o->seed, o->trial, d + 4) < o->drop_fraction) {
-            out->gaps++;
+            ++n;
             continue;
         }
-        const double cx = p->x_m + s * cli_random_normal(o->seed, o->trial, d);
-        const double cy = p->y_m + s * cli_random_normal(o->seed, o->trial, d + 1);
-        out->t_s[n] = p->t_s;
-        out->x_m[n] = cx;
-        out->y_m[n] = cy;
-        out->theta_rad[n] = NAN;
-        if (o->mark_radius_m > 0.0) {
+        if (ci >= 0)
+            world(alpha, p->x_m + s * cli_random_normal(o->seed, o->trial, d),
+                  p->y_m + s * cli_random_normal(o->seed, o->trial, d + 1), &raw->tracks[ci].x_m[n],
+                  &raw->tracks[ci].y_m[n]);
+        if (mi >= 0) {
             const double a = o->mark_radius_m, th = p->theta_rad - mark_offset;
-            const double mx = p->x_m + a * sin(th) + s * cli_random_normal(o->seed, o->trial, d + 2);
-            const double my = p->y_m + a * cos(th) + s * cli_random_normal(o->seed, o->trial, d + 3);
-            double seen = atan2(mx - cx, my - cy);
-            /* Unwrapped: the nearest turn to the previous frame's angle. */
-            const double prev = n > 0 ? out->theta_rad[n - 1] : th;
-            seen += 2.0 * CLI_PI * nearbyint((prev - seen) / (2.0 * CLI_PI));
-            out->theta_rad[n] = seen;
+            world(alpha, p->x_m + a * sin(th) + s * cli_random_normal(o->seed, o->trial, d + 2),
+                  p->y_m + a * cos(th) + s * cli_random_normal(o->seed, o->trial, d + 3), &raw->tracks[mi].x_m[n],
+                  &raw->tracks[mi].y_m[n]);
         }
         ++n;
     }
+    raw->frames = n;
     jc_run_free(&run);
-    out->n = n;
-    out->has_mark = o->mark_radius_m > 0.0;
-    out->x0_m = 0.0;
-    out->sigma_m = s;
-    out->frame_rate_hz = o->fps_hz;
-    out->noise_m = s;
-    out->incline_rad = setup->incline_rad;
-    out->radius_m = m.body.radius_m;
-    out->mark_radius_m = out->has_mark ? o->mark_radius_m : NAN;
-    out->hop_threshold_m = 5.0 * s;
-    snprintf(out->format, sizeof out->format, "model");
-    snprintf(out->centre_name, sizeof out->centre_name, "centre");
-    snprintf(out->mark_name, sizeof out->mark_name, "%s", out->has_mark ? "mark" : "");
     if (n < 3) {
-        cli_track_free(out);
+        cli_raw_free(raw);
         snprintf(err, err_len, "synthetic track: only %ld frames", n);
         return -1;
     }
     return 0;
+}
+
+int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, cli_Track *out, char *err,
+                         size_t err_len)
+{
+    memset(out, 0, sizeof *out);
+    cli_RawData raw;
+    if (cli_track_synth_raw(setup, o, &raw, err, err_len) != 0) return -1;
+    cli_TrackOptions opt;
+    cli_track_options_default(&opt);
+    opt.radius_m = setup->body.radius_m;
+    opt.gravity_mps2 = setup->gravity_mps2;
+    const int rc = cli_track_from_raw_data("synthetic", &raw, &opt, out, err, err_len);
+    cli_raw_free(&raw);
+    return rc;
+}
+
+/* A number as Tracker exports it "as formatted" at full precision, or an
+ * empty field for a missing point. */
+static void field(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, "\t%.7g", v);
+    else fputc('\t', f);
+}
+
+int cli_track_write_table(FILE *f, const cli_RawData *raw)
+{
+    /* Tracker's export of point masses: the names above their first column. */
+    fputs("#multi:\n", f);
+    for (int k = 0; k < raw->track_count; ++k) fprintf(f, "\t%s\t", raw->tracks[k].name);
+    fputs("\nt", f);
+    for (int k = 0; k < raw->track_count; ++k) fputs("\tx\ty", f);
+    fputc('\n', f);
+    for (long i = 0; i < raw->frames; ++i) {
+        fprintf(f, "%.6f", raw->t_s[i]);
+        for (int k = 0; k < raw->track_count; ++k) {
+            field(f, raw->tracks[k].x_m[i]);
+            field(f, raw->tracks[k].y_m[i]);
+        }
+        fputc('\n', f);
+    }
+    return ferror(f) ? -1 : 0;
 }

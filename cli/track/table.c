@@ -9,6 +9,7 @@
  * ("t (s)", "x (cm)"), blank fields or spaces as the delimiter. */
 #include "raw.h"
 
+#include <stdio.h>
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>

@@ -1,34 +1,51 @@
 /* The model against a tracked experiment (docs/tracker.md): the model
- * sampled at the frames' times from a tracked state, the comparison of the
- * two, the least-squares fit of setup values and start, and synthetic
- * experiments made from the model for tests and examples. */
+ * sampled at the frames' times from a tracked state, where the free motion
+ * starts, the comparison of the two, the least-squares fit of setup values
+ * and start with what the video determines and a verdict, and synthetic
+ * experiments made from the model for tests and examples. Functions on
+ * arrays and values: they print nothing and never exit. */
 #ifndef JUMPCYL_TRACK_FIT_H
 #define JUMPCYL_TRACK_FIT_H
 
 #include "track.h"
 
 #include <stdint.h>
+#include <stdio.h>
 
 /* ---- synthetic.c: a tracked experiment made from the model ---- */
 
+typedef enum {
+    CLI_SYNTH_BOTH = 0,      /* the centre and the mark */
+    CLI_SYNTH_CENTRE_ONLY,   /* the centre alone */
+    CLI_SYNTH_MARK_ONLY      /* the mark alone (an LED on the rim) */
+} cli_SynthTracks;
+
 typedef struct {
-    double fps_hz;        /* frame rate, > 0 */
-    double sigma_m;       /* Gaussian noise on every tracked point (m), >= 0 */
-    double t_end_s;       /* last frame at or before this time (s); the run's end if sooner */
-    double mark_radius_m; /* distance of the tracked mark from C; 0: no mark tracked */
-    double drop_fraction; /* frames left out at random, [0, 0.5] */
-    uint64_t seed;        /* Philox key (cli/batch/random.c): the same track for the same seed */
-    uint64_t trial;       /* Philox sample index: independent tracks for one seed */
+    double fps_hz;         /* frame rate, > 0 */
+    double sigma_m;        /* Gaussian noise on every tracked point (m), >= 0 */
+    double t_end_s;        /* last frame at or before this time (s); the run's end if sooner */
+    double mark_radius_m;  /* distance of the tracked mark from C; 0: no mark tracked */
+    double drop_fraction;  /* frames left out at random, [0, 0.5] */
+    uint64_t seed;         /* Philox key (cli/batch/random.c): the same track for the same seed */
+    uint64_t trial;        /* Philox sample index: independent tracks for one seed */
+    cli_SynthTracks tracks;
+    double mark_angle_rad; /* the mark's angle on the body (as a part's angle); 0: the reference direction */
+    double hand_s;         /* frames of a hand pushing the body from rest up to the start's spin
+                              before the free motion (0: none); the clip starts with them */
 } cli_SynthOptions;
 
-/* Simulates the setup from its start with samples at k / fps and tracks
- * them as a video would: the centre and the mark (at mark_radius_m from C
- * in G's direction) each get independent noise of sigma_m in both
- * coordinates; θ is the angle of the noisy mark seen from the noisy centre,
- * unwrapped. x0_m is 0 (the setup's start is the ramp's top), sigma_m is the
- * noise. 0, or -1 with a message. */
+/* The setup's run from its start filmed at fps as Tracker's level axes hold
+ * it (metres, the start's contact point at the origin, downhill to the
+ * right), each tracked point with independent noise. The raw data of
+ * raw.h; 0, or -1 with a message. */
+struct cli_RawData_s;
+int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, struct cli_RawData_s *raw, char *err,
+                        size_t err_len);
+/* The same read as a file is: the incline measured, the setup's radius. */
 int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, cli_Track *out, char *err,
                          size_t err_len);
+/* Raw data written as Tracker exports a table (tab-separated, a name row). */
+int cli_track_write_table(FILE *f, const struct cli_RawData_s *raw);
 
 /* ---- model_path.c: the model at the frames' times ---- */
 
@@ -45,9 +62,7 @@ typedef struct {
     double *impact_t_s; /* times of impacts: velocities jump there */
     int impacts, impact_cap;
     jc_Workspace *ws;
-    /* x in the run = x in the track + shift_m: the track's x0_m (the first
-     * frame's centre) is the setup's start, the ramp's top, and the ramp is
-     * lengthened uphill by the margin. cli_track_sim_shift gives it. */
+    /* x in the run = x in the track + shift_m (cli_track_sim_shift). */
     double shift_m;
     jc_RunSummary sum;   /* of the last run */
     jc_Run run;          /* its end */
@@ -59,50 +74,48 @@ double cli_track_sim_shift(const cli_Track *t);
 void cli_track_sim_free(cli_TrackSim *s);
 
 /* The setup as runs against a track use it: the ramp lengthened uphill by
- * CLI_TRACK_RAMP_MARGIN_M (its lower end stays where it was). */
-int cli_track_model(const jc_Setup *setup, jc_Model *model, char *err, size_t err_len);
+ * CLI_TRACK_RAMP_MARGIN_M and downhill to hold every frame. (The incline is
+ * the caller's: compare and fit take the track's.) */
+int cli_track_model(const jc_Setup *setup, const cli_Track *t, jc_Model *model, char *err, size_t err_len);
+/* The setup's values for runs against the track (what cli_track_model builds). */
+jc_Setup cli_track_setup(const jc_Setup *setup, const cli_Track *t);
 
-/* Runs the model from start (in the track's coordinates: x along the ramp
- * from its top; the model's setup θ0 and ω0 should be the start's, so that
- * a tiny uphill swing at the start is taken in closed form) and gives the
- * centre and G's angle at each of the n times
- * (increasing, >= start->t_s), by cubic Hermite interpolation between
- * samples a fraction of a frame apart (linear in an interval that ends at an
- * impact). Past the run's end (the ramp's end) the body flies on freely.
- * The run's summary is in s->sum, in the run's coordinates (x of the
- * summary's states minus s->shift_m is along the track). 0, or -1 with a
- * message. */
+/* Runs the model from start (track coordinates; the model's setup θ0 and ω0
+ * should be the start's) and gives the centre and G's angle at each of the
+ * n times (increasing, >= start->t_s), by cubic Hermite interpolation
+ * between samples a fraction of a frame apart (linear in an interval that
+ * ends at an impact). Past the run's end the body flies on freely. 0, or -1
+ * with a message. */
 int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *start, const jc_SimOptions *o,
                       const double *t_s, long n, double *x_m, double *y_m, double *theta_rad, char *err,
                       size_t err_len);
 
-/* ---- start.c: the state at a frame, from the frames that follow ---- */
+/* ---- start.c: the state at a frame, the frames of a window, hops ---- */
 
-/* The body's state at frame `first`: position, angle and velocities from
- * quadratic least squares over the next few frames (at most `span`). In
- * contact (the centre less than the hop threshold above r) it is put on
- * the incline rolling: y = r, vy = 0, vx = r ω; ω from the mark's angle,
- * or vx / r without a mark (θ is then theta_fallback_rad). In the track's
- * coordinates. -1 when fewer than 3 frames are left. */
+/* The body's state at frame `first` from quadratic least squares over the
+ * next few frames (at most `span`): in contact it rolls (y = r, vy = 0,
+ * vx = r ω, ω weighted from the mark and the centre). θ is the mark's
+ * (theta_fallback_rad without one). -1 when fewer than 3 frames are left. */
 int cli_track_start_estimate(const cli_Track *t, long first, long span, double radius_m, double theta_fallback_rad,
                              double hop_threshold_m, jc_State *out);
 
-/* The mark's angle minus G's (θ of the mark = θ of G - this): the body's
- * cm_angle_rad, as the mark sits on the body's reference direction. */
-double cli_track_mark_offset_rad(const jc_Model *m);
+/* G's angle minus the mark's: the body's angle of G less the mark's
+ * angle on the body (mark_angle_rad, a part's angle; 0: the reference
+ * direction, where the paper's rod and the hoop's mass sit). */
+double cli_track_mark_offset_rad(const jc_Model *m, double mark_angle_rad);
 
-/* The mark's distance from C: the track's (the median measured by the
- * import) when it has one, else the off-centre part farthest from C (the
- * paper's rod: 5.5 cm). */
+/* The mark's distance from C: the track's when it has one, else the
+ * off-centre part farthest from C. */
 double cli_track_mark_radius(const cli_Track *t, const jc_Model *m);
 
-/* Hops seen in a sampled height: runs of frames whose centre is more than
- * threshold above r. */
 #define CLI_TRACK_MAX_HOPS 64
+/* Hops seen in a sampled height: runs of at least 2 frames whose centre is
+ * more than threshold above r. */
 typedef struct {
-    int hops;                          /* runs of airborne frames (at most CLI_TRACK_MAX_HOPS kept) */
-    double first_liftoff_t_s;          /* the last frame in contact before the first hop; NaN if none */
-    double first_liftoff_x_m;          /* x at that frame */
+    int hops;                            /* runs (at most CLI_TRACK_MAX_HOPS kept) */
+    double first_liftoff_t_s;            /* the last frame in contact before the first hop; NaN if none */
+    double first_liftoff_x_m;
+    long first[CLI_TRACK_MAX_HOPS], last[CLI_TRACK_MAX_HOPS]; /* frames of each (indices into the arrays) */
     double height_m[CLI_TRACK_MAX_HOPS]; /* highest centre above r in each hop */
 } cli_TrackHops;
 
@@ -112,13 +125,32 @@ void cli_track_find_hops(const double *t_s, const double *x_m, const double *y_m
 /* The frames of a window [from, to] (NaN: open end): first index and count. */
 void cli_track_window(const cli_Track *t, double from_s, double to_s, long *first, long *count);
 
+/* ---- launch.c: where the free motion starts ---- */
+
+typedef struct {
+    long frame;            /* the first frame of the free motion (an index into the track) */
+    long pushed;           /* frames before it that the model cannot follow (a hand) */
+    double chi2_dof_with;  /* the first window's fit with the pushed frames in; NaN when none */
+    double chi2_dof;       /* the window's fit from the start found */
+    jc_State start;        /* the state there, refined (track coordinates, G's angle) */
+} cli_Launch;
+
+/* From frame `from` on, the first frame from which the model, started with
+ * the state the frames show (x0, ω0 and θ0 fitted to the next 0.4 s),
+ * follows them at the noise: frames before it show a push (an acceleration
+ * the model cannot produce). theta0 is searched around the circle when no
+ * mark tells it. scan 0: `from` is the start (set by the user), only its
+ * state is fitted. 0, or -1 with a message. */
+int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long from, int scan,
+                     double mark_angle_rad, cli_Launch *out, char *err, size_t err_len);
+
 /* ---- compare.c: measured against simulated ---- */
 
 typedef struct {
     long first, count;         /* the frames compared */
-    jc_State start;            /* the run's start (track coordinates) */
+    cli_Launch launch;         /* the start (the free motion's first frame) */
     double *x_m, *y_m, *theta_rad; /* the model at the frames (theta: of the mark) */
-    double rms_path_m;         /* centre: sqrt(mean(dx^2 + dy^2)) */
+    double rms_path_m;         /* centre: sqrt(mean(dx^2 + dy^2)) over frames with a centre */
     double rms_theta_rad;      /* over frames with the mark; NaN without */
     double max_path_m;
     cli_TrackHops measured, simulated; /* the same detector on both */
@@ -131,14 +163,15 @@ typedef struct {
 
 typedef enum { CLI_START_TRACKED, CLI_START_SETUP } cli_StartKind;
 
-/* Runs the model from the track's first frame in [from, to] (tracked state,
- * or the setup's θ0 and ω0 at the tracked position) and compares. 0, or -1
- * with a message. Free with cli_compare_free. */
+/* Runs the model from the free motion's first frame in [from, to] (the
+ * state the frames show, or the setup's θ0 and ω0 at the tracked position)
+ * and compares. 0, or -1 with a message. Free with cli_compare_free. */
 int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, cli_StartKind start,
-                      double from_s, double to_s, cli_Compare *out, char *err, size_t err_len);
+                      double from_s, double to_s, double mark_angle_rad, cli_Compare *out, char *err,
+                      size_t err_len);
 void cli_compare_free(cli_Compare *c);
 
-/* ---- fit.c: least squares ---- */
+/* ---- fit_params.c: the values a fit can free ---- */
 
 typedef enum {
     CLI_FIT_MU_S,
@@ -147,56 +180,171 @@ typedef enum {
     CLI_FIT_THETA0,
     CLI_FIT_OMEGA0,
     CLI_FIT_X0,
-    CLI_FIT_PARAMS
+    CLI_FIT_MARK_ANGLE,  /* the mark's angle on the body */
+    CLI_FIT_TILT,        /* the video's frame against the model's incline frame (see cli_FitFrame) */
+    CLI_FIT_SURFACE,     /* the surface's height in the video's frame */
+    CLI_FIT_PART_OFFSET, /* a body part's distance from C (part: which) */
+    CLI_FIT_PART_MASS    /* a body part's mass */
+} cli_FitKind;
+
+/* What a fit holds beside the setup and the start: the mark's angle on the
+ * body, and how the video's frame sits on the model's. The video's frame
+ * was turned onto the surface the frames in contact show; that surface is
+ * known to the noise, so the model's positions are turned by tilt about
+ * the start and moved up by surface before they meet the frames, and a
+ * measured incline is the video's plus tilt (a tilted surface tilts
+ * gravity's direction against it too). */
+typedef struct {
+    double mark_angle_rad;
+    double tilt_rad;
+    double surface_m;
+} cli_FitFrame;
+
+typedef struct {
+    cli_FitKind kind;
+    int part;            /* the body part, for the last two */
 } cli_FitParam;
 
-typedef enum { CLI_LOSS_LINEAR, CLI_LOSS_HUBER, CLI_LOSS_CAUCHY } cli_FitLoss;
+#define CLI_FIT_MAX_PARAMS 14
 
-/* "mu_s", "mu_k", "restitution", "theta0", "omega0", "x0". */
-const char *cli_fit_param_name(cli_FitParam p);
-/* A comma-separated list into a mask of (1 << cli_FitParam); 0, or -1 with a message. */
-int cli_fit_parse_free(const char *text, unsigned *mask, char *err, size_t err_len);
+/* A value's name ("mu_s", "rod_offset", ...) into buf. */
+void cli_fit_param_name(const jc_Setup *s, cli_FitParam p, char *buf, size_t len);
+/* Its unit ("", "rad", "rad/s", "m", "kg"). */
+const char *cli_fit_param_unit(cli_FitParam p);
+/* Parses a comma-separated list ("mu_k,restitution,rod-offset"; - or _)
+ * against the setup's body. 0, or -1 with a one-line message naming the
+ * bad entry and what is allowed. */
+int cli_fit_parse_free(const char *text, const jc_Setup *s, cli_FitParam *out, int *count, char *err,
+                       size_t err_len);
+/* The names the setup's body allows, for messages and help. */
+void cli_fit_allowed(const jc_Setup *s, char *buf, size_t len);
+
+/* The physical range of a value: [lo, hi], either may be infinite; the
+ * setup gives the radius, masses and mu_s. */
+void cli_fit_range(const jc_Setup *s, cli_FitParam p, double *lo, double *hi);
+/* The model's positions and angles (n of each; th may be NULL) into the
+ * video's frame: turned by the tilt about the start, moved up by the
+ * surface. */
+void cli_fit_to_video(const cli_FitFrame *fr, const jc_State *start, double *x, double *y, double *th, long n);
+/* A value in a setup, start and frame, and one set into them. */
+double cli_fit_get(const jc_Setup *s, const jc_State *start, const cli_FitFrame *f, cli_FitParam p);
+void cli_fit_set(jc_Setup *s, jc_State *start, cli_FitFrame *f, cli_FitParam p, double v);
+
+/* ---- fit.c: least squares ---- */
+
+typedef enum { CLI_LOSS_LINEAR, CLI_LOSS_HUBER, CLI_LOSS_CAUCHY } cli_FitLoss;
 /* "linear", "huber", "cauchy"; -1 for an unknown name. */
 int cli_fit_parse_loss(const char *text, cli_FitLoss *out);
 
 typedef struct {
-    unsigned free_mask;
+    cli_FitParam free[CLI_FIT_MAX_PARAMS]; /* the values asked for */
+    int free_count;
+    int hold_start;        /* 0: x0, θ0 and ω0 are fitted with them (the start is never exact) */
+    int hold_frame;        /* 0: the frame's tilt and surface are fitted with them (with a
+                              measured incline, the incline with the tilt) */
     cli_FitLoss loss;
     double from_s, to_s;   /* window; NaN: open */
-    int max_iter;          /* trust-region iterations per pass, > 0 */
-    double sigma_m;        /* position noise; <= 0: the track's */
-    cli_StartKind start;   /* the fixed start values: tracked (estimated) or the setup's */
+    int max_iter;          /* trust-region iterations per descent, > 0 */
+    double sigma_m;        /* position noise; <= 0: the track's (measured: σ are then scaled by chi2/dof) */
+    cli_StartKind start;   /* the start's values: tracked (estimated) or the setup's */
+    int starts;            /* start points screened over the bounded values (0: by the count of them) */
+    int descents;          /* best screened points descended from (0: 4) */
+    uint64_t seed;         /* the screening's Latin hypercube (Philox) */
+    double mark_angle_rad; /* the mark's angle on the body, when not fitted */
+    int profiles;          /* 1: a chi2 profile for each value not determined */
+    int no_refine;         /* 0: the start's values are first fitted alone to the window's first
+                              0.4 s (a start estimated from a few frames is far off, and every
+                              descent would begin from it); 1: not (a refinement itself) */
 } cli_FitOptions;
 
-typedef enum { CLI_FIT_STOP_STEP, CLI_FIT_STOP_GRADIENT, CLI_FIT_STOP_ITERATIONS, CLI_FIT_STOP_NO_PROGRESS } cli_FitStop;
-const char *cli_fit_stop_text(cli_FitStop s);
+void cli_fit_options_default(cli_FitOptions *o);
+
+/* Why a value was taken out of the fit. */
+typedef enum {
+    CLI_FIT_DETERMINED = 0,
+    CLI_FIT_ON_BOUND,       /* it sits on a bound of its range */
+    CLI_FIT_WIDER_THAN_RANGE, /* its sigma exceeds its range */
+    CLI_FIT_CORRELATED,     /* |rho| > 0.99 with another value */
+    CLI_FIT_NO_EFFECT       /* the residuals do not change with it */
+} cli_FitFlag;
+const char *cli_fit_flag_text(cli_FitFlag f);
+
+#define CLI_FIT_MAX_MINIMA 6
+#define CLI_FIT_PROFILE_POINTS 9
 
 typedef struct {
-    int count;                        /* free parameters */
-    cli_FitParam param[CLI_FIT_PARAMS];
-    double initial[CLI_FIT_PARAMS], value[CLI_FIT_PARAMS], sigma[CLI_FIT_PARAMS]; /* SI */
-    double corr[CLI_FIT_PARAMS][CLI_FIT_PARAMS];
-    double cov[CLI_FIT_PARAMS][CLI_FIT_PARAMS]; /* of the values, scaled by chi2/dof */
+    double value[CLI_FIT_MAX_PARAMS]; /* SI, the values of the fit's free list */
+    double chi2;
+} cli_FitMinimum;
+
+typedef struct {
+    int count;                        /* the values asked for (and the start's) */
+    cli_FitParam param[CLI_FIT_MAX_PARAMS];
+    int start_value[CLI_FIT_MAX_PARAMS]; /* 1: x0, θ0, ω0, tilt, surface added by the fit */
+    double initial[CLI_FIT_MAX_PARAMS], value[CLI_FIT_MAX_PARAMS], sigma[CLI_FIT_MAX_PARAMS]; /* SI */
+    double lo[CLI_FIT_MAX_PARAMS], hi[CLI_FIT_MAX_PARAMS]; /* ranges */
+    cli_FitFlag flag[CLI_FIT_MAX_PARAMS]; /* CLI_FIT_DETERMINED, or why it was held */
+    int other[CLI_FIT_MAX_PARAMS];    /* CLI_FIT_CORRELATED: the value it moves with */
+    double rho[CLI_FIT_MAX_PARAMS];   /* that correlation */
+    double corr[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS]; /* of the values fitted at the end */
     long residuals;                   /* n */
-    double chi2, chi2_dof;            /* of the residuals in units of sigma (robust: weighted) */
-    int iterations;                   /* trust-region iterations, all passes */
-    int passes;                       /* robust reweighting passes */
-    cli_FitStop stop;
-    int singular;                     /* a parameter has no effect on the residuals (sigma infinite) */
-    jc_Setup setup;                   /* the setup with the fitted values */
+    double chi2, chi2_dof;            /* of the residuals in units of sigma */
+    int noise_measured;               /* sigma from the track: sigmas scaled by sqrt(chi2/dof) */
+    int iterations;                   /* trust-region iterations, all descents */
+    int screened, descents;           /* start points evaluated, descents made */
+    int minima;                       /* distinct minima within the threshold of the best (>= 1) */
+    cli_FitMinimum minimum[CLI_FIT_MAX_MINIMA];
+    double delta_chi2;                /* the threshold for a competing minimum */
+    /* chi2 along each held value's range, the others fitted at each point */
+    int profiled[CLI_FIT_MAX_PARAMS];
+    double profile_x[CLI_FIT_MAX_PARAMS][CLI_FIT_PROFILE_POINTS];
+    double profile_chi2[CLI_FIT_MAX_PARAMS][CLI_FIT_PROFILE_POINTS];
+    jc_Setup setup;                   /* the setup with the fitted values (the track's incline) */
     jc_State start;                   /* the fitted start (track coordinates) */
+    cli_FitFrame frame;               /* the fitted mark angle and frame */
+    double incline_sigma_rad;         /* the fitted incline's, when it was measured (the tilt's) */
+    cli_Launch launch;
     long first, frames;               /* frames fitted */
     double rms_path_m, rms_theta_rad;
     int has_liftoff;
     double liftoff_x_m, liftoff_sigma_m, liftoff_t_s; /* predicted first lift-off (track coordinates) */
     double sigma_m;                   /* the noise used */
     double mark_radius_m;
+    /* The verdict: the model describes the video, or not, and why. */
+    int misfit;
+    double runs_z;                    /* the worst Wald-Wolfowitz z of the residual series */
+    char runs_series[32];             /* which series */
+    int hops_measured, hops_model;    /* clear hops in the window */
+    char verdict[400];
 } cli_FitResult;
 
 /* Fits the free values to the track's frames in the window. 0, or -1 with a
  * message (no frames, a setup the model refuses, a numerical failure). */
 int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
                   cli_FitResult *out, char *err, size_t err_len);
+
+/* ---- residuals.c: the residuals of a model against the frames ---- */
+
+/* What a fit or a comparison holds against the frames: the centre's x and
+ * y per frame and the mark's displacement across its radius (a tracked
+ * centre), or the mark's x and y (a centre recovered from the mark). */
+typedef struct {
+    const cli_Track *t;
+    long first, count;
+    double sigma;         /* metres per sigma */
+    double mark_radius;   /* a: the mark's distance from C (0: no mark in the residuals) */
+    double mark_offset;   /* G's angle minus the mark's */
+} cli_Residuals;
+
+/* How many residuals the frames give. */
+long cli_residual_count(const cli_Residuals *r);
+/* Residuals in units of sigma for the model's centre and G's angle at the
+ * frames: f[0 .. count). Series k (0, 1, 2) of residual i: which = i's. */
+void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y, const double *th, double *f,
+                        unsigned char *series);
+/* The Wald-Wolfowitz runs test on each series' signs in frame order: the
+ * most negative z (too few runs) and its series' name. */
+double cli_residuals_runs_z(const double *f, const unsigned char *series, long n, const char **which);
 
 /* ---- cli/figures/plot_track.c: the figure of compare and fit ---- */
 
@@ -208,60 +356,17 @@ typedef struct {
     long path_n;
     double radius_m, incline_rad;
     double mark_radius_m;            /* > 0: the mark's residual across its radius is shown */
+    double mark_offset_rad;
+    double sigma_m;                  /* residuals are shown in units of it */
     double hop_threshold_m;
     char title[256];                 /* text the tool made (numbers, fixed words) */
 } cli_TrackFigure;
 
-/* Three panels (to scale in the laboratory frame: the tracked centre over
- * the model's path; the centre's height above the surface against time;
- * the residuals against time), rendered by gnuplot in a scratch directory
+/* Three panels, each sized to its data: the centre along the incline
+ * against time; its height above the surface against time (the hops); the
+ * residuals in units of sigma. Rendered by gnuplot in a scratch directory
  * and written to output (.png, .svg, .pdf) whole or not at all. cmdline is
  * for the script's header. EXIT_OK, or an exit status after a message. */
 int cli_track_figure(const char *cmd, const cli_TrackFigure *f, const char *output, const char *cmdline);
-
-/* ---- cli/commands/track_input.c: what compare and fit share ---- */
-
-enum {
-    CLI_TRACK_OPT_TRACK = 2000, CLI_TRACK_OPT_CENTRE, CLI_TRACK_OPT_MASS, CLI_TRACK_OPT_AXES, CLI_TRACK_OPT_FROM,
-    CLI_TRACK_OPT_TO, CLI_TRACK_OPT_OUTPUT, CLI_TRACK_OPT_SETUP_START
-};
-#define CLI_TRACK_ARG_OPTIONS                                                                                   \
-    {"track", required_argument, 0, CLI_TRACK_OPT_TRACK}, {"centre", required_argument, 0, CLI_TRACK_OPT_CENTRE}, \
-        {"mass", required_argument, 0, CLI_TRACK_OPT_MASS}, {"axes", required_argument, 0, CLI_TRACK_OPT_AXES},    \
-        {"from", required_argument, 0, CLI_TRACK_OPT_FROM}, {"to", required_argument, 0, CLI_TRACK_OPT_TO},        \
-        {"output", required_argument, 0, CLI_TRACK_OPT_OUTPUT},                                                    \
-        {"from-setup-start", no_argument, 0, CLI_TRACK_OPT_SETUP_START}
-
-typedef struct {
-    const char *track, *centre, *mass, *axes, *from, *to, *output;
-    int from_setup_start;
-} cli_TrackArgs;
-
-/* 0 when it took the option, EXIT_USAGE after a message, 1 when the option is not one of these. */
-int cli_track_args_take(const char *cmd, cli_TrackArgs *a, int opt, const char *arg);
-void cli_track_args_help(void);
-/* Checks the options before any work (the window, the figure's name and
- * target, gnuplot); 0 or the exit status after a one-line message. */
-int cli_track_args_check(const char *cmd, const cli_TrackArgs *a, double *from_s, double *to_s);
-/* Reads the track for the model's incline and radius; 0 or the exit status after a message. */
-int cli_track_args_load(const char *cmd, const cli_TrackArgs *a, const jc_Model *m, cli_Track *t);
-void cli_track_print_head(const char *file, const cli_Track *t, long first, long count);
-/* The model's path every quarter frame from start to t_end_s (for the
- * figure); 0, or -1 (the arrays are then to be freed all the same). */
-int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_State *start, const jc_SimOptions *o,
-                        double t_end_s, double **pt, double **px, double **py, long *n);
-/* The last step of compare's and fit's figure, one piece so the two figures
- * cannot drift apart: the caller fills f's frames, model values, mark radius,
- * hop threshold and title; this samples the model's fine path from start to
- * the last frame shown, takes the radius and incline from m, draws the figure
- * to out (cmdline from argv) and frees the path. EXIT_OK or an exit status
- * after a message, or CLI_TRACK_FIGURE_NO_PATH when the path could not be
- * made (no message: the caller says it in its own words). */
-#define CLI_TRACK_FIGURE_NO_PATH (-1)
-int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_Model *m,
-                          const jc_State *start, const jc_SimOptions *o, const char *out, int argc, char **argv);
-
-int cmd_compare(int argc, char **argv);
-int cmd_fit(int argc, char **argv);
 
 #endif

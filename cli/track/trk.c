@@ -23,6 +23,7 @@
  * the number of elements here, before libxml2 builds anything. */
 #include "raw.h"
 
+#include <stdio.h>
 #include <errno.h>
 #include <libxml/parser.h>
 #include <libxml/tree.h>
@@ -262,7 +263,7 @@ static int read_coords(const trk_ctx *c, const xmlNode *panel, long frames, trk_
                      f, v[3], v[4]);
             return -1;
         }
-        const double a = v[2] * CLI_PI / 180.0;
+        const double a = v[2] * CLI_TRACK_PI / 180.0;
         k->ox[f] = v[0];
         k->oy[f] = v[1];
         k->cos_a[f] = cos(a);

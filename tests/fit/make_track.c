@@ -1,44 +1,56 @@
-/* A synthetic tracked video as Tracker exports it (a data table, axes laid
- * along the incline): the paper's cylinder on 30° with mu_k 0.4, filmed at
- * FPS and tracked with SIGMA metres of noise (cli/track/synthetic.c). For
- * the tests and the examples of docs/tracker.md.
+/* A synthetic tracked video as Tracker exports it (a data table, level
+ * axes): a preset's run filmed at FPS and tracked with SIGMA metres of noise
+ * (cli/track/synthetic.c), for the tests and docs/tracker.md.
  *
- * Usage: fit_make_track OUT [SIGMA_M [FPS [SEED]]]   (defaults 1e-3, 60, 1) */
+ * Usage: fit_make_track OUT [SIGMA_M [FPS [SEED [PRESET [TRACKS [MU_K [HAND_S]]]]]]]
+ *   defaults 1e-3, 60, 1, paper, both, 0.4, 0; TRACKS: both, centre, mark. */
 #include "track_fit.h"
+#include "raw.h"
 
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
-    if (argc < 2 || argc > 5) {
-        fprintf(stderr, "usage: %s OUT [SIGMA_M [FPS [SEED]]]\n", argv[0]);
+    if (argc < 2 || argc > 9) {
+        fprintf(stderr, "usage: %s OUT [SIGMA_M [FPS [SEED [PRESET [TRACKS [MU_K [HAND_S]]]]]]]\n", argv[0]);
         return 2;
     }
-    jc_Setup s = jc_paper_setup();
-    s.mu_kinetic = 0.4;
-    const double mark = 0.055;
-    cli_SynthOptions o = {argc > 3 ? atof(argv[3]) : 60.0, argc > 2 ? atof(argv[2]) : 1e-3, 1.5, mark, 0.0,
-                          argc > 4 ? strtoull(argv[4], NULL, 10) : 1u, 0};
-    cli_Track t;
+    jc_Setup s;
     char err[256];
-    if (cli_track_synthesize(&s, &o, &t, err, sizeof err) != 0) {
+    if (jc_preset_setup(argc > 5 ? argv[5] : "paper", &s, err, sizeof err) != JC_OK) {
+        fprintf(stderr, "%s\n", err);
+        return 2;
+    }
+    s.mu_kinetic = argc > 7 ? atof(argv[7]) : 0.4;
+    const char *tracks = argc > 6 ? argv[6] : "both";
+    double a = 0;
+    for (int i = 0; i < s.body.part_count; ++i) a = fmax(a, s.body.parts[i].offset_m);
+    cli_SynthOptions o;
+    memset(&o, 0, sizeof o);
+    o.fps_hz = argc > 3 ? atof(argv[3]) : 60.0;
+    o.sigma_m = argc > 2 ? atof(argv[2]) : 1e-3;
+    o.t_end_s = s.incline_rad > 0 ? 1.5 : 2.5;
+    o.mark_radius_m = a;
+    o.seed = argc > 4 ? strtoull(argv[4], NULL, 10) : 1u;
+    o.tracks = strcmp(tracks, "centre") == 0 ? CLI_SYNTH_CENTRE_ONLY : strcmp(tracks, "mark") == 0 ? CLI_SYNTH_MARK_ONLY
+                                                                                                   : CLI_SYNTH_BOTH;
+    o.hand_s = argc > 8 ? atof(argv[8]) : 0.0;
+    cli_RawData raw;
+    if (cli_track_synth_raw(&s, &o, &raw, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return 1;
     }
     FILE *f = fopen(argv[1], "w");
     if (!f) {
         perror(argv[1]);
-        cli_track_free(&t);
+        cli_raw_free(&raw);
         return 1;
     }
-    /* Tracker's export of two point masses: names above their first column. */
-    fprintf(f, "#multi:\ncentre\t\t\tmass\t\nt\tx\ty\tx\ty\n");
-    for (long i = 0; i < t.n; ++i)
-        fprintf(f, "%.6f\t%.7g\t%.7g\t%.7g\t%.7g\n", t.t_s[i], t.x_m[i], t.y_m[i], t.x_m[i] + mark * sin(t.theta_rad[i]),
-                t.y_m[i] + mark * cos(t.theta_rad[i]));
-    cli_track_free(&t);
-    return fclose(f) == 0 ? 0 : 1;
+    const int rc = cli_track_write_table(f, &raw);
+    cli_raw_free(&raw);
+    return fclose(f) == 0 && rc == 0 ? 0 : 1;
 }

@@ -337,7 +337,8 @@ static int test_good_small_files(void)
         scratch_path(path, sizeof path, files[i]);
         const char *args[] = {"track", path, "--incline", inclines[i], NULL};
         cli_result r = cli_run(args);
-        const int ok = r.status == 0 && r.out && strstr(r.out, "25.000 frames/s") && strstr(r.out, "Hops");
+        const int ok = r.status == 0 && r.out && strstr(r.out, "25.000 frames/s") && strstr(r.out, "0 hop(s)") &&
+                       strstr(r.out, "as given") && strstr(r.out, "(agreed)");
         if (!ok) fprintf(stderr, "%s: status %d\n%s\n%s\n", files[i], r.status, r.out ? r.out : "", r.err ? r.err : "");
         cli_result_free(&r);
         ENSURE(ok);
@@ -456,7 +457,7 @@ static int test_cli_outputs(void)
     syn_free(&e);
     const char *args[] = {"track", "--preset", "paper", trk, "--csv", csv, "--json", json, "--mass", "rod", NULL};
     cli_result r = cli_run(args);
-    const int ok = r.status == 0 && r.out && strstr(r.out, "Centre 'axle'") && strstr(r.out, "Mark 'rod'");
+    const int ok = r.status == 0 && r.out && strstr(r.out, "tracked ('axle'") && strstr(r.out, "from the mark 'rod'");
     if (!ok) fprintf(stderr, "status %d\n%s\n%s\n", r.status, r.out ? r.out : "", r.err ? r.err : "");
     cli_result_free(&r);
     ENSURE(ok);
@@ -464,7 +465,8 @@ static int test_cli_outputs(void)
     ENSURE(text);
     long lines = 0;
     for (const char *p = text; *p; ++p) lines += *p == '\n';
-    const int head_ok = strncmp(text, "t_s,x_m,y_m,height_m,theta_rad,omega_radps,airborne\n", 52) == 0;
+    static const char head[] = "t_s,x_m,y_m,height_m,centre_sigma_m,mark_x_m,mark_y_m,theta_rad,omega_radps,contact,airborne\n";
+    const int head_ok = strncmp(text, head, sizeof head - 1) == 0;
     free(text);
     ENSURE_MSG(head_ok && lines == n + 1, "CSV: %ld lines for %ld frames", lines, n);
     text = cli_run_slurp(json);
@@ -475,8 +477,11 @@ static int test_cli_outputs(void)
     const cJSON *frames = cJSON_GetObjectItem(doc, "frames");
     const cJSON *fd = cJSON_GetObjectItem(doc, "frames_data");
     const cJSON *hops = cJSON_GetObjectItem(doc, "hops");
+    const cJSON *derived = cJSON_GetObjectItem(doc, "derived");
     const int jok = cJSON_IsNumber(frames) && (long)frames->valuedouble == n && fd &&
-                    cJSON_GetArraySize(cJSON_GetObjectItem(fd, "theta_rad")) == n && cJSON_GetArraySize(hops) >= 2;
+                    cJSON_GetArraySize(cJSON_GetObjectItem(fd, "theta_rad")) == n && cJSON_GetArraySize(hops) >= 2 &&
+                    cJSON_IsTrue(cJSON_GetObjectItem(cJSON_GetObjectItem(derived, "surface"), "known")) &&
+                    cJSON_IsString(cJSON_GetObjectItem(doc, "incline_source"));
     cJSON_Delete(doc);
     ENSURE(jok);
     return 0;

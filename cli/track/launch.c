@@ -1,0 +1,102 @@
+/* Where the free motion starts. A clip often begins before the release: a
+ * hand holds the body, or pushes it to give it its spin. Those frames show
+ * an acceleration the model cannot produce, and a model started from them
+ * misses everything after. The free motion's first frame is the first from
+ * which the model, started with the state the frames show (x0, ω0 and θ0
+ * fitted to the next LAUNCH_WINDOW_S), follows them at the noise. */
+#include "track_fit.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define LAUNCH_WINDOW_S 0.4   /* 0.4 s of rolling tells the start's x0, ω0 and θ0 */
+#define LAUNCH_MIN_FRAMES 8
+#define LAUNCH_MAX_S 1.5      /* a push longer than this is not looked for */
+#define LAUNCH_CHI2_DOF 3.0   /* the model follows the frames at the noise ... */
+#define LAUNCH_BETTER 0.85    /* ... and a frame later it would not follow them better */
+
+/* The start fitted to the frames from k on; its chi2/dof (NaN on failure). */
+static double window_fit(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long k,
+                         double mark_angle_rad, jc_State *start)
+{
+    long last = k;
+    while (last + 1 < t->n && (t->t_s[last + 1] - t->t_s[k] <= LAUNCH_WINDOW_S || last + 1 - k < LAUNCH_MIN_FRAMES))
+        last++;
+    cli_FitOptions fo;
+    cli_fit_options_default(&fo);
+    fo.from_s = t->t_s[k];
+    fo.to_s = t->t_s[last];
+    fo.max_iter = 50;
+    fo.descents = 2;
+    fo.profiles = 0;
+    fo.hold_frame = 1; /* 0.4 s does not tell the frame's tilt; the start is what is asked */
+    fo.no_refine = 1;  /* this is the refinement */
+    fo.mark_angle_rad = mark_angle_rad;
+    cli_FitResult r;
+    char err[256];
+    if (cli_track_fit(setup, t, &fo, o, &r, err, sizeof err) != 0) return NAN;
+    *start = r.start;
+    return r.chi2_dof;
+}
+
+int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long from, int scan,
+                     double mark_angle_rad, cli_Launch *out, char *err, size_t err_len)
+{
+    memset(out, 0, sizeof *out);
+    out->chi2_dof_with = NAN;
+    if (cli_track_require("the track", t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, err_len) != 0) return -1;
+    long left = 0;
+    for (long i = from > 0 ? from : 0; i < t->n; ++i) left += isfinite(t->x_m[i]);
+    if (left < 3) {
+        snprintf(err, err_len, "fewer than 3 frames with a centre to start the model from");
+        return -1;
+    }
+    /* The first frame with a centre. */
+    while (!isfinite(t->x_m[from])) from++;
+    /* The first frame from which the window fits at the noise, and from
+     * which one frame later fits no better (a push's last frames still
+     * raise chi2/dof a little; noise moves it by about sqrt(2/dof)). */
+    double best = INFINITY, q = NAN;
+    jc_State s;
+    long k = from;
+    for (; k + 3 <= t->n && t->t_s[k] - t->t_s[from] <= (scan ? LAUNCH_MAX_S : 0.0); ++k) {
+        if (!isfinite(t->x_m[k])) continue;
+        if (isnan(q)) q = window_fit(setup, t, o, k, mark_angle_rad, &s);
+        if (k == from) out->chi2_dof_with = q;
+        if (q < best) {
+            best = q;
+            out->frame = k;
+            out->chi2_dof = q;
+            out->start = s;
+        }
+        if (!(q <= LAUNCH_CHI2_DOF) || !scan) {
+            q = NAN;
+            continue;
+        }
+        long next = k + 1;
+        while (next < t->n && !isfinite(t->x_m[next])) next++;
+        jc_State s_next;
+        const double q_next = next + 3 <= t->n ? window_fit(setup, t, o, next, mark_angle_rad, &s_next) : NAN;
+        if (!(q_next < LAUNCH_BETTER * q)) {
+            out->frame = k, out->chi2_dof = q, out->start = s, best = q;
+            break;
+        }
+        q = q_next, s = s_next;
+        k = next - 1;
+    }
+    if (!isfinite(best)) {
+        snprintf(err, err_len, "the model could not be started from the first frames");
+        return -1;
+    }
+    /* No frame fits: the clip is taken from its first frame (the fit's
+     * verdict then says the model does not describe it). */
+    if (best > LAUNCH_CHI2_DOF && out->frame != from) {
+        out->frame = from;
+        out->chi2_dof = window_fit(setup, t, o, from, mark_angle_rad, &s);
+        out->start = s;
+    }
+    out->pushed = out->frame - from;
+    if (out->pushed == 0) out->chi2_dof_with = NAN;
+    return 0;
+}

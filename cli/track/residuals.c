@@ -1,0 +1,90 @@
+/* The residuals of a model against a track's frames, in units of the
+ * noise, and a runs test of their signs.
+ *
+ * With a tracked centre: the centre's x and y at every frame and, where the
+ * mark was tracked, the mark's displacement across its radius,
+ * a Δθ + Δx cos θ − Δy sin θ. The mark's angle alone would not do: it was
+ * measured from the tracked centre, so its error holds the centre's; the
+ * displacement across the radius is the mark's own position error,
+ * independent of the centre's. With a centre recovered from the mark, the
+ * mark's own x and y (the recovered centre's errors are the mark's). */
+#include "track_fit.h"
+
+#include <math.h>
+#include <string.h>
+
+static int from_mark(const cli_Residuals *r) { return r->t->centre_source == CLI_CENTRE_FROM_MARK; }
+
+long cli_residual_count(const cli_Residuals *r)
+{
+    const cli_Track *t = r->t;
+    long k = 0;
+    for (long i = r->first; i < r->first + r->count; ++i) {
+        if (from_mark(r)) {
+            k += isfinite(t->mark_x_m[i]) ? 2 : 0;
+            continue;
+        }
+        if (!isfinite(t->x_m[i])) continue;
+        k += 2;
+        k += r->mark_radius > 0.0 && isfinite(t->theta_rad[i]);
+    }
+    return k;
+}
+
+void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y, const double *th, double *f,
+                        unsigned char *series)
+{
+    const cli_Track *t = r->t;
+    const double s = r->sigma;
+    long k = 0;
+    for (long i = 0; i < r->count; ++i) {
+        const long j = r->first + i;
+        const double thm = th[i] - r->mark_offset; /* the model's mark angle */
+        if (from_mark(r)) {
+            if (!isfinite(t->mark_x_m[j])) continue;
+            if (series) series[k] = 0, series[k + 1] = 1;
+            f[k++] = (t->mark_x_m[j] - (x[i] + r->mark_radius * sin(thm))) / s;
+            f[k++] = (t->mark_y_m[j] - (y[i] + r->mark_radius * cos(thm))) / s;
+            continue;
+        }
+        if (!isfinite(t->x_m[j])) continue;
+        const double dx = t->x_m[j] - x[i], dy = t->y_m[j] - y[i];
+        if (series) series[k] = 0, series[k + 1] = 1;
+        f[k++] = dx / s;
+        f[k++] = dy / s;
+        const double tht = t->theta_rad[j];
+        if (r->mark_radius > 0.0 && isfinite(tht)) {
+            if (series) series[k] = 2;
+            f[k++] = (r->mark_radius * (tht - thm) + dx * cos(tht) - dy * sin(tht)) / s;
+        }
+    }
+}
+
+double cli_residuals_runs_z(const double *f, const unsigned char *series, long n, const char **which)
+{
+    static const char *const names[3] = {"along the incline", "across the incline", "the mark's"};
+    double worst = INFINITY;
+    *which = "";
+    for (int k = 0; k < 3; ++k) {
+        double n1 = 0, n2 = 0, runs = 0;
+        int prev = 0;
+        for (long i = 0; i < n; ++i) {
+            if (series[i] != k || f[i] == 0.0 || !isfinite(f[i])) continue;
+            const int sgn = f[i] > 0 ? 1 : -1;
+            if (sgn > 0) n1 += 1;
+            else n2 += 1;
+            if (sgn != prev) runs += 1;
+            prev = sgn;
+        }
+        const double m = n1 + n2;
+        if (n1 < 2 || n2 < 2) continue;
+        const double mu = 2 * n1 * n2 / m + 1, var = 2 * n1 * n2 * (2 * n1 * n2 - m) / (m * m * (m - 1));
+        if (!(var > 0)) continue;
+        const double z = (runs - mu) / sqrt(var);
+        if (z < worst) {
+            worst = z;
+            *which = names[k];
+        }
+    }
+    return worst;
+}
