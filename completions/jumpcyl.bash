@@ -26,7 +26,7 @@ _jumpcyl()
             COMPREPLY=($(compgen -W "linear huber cauchy" -- "$cur"))
             return ;;
         --free)
-            COMPREPLY=($(compgen -W "mu_s mu_k restitution theta0 omega0 x0" -- "${cur##*,}"))
+            COMPREPLY=($(compgen -W "mu_s mu_k restitution theta0 omega0 x0 mark_angle disc_mass hoop_mass rod_mass rod_offset point_mass point_offset" -- "${cur##*,}"))
             return ;;
         --track)
             COMPREPLY=($(compgen -f -- "$cur"))

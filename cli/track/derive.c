@@ -47,19 +47,6 @@ static double median(double *v, long n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/* The noise of a path from its third differences: those of a smooth path
- * are small next to noise, whose third difference has variance 20 σ²; the
- * median absolute value (x 1.4826 for a Gaussian) ignores the impacts. */
-static double third_difference_noise(const double *x, const double *y, long n, double *work)
-{
-    long m = 0;
-    for (long i = 0; i + 3 < n; ++i) {
-        work[m++] = fabs(x[i + 3] - 3 * x[i + 2] + 3 * x[i + 1] - x[i]);
-        work[m++] = fabs(y[i + 3] - 3 * y[i + 2] + 3 * y[i + 1] - y[i]);
-    }
-    return m > 0 ? 1.4826 * median(work, m) / sqrt(20.0) : NAN;
-}
-
 static void turn(double *x, double *y, long n, double angle)
 {
     const double c = cos(angle), s = sin(angle);
@@ -192,7 +179,7 @@ static int tracked_surface(const char *name, const cli_TrackOptions *opt, double
 {
     cli_SurfaceLine L;
     double *work = malloc((size_t)(2 * t->n + 2) * sizeof *work);
-    const double start = work ? third_difference_noise(t->x_m, t->y_m, t->n, work) : 0.0;
+    const double start = work ? cli_track_frame_noise(t->x_m, t->y_m, t->n, work) : 0.0;
     free(work);
     int st = cli_surface_fit(t->x_m, t->y_m, t->n, contact_run(t), contact_erode(t), NOISE_FLOOR_M, start, t->contact, &L);
     if (st == -2) {
@@ -350,7 +337,7 @@ static int single_track_as_mark(const char *name, const cli_RawData *raw, const 
                                 double frame_angle, cli_Track *t, double *work, char *err, size_t err_len)
 {
     if (raw->track_count != 1 || t->has_mark || opt->centre || opt->mark) return 1;
-    const double frame_noise = third_difference_noise(t->x_m, t->y_m, t->n, work);
+    const double frame_noise = cli_track_frame_noise(t->x_m, t->y_m, t->n, work);
     cli_SurfaceLine L;
     const int st = cli_surface_fit(t->x_m, t->y_m, t->n, contact_run(t), contact_erode(t), NOISE_FLOOR_M, 0.0, t->contact, &L);
     if (st == 0 && !(L.sigma_m > MARK_SWING_RATIO * frame_noise)) return 1;
@@ -500,6 +487,13 @@ int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOp
         }
         free_rim(&r);
     } else if (t->centre_source != CLI_CENTRE_NONE) {
+        long frames = 0;
+        for (int k = 0; k < t->track_count; ++k)
+            if (strcmp(t->track_names[k], t->centre_source == CLI_CENTRE_TRACKED ? t->centre_name : t->mark_name) == 0)
+                frames = t->track_frames[k];
+        note(t, CLI_Q_CENTRE, 0, "not known: the track '%s' has %ld frame(s) with a position, fewer than 3%s",
+             t->centre_source == CLI_CENTRE_TRACKED ? t->centre_name : t->mark_name, frames,
+             isfinite(t->frame_rate_hz) ? "" : " (and no time step)");
         t->centre_source = CLI_CENTRE_NONE;
         nothing_more(t, "fewer than 3 frames");
     } else {

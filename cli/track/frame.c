@@ -65,34 +65,35 @@ void cli_track_list_names(const cli_RawData *raw, char *buf, size_t len)
     }
 }
 
-/* RMS distance of a track's points from the least-squares line through
- * them; NaN with fewer than 3 points. A centre rolls along a line; a mark
- * on the body swings about it by its distance from the centre. */
-static double line_scatter(const cli_RawTrack *k, long frames)
+/* Two tracks, neither named: the centre is the one whose frames keep to a
+ * line (the surface, r below) for runs of contact; a mark on the body
+ * swings across any line by its distance from the centre. The one with at
+ * least three times the other's frames in contact is the centre; -1: not
+ * told. */
+static long contact_frames_of(const cli_RawTrack *k, const cli_RawData *raw, double dt)
 {
-    double sw = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
-    for (long f = 0; f < frames; ++f) {
-        if (isnan(k->x_m[f])) continue;
-        const double x = k->x_m[f], y = k->y_m[f];
-        sw += 1, sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+    const long n = raw->frames;
+    double *x = malloc((size_t)n * sizeof *x), *y = malloc((size_t)n * sizeof *y), *w = malloc((size_t)(2 * n) * sizeof *w);
+    unsigned char *keep = malloc((size_t)n);
+    long m = 0, contact = 0;
+    if (x && y && w && keep) {
+        for (long f = 0; f < n; ++f)
+            if (!isnan(k->x_m[f])) x[m] = k->x_m[f], y[m] = k->y_m[f], m++;
+        const long run = dt > 0 ? (long)fmax(4.0, ceil(0.1 / dt - 1e-9)) : 4;
+        const long erode = dt > 0 ? (long)fmax(1.0, ceil(0.05 / dt - 1e-9)) : 1;
+        cli_SurfaceLine L;
+        if (cli_surface_fit(x, y, m, run, erode, 1e-5, cli_track_frame_noise(x, y, m, w), keep, &L) == 0)
+            contact = L.contact;
     }
-    if (sw < 3) return NAN;
-    const double cxx = sxx / sw - (sx / sw) * (sx / sw), cyy = syy / sw - (sy / sw) * (sy / sw);
-    const double cxy = sxy / sw - (sx / sw) * (sy / sw);
-    /* The smaller eigenvalue of the covariance: the spread across the line. */
-    const double tr = cxx + cyy, det = cxx * cyy - cxy * cxy;
-    const double small = 0.5 * tr - sqrt(fmax(0.25 * tr * tr - det, 0.0));
-    return sqrt(fmax(small, 0.0));
+    free(x), free(y), free(w), free(keep);
+    return contact;
 }
 
-/* Two tracks, neither named: the centre is the one that keeps to a line,
- * when the other swings about it at least twice as far. -1: not told. */
-static int centre_by_motion(const cli_RawData *raw)
+static int centre_by_motion(const cli_RawData *raw, double dt)
 {
-    const double s0 = line_scatter(&raw->tracks[0], raw->frames), s1 = line_scatter(&raw->tracks[1], raw->frames);
-    if (!(s0 >= 0) || !(s1 >= 0)) return -1;
-    if (s1 > 2.0 * s0) return 0;
-    if (s0 > 2.0 * s1) return 1;
+    const long c0 = contact_frames_of(&raw->tracks[0], raw, dt), c1 = contact_frames_of(&raw->tracks[1], raw, dt);
+    if (c0 >= 3 && c0 >= 3 * c1) return 0;
+    if (c1 >= 3 && c1 >= 3 * c0) return 1;
     return -1;
 }
 
@@ -100,7 +101,7 @@ static int centre_by_motion(const cli_RawData *raw)
  * single track named as one, told by derive.c's rolling fit otherwise) or
  * when it cannot be told (t->centre_ambiguous). -1 with a message only for
  * a name the caller gave that is not in the file. */
-static int pick_tracks(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, int *centre,
+static int pick_tracks(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, double dt, int *centre,
                        int *mark, int *ambiguous, char *err, size_t err_len)
 {
     char tracks[512];
@@ -137,7 +138,7 @@ static int pick_tracks(const char *name, const cli_RawData *raw, const cli_Track
     if (*centre < 0 && raw->track_count == 1 && no_mark) *centre = 0;
     if (*centre < 0 && *mark >= 0 && raw->track_count == 2) *centre = 1 - *mark;
     if (*centre < 0 && raw->track_count == 2 && !opt->mark && !opt->centre) {
-        *centre = centre_by_motion(raw);
+        *centre = centre_by_motion(raw, dt);
         if (*centre >= 0) *mark = 1 - *centre;
     }
     if (*centre < 0 && *mark >= 0 && raw->track_count == 1) return 0; /* --mass NAME alone: mark only */
@@ -275,13 +276,13 @@ int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_Track
     }
     copy_report(raw, opt, out);
     int ci, mi, ambiguous;
-    if (pick_tracks(name, raw, opt, &ci, &mi, &ambiguous, err, err_len) != 0) return -1;
+    const double dt = frame_step(raw);
+    if (pick_tracks(name, raw, opt, dt, &ci, &mi, &ambiguous, err, err_len) != 0) return -1;
     out->centre_ambiguous = ambiguous;
     out->centre_source = ci >= 0 ? CLI_CENTRE_TRACKED : mi >= 0 ? CLI_CENTRE_FROM_MARK : CLI_CENTRE_NONE;
     if (ci >= 0) memcpy(out->centre_name, raw->tracks[ci].name, CLI_TRACK_NAME_LEN);
     if (mi >= 0) memcpy(out->mark_name, raw->tracks[mi].name, CLI_TRACK_NAME_LEN);
     out->has_mark = mi >= 0;
-    const double dt = frame_step(raw);
     out->frame_rate_hz = dt > 0 && isfinite(1.0 / dt) ? 1.0 / dt : NAN;
     const cli_RawTrack *P = ci >= 0 ? &raw->tracks[ci] : mi >= 0 ? &raw->tracks[mi] : NULL;
     long first = -1, last = -1, kept = 0;

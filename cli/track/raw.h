@@ -60,6 +60,12 @@ typedef struct {
 int cli_surface_fit(const double *x, const double *y, long n, long min_run, long erode, double floor_m,
                     double start_m, unsigned char *contact, cli_SurfaceLine *out);
 
+/* The noise of a path from its third differences (work: 2 n doubles):
+ * those of a smooth path are small next to noise, whose third difference
+ * has variance 20 sigma^2; their median absolute value (x 1.4826 for a
+ * Gaussian) ignores the impacts. 0 with fewer than 4 points. */
+double cli_track_frame_noise(const double *x, const double *y, long n, double *work);
+
 /* rim.c: the centre recovered from a mark on the body by fitting rolling. */
 typedef struct {
     const double *t_s, *x_m, *y_m; /* the mark in the frame of cli_track_from_raw (no NaN) */

@@ -203,6 +203,16 @@ static long drop_runs_above(const double *x, const double *y, long n, double noi
     return dropped;
 }
 
+double cli_track_frame_noise(const double *x, const double *y, long n, double *work)
+{
+    long m = 0;
+    for (long i = 0; i + 3 < n; ++i) {
+        work[m++] = fabs(x[i + 3] - 3 * x[i + 2] + 3 * x[i + 1] - x[i]);
+        work[m++] = fabs(y[i + 3] - 3 * y[i + 2] + 3 * y[i + 1] - y[i]);
+    }
+    return m > 0 ? MAD_TO_SIGMA * quantile(work, m, 0.5) / sqrt(20.0) : 0.0;
+}
+
 int cli_surface_fit(const double *x, const double *y, long n, long min_run, long erode, double floor_m,
                     double start_m, unsigned char *contact, cli_SurfaceLine *out)
 {

@@ -323,8 +323,8 @@ int cli_table_parse(const char *name, const char *data, size_t len, cli_RawData 
         }
         n++;
     }
-    if (n < 3) {
-        fail(&c, 0, "fewer than 3 rows of data", "");
+    if (n < 1) {
+        fail(&c, 0, "no rows of data", "");
         goto done;
     }
     raw->frames = n;
