@@ -166,7 +166,7 @@ static void print_held(const cli_FitResult *r)
     int any = 0;
     for (int k = 0; k < r->count; ++k) any |= r->flag[k] != CLI_FIT_DETERMINED;
     if (!any) return;
-    printf("\nNot determined by this video (held, and the other values fitted again without it):\n");
+    printf("\nHeld, as the video does not determine them inside their ranges (the others fitted again):\n");
     for (int k = 0; k < r->count; ++k) {
         if (r->flag[k] == CLI_FIT_DETERMINED) continue;
         char nm[64];
@@ -196,14 +196,17 @@ static void print_minima(const cli_FitResult *r)
                r->descents);
         return;
     }
-    printf("\nMinima within chi2 + %.3g of the best (the video does not tell them apart):\n", r->delta_chi2);
+    printf("\nMinima within chi2 + %.3g of the best (the video does not tell them apart):\n  %10s", r->delta_chi2,
+           "chi2");
+    for (int k = 0; k < r->count; ++k) {
+        char nm[48];
+        cli_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
+        printf(" %12.12s", nm);
+    }
+    putchar('\n');
     for (int m = 0; m < r->minima; ++m) {
-        printf("  chi2 %-10.5g", r->minimum[m].chi2);
-        for (int k = 0; k < r->count; ++k) {
-            char nm[64];
-            cli_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
-            printf(" %s %.5g", nm, r->minimum[m].value[k]);
-        }
+        printf("  %10.5g", r->minimum[m].chi2);
+        for (int k = 0; k < r->count; ++k) printf(" %12.5g", r->minimum[m].value[k]);
         putchar('\n');
     }
 }

@@ -167,7 +167,8 @@ static cJSON *track_json(const char *file, const cli_Track *t)
     cJSON_AddItemToObject(d, "surface_sigma_m", num(t->surface_sigma_m));
     cJSON_AddItemToObject(d, "mark_radius_m", num(t->mark_radius_m));
     cJSON_AddItemToObject(d, "mark_radius_sigma_m", num(t->mark_radius_sigma_m));
-    cJSON_AddItemToObject(d, "centre_rms_sigma_m", num(t->centre_rms_sigma_m));
+    cJSON_AddItemToObject(d, "centre_sigma_median_m", num(t->centre_sigma_median_m));
+    cJSON_AddItemToObject(d, "centre_sigma_max_m", num(t->centre_sigma_max_m));
     cJSON_AddItemToObject(d, "hop_threshold_m", num(t->hop_threshold_m));
     cJSON *notes = cJSON_AddObjectToObject(d, "derived");
     for (int q = 0; q < CLI_Q_COUNT; ++q) {

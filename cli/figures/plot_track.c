@@ -48,7 +48,9 @@ static void write_data(FILE *gp, const cli_TrackFigure *f)
         fprintf(gp, "%.10g", t->t_s[j]);
         put(gp, t->x_m[j] * 100);
         put(gp, (t->y_m[j] - f->radius_m) * 1e3);
-        put(gp, t->centre_sigma_m[j] * 1e3);
+        /* An error bar is shown up to 5 noises: the frames where a mark alone
+         * tells the centre least would else set the panel's scale. */
+        put(gp, fmin(t->centre_sigma_m[j], 5.0 * t->sigma_m) * 1e3);
         put(gp, r[0]);
         put(gp, r[1]);
         put(gp, r[2]);
@@ -74,20 +76,21 @@ static void write_panels(FILE *gp, const cli_TrackFigure *f)
     fputs(" font F_TITLE\n", gp);
     fig_panel_begin(gp, "the centre along the incline");
     fputs("set title 'The centre along the incline'\nset xlabel 't (s)'\nset ylabel 'x (cm)'\n"
+          "set autoscale xfix\nset offsets 0, 0, graph 0.05, graph 0.05\n"
           "plot $model u 1:2 w l lc rgb C_BLUE lw LW t 'model', \\\n"
           "     $frames u 1:2 w p pt 6 ps 0.9*PS lc rgb C_RED t 'video'\n",
           gp);
     fig_panel_begin(gp, "the centre's height above the surface");
     fprintf(gp,
             "set title 'The centre above the surface (hops show as arches)'\nset xlabel 't (s)'\n"
-            "set ylabel 'height above contact (mm)'\n"
+            "set ylabel 'height above contact (mm)'\nset autoscale xfix\nset offsets 0, 0, graph 0.05, graph 0.05\n"
             "plot $model u 1:3 w l lc rgb C_BLUE lw LW t 'model', \\\n"
             "     $frames u 1:3:4 w yerrorbars pt 6 ps 0.9*PS lc rgb C_RED t '%s', \\\n"
             "     %.10g w l dt 2 lc rgb C_GREY lw 2 t 'hop threshold'\n",
             from_mark ? "video (centre recovered from the mark)" : "video", f->hop_threshold_m * 1e3);
     fig_panel_begin(gp, "residuals in units of sigma");
     fprintf(gp, "set title 'Residuals: video minus model, in units of the noise (%.2f mm)'\nset xlabel 't (s)'\n"
-                "set ylabel 'residual / sigma'\n"
+                "set ylabel 'residual / sigma'\nset autoscale xfix\nset yrange [*<-4:4<*]\n"
                 "plot 3 w l dt 2 lc rgb C_GREY lw 1 t '±3 sigma', -3 w l dt 2 lc rgb C_GREY lw 1 notitle, \\\n"
                 "     $frames u 1:5 w p pt 7 ps 0.6*PS lc rgb C_BLUE t '%s', \\\n"
                 "     $frames u 1:6 w p pt 5 ps 0.6*PS lc rgb C_ORANGE t '%s'",

@@ -312,7 +312,6 @@ static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame
     t->surface_sigma_m = r->line_sigma_m;
     t->mark_radius_m = r->a_m;
     t->mark_radius_sigma_m = r->a_sigma_m;
-    t->centre_rms_sigma_m = r->centre_rms_sigma_m;
     t->hop_threshold_m = t->hop_sigmas * t->sigma_m;
     /* A departure smaller than this leaves the mark within the outlier
      * cut of the rolling path, and does not show. */
@@ -426,9 +425,10 @@ static void centre_note(cli_Track *t, const cli_RawData *raw)
              t->centre_name, t->n, t->gaps);
     } else if (t->centre_source == CLI_CENTRE_FROM_MARK) {
         note(t, CLI_Q_CENTRE, 1, "recovered from the mark '%s' by fitting rolling (the mark at a = %.2f +- %.2f cm "
-             "from it): %ld of %ld frames, standard error %.2f mm (RMS); noise %.2f mm", t->mark_name,
-             t->mark_radius_m * 100, t->mark_radius_sigma_m * 100, t->rolling_frames, t->n,
-             t->centre_rms_sigma_m * 1e3, t->sigma_m * 1e3);
+             "from it): %ld of %ld frames, standard error %.2f mm (median; up to %.1f mm where the mark passes the "
+             "contact point or the clip ends); noise %.2f mm", t->mark_name, t->mark_radius_m * 100,
+             t->mark_radius_sigma_m * 100, t->rolling_frames, t->n, t->centre_sigma_median_m * 1e3,
+             t->centre_sigma_max_m * 1e3, t->sigma_m * 1e3);
     } else if (t->centre_ambiguous) {
         char names[400];
         cli_track_list_names(raw, names, sizeof names);
@@ -503,11 +503,14 @@ int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOp
         if (t->centre_source == CLI_CENTRE_TRACKED && t->has_mark) derive_angles(t, work);
         if (t->centre_source == CLI_CENTRE_TRACKED && !t->has_mark) t->mark_radius_m = NAN;
         for (long i = 0; i < t->n && isnan(t->x0_m); ++i) t->x0_m = t->x_m[i];
-        double ss = 0;
         long m = 0;
+        t->centre_sigma_max_m = 0.0;
         for (long i = 0; i < t->n; ++i)
-            if (!isnan(t->x_m[i])) ss += t->centre_sigma_m[i] * t->centre_sigma_m[i], m++;
-        if (t->centre_source == CLI_CENTRE_TRACKED) t->centre_rms_sigma_m = m ? sqrt(ss / (double)m) : NAN;
+            if (!isnan(t->x_m[i]) && !isnan(t->centre_sigma_m[i])) {
+                work[m++] = t->centre_sigma_m[i];
+                t->centre_sigma_max_m = fmax(t->centre_sigma_max_m, t->centre_sigma_m[i]);
+            }
+        t->centre_sigma_median_m = median(work, m);
         if (!t->note[CLI_Q_CENTRE].text[0]) centre_note(t, raw);
         if (t->centre_source != CLI_CENTRE_NONE && !isnan(t->sigma_m)) hop_note(t);
         if (t->centre_source != CLI_CENTRE_NONE || !t->has_mark) theta_note(t);

@@ -2,7 +2,7 @@
  * Levenberg-Marquardt trust region), and what the video determines.
  *
  * The free values live in an unconstrained space u: a bounded value is
- * lo + (hi - lo) sigmoid(u) (mu_k: mu_s sigmoid(u), so that mu_k <= mu_s);
+ * lo + (hi - lo) sigmoid(u) (mu_s: from mu_k up, so that mu_k <= mu_s);
  * angles, omega0 and x0 as they are. The first lift-off leaps between
  * branches as the values change, so one descent is not enough: a Latin
  * hypercube over the bounded values is screened (one run each), and the
@@ -51,6 +51,7 @@
 #define GIVE_UP_EVERY 8          /* a descent checked every 8 iterations ... */
 #define GIVE_UP_FACTOR 2.0       /* ... stops when its chi2 is above twice the best's (plus n) */
 #define START_EDGE 0.02          /* start points at a bound begin this far inside (of the range) */
+#define SNAP_NEAR 0.02           /* a value this near a bound is tried on it */
 #define MIN_SCREEN 16
 #define MAX_SCREEN 64
 
@@ -842,14 +843,16 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
         if (mins[k].chi2 - mins[0].chi2 > out->delta_chi2) break;
         double vk[CLI_FIT_MAX_PARAMS];
         values_of(c, mins[k].u, vk);
+        /* Apart: by more than 2 sigma in a value whose sigma is known (one
+         * the residuals do not see tells no minima apart). */
         int apart = k == 0;
         for (int i = 0; i < c->np && !apart; ++i)
-            apart = fabs(vk[i] - v[i]) > 2.0 * (isfinite(sigma[i]) ? sigma[i] : 0.0) + 1e-9 * fabs(v[i]);
+            apart = isfinite(sigma[i]) && fabs(vk[i] - v[i]) > 2.0 * sigma[i];
         for (int j = 0; j < out->minima && apart && k > 0; ++j) {
             int same = 1;
             for (int i = 0; i < c->np && same; ++i)
-                same = fabs(vk[i] - out->minimum[j].value[slot_of(out, c->param[i])]) <=
-                       2.0 * (isfinite(sigma[i]) ? sigma[i] : 0.0) + 1e-9 * fabs(vk[i]);
+                same = !isfinite(sigma[i]) ||
+                       fabs(vk[i] - out->minimum[j].value[slot_of(out, c->param[i])]) <= 2.0 * sigma[i];
             if (same) apart = 0;
         }
         if (!apart) continue;
@@ -857,6 +860,31 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
         for (int i = 0; i < out->count; ++i) mm->value[i] = out->initial[i];
         for (int i = 0; i < c->np; ++i) mm->value[slot_of(out, c->param[i])] = vk[i];
         mm->chi2 = mins[k].chi2;
+    }
+    /* A bounded value the descents left near a bound (its transform makes
+     * the bound a limit they only approach) is put on it, the others fitted
+     * again, when chi2 is lower there: the flags then hold it there. */
+    int snapped = 0;
+    for (int i = 0; i < c->np; ++i) {
+        if (!bounded(c->param[i])) continue;
+        const double q = sigmoid(u[i]);
+        if (q > SNAP_NEAR && q < 1.0 - SNAP_NEAR) continue;
+        double us[CLI_FIT_MAX_PARAMS];
+        memcpy(us, u, sizeof us);
+        us[i] = logit(q < 0.5 ? 0.5 * EDGE : 1.0 - 0.5 * EDGE);
+        out->iterations += descend(c, us, o, scratch, INFINITY);
+        const double at_bound = cost(c, us);
+        if (at_bound < chi2 - 1e-9 * (1.0 + chi2)) { /* better, not just as good: a value that changes nothing stays */
+            memcpy(u, us, sizeof us);
+            chi2 = at_bound;
+            snapped = 1;
+        }
+    }
+    if (snapped) {
+        s2 = out->noise_measured ? chi2 / dof : 1.0;
+        covariance_u(c, u, s2, &cv.matrix);
+        values_of(c, u, v);
+        values_covariance(c, u, &cv.matrix, cov, sigma, corr);
     }
     /* What the video does not determine: held, and the rest fitted again. */
     for (int round = 0; round < FLAG_ROUNDS && c->np > 0; ++round) {
@@ -933,7 +961,7 @@ const char *cli_fit_flag_text(cli_FitFlag f)
 {
     switch (f) {
     case CLI_FIT_DETERMINED: return "determined";
-    case CLI_FIT_ON_BOUND: return "it sits on a bound of its range";
+    case CLI_FIT_ON_BOUND: return "it sits on a bound of its range (the best fit is there or beyond)";
     case CLI_FIT_WIDER_THAN_RANGE: return "its standard error exceeds its range";
     case CLI_FIT_CORRELATED: return "it moves with another value";
     case CLI_FIT_NO_EFFECT: return "the residuals do not change with it";

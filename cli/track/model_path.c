@@ -53,7 +53,7 @@ jc_Setup cli_track_setup(const jc_Setup *setup, const cli_Track *t)
     double far = 0.0;
     for (long i = 0; t && i < t->n; ++i)
         if (isfinite(t->x_m[i])) far = fmax(far, t->x_m[i] - t->x0_m);
-    if (far + RAMP_BEYOND_M > s.ramp_length_m) s.ramp_length_m = far + RAMP_BEYOND_M;
+    if (far > s.ramp_length_m) s.ramp_length_m = far + RAMP_BEYOND_M;
     s.ramp_length_m += CLI_TRACK_RAMP_MARGIN_M;
     return s;
 }

@@ -85,7 +85,6 @@ typedef struct {
     double a_m, a_sigma_m;           /* the mark's distance from C */
     double line_sigma_m;             /* standard error of the centre line's height */
     double noise_m;                  /* the mark's position noise (per coordinate) */
-    double centre_rms_sigma_m;       /* RMS standard error of the recovered centre */
     long rolling_frames;
     /* Per frame, the caller's arrays of n: the surface frame (x along the
      * rolling line, y from the surface). */

@@ -62,7 +62,7 @@ void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y
 
 double cli_residuals_runs_z(const double *f, const unsigned char *series, long n, const char **which)
 {
-    static const char *const names[3] = {"along the incline", "across the incline", "the mark's"};
+    static const char *const names[3] = {"along the incline", "across the incline", "of the mark across its radius"};
     double worst = INFINITY;
     *which = "";
     for (int k = 0; k < 3; ++k) {

@@ -585,7 +585,6 @@ static void fill_rolling(const rim_ctx *c, const double *p, const gsl_matrix *co
 {
     const double cf = cos(p[0]), sf = sin(p[0]);
     const double var_h = gsl_matrix_get(cov, 1, 1);
-    double ss = 0;
     long m = 0;
     for (long i = 0; i < c->n; ++i) {
         /* Every frame in the surface frame: turned by the tilt, the surface at y = 0. */
@@ -608,10 +607,8 @@ static void fill_rolling(const rim_ctx *c, const double *p, const gsl_matrix *co
         for (int a = 0; a < 5; ++a)
             for (int b = 0; b < 5; ++b) var += g[a] * gsl_matrix_get(cov, (size_t)idx[a], (size_t)idx[b]) * g[b];
         out->c_sigma[i] = sqrt(fmax(var, 0.0));
-        ss += var;
         m++;
     }
-    out->centre_rms_sigma_m = m > 0 ? sqrt(ss / (double)m) : NAN;
     out->rolling_frames = m;
 }
 

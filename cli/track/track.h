@@ -111,7 +111,9 @@ typedef struct {
     /* A centre recovered from a mark (rim.c). */
     double mark_radius_m;      /* the mark's distance from C (the median, or the fitted) */
     double mark_radius_sigma_m;
-    double centre_rms_sigma_m; /* RMS of centre_sigma_m over the frames with a centre */
+    double centre_sigma_median_m; /* the median of centre_sigma_m over the frames with a centre ... */
+    double centre_sigma_max_m;    /* ... and the largest (a mark alone tells the centre least as it
+                                     passes the contact point) */
     long rolling_frames;       /* frames the rolling fit explains */
     double detect_m;           /* the smallest departure from rolling that shows (mark only) */
 

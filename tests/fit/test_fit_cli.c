@@ -363,9 +363,58 @@ static int test_noise_free_compare_tool(void)
     return 0;
 }
 
+/* The value of a fit's report line "  NAME  initial  fitted +- sigma". */
+static int reported(const char *out, const char *name, double *v, double *s)
+{
+    char key[64];
+    snprintf(key, sizeof key, "\n  %s ", name);
+    const char *p = out ? strstr(out, key) : NULL;
+    return p && sscanf(p + strlen(key), "%*g %lg +- %lg", v, s) == 2 ? 0 : -1;
+}
+
+/* The sample experiments of examples/tracker (docs/tracker.md; the
+ * directory in JC_EXAMPLES_DIR), fitted as the docs fit them: exit 0, the
+ * verdict good, the known values within 3 of their sigma. */
+static const char *examples_dir;
+
+static int test_examples(void)
+{
+    if (!examples_dir) return 0;
+    char incline[512], floor[512], led[512];
+    snprintf(incline, sizeof incline, "%s/incline.trk", examples_dir);
+    snprintf(floor, sizeof floor, "%s/floor.trk", examples_dir);
+    snprintf(led, sizeof led, "%s/floor-led.txt", examples_dir);
+    const char *a[] = {"fit", "--track", incline, "--free", "mu_s,mu_k,restitution", NULL};
+    const char *b[] = {"fit", "--track", floor, "--preset", "hoop", "--free", "mu_s,mu_k,restitution", NULL};
+    /* The ring never slides: mu_k does not change the residuals, and is held. */
+    const char *c[] = {"fit", "--track", led, "--preset", "hoop", "--part", "hoop:mass=0.1", "--part",
+                       "point:mass=0.1,offset=0.1", "--mu", "0.8", "--free", "mu_k", NULL};
+    const char *const *runs[] = {a, b, c};
+    const char *names[3][2] = {{"mu_k", "restitution"}, {"mu_k", "restitution"}, {NULL, NULL}};
+    const double truth[3][2] = {{0.4, 0.3}, {0.5, 0.3}, {0.1, 0}};
+    int bad = 0;
+    for (int k = 0; k < 3; ++k) {
+        cli_result r = cli_run(runs[k]);
+        int ok = r.status == 0 && r.out && strstr(r.out, "the model describes this video");
+        if (k == 2) ok = ok && strstr(r.out, "mu_k: the residuals do not change with it");
+        for (int j = 0; j < 2 && names[k][j]; ++j) {
+            double v = NAN, s = NAN;
+            const int found = reported(r.out, names[k][j], &v, &s) == 0;
+            printf("example %d: %s = %.5g +- %.2g (true %g)\n", k, names[k][j], v, s, truth[k][j]);
+            ok = ok && found && fabs(v - truth[k][j]) <= 3.0 * s;
+        }
+        if (!ok) fprintf(stderr, "example %d: status %d\n%s\n%s\n", k, r.status, r.out ? r.out : "", r.err ? r.err : "");
+        bad += !ok;
+        cli_result_free(&r);
+    }
+    ENSURE(bad == 0);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
+    examples_dir = getenv("JC_EXAMPLES_DIR");
     if (cli_run_init(argc, argv) != 0) return 2;
     RUN_TEST(test_noise_free_compare);
     RUN_TEST(test_robust_loss);
@@ -374,5 +423,6 @@ int main(int argc, char **argv)
     RUN_TEST(test_noise_free_compare_tool);
     RUN_TEST(test_wrong_body);
     RUN_TEST(test_bad_options);
+    RUN_TEST(test_examples);
     TEST_MAIN_END();
 }

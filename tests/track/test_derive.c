@@ -83,10 +83,10 @@ static int test_rim_mark_recovery(void)
         }
         const double rms = m ? sqrt(ss / (double)m) : NAN;
         printf("mark only, %.0f fps, %.1f mm: centre %s, %ld of %ld frames rolling, error RMS %.2f mm (largest "
-               "%.2f, %ld beyond 4 stated sigma), stated %.2f mm RMS; a = %.2f +- %.2f cm; noise %.2f mm; %ld "
+               "%.2f, %ld beyond 4 stated sigma), stated %.2f mm (median); a = %.2f +- %.2f cm; noise %.2f mm; %ld "
                "hops; incline %.3f +- %.3f deg\n",
                fps[c], noise[c] * 1e3, t.centre_source == CLI_CENTRE_FROM_MARK ? "recovered" : "NOT recovered", m, t.n,
-               rms * 1e3, worst * 1e3, beyond, t.centre_rms_sigma_m * 1e3, t.mark_radius_m * 100,
+               rms * 1e3, worst * 1e3, beyond, t.centre_sigma_median_m * 1e3, t.mark_radius_m * 100,
                t.mark_radius_sigma_m * 100, t.sigma_m * 1e3, t.hops, t.incline_rad * 180 / CLI_TRACK_PI,
                t.incline_sigma_rad * 180 / CLI_TRACK_PI);
         const int ok = t.centre_source == CLI_CENTRE_FROM_MARK && m >= t.n * 9 / 10 && rms <= 2e-3 && beyond == 0 &&

@@ -1,0 +1,25 @@
+# The sample experiments made again (MAKE into OUT) must equal those in the
+# tree (SRC) byte for byte, and the tool (TOOL) must read each: a report,
+# exit 0.
+file(REMOVE_RECURSE "${OUT}")
+file(MAKE_DIRECTORY "${OUT}")
+execute_process(COMMAND "${MAKE}" "${OUT}" RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${MAKE} failed (${rc})")
+endif()
+foreach(f incline.trk incline.txt floor.trk floor.txt floor-led.txt)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${OUT}/${f}" "${SRC}/${f}" RESULT_VARIABLE same)
+  if(NOT same EQUAL 0)
+    message(FATAL_ERROR "examples/tracker/${f} differs from what tests/track/make_examples.c makes; "
+                        "make it again: ${MAKE} examples/tracker")
+  endif()
+  set(preset)
+  if(f MATCHES "^floor")
+    set(preset --preset hoop)
+  endif()
+  execute_process(COMMAND "${TOOL}" track "${SRC}/${f}" ${preset} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "jumpcyl track examples/tracker/${f}: exit ${rc}")
+  endif()
+  message(STATUS "${f}: same bytes; jumpcyl track reads it")
+endforeach()
