@@ -1,5 +1,6 @@
 /* jumpcyl: command dispatch. Data goes to stdout, messages to stderr;
- * exit 0 ok, 1 failure, 2 bad usage or input. */
+ * exit 0 ok, 1 failure, 2 bad usage or input, 3 a fit whose model does not
+ * describe the video. */
 #include "cli.h"
 #include "batch.h"
 #include "design.h"
@@ -41,10 +42,10 @@ static void usage(FILE *out)
           "  mc         Monte Carlo: how sure the first lift-off is, given the inputs' uncertainties\n"
           "  map        a regime map (gnuplot): the first lift-off over two setup options\n"
           "  design     the values of one option (rod offset, ...) that make it jump at a chosen place\n"
-          "  track      a video's tracked points (Tracker .trk or exported table) in the incline\n"
-          "             frame: theta, omega, the centre's height and its hops\n"
-          "  compare    a tracked video (Tracker) against the model run from its first tracked state\n"
-          "  fit        setup values and the start fitted to a tracked video (least squares)\n"
+          "  track      what a video tracked with Tracker (.trk or exported table) tells: the centre\n"
+          "             (or one recovered from a mark on the rim), the incline, the noise, hops, theta\n"
+          "  compare    a tracked video against the model run from the state its frames show\n"
+          "  fit        setup values fitted to a tracked video, what it determines, and a verdict\n"
           "  presets    list the built-in setups\n"
           "\n"
           "  jumpcyl COMMAND --help   options of a command\n"

@@ -76,7 +76,7 @@ static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, 
 }
 
 static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, const cli_Track *t, const cli_Compare *c,
-                  const jc_SimOptions *o, double mark_angle, int argc, char **argv)
+                  const jc_SimOptions *o, int argc, char **argv)
 {
     cli_TrackFigure f;
     memset(&f, 0, sizeof f);
@@ -90,7 +90,6 @@ static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, con
     f.mark_offset_rad = 0.0; /* c->theta_rad holds the mark's angle already */
     f.sigma_m = t->sigma_m;
     f.hop_threshold_m = c->threshold_m;
-    (void)mark_angle;
     snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; path residuals RMS %.2f mm (%.2f σ)",
              cli_deg(t->incline_rad), c->rms_path_m * 1e3, c->rms_path_m / t->sigma_m);
     const int rc = cli_track_figure_draw("compare", &f, setup, &c->launch.start, NULL, o, out, argc, argv);
@@ -135,7 +134,7 @@ int cmd_compare(int argc, char **argv)
     if (jc_model_init(&shown_model, &shown, err, sizeof err) == JC_OK) cli_print_setup(stdout, &shown_model, 1);
     putchar('\n');
     report(&model, &t, &c, a.from_setup_start);
-    st = a.output ? figure(a.output, &setup, &model, &t, &c, &opts, a.mark_angle_rad, argc, argv) : EXIT_OK;
+    st = a.output ? figure(a.output, &setup, &model, &t, &c, &opts, argc, argv) : EXIT_OK;
     if (st == EXIT_OK && a.output) printf("Figure: %s\n", a.output);
     cli_compare_free(&c);
     cli_track_free(&t);

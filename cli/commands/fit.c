@@ -157,7 +157,7 @@ static void print_values(const cli_FitResult *r)
         name_of(r, k, nm, sizeof nm);
         printf("  %-20s %13.6g   %13.6g ", nm, r->initial[k], r->value[k]);
         if (r->flag[k] == CLI_FIT_DETERMINED) printf("+- %.3g %s\n", r->sigma[k], cli_fit_param_unit(r->param[k]));
-        else printf("held: not determined %s\n", cli_fit_param_unit(r->param[k]));
+        else printf("held (below) %s\n", cli_fit_param_unit(r->param[k]));
     }
 }
 
@@ -182,9 +182,20 @@ static void print_held(const cli_FitResult *r)
         printf("; held at %.6g %s\n", r->value[k], cli_fit_param_unit(r->param[k]));
         if (r->profiled[k]) {
             printf("    chi2 along it (the others fitted):");
-            for (int i = 0; i < CLI_FIT_PROFILE_POINTS; ++i)
+            double least = INFINITY;
+            for (int i = 0; i < CLI_FIT_PROFILE_POINTS; ++i) {
                 printf("%s %.3g: %.5g", i ? "," : "", r->profile_x[k][i], r->profile_chi2[k][i]);
-            printf("\n");
+                least = fmin(least, r->profile_chi2[k][i]);
+            }
+            /* The values whose chi2 lies within 3.84 (95 % for one value) of
+             * the least, the held value (at the fit's chi2) among them. */
+            least = fmin(least, r->chi2);
+            const double cut = least + 3.84 * fmax(1.0, r->chi2_dof);
+            double lo = r->chi2 <= cut ? r->value[k] : INFINITY, hi = r->chi2 <= cut ? r->value[k] : -INFINITY;
+            for (int i = 0; i < CLI_FIT_PROFILE_POINTS; ++i)
+                if (r->profile_chi2[k][i] <= cut) lo = fmin(lo, r->profile_x[k][i]), hi = fmax(hi, r->profile_x[k][i]);
+            printf("\n    chi2 within %.3g of its least from %.3g to %.3g %s (of those points and the held value)\n",
+                   cut - least, lo, hi, cli_fit_param_unit(r->param[k]));
         }
     }
 }
@@ -243,12 +254,13 @@ static void report(const char *file, const cli_Track *t, const cli_FitResult *r,
                L->pushed, L->chi2_dof_with, L->chi2_dof, t->t_s[r->first]);
     int asked = 0;
     for (int k = 0; k < r->count; ++k) asked += !r->start_value[k];
-    printf("Fit: %ld residuals (sigma %.3g mm, %s), %d value(s) asked for%s, loss %s\n", r->residuals,
+    printf("Fit: %ld residuals (sigma %.3g mm, %s), %d value(s) asked for, %s%s, loss %s\n", r->residuals,
            r->sigma_m * 1e3, r->noise_measured ? "measured" : "given", asked,
-           fo->hold_start ? " (the start held)" : " and the start's x0, theta0, omega0", loss_names[fo->loss]);
+           fo->hold_start ? "the start held" : "the start's x0, theta0, omega0",
+           fo->hold_frame ? "" : " and the video frame's tilt and surface", loss_names[fo->loss]);
     printf("Search: %d start points screened, %d descents, %d iterations in all\n", r->screened, r->descents,
            r->iterations);
-    printf("chi2/dof = %.4g (chi2 %.4g, dof %ld)\n\n", r->chi2_dof, r->chi2, r->residuals - r->count);
+    printf("chi2/dof = %.4g (chi2 %.4g, dof %.0f)\n\n", r->chi2_dof, r->chi2, r->chi2 / r->chi2_dof);
     print_values(r);
     print_held(r);
     print_minima(r);
@@ -334,7 +346,7 @@ int cmd_fit(int argc, char **argv)
     cli_Launch launch;
     memset(&launch, 0, sizeof launch);
     if (!o.track.from_setup_start && isnan(fo.from_s)) {
-        if (cli_track_launch(&setup, &t, &opts, 0, 1, fo.mark_angle_rad, &launch, err, sizeof err) != 0) {
+        if (cli_track_launch(&setup, &t, &opts, 0, fo.to_s, 1, fo.mark_angle_rad, &launch, err, sizeof err) != 0) {
             cli_error("fit: %s", err);
             cli_track_free(&t);
             return EXIT_USAGE;

@@ -33,7 +33,7 @@ static void residuals_at(const cli_TrackFigure *f, long i, double r[3])
     const double dx = t->x_m[j] - f->sim_x[i], dy = t->y_m[j] - f->sim_y[i], th = t->theta_rad[j];
     r[0] = dx / s;
     r[1] = dy / s;
-    if (a > 0.0 && isfinite(th)) r[2] = (a * (th - thm) + dx * cos(th) - dy * sin(th)) / s;
+    if (a > 0.0 && isfinite(th)) r[2] = (a * remainder(th - thm, 2.0 * CLI_TRACK_PI) + dx * cos(th) - dy * sin(th)) / s;
 }
 
 static void write_data(FILE *gp, const cli_TrackFigure *f)

@@ -20,9 +20,11 @@ void cli_compare_free(cli_Compare *c)
     memset(c, 0, sizeof *c);
 }
 
-/* The setup's own start (θ0, ω0, rolling) where the frame has the centre. */
+/* The setup's own start (θ0, ω0, rolling) at the first frame from first
+ * that has the centre. */
 static void setup_start(const cli_Track *t, const jc_Model *m, long first, jc_State *s)
 {
+    while (first + 1 < t->n && !isfinite(t->x_m[first])) first++;
     memset(s, 0, sizeof *s);
     s->t_s = t->t_s[first];
     s->x_m = t->x_m[first];
@@ -47,7 +49,7 @@ static void residuals(cli_Compare *c, const cli_Track *t, double mark_offset)
             c->max_path_m = fmax(c->max_path_m, sqrt(d2));
         }
         if (t->has_mark && isfinite(t->theta_rad[j])) {
-            th += pow(t->theta_rad[j] - c->theta_rad[i], 2);
+            th += pow(remainder(t->theta_rad[j] - c->theta_rad[i], 2.0 * CLI_TRACK_PI), 2);
             ++n_th;
         }
     }
@@ -82,7 +84,7 @@ int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOpt
     } else {
         /* The free motion's first frame, where --from did not set it, and
          * the start there fitted to the frames (as fit starts). */
-        if (cli_track_launch(setup, t, o, first, isnan(from_s), mark_angle_rad, &out->launch, err, err_len) != 0)
+        if (cli_track_launch(setup, t, o, first, to_s, isnan(from_s), mark_angle_rad, &out->launch, err, err_len) != 0)
             return -1;
     }
     out->first = out->launch.frame;

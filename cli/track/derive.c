@@ -14,9 +14,6 @@
 #define DEG (180.0 / CLI_TRACK_PI)
 #define NOISE_FLOOR_M 1e-5      /* no video resolves 10 µm */
 #define HOP_MIN_FRAMES 2
-#define CONTACT_RUN_FRAMES 4    /* a run of contact: 4 frames ... */
-#define CONTACT_RUN_S 0.1       /* ... and 0.1 s at least */
-#define CONTACT_ERODE_S 0.05    /* its ends next to a hop left out */
 #define TURN_PASSES 8
 /* A single track whose scatter about its line is this many times the
  * frame-to-frame noise swings about the line: a mark, not a centre. */
@@ -84,19 +81,6 @@ static int agrees(double given, double measured, double sigma)
 
 /* ---- a tracked centre ---- */
 
-/* What a run of contact loses at an end next to a hop: 1 frame and 0.05 s. */
-static long contact_erode(const cli_Track *t)
-{
-    const double frames = isfinite(t->frame_rate_hz) ? ceil(CONTACT_ERODE_S * t->frame_rate_hz - 1e-9) : 1.0;
-    return frames > 1 ? (long)frames : 1;
-}
-
-/* The shortest run of frames taken as contact: 4 frames and 0.1 s. */
-static long contact_run(const cli_Track *t)
-{
-    const double frames = isfinite(t->frame_rate_hz) ? ceil(CONTACT_RUN_S * t->frame_rate_hz - 1e-9) : 0.0;
-    return frames > CONTACT_RUN_FRAMES ? (long)frames : CONTACT_RUN_FRAMES;
-}
 
 /* The incline and the frame's turn from the line through the frames in
  * contact (tilt tau against the frame's x, sigma its error). *turn_by is
@@ -181,7 +165,7 @@ static int tracked_surface(const char *name, const cli_TrackOptions *opt, double
     double *work = malloc((size_t)(2 * t->n + 2) * sizeof *work);
     const double start = work ? cli_track_frame_noise(t->x_m, t->y_m, t->n, work) : 0.0;
     free(work);
-    int st = cli_surface_fit(t->x_m, t->y_m, t->n, contact_run(t), contact_erode(t), NOISE_FLOOR_M, start, t->contact, &L);
+    int st = cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, start, t->contact, &L);
     if (st == -2) {
         snprintf(err, err_len, "%s: out of memory", name);
         return -1;
@@ -199,7 +183,7 @@ static int tracked_surface(const char *name, const cli_TrackOptions *opt, double
         turn(t->x_m, t->y_m, t->n, turn_by);
         turn(t->mark_x_m, t->mark_y_m, t->n, turn_by);
         turned += turn_by;
-        if (cli_surface_fit(t->x_m, t->y_m, t->n, contact_run(t), contact_erode(t), NOISE_FLOOR_M, start, t->contact,
+        if (cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, start, t->contact,
                             &L) != 0)
             return 1;
         turn_by = fabs(L.b) > 1e-12 ? atan(L.b) : 0.0;
@@ -338,7 +322,7 @@ static int single_track_as_mark(const char *name, const cli_RawData *raw, const 
     if (raw->track_count != 1 || t->has_mark || opt->centre || opt->mark) return 1;
     const double frame_noise = cli_track_frame_noise(t->x_m, t->y_m, t->n, work);
     cli_SurfaceLine L;
-    const int st = cli_surface_fit(t->x_m, t->y_m, t->n, contact_run(t), contact_erode(t), NOISE_FLOOR_M, 0.0, t->contact, &L);
+    const int st = cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, 0.0, t->contact, &L);
     if (st == 0 && !(L.sigma_m > MARK_SWING_RATIO * frame_noise)) return 1;
     for (long i = 0; i < t->n; ++i) t->mark_x_m[i] = t->x_m[i], t->mark_y_m[i] = t->y_m[i];
     cli_RimResult r;

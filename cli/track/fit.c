@@ -303,6 +303,8 @@ static int descend(fit_ctx *c, double *u, const cli_FitOptions *o, double *scrat
     gsl_vector_view uv = gsl_vector_view_array(u, p);
     int iters = 0;
     const int passes = o->loss == CLI_LOSS_LINEAR ? 1 : MAX_PASSES;
+    /* Each descent from unit weights: its minimum's weights are its own. */
+    for (long i = 0; i < c->nres; ++i) c->sw[i] = 1.0;
     for (int pass = 0; pass < passes; ++pass) {
         iters += lm_pass(c, w, &uv.vector, o->max_iter, pass == 0 ? give_up : INFINITY);
         if (pass + 1 < passes && reweight(c, u, o->loss, scratch) < 1e-3) break;
@@ -318,7 +320,11 @@ static int covariance_u(fit_ctx *c, const double *u, double s2, gsl_matrix *cu)
     gsl_matrix *J = gsl_matrix_alloc(n, p);
     if (!J) return -1;
     gsl_vector_const_view uv = gsl_vector_const_view_array(u, p);
-    df_eval(&uv.vector, c, J);
+    if (df_eval(&uv.vector, c, J) != GSL_SUCCESS) {
+        gsl_matrix_free(J);
+        gsl_matrix_set_all(cu, NAN);
+        return -1;
+    }
     gsl_multifit_nlinear_covar(J, 1e-10, cu);
     gsl_matrix_scale(cu, s2);
     gsl_matrix_free(J);
@@ -451,7 +457,16 @@ static double liftoff_x(fit_ctx *c, const double *u, double *t_s)
 {
     if (run_u(c, u) != 0 || c->sum.first_liftoff < 0) return NAN;
     if (t_s) *t_s = c->sum.first_liftoff_state.t_s;
-    return c->sum.first_liftoff_state.x_m - c->ts.shift_m;
+    /* In the video's frame, as the frames are. */
+    double v[CLI_FIT_MAX_PARAMS];
+    values_of(c, u, v);
+    jc_Setup s;
+    jc_State start;
+    cli_FitFrame fr;
+    apply(c, v, &s, &start, &fr);
+    double x = c->sum.first_liftoff_state.x_m - c->ts.shift_m, y = c->sum.first_liftoff_state.y_m;
+    cli_fit_to_video(&fr, &start, &x, &y, NULL, 1);
+    return x;
 }
 
 /* The predicted first lift-off and its standard error by the delta method. */
@@ -591,7 +606,8 @@ static void profile(fit_ctx *c, cli_FitParam p, const double *u_best, const cli_
 
 /* Clear hops (above the threshold by 3 of their sigma) of the video and
  * the model in the window; a clear one with no hop of the other over its
- * frames is a disagreement. Returns the text of the first, or NULL. */
+ * frames is a disagreement. 1 when they agree; 0 with the first
+ * disagreement's text in why. */
 static int hops_agree(const fit_ctx *c, const cli_FitResult *r, char *why, size_t len, int *n_video, int *n_model)
 {
     const cli_Track *t = c->t;
@@ -709,9 +725,11 @@ static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const 
     const double r = m.body.radius_m;
     const long first = c->res.first;
     if (o->start == CLI_START_SETUP) {
+        long f = first;
+        while (f + 1 < first + c->res.count && !isfinite(t->x_m[f])) f++;
         memset(&c->start0, 0, sizeof c->start0);
-        c->start0.t_s = t->t_s[first];
-        c->start0.x_m = t->x_m[first];
+        c->start0.t_s = t->t_s[f];
+        c->start0.x_m = t->x_m[f];
         c->start0.y_m = r;
         c->start0.theta_rad = setup->theta0_rad;
         c->start0.omega_radps = setup->omega0_radps;
@@ -731,7 +749,12 @@ static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const 
     for (int k = 0; k < 5; ++k) {
         if (k < 3 ? o->hold_start : o->hold_frame) continue;
         const cli_FitParam p = {extra[k], -1};
-        if (add_param(c->param, &n, p) > 0) out->start_value[n - 1] = 1;
+        const int added = add_param(c->param, &n, p);
+        if (added < 0) {
+            snprintf(err, err_len, "more than %d values to fit", CLI_FIT_MAX_PARAMS);
+            return -1;
+        }
+        if (added > 0) out->start_value[n - 1] = 1;
     }
     c->np = n;
     out->count = n;
@@ -795,7 +818,7 @@ static void rms(fit_ctx *c, const double *u, cli_FitResult *out)
             n_path++;
         }
         if (t->has_mark && isfinite(t->theta_rad[j])) {
-            th += pow(t->theta_rad[j] - (c->th[i] - c->res.mark_offset), 2);
+            th += pow(remainder(t->theta_rad[j] - (c->th[i] - c->res.mark_offset), 2.0 * CLI_TRACK_PI), 2);
             ++n_th;
         }
     }
@@ -827,6 +850,8 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
         nm = 1;
     }
     memcpy(u, mins[0].u, sizeof u);
+    /* The best minimum's own robust weights (the last descent left its own). */
+    if (o->loss != CLI_LOSS_LINEAR) out->iterations += descend(c, u, o, scratch, INFINITY);
     /* Scale: chi2/dof when the noise was measured. */
     double chi2 = cost(c, u);
     double dof = (double)(c->nres - c->np);

@@ -115,8 +115,9 @@ int cli_fit_parse_free(const char *text, const jc_Setup *s, cli_FitParam *out, i
                 snprintf(err, err_len, "--free '%s': '%.*s' is named twice", text, (int)(len > 40 ? 40 : len), p);
                 return -1;
             }
-        if (*count == CLI_FIT_MAX_PARAMS - 3) {
-            snprintf(err, err_len, "--free '%s': more than %d values", text, CLI_FIT_MAX_PARAMS - 3);
+        /* Room for the start's three values and the frame's two. */
+        if (*count == CLI_FIT_MAX_PARAMS - 5) {
+            snprintf(err, err_len, "--free '%s': more than %d values", text, CLI_FIT_MAX_PARAMS - 5);
             return -1;
         }
         out[(*count)++] = v;

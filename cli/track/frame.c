@@ -79,10 +79,8 @@ static long contact_frames_of(const cli_RawTrack *k, const cli_RawData *raw, dou
     if (x && y && w && keep) {
         for (long f = 0; f < n; ++f)
             if (!isnan(k->x_m[f])) x[m] = k->x_m[f], y[m] = k->y_m[f], m++;
-        const long run = dt > 0 ? (long)fmax(4.0, ceil(0.1 / dt - 1e-9)) : 4;
-        const long erode = dt > 0 ? (long)fmax(1.0, ceil(0.05 / dt - 1e-9)) : 1;
         cli_SurfaceLine L;
-        if (cli_surface_fit(x, y, m, run, erode, 1e-5, cli_track_frame_noise(x, y, m, w), keep, &L) == 0)
+        if (cli_surface_fit(x, y, m, dt > 0 ? 1.0 / dt : NAN, 1e-5, cli_track_frame_noise(x, y, m, w), keep, &L) == 0)
             contact = L.contact;
     }
     free(x), free(y), free(w), free(keep);
@@ -219,7 +217,8 @@ static void copy_report(const cli_RawData *raw, const cli_TrackOptions *opt, cli
 /* The frames of the primary track (the centre, or the mark without one),
  * in the frame turned by angle_rad from Tracker's axes (level axes) or in
  * Tracker's own (incline axes), x pointing where the primary track went.
- * -1 when the time jumps by more frames than a clip may hold. */
+ * -1 when the time jumps by more frames than a clip may hold, -2 for a
+ * position beyond CLI_TRACK_MAX_COORD_M. */
 static int convert(const cli_RawData *raw, const cli_RawTrack *P, const cli_RawTrack *K, long first, long last,
                     double dt, double angle_rad, cli_Track *out)
 {
@@ -251,6 +250,12 @@ static int convert(const cli_RawData *raw, const cli_RawTrack *P, const cli_RawT
             out->mark_x_m[n] = M->x_m[f] * xh[0] + M->y_m[f] * xh[1];
             out->mark_y_m[n] = M->x_m[f] * nh[0] + M->y_m[f] * nh[1];
         }
+        /* Positions a ramp could have: far ones would lose every digit in
+         * the sums that follow. */
+        if (!(fabs(out->x_m[n]) <= CLI_TRACK_MAX_COORD_M) && !isnan(out->x_m[n])) return -2;
+        if (!(fabs(out->y_m[n]) <= CLI_TRACK_MAX_COORD_M) && !isnan(out->y_m[n])) return -2;
+        if (!(fabs(out->mark_x_m[n]) <= CLI_TRACK_MAX_COORD_M) && !isnan(out->mark_x_m[n])) return -2;
+        if (!(fabs(out->mark_y_m[n]) <= CLI_TRACK_MAX_COORD_M) && !isnan(out->mark_y_m[n])) return -2;
         if (prev >= 0) {
             const double step = out->t_s[n] - out->t_s[n - 1];
             const double k = fmax(1.0, floor(step / dt + 0.5));
@@ -302,8 +307,13 @@ int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_Track
         out->centre_source = ambiguous ? CLI_CENTRE_NONE : out->centre_source;
         return 0;
     }
-    if (convert(raw, P, mi >= 0 && ci >= 0 ? &raw->tracks[mi] : NULL, first, last, dt, angle_rad, out) != 0) {
-        snprintf(err, err_len, "%s: the time jumps by more than %ld frames of %g s", name, CLI_TRACK_MAX_FRAMES, dt);
+    const int conv = convert(raw, P, mi >= 0 && ci >= 0 ? &raw->tracks[mi] : NULL, first, last, dt, angle_rad, out);
+    if (conv != 0) {
+        if (conv == -2)
+            snprintf(err, err_len, "%s: a position %g m or more from the origin (allowed: within %g m)", name,
+                     CLI_TRACK_MAX_COORD_M, CLI_TRACK_MAX_COORD_M);
+        else
+            snprintf(err, err_len, "%s: the time jumps by more than %ld frames of %g s", name, CLI_TRACK_MAX_FRAMES, dt);
         cli_track_free(out);
         return -1;
     }

@@ -15,13 +15,15 @@
 #define LAUNCH_MAX_S 1.5      /* a push longer than this is not looked for */
 #define LAUNCH_CHI2_DOF 3.0   /* the model follows the frames at the noise ... */
 #define LAUNCH_BETTER 0.85    /* ... and a frame later it would not follow them better */
+#define LAUNCH_CANDIDATES 45  /* start frames tried at most */
 
-/* The start fitted to the frames from k on; its chi2/dof (NaN on failure). */
-static double window_fit(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long k,
+/* The start fitted to the frames from k on (up to frame end, exclusive);
+ * its chi2/dof (NaN on failure). */
+static double window_fit(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long k, long end,
                          double mark_angle_rad, jc_State *start)
 {
     long last = k;
-    while (last + 1 < t->n && (t->t_s[last + 1] - t->t_s[k] <= LAUNCH_WINDOW_S || last + 1 - k < LAUNCH_MIN_FRAMES))
+    while (last + 1 < end && (t->t_s[last + 1] - t->t_s[k] <= LAUNCH_WINDOW_S || last + 1 - k < LAUNCH_MIN_FRAMES))
         last++;
     cli_FitOptions fo;
     cli_fit_options_default(&fo);
@@ -40,61 +42,67 @@ static double window_fit(const jc_Setup *setup, const cli_Track *t, const jc_Sim
     return r.chi2_dof;
 }
 
-int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long from, int scan,
-                     double mark_angle_rad, cli_Launch *out, char *err, size_t err_len)
+/* The next frame with a centre after k (end if none). */
+static long next_frame(const cli_Track *t, long k, long stride, long end)
+{
+    long j = k + stride;
+    while (j < end && !isfinite(t->x_m[j])) j++;
+    return j < end ? j : end;
+}
+
+int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long from, double to_s,
+                     int scan, double mark_angle_rad, cli_Launch *out, char *err, size_t err_len)
 {
     memset(out, 0, sizeof *out);
     out->chi2_dof_with = NAN;
     if (cli_track_require("the track", t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, err_len) != 0) return -1;
+    long end = t->n;
+    while (end > 0 && !isnan(to_s) && t->t_s[end - 1] > to_s) end--;
     long left = 0;
-    for (long i = from > 0 ? from : 0; i < t->n; ++i) left += isfinite(t->x_m[i]);
+    for (long i = from > 0 ? from : 0; i < end; ++i) left += isfinite(t->x_m[i]);
     if (left < 3) {
         snprintf(err, err_len, "fewer than 3 frames with a centre to start the model from");
         return -1;
     }
     /* The first frame with a centre. */
     while (!isfinite(t->x_m[from])) from++;
-    /* The first frame from which the window fits at the noise, and from
-     * which one frame later fits no better (a push's last frames still
-     * raise chi2/dof a little; noise moves it by about sqrt(2/dof)). */
+    /* Candidates a stride apart: at most LAUNCH_CANDIDATES over LAUNCH_MAX_S,
+     * however high the frame rate. */
+    const double fps = isfinite(t->frame_rate_hz) ? t->frame_rate_hz : 30.0;
+    const long stride = (long)fmax(1.0, ceil(fps * LAUNCH_MAX_S / LAUNCH_CANDIDATES));
+    /* The first candidate from which the window fits at the noise, and from
+     * which the next fits no better (a push's last frames still raise
+     * chi2/dof a little; noise moves it by about sqrt(2/dof)). */
     double best = INFINITY, q = NAN;
-    jc_State s;
-    long k = from;
-    for (; k + 3 <= t->n && t->t_s[k] - t->t_s[from] <= (scan ? LAUNCH_MAX_S : 0.0); ++k) {
-        if (!isfinite(t->x_m[k])) continue;
-        if (isnan(q)) q = window_fit(setup, t, o, k, mark_angle_rad, &s);
+    jc_State s, s_best;
+    for (long k = from; k + 3 <= end && t->t_s[k] - t->t_s[from] <= (scan ? LAUNCH_MAX_S : 0.0);) {
+        if (isnan(q)) q = window_fit(setup, t, o, k, end, mark_angle_rad, &s);
         if (k == from) out->chi2_dof_with = q;
-        if (q < best) {
-            best = q;
-            out->frame = k;
-            out->chi2_dof = q;
-            out->start = s;
-        }
-        if (!(q <= LAUNCH_CHI2_DOF) || !scan) {
+        if (q < best) best = q, out->frame = k, out->chi2_dof = q, s_best = s;
+        const long next = next_frame(t, k, stride, end);
+        if (!(q <= LAUNCH_CHI2_DOF) || !scan || next + 3 > end) {
             q = NAN;
+            k = next;
             continue;
         }
-        long next = k + 1;
-        while (next < t->n && !isfinite(t->x_m[next])) next++;
         jc_State s_next;
-        const double q_next = next + 3 <= t->n ? window_fit(setup, t, o, next, mark_angle_rad, &s_next) : NAN;
+        const double q_next = window_fit(setup, t, o, next, end, mark_angle_rad, &s_next);
         if (!(q_next < LAUNCH_BETTER * q)) {
-            out->frame = k, out->chi2_dof = q, out->start = s, best = q;
+            best = q, out->frame = k, out->chi2_dof = q, s_best = s;
             break;
         }
-        q = q_next, s = s_next;
-        k = next - 1;
+        q = q_next, s = s_next, k = next;
     }
     if (!isfinite(best)) {
         snprintf(err, err_len, "the model could not be started from the first frames");
         return -1;
     }
+    out->start = s_best;
     /* No frame fits: the clip is taken from its first frame (the fit's
      * verdict then says the model does not describe it). */
     if (best > LAUNCH_CHI2_DOF && out->frame != from) {
-        out->frame = from;
-        out->chi2_dof = window_fit(setup, t, o, from, mark_angle_rad, &s);
-        out->start = s;
+        const double q0 = window_fit(setup, t, o, from, end, mark_angle_rad, &s);
+        if (isfinite(q0)) out->frame = from, out->chi2_dof = q0, out->start = s;
     }
     out->pushed = out->frame - from;
     if (out->pushed == 0) out->chi2_dof_with = NAN;

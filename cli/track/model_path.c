@@ -144,6 +144,14 @@ static void at_time(const cli_TrackSim *s, const jc_Model *m, int *k, double t, 
         fly_on(m, s->count ? &p[s->count - 1].state : &s->run.final_state, t, x, y, th);
         return;
     }
+    if (s->count == 1 || t <= p[0].state.t_s) {
+        /* At or before the first sample (a start moved past a tiny swing):
+         * its state, carried by its velocities. */
+        const jc_State *a = &p[0].state;
+        const double d = t - a->t_s;
+        *x = a->x_m + a->vx_mps * d, *y = a->y_m + a->vy_mps * d, *th = a->theta_rad + a->omega_radps * d;
+        return;
+    }
     /* Times only grow: the search goes on from the last interval. */
     while (*k + 1 < s->count - 1 && p[*k + 1].state.t_s <= t) ++*k;
     const jc_State *a = &p[*k].state, *b = &p[*k + 1].state;
@@ -212,7 +220,11 @@ int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *st
      * k dt, so each frame has its own sample. Others (a table's jittered
      * times) are interpolated between samples a fraction of a frame apart. */
     const double grid = frame_grid(t_s, n, dt_min);
-    opt.sample_dt_s = grid > 0 ? grid : fmax(dt_min / SAMPLES_PER_FRAME, MIN_SAMPLE_DT_S);
+    /* At most SAMPLES_PER_FRAME a frame on average, whatever the gaps. */
+    const double span = fmax(t_s[n - 1], start->t_s) - start->t_s;
+    opt.sample_dt_s = grid > 0 ? grid
+                               : fmax(fmax(dt_min / SAMPLES_PER_FRAME, MIN_SAMPLE_DT_S),
+                                      span / (SAMPLES_PER_FRAME * (double)n + 1000.0));
     opt.t_max_s = fmax(t_s[n - 1], start->t_s) + 2.0 * opt.sample_dt_s;
     const double samples = (opt.t_max_s - start->t_s) / opt.sample_dt_s + 1000.0;
     opt.max_samples = samples < 1e8 ? (int)samples : 100000000;

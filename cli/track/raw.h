@@ -45,9 +45,9 @@ int cli_track_from_raw_data(const char *name, const cli_RawData *raw, const cli_
 void cli_track_list_names(const cli_RawData *raw, char *buf, size_t len);
 
 /* surface.c: the line y = a + b (x - x_mid) through the frames in contact
- * (runs of at least min_run frames within 3 sigma of it, less erode frames
- * at an end that meets a frame off it; sigma the scatter of
- * those frames about it, at least floor_m; the first cut at 3 start_m, the
+ * (runs within 3 sigma of it of at least 4 frames and 0.1 s at fps, less
+ * 0.05 s at an end that meets a frame off it; sigma the scatter of those
+ * frames about it, at least floor_m; the first cut at 3 start_m, the
  * frame-to-frame noise, when it is > 0). */
 typedef struct {
     double a, b, x_mid;
@@ -57,8 +57,8 @@ typedef struct {
     long contact;
 } cli_SurfaceLine;
 /* 0; -1 with fewer than 3 frames in contact (contact[] all 0); -2 out of memory. */
-int cli_surface_fit(const double *x, const double *y, long n, long min_run, long erode, double floor_m,
-                    double start_m, unsigned char *contact, cli_SurfaceLine *out);
+int cli_surface_fit(const double *x, const double *y, long n, double fps, double floor_m, double start_m,
+                    unsigned char *contact, cli_SurfaceLine *out);
 
 /* The noise of a path from its third differences (work: 2 n doubles):
  * those of a smooth path are small next to noise, whose third difference
@@ -93,8 +93,9 @@ typedef struct {
     long departures;                 /* runs of frames rolling does not explain */
     cli_TrackHop *dep;               /* the caller's array of n / 2 + 1 */
 } cli_RimResult;
-/* The frames a rolling fit takes at most (its Jacobian is dense: 2 n by n / 2). */
-#define CLI_RIM_MAX_FRAMES 3000
+/* The frames a rolling fit takes at most (its Jacobian is dense, 2 n by
+ * about n / 2: a second or two at 1000 frames). */
+#define CLI_RIM_MAX_FRAMES 1000
 /* 0, or -1 when the frames are too few or too many or the fit fails (out->ok 0). */
 int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out);
 

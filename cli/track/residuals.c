@@ -55,7 +55,9 @@ void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y
         const double tht = t->theta_rad[j];
         if (r->mark_radius > 0.0 && isfinite(tht)) {
             if (series) series[k] = 2;
-            f[k++] = (r->mark_radius * (tht - thm) + dx * cos(tht) - dy * sin(tht)) / s;
+            /* The angles' difference within half a turn: an unwrapping across
+             * dropped frames may have counted a turn more or less. */
+            f[k++] = (r->mark_radius * remainder(tht - thm, 2.0 * CLI_TRACK_PI) + dx * cos(tht) - dy * sin(tht)) / s;
         }
     }
 }

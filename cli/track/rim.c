@@ -26,10 +26,10 @@
  * sigma once in 25,000 frames). */
 #define OUTLIER_SIGMAS 4.5
 #define MIN_STRETCH 5            /* frames of rolling a stretch needs for its own x0 and spline */
-#define KNOT_FRAMES 2.0          /* spline knots every 3 frames ... */
+#define KNOT_FRAMES 2.0          /* spline knots every 2 frames ... */
 #define KNOT_MIN_S 0.06          /* ... and at least 60 ms apart */
 #define ROUNDS 12                /* fit, flag, split, fit again */
-#define FIT_ITER 200
+#define FIT_ITER 60
 #define FLIGHT_MIN_FRAMES 3      /* a flight's 6 values need 3 frames of the mark */
 #define FLIGHT_CHI2_DOF 4.0      /* a flight that fits this badly is not one */
 #define NP_GLOBAL 3              /* tilt, line height, a */
@@ -48,7 +48,7 @@ typedef struct {
 typedef struct {
     const double *t, *xd, *yd;
     long n;
-    double r, sigma;
+    double r, sigma, floor; /* floor: the noise is not taken below it */
     unsigned char *use;   /* frames the fit uses */
     double *w;            /* their weights' square roots (robust rounds; 1 in the last fit) */
     int *st_of;           /* stretch of each frame, -1 outside */
@@ -160,20 +160,15 @@ static double major_axis(const double *x, const double *y, long n, double *xm, d
     return 0.5 * atan2(2 * cxy, cxx - cyy);
 }
 
-static int cmp_double_q(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* θ at every frame by the most likely path over a grid of angles (Viterbi):
  * the mark's height across the line tells cos θ (a cos θ + h), and its step
  * along the line between two frames tells the step of θ while rolling
  * (r Δθ + a Δ sin θ). Rolling either way (a hoop rocking) and any spin up
- * to half a turn per frame are followed; the grid's spacing is a first
+ * to a quarter turn per frame are followed; the grid's spacing is a first
  * guess's accuracy, refined by the least squares after. */
 #define GRID_STEP 0.04
-#define VITERBI_CELLS 2e7 /* frames x grid angles at most (80 MB of back-pointers) */
+#define VITERBI_CELLS 5e6 /* frames x grid angles at most (20 to 40 MB of back-pointers) */
 static int viterbi(const double *u, const double *v, long n, double h, double a, double r, double noise,
                    double *theta)
 {
@@ -187,28 +182,30 @@ static int viterbi(const double *u, const double *v, long n, double h, double a,
     const long jump = (long)ceil(0.5 * CLI_TRACK_PI / step); /* steps of up to a quarter turn per frame */
     if (g < 8 || (double)g * (double)n > 2.0 * VITERBI_CELLS) return -1;
     double *cost = malloc((size_t)g * sizeof *cost), *next = malloc((size_t)g * sizeof *next);
+    double *sn = malloc((size_t)g * sizeof *sn), *cs = malloc((size_t)g * sizeof *cs);
     int *from = malloc((size_t)(n * g) * sizeof *from);
-    if (!cost || !next || !from) {
-        free(cost), free(next), free(from);
+    if (!cost || !next || !sn || !cs || !from) {
+        free(cost), free(next), free(sn), free(cs), free(from);
         return -1;
     }
     const double sv = noise, su = noise * 1.4142;
 #define ANGLE(k) (-reach + step * (double)(k))
+    for (long k = 0; k < g; ++k) sn[k] = sin(ANGLE(k)), cs[k] = cos(ANGLE(k));
     for (long k = 0; k < g; ++k) {
-        const double th = ANGLE(k), e = (v[0] - h - a * cos(th)) / sv;
+        const double e = (v[0] - h - a * cs[k]) / sv;
         /* The first frame's angle within a turn of 0: the path's turns count from it. */
-        cost[k] = fabs(th) <= CLI_TRACK_PI ? 0.5 * e * e : INFINITY;
+        cost[k] = fabs(ANGLE(k)) <= CLI_TRACK_PI ? 0.5 * e * e : INFINITY;
     }
     for (long i = 1; i < n; ++i) {
         const double du = u[i] - u[i - 1];
         for (long k = 0; k < g; ++k) {
-            const double th = ANGLE(k), e = (v[i] - h - a * cos(th)) / sv;
+            const double e = (v[i] - h - a * cs[k]) / sv;
             double best = INFINITY;
             int arg = -1;
             const long lo = k - jump > 0 ? k - jump : 0, hi = k + jump < g - 1 ? k + jump : g - 1;
             for (long q = lo; q <= hi; ++q) {
                 if (!(cost[q] < best)) continue;
-                const double tq = ANGLE(q), d = (du - r * (th - tq) - a * (sin(th) - sin(tq))) / su;
+                const double d = (du - r * step * (double)(k - q) - a * (sn[k] - sn[q])) / su;
                 const double c = cost[q] + 0.5 * d * d;
                 if (c < best) best = c, arg = (int)q;
             }
@@ -225,7 +222,7 @@ static int viterbi(const double *u, const double *v, long n, double h, double a,
         if (i > 0) k = from[i * g + k] >= 0 ? from[i * g + k] : k;
     }
 #undef ANGLE
-    free(cost), free(next), free(from);
+    free(cost), free(next), free(sn), free(cs), free(from);
     return 0;
 }
 
@@ -253,7 +250,7 @@ static void first_guess(const rim_ctx *c, double *tilt, double *h, double *a, do
             umin = fmin(umin, u[i]), umax = fmax(umax, u[i]);
             w[i] = v[i];
         }
-        qsort(w, (size_t)c->n, sizeof *w, cmp_double_q);
+        qsort(w, (size_t)c->n, sizeof *w, cmp_double);
         const double lo = w[(long)(0.02 * (double)(c->n - 1))], hi = w[(long)(0.98 * (double)(c->n - 1))];
         *h = 0.5 * (hi + lo);
         *a = fmin(fmax(0.5 * (hi - lo), 0.1 * c->r), 1.2 * c->r);
@@ -287,11 +284,9 @@ static int layout(rim_ctx *c)
         S->ncoef = (int)(nbreak < 2 ? 2 : nbreak) + 2;
         p += S->ncoef;
         gsl_bspline_workspace *w = gsl_bspline_alloc(4, (size_t)(S->ncoef - 2));
-        gsl_vector *Bk = gsl_vector_alloc(4);
         gsl_matrix *dB = gsl_matrix_alloc(4, 2);
-        if (!w || !Bk || !dB) {
+        if (!w || !dB) {
             if (w) gsl_bspline_free(w);
-            gsl_vector_free(Bk);
             gsl_matrix_free(dB);
             return -1;
         }
@@ -309,7 +304,6 @@ static int layout(rim_ctx *c)
             c->st_of[i] = s;
         }
         gsl_bspline_free(w);
-        gsl_vector_free(Bk);
         gsl_matrix_free(dB);
     }
     c->p = p;
@@ -398,14 +392,15 @@ static void normalize(const rim_ctx *c, double *p)
     }
 }
 
-/* The stretches: runs of frames the fit may use, at least MIN_STRETCH long. */
+/* The stretches: runs of frames outside departures (a single mis-click,
+ * bad 1, stays in its stretch, unused), at least MIN_STRETCH long. */
 static int split(rim_ctx *c, const unsigned char *bad)
 {
     c->nst = 0;
     long run = 0;
     for (long i = 0; i <= c->n; ++i) {
         if (i < c->n) c->st_of[i] = -1;
-        if (i < c->n && !bad[i]) {
+        if (i < c->n && bad[i] != 2) {
             run++;
             continue;
         }
@@ -442,7 +437,7 @@ static void flag(rim_ctx *c, const double *p, unsigned char *bad, double *noise,
     double s = c->sigma;
     if (m > 0) {
         qsort(work + c->n, (size_t)m, sizeof(double), cmp_double);
-        s = work[c->n + m / 4] / 0.7585;
+        s = fmax(work[c->n + m / 4] / 0.7585, c->floor);
     }
     double ss = 0;
     long kept = 0;
@@ -648,7 +643,7 @@ static void departures(const rim_ctx *c, const double *p, const unsigned char *b
                 const double w0 = b >= 0 ? out->omega[b] : 0.0, th0 = b >= 0 ? out->theta[b] : 0.0;
                 const double dt = c->t[i] - (b >= 0 ? c->t[b] : c->t[i]);
                 const double span = c->t[j] - c->t[i] + 2.0 * (c->t[c->n - 1] - c->t[0]) / (double)(c->n - 1);
-                double q0[6] = {b >= 0 ? out->cx[b] + c->r * w0 * dt : out->mark_x[i] - a * sin(0.0), c->r,
+                double q0[6] = {b >= 0 ? out->cx[b] + c->r * w0 * dt : out->mark_x[i], c->r,
                                 c->r * w0, -0.5 * gy * span, th0 + w0 * dt, w0};
                 q0[1] = c->r + q0[3] * 0.5 * span / 2.0;
                 double q[6];
@@ -678,6 +673,7 @@ int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out)
     memset(&c, 0, sizeof c);
     c.t = in->t_s, c.xd = in->x_m, c.yd = in->y_m, c.n = n, c.r = in->radius_m;
     c.sigma = in->sigma_floor_m > 0 ? in->sigma_floor_m : 1e-3;
+    c.floor = c.sigma;
     unsigned char *bad = calloc((size_t)n, 1), *before = malloc((size_t)n);
     double *theta = malloc((size_t)n * sizeof *theta), *work = malloc((size_t)(2 * n) * sizeof *work);
     double *p = NULL;

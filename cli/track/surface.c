@@ -12,6 +12,9 @@
  * between two flights make shorter runs, left out as they would tilt the
  * line where the body is mostly in the air. */
 #define SURFACE_CUT_SIGMAS 3.0
+#define CONTACT_RUN_FRAMES 4.0
+#define CONTACT_RUN_S 0.1
+#define CONTACT_ERODE_S 0.05
 #define RUN_ABOVE_SIGMAS 3.0
 #define SURFACE_PASSES 30
 #define MAD_TO_SIGMA 1.4826
@@ -20,7 +23,7 @@
 static double truncated_variance(double c)
 {
     if (!(c > 0.5)) c = 0.5;
-    const double phi = exp(-0.5 * c * c) / sqrt(2.0 * 3.14159265358979323846), mass = erf(c / sqrt(2.0));
+    const double phi = exp(-0.5 * c * c) / sqrt(2.0 * CLI_TRACK_PI), mass = erf(c / sqrt(2.0));
     return 1.0 - 2.0 * c * phi / mass;
 }
 
@@ -213,9 +216,14 @@ double cli_track_frame_noise(const double *x, const double *y, long n, double *w
     return m > 0 ? MAD_TO_SIGMA * quantile(work, m, 0.5) / sqrt(20.0) : 0.0;
 }
 
-int cli_surface_fit(const double *x, const double *y, long n, long min_run, long erode, double floor_m,
-                    double start_m, unsigned char *contact, cli_SurfaceLine *out)
+int cli_surface_fit(const double *x, const double *y, long n, double fps, double floor_m, double start_m,
+                    unsigned char *contact, cli_SurfaceLine *out)
 {
+    /* A run of contact: CONTACT_RUN_FRAMES and CONTACT_RUN_S at least; its
+     * ends next to a hop lose CONTACT_ERODE_S (a frame at least). */
+    const int rate = isfinite(fps) && fps > 0;
+    const long min_run = (long)(rate ? fmax(CONTACT_RUN_FRAMES, ceil(CONTACT_RUN_S * fps - 1e-9)) : CONTACT_RUN_FRAMES);
+    const long erode = rate ? (long)fmax(1.0, ceil(CONTACT_ERODE_S * fps - 1e-9)) : 1;
     memset(out, 0, sizeof *out);
     memset(contact, 0, (size_t)(n > 0 ? n : 0));
     if (n < 3) return -1;

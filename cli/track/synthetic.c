@@ -51,7 +51,7 @@ static void world(double alpha, double x, double y, double *X, double *Y)
  * start's spin at u = 0. */
 static void pushed(const jc_State *s0, double r, double hand_s, double u, jc_State *out)
 {
-    const double acc = s0->omega_radps / hand_s, v = u + hand_s; /* time since the push began */
+    const double acc = s0->omega_radps / hand_s, v = fmax(u + hand_s, 0.0); /* time since the push began */
     *out = *s0;
     out->t_s = u;
     out->omega_radps = acc * v;
@@ -82,21 +82,20 @@ int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_Ra
         jc_run_free(&run);
         return -1;
     }
-    const int both = o->tracks == CLI_SYNTH_BOTH, centre = o->tracks != CLI_SYNTH_MARK_ONLY;
+    const int centre = o->tracks != CLI_SYNTH_MARK_ONLY;
     const int mark = o->tracks != CLI_SYNTH_CENTRE_ONLY && o->mark_radius_m > 0.0;
     if (cli_raw_alloc(raw, run.sample_count + (long)hand_frames + 1, (centre ? 1 : 0) + (mark ? 1 : 0)) != 0) {
         jc_run_free(&run);
         snprintf(err, err_len, "out of memory for a synthetic track");
         return -1;
     }
-    (void)both;
     snprintf(raw->format, sizeof raw->format, "model");
     raw->px_per_m = raw->tape_length_m = NAN;
     raw->nominal_dt_s = 1.0 / o->fps_hz;
     int ci = centre ? 0 : -1, mi = mark ? (centre ? 1 : 0) : -1;
     if (ci >= 0) snprintf(raw->tracks[ci].name, CLI_TRACK_NAME_LEN, "centre");
     if (mi >= 0) snprintf(raw->tracks[mi].name, CLI_TRACK_NAME_LEN, "%s", centre ? "mark" : "LED");
-    const double mark_offset = m.body.cm_angle_rad + o->mark_angle_rad, s = o->sigma_m, r = m.body.radius_m;
+    const double mark_offset = cli_track_mark_offset_rad(&m, o->mark_angle_rad), s = o->sigma_m, r = m.body.radius_m;
     const double alpha = setup->incline_rad, t0 = -hand_frames / o->fps_hz;
     long n = 0;
     for (int i = -(int)hand_frames; i < run.sample_count; ++i) {

@@ -18,6 +18,7 @@
 #define CLI_TRACK_MAX_FRAMES 1000000L           /* frames of a clip, rows of a table */
 #define CLI_TRACK_MAX_TRACKS 16                 /* point-mass tracks, or track column groups */
 #define CLI_TRACK_NAME_LEN 64
+#define CLI_TRACK_MAX_COORD_M 1e6                /* a position farther from the origin is refused */
 #define CLI_TRACK_PI 3.14159265358979323846
 
 /* Where the centre's positions come from. */

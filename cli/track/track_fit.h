@@ -139,10 +139,12 @@ typedef struct {
  * the state the frames show (x0, ω0 and θ0 fitted to the next 0.4 s),
  * follows them at the noise: frames before it show a push (an acceleration
  * the model cannot produce). theta0 is searched around the circle when no
- * mark tells it. scan 0: `from` is the start (set by the user), only its
- * state is fitted. 0, or -1 with a message. */
-int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long from, int scan,
-                     double mark_angle_rad, cli_Launch *out, char *err, size_t err_len);
+ * mark tells it; frames after to_s (NaN: none) are not used; at most 45
+ * start frames are tried, a stride apart at high frame rates. scan 0:
+ * `from` is the start (set by the user), only its state is fitted. 0, or
+ * -1 with a message. */
+int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long from, double to_s,
+                     int scan, double mark_angle_rad, cli_Launch *out, char *err, size_t err_len);
 
 /* ---- compare.c: measured against simulated ---- */
 
