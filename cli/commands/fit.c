@@ -1,6 +1,7 @@
 /* jumpcyl fit: setup values and the start fitted to a tracked video by
  * nonlinear least squares from many start points, with what the video
  * determines and a verdict on the fit (docs/tracker.md, "Fit"). */
+#include "figures.h"
 #include "track_input.h"
 
 #include <math.h>
@@ -40,7 +41,8 @@ static void help(void)
          "                      kept in its physical range (0 <= mu_k <= mu_s <= 2, 0 <= e <= 1,\n"
          "                      offsets inside the rim). The start (x0, theta0, omega0 at the first\n"
          "                      frame of the free motion) is always fitted with them\n"
-         "  --hold-start        hold the start at the state the frames show instead\n"
+         "  --hold-start        hold the start instead, at the state fitted to the first 0.4 s with\n"
+         "                      the setup's values\n"
          "  --loss KIND         linear (default), huber or cauchy: robust, by reweighting\n"
          "  --max-iter N        trust-region iterations per descent (default 100)\n"
          "  --sigma LEN         the position noise (default: the track's, measured from the frames in\n"
@@ -149,15 +151,24 @@ static void name_of(const cli_FitResult *r, int k, char *buf, size_t len)
              !r->start_value[k] ? "" : kind == CLI_FIT_TILT || kind == CLI_FIT_SURFACE ? " (frame)" : " (start)");
 }
 
+/* " unit", or "" for a value without one. */
+static const char *spaced_unit(const cli_FitResult *r, int k, char *buf, size_t len)
+{
+    const char *u = cli_fit_param_unit(r->param[k]);
+    snprintf(buf, len, "%s%s", u[0] ? " " : "", u);
+    return buf;
+}
+
 static void print_values(const cli_FitResult *r)
 {
     printf("  %-20s %13s   %13s %s\n", "value", "initial", "fitted", "+- standard error");
     for (int k = 0; k < r->count; ++k) {
         char nm[64];
         name_of(r, k, nm, sizeof nm);
+        char u[16];
         printf("  %-20s %13.6g   %13.6g ", nm, r->initial[k], r->value[k]);
-        if (r->flag[k] == CLI_FIT_DETERMINED) printf("+- %.3g %s\n", r->sigma[k], cli_fit_param_unit(r->param[k]));
-        else printf("held (below) %s\n", cli_fit_param_unit(r->param[k]));
+        if (r->flag[k] == CLI_FIT_DETERMINED) printf("+- %.3g%s\n", r->sigma[k], spaced_unit(r, k, u, sizeof u));
+        else printf("held (below)\n");
     }
 }
 
@@ -179,7 +190,8 @@ static void print_held(const cli_FitResult *r)
             name_of(r, r->other[k], on, sizeof on);
             printf(" (%s, rho = %.4f)", on, r->rho[k]);
         }
-        printf("; held at %.6g %s\n", r->value[k], cli_fit_param_unit(r->param[k]));
+        char u[16];
+        printf("; held at %.6g%s\n", r->value[k], spaced_unit(r, k, u, sizeof u));
         if (r->profiled[k]) {
             printf("    chi2 along it (the others fitted):");
             double least = INFINITY;
@@ -194,8 +206,8 @@ static void print_held(const cli_FitResult *r)
             double lo = r->chi2 <= cut ? r->value[k] : INFINITY, hi = r->chi2 <= cut ? r->value[k] : -INFINITY;
             for (int i = 0; i < CLI_FIT_PROFILE_POINTS; ++i)
                 if (r->profile_chi2[k][i] <= cut) lo = fmin(lo, r->profile_x[k][i]), hi = fmax(hi, r->profile_x[k][i]);
-            printf("\n    chi2 within %.3g of its least from %.3g to %.3g %s (of those points and the held value)\n",
-                   cut - least, lo, hi, cli_fit_param_unit(r->param[k]));
+            printf("\n    chi2 within %.3g of its least from %.3g to %.3g%s (of those points and the held value)\n",
+                   cut - least, lo, hi, u);
         }
     }
 }
@@ -260,7 +272,14 @@ static void report(const char *file, const cli_Track *t, const cli_FitResult *r,
            fo->hold_frame ? "" : " and the video frame's tilt and surface", loss_names[fo->loss]);
     printf("Search: %d start points screened, %d descents, %d iterations in all\n", r->screened, r->descents,
            r->iterations);
-    printf("chi2/dof = %.4g (chi2 %.4g, dof %.0f)\n\n", r->chi2_dof, r->chi2, r->chi2 / r->chi2_dof);
+    printf("chi2/dof = %.4g (chi2 %.4g, dof %.0f)\n", r->chi2_dof, r->chi2, r->chi2 / r->chi2_dof);
+    const double deg = 180.0 / CLI_TRACK_PI;
+    if (t->incline_source == CLI_INCLINE_MEASURED && r->incline_sigma_rad > 0.0)
+        printf("Incline in the model: %.3f +- %.3f deg (the video's %.3f deg turned by the fitted tilt)\n\n",
+               r->setup.incline_rad * deg, r->incline_sigma_rad * deg, t->incline_rad * deg);
+    else
+        printf("Incline in the model: %.3f deg (%s)\n\n", r->setup.incline_rad * deg,
+               t->incline_source == CLI_INCLINE_MEASURED ? "measured" : "as given");
     print_values(r);
     print_held(r);
     print_minima(r);
@@ -325,6 +344,14 @@ static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, c
     return rc;
 }
 
+/* The fit's progress line on a terminal: its stage and descents begun. */
+static void show_progress(void *ctx, const char *stage, int descents)
+{
+    cli_Progress *p = ctx;
+    snprintf(p->label, sizeof p->label, "fit: %-50.50s descent %3d", stage, descents);
+    cli_progress_update(p, 0, 0);
+}
+
 int cmd_fit(int argc, char **argv)
 {
     fit_opts o;
@@ -354,7 +381,13 @@ int cmd_fit(int argc, char **argv)
         fo.from_s = t.t_s[launch.frame];
     }
     cli_FitResult r;
-    if (cli_track_fit(&setup, &t, &fo, &opts, &r, err, sizeof err) != 0) {
+    cli_Progress progress;
+    cli_progress_begin(&progress, "fit");
+    fo.progress = show_progress;
+    fo.progress_ctx = &progress;
+    const int fitted = cli_track_fit(&setup, &t, &fo, &opts, &r, err, sizeof err);
+    cli_progress_end(&progress);
+    if (fitted != 0) {
         cli_error("fit: %s", err);
         cli_track_free(&t);
         return EXIT_USAGE;

@@ -31,7 +31,8 @@ static void help(void)
          "an output that needs what the video does not tell.\n");
     cli_track_args_help(0);
     puts("  --csv FILE          per frame: t_s,x_m,y_m,height_m,centre_sigma_m,mark_x_m,mark_y_m,\n"
-         "                      theta_rad,omega_radps,contact,airborne (needs the centre)\n"
+         "                      theta_rad,omega_radps,contact,airborne (needs the centre;\n"
+         "                      height_m empty when the surface is not known)\n"
          "  --json FILE         the report and the frames as JSON\n"
          "  -h, --help          this help\n");
 }
@@ -204,12 +205,14 @@ static void csv_value(FILE *f, double v)
 
 static void write_csv(FILE *f, const cli_Track *t)
 {
+    /* Heights only above a known surface: empty where the frames lie on no line. */
+    const int surface = t->note[CLI_Q_SURFACE].ok;
     fputs("t_s,x_m,y_m,height_m,centre_sigma_m,mark_x_m,mark_y_m,theta_rad,omega_radps,contact,airborne\n", f);
     for (long i = 0; i < t->n; ++i) {
         fprintf(f, "%.10g", t->t_s[i]);
         csv_value(f, t->x_m[i]);
         csv_value(f, t->y_m[i]);
-        csv_value(f, t->y_m[i] - t->radius_m);
+        csv_value(f, surface ? t->y_m[i] - t->radius_m : NAN);
         csv_value(f, t->centre_sigma_m[i]);
         csv_value(f, t->mark_x_m[i]);
         csv_value(f, t->mark_y_m[i]);
@@ -248,13 +251,13 @@ static void print_wrapped(const char *label, const char *text)
 static void print_hops(const cli_Track *t)
 {
     if (t->hops == 0) return;
-    printf("\n%s:\n    #   from (s)     to (s)   x (cm)   peak above contact\n",
+    printf("\n%s:\n    #   from (s)     to (s)  from x (cm)   peak above contact\n",
            t->centre_source == CLI_CENTRE_FROM_MARK ? "Departures from rolling" : "Hops");
     for (long k = 0; k < t->hops; ++k) {
         const cli_TrackHop *h = &t->hop[k];
         printf("  %3ld %10.4f %10.4f ", k + 1, t->t_s[h->first], t->t_s[h->last]);
-        if (isfinite(t->x_m[h->first])) printf("%8.2f", t->x_m[h->first] * 100);
-        else printf("%8s", "?");
+        if (isfinite(t->x_m[h->first])) printf("%12.2f", t->x_m[h->first] * 100);
+        else printf("%12s", "?");
         if (!isnan(h->height_m))
             printf("   %.1f +- %.1f mm%s\n", h->height_m * 1e3, h->height_sigma_m * 1e3,
                    h->fitted_flight ? " (a flight fitted to the mark)" : "");

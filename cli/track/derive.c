@@ -127,32 +127,48 @@ static int decide_incline(const char *name, const cli_TrackOptions *opt, double 
     return 0;
 }
 
-static void surface_note(cli_Track *t, const cli_TrackOptions *opt, double measured, int level)
+/* Degrees as printed to places decimals: a value that rounds to zero is
+ * 0 (not -0.00). */
+static double shown_deg(double rad, int places)
+{
+    const double d = rad * DEG;
+    return fabs(d) < 0.5 * pow(10.0, -places) ? 0.0 : d;
+}
+
+static void surface_note(cli_Track *t, const cli_TrackOptions *opt, double measured_rad, int level)
 {
     const double sig = t->surface_tilt_sigma_rad * DEG;
+    /* A level line may also be a video whose axes were laid along an incline. */
+    const char *hint = opt->axes == CLI_TRACK_AXES_LEVEL && isnan(opt->incline_rad)
+                           ? "; if Tracker's axes lie along an incline, give --axes incline --incline DEG"
+                           : "";
+    /* A mark alone: the frames it rolls in (the body in contact). */
+    const char *in = t->centre_source == CLI_CENTRE_FROM_MARK ? "frames the mark rolls in" : "frames in contact";
+
     if (t->uphill)
-        note(t, CLI_Q_SURFACE, 1, "the body went up a slope: the frames in contact lie at %.2f +- %.2f deg against its "
-             "travel; noise %.2f mm; compare and fit read bodies that go downhill or along a floor",
-             measured * DEG, sig, t->sigma_m * 1e3);
-    else if (t->incline_source == CLI_INCLINE_MEASURED && measured < 0.0)
-        note(t, CLI_Q_SURFACE, 1, "incline 0 deg, a floor: the line through %ld frames in contact lies at %.3f +- %.3f "
-             "deg, level within its error; noise %.2f mm (their scatter about it)", t->contact_frames, measured * DEG,
-             sig, t->sigma_m * 1e3);
+        note(t, CLI_Q_SURFACE, 1, "the body went up a slope: the %s lie at %.2f +- %.2f deg against its travel; "
+             "noise %.2f mm; compare and fit read bodies that go downhill or along a floor", in,
+             shown_deg(measured_rad, 2), sig, t->sigma_m * 1e3);
+    else if (t->incline_source == CLI_INCLINE_MEASURED && measured_rad < 0.0)
+        note(t, CLI_Q_SURFACE, 1, "incline 0 deg, a floor: the line through %ld %s lies at %.3f +- %.3f deg, level "
+             "within its error; noise %.2f mm (their scatter about it)%s", t->contact_frames, in,
+             shown_deg(measured_rad, 3), sig, t->sigma_m * 1e3, hint);
     else if (t->incline_source == CLI_INCLINE_MEASURED)
-        note(t, CLI_Q_SURFACE, 1, "incline %.2f +- %.2f deg, measured: the line through %ld frames in contact; noise "
-             "%.2f mm (their scatter about it)", t->incline_rad * DEG, sig, t->contact_frames, t->sigma_m * 1e3);
+        note(t, CLI_Q_SURFACE, 1, "incline %.2f +- %.2f deg, measured: the line through %ld %s; noise %.2f mm (their "
+             "scatter about it)%s", shown_deg(t->incline_rad, 2), sig, t->contact_frames, in, t->sigma_m * 1e3,
+             t->incline_rad < 3.0 * t->surface_tilt_sigma_rad ? hint : "");
     else if (t->incline_source == CLI_INCLINE_UNKNOWN)
-        note(t, CLI_Q_SURFACE, 1, "the surface: the line through %ld frames in contact (%+.2f +- %.2f deg to the "
-             "axes); noise %.2f mm; the incline's angle is not known: the axes lie along it and none was given",
-             t->contact_frames, t->surface_tilt_rad * DEG, sig, t->sigma_m * 1e3);
+        note(t, CLI_Q_SURFACE, 1, "the surface: the line through %ld %s (%+.2f +- %.2f deg to the axes); noise "
+             "%.2f mm; the incline's angle is not known: the axes lie along it and none was given",
+             t->contact_frames, in, shown_deg(t->surface_tilt_rad, 2), sig, t->sigma_m * 1e3);
     else if (opt->axes == CLI_TRACK_AXES_LEVEL)
-        note(t, CLI_Q_SURFACE, 1, "incline %.2f deg as given; the %ld frames in contact lie at %.2f +- %.2f deg%s; "
-             "noise %.2f mm", t->incline_rad * DEG, t->contact_frames, measured * DEG, sig,
+        note(t, CLI_Q_SURFACE, 1, "incline %.2f deg as given; the %ld %s lie at %.2f +- %.2f deg%s; noise %.2f mm",
+             t->incline_rad * DEG, t->contact_frames, in, shown_deg(measured_rad, 2), sig,
              level ? " (agreed)" : ": the surface is their line, the model's incline the one given", t->sigma_m * 1e3);
     else
-        note(t, CLI_Q_SURFACE, 1, "incline %.2f deg as given (axes along it); the %ld frames in contact lie at "
-             "%+.2f +- %.2f deg to the axes%s; noise %.2f mm", t->incline_rad * DEG, t->contact_frames,
-             t->surface_tilt_rad * DEG, sig, level ? "" : ": the surface is their line", t->sigma_m * 1e3);
+        note(t, CLI_Q_SURFACE, 1, "incline %.2f deg as given (axes along it); the %ld %s lie at %+.2f +- %.2f deg to "
+             "the axes%s; noise %.2f mm", t->incline_rad * DEG, t->contact_frames, in,
+             shown_deg(t->surface_tilt_rad, 2), sig, level ? "" : ": the surface is their line", t->sigma_m * 1e3);
 }
 
 /* The surface under a tracked centre, the frame turned onto it, heights. 1
@@ -313,13 +329,17 @@ static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame
     return 0;
 }
 
-/* A single unnamed track that swings about its line by more than its
- * frame-to-frame noise may be a mark on the body: rolling is fitted to it
- * and kept if it fits (0, or -1 with a message); 1: a centre after all. */
+/* A single track not named as the centre that swings about its line by
+ * more than its frame-to-frame noise may be a mark on the body: rolling is
+ * fitted to it and kept if it fits (0, or -1 with a message); 1: a centre
+ * after all (*tried: rolling was fitted and did not explain it). */
 static int single_track_as_mark(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt,
-                                double frame_angle, cli_Track *t, double *work, char *err, size_t err_len)
+                                double frame_angle, cli_Track *t, double *work, int *tried, char *err,
+                                size_t err_len)
 {
-    if (raw->track_count != 1 || t->has_mark || opt->centre || opt->mark) return 1;
+    *tried = 0;
+    if (raw->track_count != 1 || t->has_mark || opt->centre || opt->mark || cli_track_named_centre(t->centre_name))
+        return 1;
     const double frame_noise = cli_track_frame_noise(t->x_m, t->y_m, t->n, work);
     cli_SurfaceLine L;
     const int st = cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, 0.0, t->contact, &L);
@@ -328,6 +348,7 @@ static int single_track_as_mark(const char *name, const cli_RawData *raw, const 
     cli_RimResult r;
     int rc = 1;
     const int fit = run_rim(opt, frame_angle, t, &r);
+    *tried = fit != -2;
     if (fit == -2) {
         snprintf(err, err_len, "%s: out of memory", name);
         rc = -1;
@@ -417,7 +438,8 @@ static void centre_note(cli_Track *t, const cli_RawData *raw)
         char names[400];
         cli_track_list_names(raw, names, sizeof names);
         note(t, CLI_Q_CENTRE, 0, "not known: which track is the centre? none is named like the axle (centre, "
-             "center, axle, axis, hub) and their motion does not tell; give --centre NAME (tracks: %s)", names);
+             "center, axle, axis, hub)%s; give --centre NAME (tracks: %s)",
+             raw->track_count == 2 ? " and their motion does not tell" : "", names);
     } else {
         note(t, CLI_Q_CENTRE, 0, "not known: the file has no frames with a position");
     }
@@ -442,11 +464,14 @@ int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOp
     }
     int rc = 0;
     if (t->centre_source == CLI_CENTRE_TRACKED && t->n >= 3) {
-        rc = single_track_as_mark(name, raw, opt, frame_angle, t, work, err, err_len);
+        int tried = 0;
+        rc = single_track_as_mark(name, raw, opt, frame_angle, t, work, &tried, err, err_len);
         if (rc == 1) rc = tracked_surface(name, opt, frame_angle, t, err, err_len);
         if (rc == 1) {
-            nothing_more(t, "the centre's frames lie on no line: fewer than 3 of them in runs of 4 within 3 "
-                            "sigma of one (is the track the axle?)");
+            nothing_more(t, tried ? "the track's frames lie on no line (fewer than 3 of them in runs of 4 within 3 "
+                                    "sigma of one), and rolling does not explain them as a mark on the body either"
+                                  : "the centre's frames lie on no line: fewer than 3 of them in runs of 4 within 3 "
+                                    "sigma of one (is the track the axle?)");
             rc = 0;
         }
     } else if (t->centre_source == CLI_CENTRE_FROM_MARK && t->n >= 3) {
@@ -497,8 +522,8 @@ int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOp
         t->centre_sigma_median_m = median(work, m);
         if (!t->note[CLI_Q_CENTRE].text[0]) centre_note(t, raw);
         if (t->centre_source != CLI_CENTRE_NONE && !isnan(t->sigma_m)) hop_note(t);
-        if (t->centre_source != CLI_CENTRE_NONE || !t->has_mark) theta_note(t);
-        else note(t, CLI_Q_THETA, 0, "not known: the mark's angle is seen from the centre, which is not known");
+        if (t->centre_source != CLI_CENTRE_NONE) theta_note(t);
+        else note(t, CLI_Q_THETA, 0, "not known: a mark's angle is seen from the centre, which is not known");
     }
     free(work);
     return rc;

@@ -48,6 +48,7 @@
 #define XTOL 1e-7                /* the descents' tests: step, gradient, chi2 */
 #define GTOL 1e-8
 #define FTOL 1e-9
+#define PROFILE_MAX_ITER 40      /* a profile point's descents: it shows where chi2 rises, not its last digit */
 #define GIVE_UP_EVERY 8          /* a descent checked every 8 iterations ... */
 #define GIVE_UP_FACTOR 2.0       /* ... stops when its chi2 is above twice the best's (plus n) */
 #define START_EDGE 0.02          /* start points at a bound begin this far inside (of the range) */
@@ -72,7 +73,16 @@ typedef struct {
     unsigned char *series;
     cli_TrackSim ts;
     jc_RunSummary sum;
+    const char *stage;         /* for the progress callback */
+    char stage_text[96];
+    int begun;                 /* descents begun in this stage */
 } fit_ctx;
+
+static void stage_begin(fit_ctx *c, const char *stage)
+{
+    c->stage = stage;
+    c->begun = 0;
+}
 
 static double sigmoid(double u) { return 1.0 / (1.0 + exp(-u)); }
 static double logit(double p) { return log(p / (1.0 - p)); }
@@ -294,6 +304,7 @@ static int lm_pass(fit_ctx *c, gsl_multifit_nlinear_workspace *w, gsl_vector *uv
 static int descend(fit_ctx *c, double *u, const cli_FitOptions *o, double *scratch, double give_up)
 {
     if (c->np == 0) return 0;
+    if (o->progress) o->progress(o->progress_ctx, c->stage, ++c->begun);
     const size_t n = (size_t)c->nres, p = (size_t)c->np;
     gsl_multifit_nlinear_parameters fp = gsl_multifit_nlinear_default_parameters();
     fp.trs = gsl_multifit_nlinear_trs_lm; /* no geodesic acceleration: its second derivative
@@ -590,15 +601,25 @@ static void profile(fit_ctx *c, cli_FitParam p, const double *u_best, const cli_
     c->mu_s_tied = 0; /* mu_s goes along its range, not with mu_k */
     cli_FitOptions q = *o;
     q.loss = CLI_LOSS_LINEAR;
+    q.max_iter = o->max_iter < PROFILE_MAX_ITER ? o->max_iter : PROFILE_MAX_ITER;
+    double v_prev[CLI_FIT_MAX_PARAMS];
     for (int k = 0; k < CLI_FIT_PROFILE_POINTS; ++k) {
         xs[k] = lo + (hi - lo) * (k + 0.5) / CLI_FIT_PROFILE_POINTS;
         cli_fit_set(&c->base, &c->start0, &c->frame0, p, xs[k]);
-        /* From the best values, in u as the ranges now are (mu_k's top is
-         * the held mu_s). */
-        double u[CLI_FIT_MAX_PARAMS];
+        /* From the best values, and from the previous point's (the
+         * profile followed along its branch); the lower of the two, in u
+         * as the ranges now are (mu_k's top is the held mu_s). */
+        double u[CLI_FIT_MAX_PARAMS], w[CLI_FIT_MAX_PARAMS];
         u_of(c, v, u, EDGE);
         descend(c, u, &q, scratch, INFINITY);
         chi2[k] = cost(c, u);
+        if (k > 0) {
+            u_of(c, v_prev, w, EDGE);
+            descend(c, w, &q, scratch, chi2[k]); /* given up once far above the first */
+            const double from_prev = cost(c, w);
+            if (from_prev < chi2[k]) chi2[k] = from_prev, memcpy(u, w, sizeof u);
+        }
+        values_of(c, u, v_prev);
         c->base = base, c->start0 = s0, c->frame0 = fr0;
     }
     c->mu_s_tied = tied;
@@ -843,6 +864,7 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
     for (int i = 0; i < c->np; ++i) v0[i] = cli_fit_get(&c->base, &c->start0, &c->frame0, c->param[i]);
     u_of(c, v0, u, START_EDGE);
     const int cap = (int)(sizeof mins / sizeof mins[0]);
+    stage_begin(c, o->no_refine ? "the start alone" : "descents from the best start points");
     int nm = search(c, u, o, mins, cap, out, scratch);
     if (nm == 0) {
         mins[0].chi2 = cost(c, u);
@@ -890,6 +912,7 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
      * the bound a limit they only approach) is put on it, the others fitted
      * again, when chi2 is lower there: the flags then hold it there. */
     int snapped = 0;
+    stage_begin(c, "values near a bound tried on it");
     for (int i = 0; i < c->np; ++i) {
         if (!bounded(c->param[i])) continue;
         const double q = sigmoid(u[i]);
@@ -912,6 +935,7 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
         values_covariance(c, u, &cv.matrix, cov, sigma, corr);
     }
     /* What the video does not determine: held, and the rest fitted again. */
+    stage_begin(c, "fitted again without the values not determined");
     for (int round = 0; round < FLAG_ROUNDS && c->np > 0; ++round) {
         cli_FitFlag flag[CLI_FIT_MAX_PARAMS];
         int other[CLI_FIT_MAX_PARAMS];
@@ -974,6 +998,11 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
     /* Profiles of the held values' chi2 along their ranges. */
     for (int k = 0; o->profiles && k < out->count; ++k) {
         if (out->flag[k] == CLI_FIT_DETERMINED) continue;
+        char name[48];
+        cli_fit_param_name(&c->base, out->param[k], name, sizeof name);
+        snprintf(c->stage_text, sizeof c->stage_text, "chi2 profile of %s (%d descents)", name,
+                 2 * CLI_FIT_PROFILE_POINTS - 1);
+        stage_begin(c, c->stage_text);
         profile(c, out->param[k], u, o, out->profile_x[k], out->profile_chi2[k], scratch);
         out->profiled[k] = isfinite(out->profile_x[k][0]);
     }
@@ -1016,7 +1045,7 @@ int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOption
     int have_refined = 0;
     long first, count;
     cli_track_window(t, o->from_s, o->to_s, &first, &count);
-    if (!o->no_refine && !o->hold_start && o->start == CLI_START_TRACKED && count > 0) {
+    if (!o->no_refine && o->start == CLI_START_TRACKED && count > 0) {
         long last = first;
         while (last + 1 < first + count &&
                (t->t_s[last + 1] - t->t_s[first] <= REFINE_S || last + 1 - first < REFINE_MIN_FRAMES))
@@ -1034,6 +1063,8 @@ int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOption
             q.sigma_m = o->sigma_m;
             q.seed = o->seed;
             q.mark_angle_rad = o->mark_angle_rad;
+            q.progress = o->progress;
+            q.progress_ctx = o->progress_ctx;
             cli_FitResult sub;
             char sub_err[256];
             if (cli_track_fit(setup, t, &q, sim, &sub, sub_err, sizeof sub_err) == 0) {

@@ -41,6 +41,11 @@ static int named_like(const char *name, const char *const *words, int nwords)
     return 0;
 }
 
+int cli_track_named_centre(const char *name)
+{
+    return named_like(name, centre_words, N_CENTRE_WORDS);
+}
+
 /* The one track whose name holds one of words, other than skip; -1 if none or several. */
 static int find_by_words(const cli_RawData *raw, const char *const *words, int nwords, int skip)
 {

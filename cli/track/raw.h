@@ -43,6 +43,8 @@ int cli_track_from_raw_data(const char *name, const cli_RawData *raw, const cli_
                             char *err, size_t err_len);
 /* The tracks' names, quoted and comma-separated, for messages. */
 void cli_track_list_names(const cli_RawData *raw, char *buf, size_t len);
+/* 1 when a track's name says it is the centre (centre, center, axle, axis, hub). */
+int cli_track_named_centre(const char *name);
 
 /* surface.c: the line y = a + b (x - x_mid) through the frames in contact
  * (runs within 3 sigma of it of at least 4 frames and 0.1 s at fps, less

@@ -142,7 +142,8 @@ typedef struct {
     const char *centre;     /* the centre's track name; NULL: the track named like
                                centre, center, axle, axis, hub, or told by its motion */
     const char *mark;       /* the mark's track name; NULL: the track named like
-                               mass, mark, rod, led, rim, or told by its motion; "" for none */
+                               mark, rod, dot, off, led, rim, light, lamp, spot, or told by
+                               its motion; "" for none */
     double incline_rad;     /* α given, [0, π/2); NaN: measure it from the video */
     double radius_m;        /* rim radius r, > 0 */
     double gravity_mps2;    /* g, for flights fitted to a mark's frames */

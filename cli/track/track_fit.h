@@ -241,7 +241,8 @@ int cli_fit_parse_loss(const char *text, cli_FitLoss *out);
 typedef struct {
     cli_FitParam free[CLI_FIT_MAX_PARAMS]; /* the values asked for */
     int free_count;
-    int hold_start;        /* 0: x0, θ0 and ω0 are fitted with them (the start is never exact) */
+    int hold_start;        /* 0: x0, θ0 and ω0 are fitted with them (the start is never exact);
+                              1: held at the start refined on the first 0.4 s */
     int hold_frame;        /* 0: the frame's tilt and surface are fitted with them (with a
                               measured incline, the incline with the tilt) */
     cli_FitLoss loss;
@@ -254,6 +255,11 @@ typedef struct {
     uint64_t seed;         /* the screening's Latin hypercube (Philox) */
     double mark_angle_rad; /* the mark's angle on the body, when not fitted */
     int profiles;          /* 1: a chi2 profile for each value not determined */
+    /* Called as each descent begins (NULL: not): what the fit is doing and
+     * how many descents it has begun in that stage, for a progress line
+     * (the fit prints nothing itself). */
+    void (*progress)(void *ctx, const char *stage, int descents);
+    void *progress_ctx;
     int no_refine;         /* 0: the start's values are first fitted alone to the window's first
                               0.4 s (a start estimated from a few frames is far off, and every
                               descent would begin from it); 1: not (a refinement itself) */

@@ -389,14 +389,24 @@ static int test_examples(void)
     /* The ring never slides: mu_k does not change the residuals, and is held. */
     const char *c[] = {"fit", "--track", led, "--preset", "hoop", "--part", "hoop:mass=0.1", "--part",
                        "point:mass=0.1,offset=0.1", "--mu", "0.8", "--free", "mu_k", NULL};
-    const char *const *runs[] = {a, b, c};
-    const char *names[3][2] = {{"mu_k", "restitution"}, {"mu_k", "restitution"}, {NULL, NULL}};
-    const double known[3][2] = {{0.4, 0.3}, {0.5, 0.3}, {0, 0}};
+    /* The start held at its fit to the first 0.4 s. */
+    const char *d[] = {"fit", "--track", incline, "--free", "mu_k,restitution", "--hold-start", NULL};
+    const char *const *runs[] = {a, b, c, d};
+    const char *names[4][2] = {{"mu_k", "restitution"}, {"mu_k", "restitution"}, {NULL, NULL}, {"mu_k", "restitution"}};
+    const double known[4][2] = {{0.4, 0.3}, {0.5, 0.3}, {0, 0}, {0.4, 0.3}};
     int bad = 0;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 4; ++k) {
         cli_result r = cli_run(runs[k]);
         int ok = r.status == 0 && r.out && strstr(r.out, "the model describes this video");
         if (k == 2) ok = ok && strstr(r.out, "mu_k: the residuals do not change with it");
+        if (k == 0) {
+            /* The model's incline: the paper's 30 deg within 3 of its sigma. */
+            const char *line = r.out ? strstr(r.out, "Incline in the model: ") : NULL;
+            double v = NAN, sd = NAN;
+            const int found = line && sscanf(line, "Incline in the model: %lf +- %lf", &v, &sd) == 2;
+            printf("example 0: incline in the model %.4f +- %.4f deg (true 30)\n", v, sd);
+            ok = ok && found && fabs(v - 30.0) <= 3.0 * sd;
+        }
         for (int j = 0; j < 2 && names[k][j]; ++j) {
             double v = NAN, s = NAN;
             const int found = reported(r.out, names[k][j], &v, &s) == 0;

@@ -203,9 +203,77 @@ static int test_incline(void)
     bad += expect(unknown, 0, "the incline's angle is not known", NULL);
     const char *cmp_unknown[] = {"compare", "--track", along, "--axes", "incline", NULL};
     bad += expect(cmp_unknown, 2, "give --incline ANGLE", NULL);
+    /* Read with level axes it is a floor, which the report says may be an
+     * incline filmed along. */
+    const char *as_floor[] = {"track", along, NULL};
+    bad += expect(as_floor, 0, "if Tracker's axes lie along an incline, give --axes incline --incline DEG", NULL);
     unlink(level);
     unlink(along);
     ENSURE_MSG(bad == 0, "%d of the incline cases", bad);
+    return 0;
+}
+
+/* A rim mark's table with its one track named name. */
+static int write_mark_named(const char *path, const char *name)
+{
+    const jc_Setup s = ring();
+    const cli_SynthOptions o = camera(30, 1.5e-3, CLI_SYNTH_MARK_ONLY, base_seed * 100 + 31, 0.1);
+    cli_RawData raw;
+    char err[256];
+    if (cli_track_synth_raw(&s, &o, &raw, err, sizeof err) != 0) return -1;
+    snprintf(raw.tracks[0].name, CLI_TRACK_NAME_LEN, "%s", name);
+    FILE *f = fopen(path, "w");
+    const int rc = f ? cli_track_write_table(f, &raw) : -1;
+    cli_raw_free(&raw);
+    return f && fclose(f) == 0 ? rc : -1;
+}
+
+/* The CSV's height_m (its 4th column) empty on every row; -1 for a file
+ * that cannot be read or has no rows. */
+static int heights_empty(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return -1;
+    char line[512];
+    long rows = 0, filled = 0;
+    if (!fgets(line, sizeof line, f)) rows = -1;
+    while (rows >= 0 && fgets(line, sizeof line, f)) {
+        const char *p = line;
+        for (int comma = 0; comma < 3 && p; ++comma) p = strchr(p, ',') ? strchr(p, ',') + 1 : NULL;
+        rows++;
+        filled += p && *p != ',';
+    }
+    fclose(f);
+    if (rows <= 0) return -1;
+    return filled == 0;
+}
+
+/* A single track named like the centre is the centre, however it moves:
+ * a rim mark named 'axle' is read as a centre whose frames lie on no line,
+ * and its CSV has no heights (there is no surface to measure them from);
+ * the same track named 'LED' is a mark, the centre recovered. */
+static int test_named_centre_kept(void)
+{
+    char axle[256], led[256], csv[256];
+    path_of(axle, sizeof axle, "axle.txt");
+    path_of(led, sizeof led, "led.txt");
+    path_of(csv, sizeof csv, "axle.csv");
+    ENSURE(write_mark_named(axle, "axle") == 0);
+    ENSURE(write_mark_named(led, "LED") == 0);
+    int bad = 0;
+    const char *as_centre[] = {"track", axle, "--preset", "hoop", NULL};
+    bad += expect(as_centre, 0, "tracked ('axle'", NULL);
+    bad += expect(as_centre, 0, "lie on no line", NULL);
+    const char *with_csv[] = {"track", axle, "--preset", "hoop", "--csv", csv, NULL};
+    bad += expect(with_csv, 0, "CSV: 46 frames written", NULL);
+    const int empty = heights_empty(csv);
+    ENSURE_MSG(empty == 1, "height_m in %s: %s", csv, empty < 0 ? "no rows" : "written without a surface");
+    const char *as_mark[] = {"track", led, "--preset", "hoop", NULL};
+    bad += expect(as_mark, 0, "recovered from the mark 'LED'", NULL);
+    unlink(axle);
+    unlink(led);
+    unlink(csv);
+    ENSURE_MSG(bad == 0, "%d of the named-centre cases", bad);
     return 0;
 }
 
@@ -236,7 +304,9 @@ static int test_every_file_reports(void)
     ENSURE(write_table(slide, &hoop, &o) == 0);
     int bad = 0;
     const char *a[] = {"track", three, NULL};
-    bad += expect(a, 0, "which track is the centre?", NULL);
+    bad += expect(a, 0, "which track is the centre? none is named like the axle (centre, center, axle, axis, hub); "
+                        "give --centre NAME", NULL);
+    bad += expect(a, 0, "theta: not known: a mark's angle is seen from the centre, which is not known", NULL);
     const char *a_csv[] = {"track", three, "--csv", csv, NULL};
     bad += expect(a_csv, 2, "--csv needs the centre's path", csv);
     const char *b[] = {"track", two, NULL};
@@ -292,6 +362,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_rim_mark_recovery);
     RUN_TEST(test_no_jump_no_hops);
     RUN_TEST(test_incline);
+    RUN_TEST(test_named_centre_kept);
     RUN_TEST(test_every_file_reports);
     RUN_TEST(test_tracks_told_by_motion);
     rmdir(scratch);
