@@ -5,6 +5,7 @@
  * quantity, a note saying how well it is known or why it is not. */
 #include "raw.h"
 
+#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -31,17 +32,9 @@ static void note(cli_Track *t, cli_TrackQuantity q, int ok, const char *fmt, ...
     t->note[q].ok = ok;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static double median(double *v, long n)
 {
-    if (n <= 0) return NAN;
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    return n > 0 ? gsl_stats_median(v, 1, (size_t)n) : NAN;
 }
 
 static void turn(double *x, double *y, long n, double angle)

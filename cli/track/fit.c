@@ -25,6 +25,7 @@
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
+#include <gsl/gsl_sort_double.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -247,19 +248,13 @@ static double cost(fit_ctx *c, const double *u)
     return s;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Robust weights from the residuals at u, on a scale from their median
  * absolute value. Returns the largest change of a weight. */
 static double reweight(fit_ctx *c, const double *u, cli_FitLoss loss, double *scratch)
 {
     if (run_u(c, u) != 0) return 0.0;
     for (long i = 0; i < c->nres; ++i) scratch[i] = fabs(c->f[i]);
-    qsort(scratch, (size_t)c->nres, sizeof *scratch, cmp_double);
+    gsl_sort(scratch, 1, (size_t)c->nres);
     const double s = fmax(1.4826 * scratch[c->nres / 2], 1e-12);
     double change = 0.0;
     for (long i = 0; i < c->nres; ++i) {

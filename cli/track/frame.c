@@ -5,6 +5,7 @@
 #include "raw.h"
 
 #include <ctype.h>
+#include <gsl/gsl_sort_double.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -156,12 +157,6 @@ static int pick_tracks(const char *name, const cli_RawData *raw, const cli_Track
     return 0;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* The frame duration: the clip's, or the median step of the table's times
  * refined over the whole span (each step a whole number of frames, so that
  * jitter averages out). NaN when the rows have no time step. */
@@ -172,7 +167,7 @@ static double frame_step(const cli_RawData *raw)
     double *d = malloc((size_t)(raw->frames - 1) * sizeof *d);
     if (!d) return NAN;
     for (long f = 1; f < raw->frames; ++f) d[f - 1] = raw->t_s[f] - raw->t_s[f - 1];
-    qsort(d, (size_t)(raw->frames - 1), sizeof *d, cmp_double);
+    gsl_sort(d, 1, (size_t)(raw->frames - 1));
     const double step = d[(raw->frames - 1) / 2];
     free(d);
     if (!(step > 0)) return NAN;

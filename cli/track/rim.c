@@ -16,6 +16,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit.h>
 #include <gsl/gsl_multifit_nlinear.h>
+#include <gsl/gsl_sort_double.h>
+#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -133,17 +135,9 @@ static int df_eval(const gsl_vector *pv, void *ctx, gsl_matrix *J)
     return GSL_SUCCESS;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static double median(double *v, long n)
 {
-    if (n <= 0) return NAN;
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    return n > 0 ? gsl_stats_median(v, 1, (size_t)n) : NAN;
 }
 
 /* The major axis of the points' spread: the rolling line's direction. */
@@ -250,7 +244,7 @@ static void first_guess(const rim_ctx *c, double *tilt, double *h, double *a, do
             umin = fmin(umin, u[i]), umax = fmax(umax, u[i]);
             w[i] = v[i];
         }
-        qsort(w, (size_t)c->n, sizeof *w, cmp_double);
+        gsl_sort(w, 1, (size_t)c->n);
         const double lo = w[(long)(0.02 * (double)(c->n - 1))], hi = w[(long)(0.98 * (double)(c->n - 1))];
         *h = 0.5 * (hi + lo);
         *a = fmin(fmax(0.5 * (hi - lo), 0.1 * c->r), 1.2 * c->r);
@@ -436,7 +430,7 @@ static void flag(rim_ctx *c, const double *p, unsigned char *bad, double *noise,
      * of the frames for the others to be told from it. */
     double s = c->sigma;
     if (m > 0) {
-        qsort(work + c->n, (size_t)m, sizeof(double), cmp_double);
+        gsl_sort(work + c->n, 1, (size_t)m);
         s = fmax(work[c->n + m / 4] / 0.7585, c->floor);
     }
     double ss = 0;

@@ -3,6 +3,7 @@
  * points measured as their scatter about it. */
 #include "raw.h"
 
+#include <gsl/gsl_sort_double.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,17 +28,11 @@ static double truncated_variance(double c)
     return 1.0 - 2.0 * c * phi / mass;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* The q-quantile of v[0..n) (reordered); NaN for n = 0. */
 static double quantile(double *v, long n, double q)
 {
     if (n <= 0) return NAN;
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    gsl_sort(v, 1, (size_t)n);
     const long k = (long)floor(q * (double)(n - 1) + 0.5);
     return v[k < 0 ? 0 : k >= n ? n - 1 : k];
 }

@@ -11,6 +11,7 @@
  *  - bad option values: one line, exit 2, no file. */
 #include "track_fit.h"
 #include "raw.h"
+#include "../track/synth_table.h"
 #include "../cli_run.h"
 #include "../test.h"
 
@@ -186,24 +187,6 @@ static int test_undetermined_flagged(void)
     return 0;
 }
 
-/* A track file the tool reads: the synthetic video as Tracker's table. */
-static int write_table(const char *path, const jc_Setup *s, const cli_SynthOptions *so)
-{
-    cli_RawData raw;
-    char err[256];
-    if (cli_track_synth_raw(s, so, &raw, err, sizeof err) != 0) return -1;
-    FILE *f = fopen(path, "w");
-    const int rc = f ? cli_track_write_table(f, &raw) : -1;
-    cli_raw_free(&raw);
-    return f && fclose(f) == 0 ? rc : -1;
-}
-
-static int exists(const char *p)
-{
-    struct stat st;
-    return stat(p, &st) == 0;
-}
-
 /* The paper's cylinder with its rod 1 cm too far in (4.5 cm): the fit of
  * friction, restitution and the start cannot follow the video, and says
  * so (exit 3; 0 with --allow-misfit). Freeing the rod's offset finds the
@@ -214,7 +197,7 @@ static int test_wrong_body(void)
     ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     const jc_Setup s = truth();
     const cli_SynthOptions so = synth(1e-3, 60.0, 3u);
-    ENSURE(write_table(track, &s, &so) == 0);
+    ENSURE(synth_table_write(track, &s, &so, NULL) == 0);
     const char *wrong[] = {"fit", "--track", track, "--rod-offset", "4.5cm", "--mu-k", "0.4", "--free", "mu_k,restitution", NULL};
     cli_result r = cli_run(wrong);
     const int misfit = r.status == 3 && r.out && strstr(r.out, "the model does not describe this video") &&
@@ -280,7 +263,7 @@ static int test_bad_options(void)
     snprintf(fig, sizeof fig, "%s/out.png", dir);
     const jc_Setup s = truth();
     const cli_SynthOptions so = synth(1e-3, 60.0, 1u);
-    ENSURE(write_table(track, &s, &so) == 0);
+    ENSURE(synth_table_write(track, &s, &so, NULL) == 0);
     const char *cases[][14] = {
         {"fit", "--track", track, "--output", fig, NULL},                                            /* no --free */
         {"fit", "--track", track, "--free", "mu_q", "--output", fig, NULL},                          /* unknown value */
@@ -308,11 +291,11 @@ static int test_bad_options(void)
     int bad = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         cli_result r = cli_run(cases[i]);
-        if (r.status != 2 || !cli_one_line(r.err) || exists(fig)) {
+        if (r.status != 2 || !cli_one_line(r.err) || file_exists(fig)) {
             fprintf(stderr, "case %zu (%s %s %s %s %s ...): status %d, stderr '%s', figure %s\n", i, cases[i][0],
                     cases[i][1], cases[i][2] ? cases[i][2] : "", cases[i][3] ? cases[i][3] : "",
                     cases[i][3] && cases[i][4] ? cases[i][4] : "", r.status, r.err ? r.err : "",
-                    exists(fig) ? "written" : "absent");
+                    file_exists(fig) ? "written" : "absent");
             bad = 1;
         }
         /* A wrong incline is refused naming the video's. */
@@ -325,7 +308,7 @@ static int test_bad_options(void)
     /* The same track and options that work: exit 0, the figure written. */
     const char *good[] = {"fit", "--track", track, "--mu-k", "0.35", "--free", "mu_k,restitution", "--output", fig, NULL};
     cli_result r = cli_run(good);
-    const int good_ok = r.status == 0 && exists(fig) && strstr(r.out, "chi2/dof") &&
+    const int good_ok = r.status == 0 && file_exists(fig) && strstr(r.out, "chi2/dof") &&
                         strstr(r.out, "Predicted first lift-off") && strstr(r.out, "the model describes this video");
     if (!good_ok) fprintf(stderr, "good fit: status %d, stderr '%s'\n", r.status, r.err ? r.err : "");
     cli_result_free(&r);
@@ -345,7 +328,7 @@ static int test_noise_free_compare_tool(void)
     ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     const jc_Setup s = truth();
     const cli_SynthOptions so = synth(0.0, 60.0, 1u);
-    ENSURE(write_table(track, &s, &so) == 0);
+    ENSURE(synth_table_write(track, &s, &so, NULL) == 0);
     const char *args[] = {"compare", "--track", track, "--mu-k", "0.4", "--from-setup-start", NULL};
     cli_result r = cli_run(args);
     remove(track);

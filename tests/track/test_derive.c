@@ -15,6 +15,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "track_fit.h"
 #include "raw.h"
+#include "synth_table.h"
 #include "../cli_run.h"
 #include "../test.h"
 
@@ -125,23 +126,6 @@ static int test_no_jump_no_hops(void)
 
 static void path_of(char *buf, size_t len, const char *name) { snprintf(buf, len, "%s/%s", scratch, name); }
 
-static int write_table(const char *path, const jc_Setup *s, const cli_SynthOptions *o)
-{
-    cli_RawData raw;
-    char err[256];
-    if (cli_track_synth_raw(s, o, &raw, err, sizeof err) != 0) return -1;
-    FILE *f = fopen(path, "w");
-    const int rc = f ? cli_track_write_table(f, &raw) : -1;
-    cli_raw_free(&raw);
-    return f && fclose(f) == 0 ? rc : -1;
-}
-
-static int exists(const char *p)
-{
-    struct stat st;
-    return stat(p, &st) == 0;
-}
-
 /* Runs of spaces and line breaks as one space: the report wraps its notes. */
 static void squeeze(char *s)
 {
@@ -163,7 +147,7 @@ static int expect(const char *const *args, int want, const char *text, const cha
     if (r.out) squeeze(r.out);
     const char *where = want == 0 ? r.out : r.err;
     const int ok = r.status == want && where && (!text || strstr(where, text)) && (want == 0 || cli_one_line(r.err)) &&
-                   (!out || want == 0 || !exists(out));
+                   (!out || want == 0 || !file_exists(out));
     if (!ok)
         fprintf(stderr, "%s %s ...: status %d (want %d), wanted '%s'\nstdout: %s\nstderr: %s\n", args[0], args[1],
                 r.status, want, text ? text : "", r.out ? r.out : "", r.err ? r.err : "");
@@ -183,7 +167,7 @@ static int test_incline(void)
     jc_Setup s = jc_paper_setup();
     s.mu_kinetic = 0.4;
     const cli_SynthOptions o = camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 20, 0.055);
-    ENSURE(write_table(level, &s, &o) == 0);
+    ENSURE(synth_table_write(level, &s, &o, NULL) == 0);
     int bad = 0;
     const char *measured[] = {"track", level, NULL};
     bad += expect(measured, 0, "measured: the line through", NULL);
@@ -198,7 +182,7 @@ static int test_incline(void)
      * a ramp whose angle the axes hide: read with --axes incline. */
     const jc_Setup run = ring();
     const cli_SynthOptions oa = camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 21, 0.055);
-    ENSURE(write_table(along, &run, &oa) == 0);
+    ENSURE(synth_table_write(along, &run, &oa, NULL) == 0);
     const char *unknown[] = {"track", along, "--axes", "incline", NULL};
     bad += expect(unknown, 0, "the incline's angle is not known", NULL);
     const char *cmp_unknown[] = {"compare", "--track", along, "--axes", "incline", NULL};
@@ -218,14 +202,7 @@ static int write_mark_named(const char *path, const char *name)
 {
     const jc_Setup s = ring();
     const cli_SynthOptions o = camera(30, 1.5e-3, CLI_SYNTH_MARK_ONLY, base_seed * 100 + 31, 0.1);
-    cli_RawData raw;
-    char err[256];
-    if (cli_track_synth_raw(&s, &o, &raw, err, sizeof err) != 0) return -1;
-    snprintf(raw.tracks[0].name, CLI_TRACK_NAME_LEN, "%s", name);
-    FILE *f = fopen(path, "w");
-    const int rc = f ? cli_track_write_table(f, &raw) : -1;
-    cli_raw_free(&raw);
-    return f && fclose(f) == 0 ? rc : -1;
+    return synth_table_write(path, &s, &o, name);
 }
 
 /* The CSV's height_m (its 4th column) empty on every row; -1 for a file
@@ -301,7 +278,7 @@ static int test_every_file_reports(void)
     char err[128];
     ENSURE(jc_preset_setup("hoop", &hoop, err, sizeof err) == JC_OK);
     const cli_SynthOptions o = camera(30, 1.5e-3, CLI_SYNTH_MARK_ONLY, base_seed * 100 + 30, 0.1);
-    ENSURE(write_table(slide, &hoop, &o) == 0);
+    ENSURE(synth_table_write(slide, &hoop, &o, NULL) == 0);
     int bad = 0;
     const char *a[] = {"track", three, NULL};
     bad += expect(a, 0, "which track is the centre? none is named like the axle (centre, center, axle, axis, hub); "
