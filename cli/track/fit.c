@@ -149,9 +149,11 @@ static void u_of(const fit_ctx *c, const double *v, double *u, double edge)
     }
 }
 
-/* The setup, start and mark angle the free values describe. */
-static void apply(const fit_ctx *c, const double *v, jc_Setup *s, jc_State *start, cli_FitFrame *frame)
+/* The setup, start and frame (mark angle, tilt, surface) that u describes. */
+static void apply(const fit_ctx *c, const double *u, jc_Setup *s, jc_State *start, cli_FitFrame *frame)
 {
+    double v[CLI_FIT_MAX_PARAMS];
+    values_of(c, u, v);
     *s = c->base;
     *start = c->start0;
     *frame = c->frame0;
@@ -180,12 +182,10 @@ void cli_fit_to_video(const cli_FitFrame *fr, const jc_State *start, double *x, 
  * when the model refuses the values. */
 static int run_u(fit_ctx *c, const double *u)
 {
-    double v[CLI_FIT_MAX_PARAMS];
-    values_of(c, u, v);
     jc_Setup s;
     jc_State start;
     cli_FitFrame fr;
-    apply(c, v, &s, &start, &fr);
+    apply(c, u, &s, &start, &fr);
     jc_Model m;
     char err[256];
     if (jc_model_init(&m, &s, err, sizeof err) != JC_OK) return -1;
@@ -464,12 +464,10 @@ static double liftoff_x(fit_ctx *c, const double *u, double *t_s)
     if (run_u(c, u) != 0 || c->sum.first_liftoff < 0) return NAN;
     if (t_s) *t_s = c->sum.first_liftoff_state.t_s;
     /* In the video's frame, as the frames are. */
-    double v[CLI_FIT_MAX_PARAMS];
-    values_of(c, u, v);
     jc_Setup s;
     jc_State start;
     cli_FitFrame fr;
-    apply(c, v, &s, &start, &fr);
+    apply(c, u, &s, &start, &fr);
     double x = c->sum.first_liftoff_state.x_m - c->ts.shift_m, y = c->sum.first_liftoff_state.y_m;
     cli_fit_to_video(&fr, &start, &x, &y, NULL, 1);
     return x;
@@ -983,8 +981,7 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
         out->has_liftoff = isfinite(out->liftoff_x_m);
         out->liftoff_sigma_m = NAN;
     }
-    values_of(c, u, v);
-    apply(c, v, &out->setup, &out->start, &out->frame);
+    apply(c, u, &out->setup, &out->start, &out->frame);
     const int kt = index_of(c, CLI_FIT_TILT);
     out->incline_sigma_rad = c->tilt_tilts_gravity && kt >= 0 ? sigma[kt] : 0.0;
     out->setup.ramp_length_m -= CLI_TRACK_RAMP_MARGIN_M;

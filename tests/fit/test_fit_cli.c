@@ -26,19 +26,6 @@ static jc_Setup truth(void)
     return s;
 }
 
-static cli_SynthOptions synth(double sigma_m, double fps, uint64_t seed)
-{
-    cli_SynthOptions o;
-    memset(&o, 0, sizeof o);
-    o.fps_hz = fps;
-    o.sigma_m = sigma_m;
-    o.t_end_s = 1.5;
-    o.mark_radius_m = 0.055;
-    o.seed = seed;
-    o.tracks = CLI_SYNTH_BOTH;
-    return o;
-}
-
 /* The run of simulate: the same setup from its own start. */
 static int simulate_liftoff(const jc_Setup *s, double *x, double *t)
 {
@@ -61,7 +48,7 @@ static int simulate_liftoff(const jc_Setup *s, double *x, double *t)
 static int test_noise_free_compare(void)
 {
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth(0.0, 60.0, 1u);
+    const cli_SynthOptions so = synth_camera(60.0, 0.0, CLI_SYNTH_BOTH, 1u, 0.055);
     cli_Track t;
     char err[256];
     ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
@@ -127,7 +114,7 @@ static int slot(const cli_FitResult *r, cli_FitKind k)
 static int test_robust_loss(void)
 {
     const jc_Setup s = truth();
-    cli_SynthOptions so = synth(1e-3, 60.0, 5u);
+    cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 5u, 0.055);
     so.drop_fraction = 0.1;
     cli_Track t;
     char err[256];
@@ -166,7 +153,7 @@ static int test_robust_loss(void)
 static int test_undetermined_flagged(void)
 {
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth(1e-3, 60.0, 7u);
+    const cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 7u, 0.055);
     cli_Track t;
     char err[256];
     ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
@@ -196,7 +183,7 @@ static int test_wrong_body(void)
     char dir[] = "/tmp/jc_fit_cli_XXXXXX", track[256];
     ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth(1e-3, 60.0, 3u);
+    const cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 3u, 0.055);
     ENSURE(synth_table_write(track, &s, &so, NULL) == 0);
     const char *wrong[] = {"fit", "--track", track, "--rod-offset", "4.5cm", "--mu-k", "0.4", "--free", "mu_k,restitution", NULL};
     cli_result r = cli_run(wrong);
@@ -235,7 +222,7 @@ static int test_launch_found(void)
     char err[256];
     ENSURE(jc_preset_setup("hoop", &s, err, sizeof err) == JC_OK);
     s.mu_static = s.mu_kinetic = 0.8;
-    cli_SynthOptions so = synth(1e-3, 60.0, 11u);
+    cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 11u, 0.055);
     so.mark_radius_m = 0.1;
     so.t_end_s = 1.0;
     so.hand_s = 0.2;
@@ -262,7 +249,7 @@ static int test_bad_options(void)
     ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     snprintf(fig, sizeof fig, "%s/out.png", dir);
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth(1e-3, 60.0, 1u);
+    const cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 1u, 0.055);
     ENSURE(synth_table_write(track, &s, &so, NULL) == 0);
     const char *cases[][14] = {
         {"fit", "--track", track, "--output", fig, NULL},                                            /* no --free */
@@ -327,7 +314,7 @@ static int test_noise_free_compare_tool(void)
     char dir[] = "/tmp/jc_fit_cli_XXXXXX", track[256];
     ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth(0.0, 60.0, 1u);
+    const cli_SynthOptions so = synth_camera(60.0, 0.0, CLI_SYNTH_BOTH, 1u, 0.055);
     ENSURE(synth_table_write(track, &s, &so, NULL) == 0);
     const char *args[] = {"compare", "--track", track, "--mu-k", "0.4", "--from-setup-start", NULL};
     cli_result r = cli_run(args);

@@ -20,6 +20,7 @@
 #include "synth.h"
 #include "track_fit.h"
 #include "raw.h"
+#include "synth_table.h"
 
 #include <gsl/gsl_errno.h>
 
@@ -76,31 +77,13 @@ int main(int argc, char **argv)
     const syn_Camera on_floor = phone(2602, 0.10);
     if (film(argv[1], "floor", &hoop, &on_floor, "axle", "mass") != 0) return 1;
 
-    jc_Setup ring = hoop;
-    ring.body.parts[0].mass_kg = 0.1;
-    ring.body.parts[1].mass_kg = 0.1;
-    ring.omega0_radps = 18.0;
-    ring.theta0_rad = SYN_PI;
-    ring.mu_static = ring.mu_kinetic = 0.8;
-    ring.ramp_length_m = 10.0;
-    cli_SynthOptions o;
-    memset(&o, 0, sizeof o);
-    o.fps_hz = FPS;
-    o.sigma_m = NOISE_M;
-    o.t_end_s = 1.5;
-    o.mark_radius_m = 0.10;
-    o.seed = 2603;
-    o.tracks = CLI_SYNTH_MARK_ONLY;
-    cli_RawData raw;
-    if (cli_track_synth_raw(&ring, &o, &raw, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
-    }
+    const jc_Setup ring = synth_loaded_ring();
+    const cli_SynthOptions o = synth_camera(FPS, NOISE_M, CLI_SYNTH_MARK_ONLY, 2603, 0.10);
     char led[512];
     snprintf(led, sizeof led, "%s/floor-led.txt", argv[1]);
-    FILE *f = fopen(led, "w");
-    const int rc = f ? cli_track_write_table(f, &raw) : -1;
-    cli_raw_free(&raw);
-    if (!f || fclose(f) != 0 || rc != 0) return 1;
+    if (synth_table_write(led, &ring, &o, NULL) != 0) {
+        fprintf(stderr, "%s: cannot be written\n", led);
+        return 1;
+    }
     return 0;
 }

@@ -7,7 +7,41 @@
 #include "track_fit.h"
 
 #include <stdio.h>
+#include <string.h>
 #include <sys/stat.h>
+
+/* A camera of fps frames/s tracking with sigma_m of noise for 1.5 s,
+ * the mark (if tracked) mark_m from the centre. */
+static inline cli_SynthOptions synth_camera(double fps, double sigma_m, cli_SynthTracks tracks, uint64_t seed,
+                                            double mark_m)
+{
+    cli_SynthOptions o;
+    memset(&o, 0, sizeof o);
+    o.fps_hz = fps;
+    o.sigma_m = sigma_m;
+    o.t_end_s = 1.5;
+    o.mark_radius_m = mark_m;
+    o.seed = seed;
+    o.tracks = tracks;
+    return o;
+}
+
+/* A loaded ring: the hoop preset as a 100 g hoop with 100 g at its rim,
+ * rolled at 18 rad/s with the mass at the bottom along a floor; it rolls
+ * over and over, never hopping (mu 0.8). */
+static inline jc_Setup synth_loaded_ring(void)
+{
+    jc_Setup s;
+    char err[128];
+    jc_preset_setup("hoop", &s, err, sizeof err);
+    s.body.parts[0].mass_kg = 0.1;
+    s.body.parts[1].mass_kg = 0.1;
+    s.omega0_radps = 18.0;
+    s.theta0_rad = CLI_TRACK_PI;
+    s.mu_static = s.mu_kinetic = 0.8;
+    s.ramp_length_m = 10.0;
+    return s;
+}
 
 /* The run of s filmed as o, written to path; the first track renamed
  * first_name when it is not NULL. 0, or -1. */

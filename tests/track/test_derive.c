@@ -27,43 +27,13 @@
 static uint64_t base_seed = 26;
 static char scratch[] = "/tmp/jc_derive_test_XXXXXX";
 
-/* A loaded ring: a 100 g hoop with 100 g at its rim, rolled at 18 rad/s with
- * the mass at the bottom along a floor; it rolls over and over, never
- * hopping. Its LED sits at the mass. */
-static jc_Setup ring(void)
-{
-    jc_Setup s;
-    char err[128];
-    jc_preset_setup("hoop", &s, err, sizeof err);
-    s.body.parts[0].mass_kg = 0.1;
-    s.body.parts[1].mass_kg = 0.1;
-    s.omega0_radps = 18.0;
-    s.theta0_rad = CLI_TRACK_PI;
-    s.mu_static = s.mu_kinetic = 0.8;
-    s.ramp_length_m = 10.0;
-    return s;
-}
-
-static cli_SynthOptions camera(double fps, double sigma, cli_SynthTracks tracks, uint64_t seed, double mark)
-{
-    cli_SynthOptions o;
-    memset(&o, 0, sizeof o);
-    o.fps_hz = fps;
-    o.sigma_m = sigma;
-    o.t_end_s = 1.5;
-    o.mark_radius_m = mark;
-    o.seed = seed;
-    o.tracks = tracks;
-    return o;
-}
-
 static int test_rim_mark_recovery(void)
 {
-    const jc_Setup s = ring();
+    const jc_Setup s = synth_loaded_ring();
     const double fps[] = {30, 30, 60, 120}, noise[] = {1.5e-3, 1.5e-3, 1.5e-3, 1e-3};
     for (int c = 0; c < 4; ++c) {
         const uint64_t seed = base_seed * 100 + (uint64_t)c;
-        cli_SynthOptions o = camera(fps[c], noise[c], CLI_SYNTH_MARK_ONLY, seed, 0.1);
+        cli_SynthOptions o = synth_camera(fps[c], noise[c], CLI_SYNTH_MARK_ONLY, seed, 0.1);
         cli_Track t, truth;
         char err[256];
         ENSURE_MSG(cli_track_synthesize(&s, &o, &t, err, sizeof err) == 0, "%s", err);
@@ -109,7 +79,7 @@ static int test_no_jump_no_hops(void)
     ENSURE(jc_preset_setup("disc", &s, err, sizeof err) == JC_OK);
     for (int c = 0; c < 4; ++c) {
         const uint64_t seed = base_seed * 100 + 10 + (uint64_t)c;
-        const cli_SynthOptions o = camera(c % 2 ? 60 : 240, 2e-3, CLI_SYNTH_BOTH, seed, 0.05);
+        const cli_SynthOptions o = synth_camera(c % 2 ? 60 : 240, 2e-3, CLI_SYNTH_BOTH, seed, 0.05);
         cli_Track t;
         ENSURE_MSG(cli_track_synthesize(&s, &o, &t, err, sizeof err) == 0, "%s", err);
         const double dev = (t.incline_rad - s.incline_rad) / t.incline_sigma_rad;
@@ -166,7 +136,7 @@ static int test_incline(void)
     path_of(along, sizeof along, "along.txt");
     jc_Setup s = jc_paper_setup();
     s.mu_kinetic = 0.4;
-    const cli_SynthOptions o = camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 20, 0.055);
+    const cli_SynthOptions o = synth_camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 20, 0.055);
     ENSURE(synth_table_write(level, &s, &o, NULL) == 0);
     int bad = 0;
     const char *measured[] = {"track", level, NULL};
@@ -180,8 +150,8 @@ static int test_incline(void)
     /* Axes along the incline: Tracker's world is then the incline frame.
      * The table of a ring rolled along a floor is such a video of a ring on
      * a ramp whose angle the axes hide: read with --axes incline. */
-    const jc_Setup run = ring();
-    const cli_SynthOptions oa = camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 21, 0.055);
+    const jc_Setup run = synth_loaded_ring();
+    const cli_SynthOptions oa = synth_camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 21, 0.055);
     ENSURE(synth_table_write(along, &run, &oa, NULL) == 0);
     const char *unknown[] = {"track", along, "--axes", "incline", NULL};
     bad += expect(unknown, 0, "the incline's angle is not known", NULL);
@@ -200,8 +170,8 @@ static int test_incline(void)
 /* A rim mark's table with its one track named name. */
 static int write_mark_named(const char *path, const char *name)
 {
-    const jc_Setup s = ring();
-    const cli_SynthOptions o = camera(30, 1.5e-3, CLI_SYNTH_MARK_ONLY, base_seed * 100 + 31, 0.1);
+    const jc_Setup s = synth_loaded_ring();
+    const cli_SynthOptions o = synth_camera(30, 1.5e-3, CLI_SYNTH_MARK_ONLY, base_seed * 100 + 31, 0.1);
     return synth_table_write(path, &s, &o, name);
 }
 
@@ -277,7 +247,7 @@ static int test_every_file_reports(void)
     jc_Setup hoop;
     char err[128];
     ENSURE(jc_preset_setup("hoop", &hoop, err, sizeof err) == JC_OK);
-    const cli_SynthOptions o = camera(30, 1.5e-3, CLI_SYNTH_MARK_ONLY, base_seed * 100 + 30, 0.1);
+    const cli_SynthOptions o = synth_camera(30, 1.5e-3, CLI_SYNTH_MARK_ONLY, base_seed * 100 + 30, 0.1);
     ENSURE(synth_table_write(slide, &hoop, &o, NULL) == 0);
     int bad = 0;
     const char *a[] = {"track", three, NULL};
@@ -306,7 +276,7 @@ static int test_tracks_told_by_motion(void)
     char path[256];
     path_of(path, sizeof path, "ab.txt");
     jc_Setup s = jc_paper_setup();
-    const cli_SynthOptions o = camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 40, 0.055);
+    const cli_SynthOptions o = synth_camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 40, 0.055);
     cli_RawData raw;
     char err[256];
     ENSURE(cli_track_synth_raw(&s, &o, &raw, err, sizeof err) == 0);
