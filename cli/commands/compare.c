@@ -57,7 +57,7 @@ static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, 
     printf("Start (%s) at t = %.4f s: x = %.2f cm, %s, theta = %.4f rad, omega = %.4f rad/s\n\n",
            setup_start ? "the setup's theta0 and omega0" : "the state the frames show, fitted to the next 0.4 s",
            s->t_s, s->x_m * 100, s->y_m > m->body.radius_m ? "in flight" : "rolling", s->theta_rad, s->omega_radps);
-    printf("Hops: the centre more than %.2f mm (%.0f sigma) above contact in 2 frames or more\n", c->threshold_m * 1e3,
+    printf("Hops: the centre more than %.2f mm (%.0f sigma) above contact in 2 frames or more\n", t->hop_threshold_m * 1e3,
            t->hop_sigmas);
     print_liftoff("measured first lift-off", &c->measured);
     print_liftoff("simulated first lift-off", &c->simulated);
@@ -89,7 +89,7 @@ static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, con
     f.mark_radius_m = t->has_mark ? cli_track_mark_radius(t, m) : 0.0;
     f.mark_offset_rad = 0.0; /* c->theta_rad holds the mark's angle already */
     f.sigma_m = t->sigma_m;
-    f.hop_threshold_m = c->threshold_m;
+    f.hop_threshold_m = t->hop_threshold_m;
     snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; path residuals RMS %.2f mm (%.2f σ)",
              cli_deg(t->incline_rad), c->rms_path_m * 1e3, c->rms_path_m / t->sigma_m);
     const int rc = cli_track_figure_draw("compare", &f, setup, &c->launch.start, NULL, o, out, argc, argv);

@@ -272,7 +272,7 @@ static void report(const char *file, const cli_Track *t, const cli_FitResult *r,
            fo->hold_frame ? "" : " and the video frame's tilt and surface", loss_names[fo->loss]);
     printf("Search: %d start points screened, %d descents, %d iterations in all\n", r->screened, r->descents,
            r->iterations);
-    printf("chi2/dof = %.4g (chi2 %.4g, dof %.0f)\n", r->chi2_dof, r->chi2, r->chi2 / r->chi2_dof);
+    printf("chi2/dof = %.4g (chi2 %.4g, dof %ld)\n", r->chi2_dof, r->chi2, r->dof);
     const double deg = 180.0 / CLI_TRACK_PI;
     if (t->incline_source == CLI_INCLINE_MEASURED && r->incline_sigma_rad > 0.0)
         printf("Incline in the model: %.3f +- %.3f deg (the video's %.3f deg turned by the fitted tilt)\n\n",
@@ -369,17 +369,6 @@ int cmd_fit(int argc, char **argv)
     cli_Track t;
     if ((st = cli_track_args_load_for_model("fit", &o.track, &sa, &setup, &t)) != 0) return st;
     char err[512];
-    /* The free motion's first frame: --from's, or the first the model follows. */
-    cli_Launch launch;
-    memset(&launch, 0, sizeof launch);
-    if (!o.track.from_setup_start && isnan(fo.from_s)) {
-        if (cli_track_launch(&setup, &t, &opts, 0, fo.to_s, 1, fo.mark_angle_rad, &launch, err, sizeof err) != 0) {
-            cli_error("fit: %s", err);
-            cli_track_free(&t);
-            return EXIT_USAGE;
-        }
-        fo.from_s = t.t_s[launch.frame];
-    }
     cli_FitResult r;
     cli_Progress progress;
     cli_progress_begin(&progress, "fit");
@@ -392,7 +381,6 @@ int cmd_fit(int argc, char **argv)
         cli_track_free(&t);
         return EXIT_USAGE;
     }
-    r.launch = launch;
     report(o.track.track, &t, &r, &fo);
     st = o.track.output ? figure(o.track.output, &t, &r, &opts, argc, argv) : EXIT_OK;
     if (st == EXIT_OK && o.track.output) printf("Figure: %s\n", o.track.output);

@@ -8,10 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Hops are runs of at least 2 frames whose centre is more than the
- * track's threshold (K sigma) above contact; the same detector reads the
- * track and the model at the frames' times. */
-
 void cli_compare_free(cli_Compare *c)
 {
     free(c->x_m);
@@ -20,41 +16,11 @@ void cli_compare_free(cli_Compare *c)
     memset(c, 0, sizeof *c);
 }
 
-/* The setup's own start (θ0, ω0, rolling) at the first frame from first
- * that has the centre. */
-static void setup_start(const cli_Track *t, const jc_Model *m, long first, jc_State *s)
-{
-    while (first + 1 < t->n && !isfinite(t->x_m[first])) first++;
-    memset(s, 0, sizeof *s);
-    s->t_s = t->t_s[first];
-    s->x_m = t->x_m[first];
-    s->y_m = m->body.radius_m;
-    s->theta_rad = m->setup.theta0_rad;
-    s->omega_radps = m->setup.omega0_radps;
-    s->vx_mps = m->body.radius_m * s->omega_radps;
-}
-
 static void residuals(cli_Compare *c, const cli_Track *t, double mark_offset)
 {
-    double path = 0.0, th = 0.0;
-    long n_path = 0, n_th = 0;
-    c->max_path_m = 0.0;
-    for (long i = 0; i < c->count; ++i) {
-        const long j = c->first + i;
-        c->theta_rad[i] -= mark_offset; /* G's angle to the mark's */
-        if (isfinite(t->x_m[j])) {
-            const double d2 = pow(t->x_m[j] - c->x_m[i], 2) + pow(t->y_m[j] - c->y_m[i], 2);
-            path += d2;
-            n_path++;
-            c->max_path_m = fmax(c->max_path_m, sqrt(d2));
-        }
-        if (t->has_mark && isfinite(t->theta_rad[j])) {
-            th += pow(remainder(t->theta_rad[j] - c->theta_rad[i], 2.0 * CLI_TRACK_PI), 2);
-            ++n_th;
-        }
-    }
-    c->rms_path_m = n_path ? sqrt(path / (double)n_path) : NAN;
-    c->rms_theta_rad = n_th ? sqrt(th / (double)n_th) : NAN;
+    for (long i = 0; i < c->count; ++i) c->theta_rad[i] -= mark_offset; /* G's angle to the mark's */
+    cli_track_misfit(t, c->first, c->count, c->x_m, c->y_m, c->theta_rad, &c->rms_path_m, &c->max_path_m,
+                     &c->rms_theta_rad);
 }
 
 int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, cli_StartKind start,
@@ -75,12 +41,11 @@ int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOpt
     jc_Model m;
     if (cli_track_model(setup, t, &m, err, err_len) != 0) return -1;
     const double r = m.body.radius_m;
-    out->threshold_m = t->hop_threshold_m;
     if (start == CLI_START_SETUP) {
         memset(&out->launch, 0, sizeof out->launch);
         out->launch.frame = first;
         out->launch.chi2_dof = out->launch.chi2_dof_with = NAN;
-        setup_start(t, &m, first, &out->launch.start);
+        cli_track_start_setup(t, first, t->n, m.body.radius_m, &m.setup, &out->launch.start);
     } else {
         /* The free motion's first frame, where --from did not set it, and
          * the start there fitted to the frames (as fit starts). */
@@ -115,9 +80,9 @@ int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOpt
                                err, err_len);
     if (rc == 0) {
         residuals(out, t, cli_track_mark_offset_rad(&m, mark_angle_rad));
-        cli_track_find_hops(ts, t->x_m + out->first, t->y_m + out->first, out->count, r, out->threshold_m,
+        cli_track_find_hops(ts, t->x_m + out->first, t->y_m + out->first, out->count, r, t->hop_threshold_m,
                             &out->measured);
-        cli_track_find_hops(ts, out->x_m, out->y_m, out->count, r, out->threshold_m, &out->simulated);
+        cli_track_find_hops(ts, out->x_m, out->y_m, out->count, r, t->hop_threshold_m, &out->simulated);
         const jc_RunSummary *sum = &sim.sum;
         out->model_liftoffs = sum->liftoffs;
         out->model_bounces = sum->bounces;

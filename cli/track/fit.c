@@ -25,15 +25,13 @@
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
-#include <gsl/gsl_sort_double.h>
+#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define START_SPAN 7
-#define REFINE_S 0.4             /* the start refined on the window's first 0.4 s ... */
-#define REFINE_MIN_FRAMES 8      /* ... and 8 frames at least */
 #define JAC_STEP 1e-5            /* central-difference step in u, relative to max(1, |u|) */
 #define FAILED_RESIDUAL 1e4      /* per residual, for a run the model refuses */
 #define MAX_PASSES 10            /* robust reweighting passes */
@@ -63,8 +61,6 @@ typedef struct {
     jc_Setup base;             /* the runs' setup (cli_track_setup): held values set in it */
     jc_State start0;           /* the start before the fit: held start values set in it */
     cli_FitFrame frame0;       /* the mark angle and frame before the fit: held ones set in it */
-    double incline_video;      /* the track's incline, measured (the model's is it plus the tilt) */
-    int tilt_tilts_gravity;    /* the incline was measured: the tilt turns the model's gravity too */
     int mu_s_tied;             /* mu_s held at its bound mu_k: it follows mu_k */
     int np;
     cli_FitParam param[CLI_FIT_MAX_PARAMS];
@@ -72,8 +68,7 @@ typedef struct {
     long nres;
     double *x, *y, *th, *sw, *f;
     unsigned char *series;
-    cli_TrackSim ts;
-    jc_RunSummary sum;
+    cli_TrackSim ts;           /* its sum: the last run's events */
     const char *stage;         /* for the progress callback */
     char stage_text[96];
     int begun;                 /* descents begun in this stage */
@@ -149,6 +144,9 @@ static void u_of(const fit_ctx *c, const double *v, double *u, double edge)
     }
 }
 
+/* The incline was measured: the frame's tilt turns the model's gravity too. */
+static int tilt_tilts_gravity(const fit_ctx *c) { return c->t->incline_source == CLI_INCLINE_MEASURED; }
+
 /* The setup, start and frame (mark angle, tilt, surface) that u describes. */
 static void apply(const fit_ctx *c, const double *u, jc_Setup *s, jc_State *start, cli_FitFrame *frame)
 {
@@ -158,8 +156,9 @@ static void apply(const fit_ctx *c, const double *u, jc_Setup *s, jc_State *star
     *start = c->start0;
     *frame = c->frame0;
     for (int i = 0; i < c->np; ++i) cli_fit_set(s, start, frame, c->param[i], v[i]);
-    /* A floor stays a floor: the model takes no incline below 0. */
-    if (c->tilt_tilts_gravity) s->incline_rad = fmax(0.0, c->incline_video + frame->tilt_rad);
+    /* A measured incline is the video's plus the tilt (a floor stays a
+     * floor: the model takes no incline below 0). */
+    if (tilt_tilts_gravity(c)) s->incline_rad = fmax(0.0, c->t->incline_rad + frame->tilt_rad);
     if (s->mu_kinetic > s->mu_static || c->mu_s_tied) s->mu_static = s->mu_kinetic;
     if (start->y_m <= s->body.radius_m) start->vx_mps = s->body.radius_m * start->omega_radps; /* rolling */
     s->theta0_rad = start->theta_rad;
@@ -192,7 +191,6 @@ static int run_u(fit_ctx *c, const double *u)
     if (cli_track_sim_run(&c->ts, &m, &start, c->sim, c->t->t_s + c->res.first, c->res.count, c->x, c->y, c->th, err,
                           sizeof err) != 0)
         return -1;
-    c->sum = c->ts.sum;
     cli_fit_to_video(&fr, &start, c->x, c->y, c->th, c->res.count);
     c->res.mark_offset = cli_track_mark_offset_rad(&m, fr.mark_angle_rad);
     cli_residuals_eval(&c->res, c->x, c->y, c->th, c->f, c->series);
@@ -254,8 +252,7 @@ static double reweight(fit_ctx *c, const double *u, cli_FitLoss loss, double *sc
 {
     if (run_u(c, u) != 0) return 0.0;
     for (long i = 0; i < c->nres; ++i) scratch[i] = fabs(c->f[i]);
-    gsl_sort(scratch, 1, (size_t)c->nres);
-    const double s = fmax(1.4826 * scratch[c->nres / 2], 1e-12);
+    const double s = fmax(1.4826 * gsl_stats_median(scratch, 1, (size_t)c->nres), 1e-12);
     double change = 0.0;
     for (long i = 0; i < c->nres; ++i) {
         const double r = fabs(c->f[i]) / s;
@@ -339,7 +336,7 @@ static int covariance_u(fit_ctx *c, const double *u, double s2, gsl_matrix *cu)
 
 /* The values' covariance C_v = T C_u Tᵀ, T = dv/du (differences of the
  * transform: cheap and smooth); sigmas and correlations. */
-static void values_covariance(const fit_ctx *c, const double *u, const gsl_matrix *cu, double cov[][CLI_FIT_MAX_PARAMS],
+static void values_covariance(const fit_ctx *c, const double *u, const gsl_matrix *cu,
                               double *sigma, double corr[][CLI_FIT_MAX_PARAMS])
 {
     const int p = c->np;
@@ -355,6 +352,7 @@ static void values_covariance(const fit_ctx *c, const double *u, const gsl_matri
         values_of(c, um, vm);
         for (int i = 0; i < p; ++i) T[i][j] = (vp[i] - vm[i]) / (2 * h);
     }
+    double cov[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS];
     for (int i = 0; i < p; ++i)
         for (int j = 0; j < p; ++j) {
             double s = 0.0;
@@ -416,8 +414,6 @@ static void hypercube(const fit_ctx *c, const double *u0, int npts, uint64_t see
     free(perm);
 }
 
-static void finish_point(fit_ctx *c, point *p) { p->chi2 = cost(c, p->u); }
-
 /* Searches from u0 (the user's values): screens, descends, keeps the
  * minima sorted by chi2 into mins (at most cap). Returns how many. */
 static int search(fit_ctx *c, const double *u0, const cli_FitOptions *o, point *mins, int cap, cli_FitResult *out,
@@ -432,7 +428,7 @@ static int search(fit_ctx *c, const double *u0, const cli_FitOptions *o, point *
     if (!pts) return 0;
     memcpy(pts[0].u, u0, (size_t)c->np * sizeof *u0);
     hypercube(c, u0, npts, o->seed, pts + 1);
-    for (int k = 0; k <= npts; ++k) finish_point(c, &pts[k]);
+    for (int k = 0; k <= npts; ++k) pts[k].chi2 = cost(c, pts[k].u);
     out->screened = npts + 1;
     /* The user's point and the best screened ones. */
     const int want = o->descents > 0 ? o->descents : DEFAULT_DESCENTS;
@@ -461,14 +457,14 @@ static int search(fit_ctx *c, const double *u0, const cli_FitOptions *o, point *
 /* The first lift-off's x for u; NaN without one. */
 static double liftoff_x(fit_ctx *c, const double *u, double *t_s)
 {
-    if (run_u(c, u) != 0 || c->sum.first_liftoff < 0) return NAN;
-    if (t_s) *t_s = c->sum.first_liftoff_state.t_s;
+    if (run_u(c, u) != 0 || c->ts.sum.first_liftoff < 0) return NAN;
+    if (t_s) *t_s = c->ts.sum.first_liftoff_state.t_s;
     /* In the video's frame, as the frames are. */
     jc_Setup s;
     jc_State start;
     cli_FitFrame fr;
     apply(c, u, &s, &start, &fr);
-    double x = c->sum.first_liftoff_state.x_m - c->ts.shift_m, y = c->sum.first_liftoff_state.y_m;
+    double x = c->ts.sum.first_liftoff_state.x_m - c->ts.shift_m, y = c->ts.sum.first_liftoff_state.y_m;
     cli_fit_to_video(&fr, &start, &x, &y, NULL, 1);
     return x;
 }
@@ -499,7 +495,7 @@ static void predict_liftoff(fit_ctx *c, const double *u, const gsl_matrix *cu, c
 static int slot_of(const cli_FitResult *r, cli_FitParam p)
 {
     for (int k = 0; k < r->count; ++k)
-        if (r->param[k].kind == p.kind && r->param[k].part == p.part) return k;
+        if (cli_fit_param_same(r->param[k], p)) return k;
     return -1;
 }
 
@@ -666,9 +662,9 @@ static void judge(fit_ctx *c, const double *u, cli_FitResult *r)
     run_u(c, u);
     const char *which = "";
     r->runs_z = cli_residuals_runs_z(c->f, c->series, c->nres, &which);
-    snprintf(r->runs_series, sizeof r->runs_series, "%s", which);
     char hop_why[200] = "";
-    const int hops_ok = hops_agree(c, r, hop_why, sizeof hop_why, &r->hops_measured, &r->hops_model);
+    int hops_measured, hops_model;
+    const int hops_ok = hops_agree(c, r, hop_why, sizeof hop_why, &hops_measured, &hops_model);
     char why[3][220];
     int k = 0;
     if (r->chi2_dof > MISFIT_CHI2_DOF)
@@ -676,13 +672,13 @@ static void judge(fit_ctx *c, const double *u, cli_FitResult *r)
                  r->chi2_dof, r->noise_measured ? "measured" : "given", r->sigma_m * 1e3, MISFIT_CHI2_DOF);
     if (r->runs_z < MISFIT_RUNS_Z)
         snprintf(why[k++], sizeof why[0], "the residuals %s run in long stretches of one sign (runs test z = %.1f)",
-                 r->runs_series, r->runs_z);
+                 which, r->runs_z);
     if (!hops_ok) snprintf(why[k++], sizeof why[0], "%s", hop_why);
     r->misfit = k > 0;
     if (!r->misfit) {
         snprintf(r->verdict, sizeof r->verdict, "the model describes this video: chi2/dof = %.3g, residuals "
                  "without runs (z = %.1f), %d hop(s) in both", r->chi2_dof, isfinite(r->runs_z) ? r->runs_z : 0.0,
-                 r->hops_measured);
+                 hops_measured);
         return;
     }
     int used = snprintf(r->verdict, sizeof r->verdict, "the model does not describe this video: ");
@@ -706,7 +702,7 @@ void cli_fit_options_default(cli_FitOptions *o)
 static int add_param(cli_FitParam *list, int *n, cli_FitParam p)
 {
     for (int i = 0; i < *n; ++i)
-        if (list[i].kind == p.kind && list[i].part == p.part) return 0;
+        if (cli_fit_param_same(list[i], p)) return 0;
     if (*n == CLI_FIT_MAX_PARAMS) return -1;
     list[(*n)++] = p;
     return 1;
@@ -720,8 +716,6 @@ static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const 
     c->base = cli_track_setup(setup, t);
     c->base.incline_rad = t->incline_rad; /* the frames' incline frame */
     c->frame0.mark_angle_rad = o->mark_angle_rad;
-    c->incline_video = t->incline_rad;
-    c->tilt_tilts_gravity = t->incline_source == CLI_INCLINE_MEASURED;
     cli_track_window(t, o->from_s, o->to_s, &c->res.first, &c->res.count);
     if (c->res.count < 3) {
         snprintf(err, err_len, "the fit window holds %ld frame(s); at least 3 are needed", c->res.count);
@@ -739,14 +733,7 @@ static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const 
     const double r = m.body.radius_m;
     const long first = c->res.first;
     if (o->start == CLI_START_SETUP) {
-        long f = first;
-        while (f + 1 < first + c->res.count && !isfinite(t->x_m[f])) f++;
-        memset(&c->start0, 0, sizeof c->start0);
-        c->start0.t_s = t->t_s[f];
-        c->start0.x_m = t->x_m[f];
-        c->start0.y_m = r;
-        c->start0.theta_rad = setup->theta0_rad;
-        c->start0.omega_radps = setup->omega0_radps;
+        cli_track_start_setup(t, first, first + c->res.count, r, setup, &c->start0);
     } else if (refined) {
         c->start0 = *refined;
     } else {
@@ -818,26 +805,30 @@ static void release(fit_ctx *c)
     cli_track_sim_free(&c->ts);
 }
 
-/* The path's and the angle's RMS at u. */
+/* The path's and the mark angle's RMS at u. */
 static void rms(fit_ctx *c, const double *u, cli_FitResult *out)
 {
     run_u(c, u);
-    const cli_Track *t = c->t;
-    double path = 0.0, th = 0.0;
-    long n_path = 0, n_th = 0;
-    for (long i = 0; i < c->res.count; ++i) {
-        const long j = c->res.first + i;
-        if (isfinite(t->x_m[j])) {
-            path += pow(t->x_m[j] - c->x[i], 2) + pow(t->y_m[j] - c->y[i], 2);
-            n_path++;
-        }
-        if (t->has_mark && isfinite(t->theta_rad[j])) {
-            th += pow(remainder(t->theta_rad[j] - (c->th[i] - c->res.mark_offset), 2.0 * CLI_TRACK_PI), 2);
-            ++n_th;
-        }
+    for (long i = 0; i < c->res.count; ++i) c->th[i] -= c->res.mark_offset; /* G's angle to the mark's */
+    cli_track_misfit(c->t, c->res.first, c->res.count, c->x, c->y, c->th, &out->rms_path_m, NULL,
+                     &out->rms_theta_rad);
+}
+
+/* The estimate at u, whose chi2 is given: the covariance of u in *cv (a
+ * view of cu, np x np), scaled by chi2/dof when the noise was measured;
+ * the values, their sigmas and correlations. Returns the scale. */
+static double estimate(fit_ctx *c, const double *u, double chi2, int noise_measured, gsl_matrix *cu,
+                       gsl_matrix_view *cv, double *v, double *sigma, double corr[][CLI_FIT_MAX_PARAMS])
+{
+    const double s2 = noise_measured ? chi2 / (double)(c->nres - c->np) : 1.0;
+    const size_t p = (size_t)(c->np > 0 ? c->np : 1);
+    *cv = gsl_matrix_submatrix(cu, 0, 0, p, p);
+    if (c->np > 0) {
+        covariance_u(c, u, s2, &cv->matrix);
+        values_of(c, u, v);
+        values_covariance(c, u, &cv->matrix, sigma, corr);
     }
-    out->rms_path_m = n_path ? sqrt(path / (double)n_path) : NAN;
-    out->rms_theta_rad = n_th ? sqrt(th / (double)n_th) : NAN;
+    return s2;
 }
 
 static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *err, size_t err_len)
@@ -853,11 +844,11 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
         return -1;
     }
     double v0[CLI_FIT_MAX_PARAMS], u[CLI_FIT_MAX_PARAMS], v[CLI_FIT_MAX_PARAMS], sigma[CLI_FIT_MAX_PARAMS];
-    double cov[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS], corr[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS];
+    double corr[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS];
     for (int i = 0; i < c->np; ++i) v0[i] = cli_fit_get(&c->base, &c->start0, &c->frame0, c->param[i]);
     u_of(c, v0, u, START_EDGE);
     const int cap = (int)(sizeof mins / sizeof mins[0]);
-    stage_begin(c, o->no_refine ? "the start alone" : "descents from the best start points");
+    stage_begin(c, o->start_window ? "the start alone" : "descents from the best start points");
     int nm = search(c, u, o, mins, cap, out, scratch);
     if (nm == 0) {
         mins[0].chi2 = cost(c, u);
@@ -869,12 +860,8 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
     if (o->loss != CLI_LOSS_LINEAR) out->iterations += descend(c, u, o, scratch, INFINITY);
     /* Scale: chi2/dof when the noise was measured. */
     double chi2 = cost(c, u);
-    double dof = (double)(c->nres - c->np);
-    double s2 = out->noise_measured ? chi2 / dof : 1.0;
-    gsl_matrix_view cv = gsl_matrix_submatrix(cu, 0, 0, (size_t)c->np, (size_t)c->np);
-    covariance_u(c, u, s2, &cv.matrix);
-    values_of(c, u, v);
-    values_covariance(c, u, &cv.matrix, cov, sigma, corr);
+    gsl_matrix_view cv;
+    const double s2 = estimate(c, u, chi2, out->noise_measured, cu, &cv, v, sigma, corr);
     /* The minima that compete with the best: within the chi2 threshold for
      * the free values' count, and apart from it by more than 2 sigma. */
     out->delta_chi2 = gsl_cdf_chisq_Qinv(0.05, (double)c->np) * fmax(1.0, s2);
@@ -921,12 +908,7 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
             snapped = 1;
         }
     }
-    if (snapped) {
-        s2 = out->noise_measured ? chi2 / dof : 1.0;
-        covariance_u(c, u, s2, &cv.matrix);
-        values_of(c, u, v);
-        values_covariance(c, u, &cv.matrix, cov, sigma, corr);
-    }
+    if (snapped) estimate(c, u, chi2, out->noise_measured, cu, &cv, v, sigma, corr);
     /* What the video does not determine: held, and the rest fitted again. */
     stage_begin(c, "fitted again without the values not determined");
     for (int round = 0; round < FLAG_ROUNDS && c->np > 0; ++round) {
@@ -954,14 +936,7 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
             cli_fit_get(&c->base, &c->start0, &c->frame0, held[h]);
         out->iterations += descend(c, u, o, scratch, INFINITY);
         chi2 = cost(c, u);
-        dof = (double)(c->nres - c->np);
-        s2 = out->noise_measured ? chi2 / dof : 1.0;
-        cv = gsl_matrix_submatrix(cu, 0, 0, (size_t)(c->np > 0 ? c->np : 1), (size_t)(c->np > 0 ? c->np : 1));
-        if (c->np > 0) {
-            covariance_u(c, u, s2, &cv.matrix);
-            values_of(c, u, v);
-            values_covariance(c, u, &cv.matrix, cov, sigma, corr);
-        }
+        estimate(c, u, chi2, out->noise_measured, cu, &cv, v, sigma, corr);
     }
     /* The values fitted at the end, and the correlations between them. */
     for (int i = 0; i < out->count; ++i)
@@ -974,21 +949,24 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
     }
     out->residuals = c->nres;
     out->chi2 = chi2;
-    out->chi2_dof = chi2 / dof;
-    if (c->np > 0) predict_liftoff(c, u, &cv.matrix, out);
-    else {
-        out->liftoff_x_m = liftoff_x(c, u, &out->liftoff_t_s);
-        out->has_liftoff = isfinite(out->liftoff_x_m);
-        out->liftoff_sigma_m = NAN;
-    }
+    out->dof = c->nres - c->np;
+    out->chi2_dof = chi2 / (double)out->dof;
     apply(c, u, &out->setup, &out->start, &out->frame);
     const int kt = index_of(c, CLI_FIT_TILT);
-    out->incline_sigma_rad = c->tilt_tilts_gravity && kt >= 0 ? sigma[kt] : 0.0;
+    out->incline_sigma_rad = tilt_tilts_gravity(c) && kt >= 0 ? sigma[kt] : 0.0;
     out->setup.ramp_length_m -= CLI_TRACK_RAMP_MARGIN_M;
-    rms(c, u, out);
-    judge(c, u, out);
+    if (!o->start_window) {
+        if (c->np > 0) predict_liftoff(c, u, &cv.matrix, out);
+        else {
+            out->liftoff_x_m = liftoff_x(c, u, &out->liftoff_t_s);
+            out->has_liftoff = isfinite(out->liftoff_x_m);
+            out->liftoff_sigma_m = NAN;
+        }
+        rms(c, u, out);
+        judge(c, u, out);
+    }
     /* Profiles of the held values' chi2 along their ranges. */
-    for (int k = 0; o->profiles && k < out->count; ++k) {
+    for (int k = 0; o->profiles && !o->start_window && k < out->count; ++k) {
         if (out->flag[k] == CLI_FIT_DETERMINED) continue;
         char name[48];
         cli_fit_param_name(&c->base, out->param[k], name, sizeof name);
@@ -1024,6 +1002,32 @@ int cli_fit_parse_loss(const char *text, cli_FitLoss *out)
     return 0;
 }
 
+/* The free motion's first frame and the start fitted there (launch.c),
+ * for a start taken from the video: searched for when the window's start
+ * was not given (a hand may push the body first), fitted at the window's
+ * first frame when it was. *refined: 1 when launch->start holds that fit
+ * (0 for the setup's start, a fit of a start window itself, or a given
+ * window whose first frames the model cannot start from: the start is
+ * then estimated from them). 0, or -1 with a message. */
+static int find_launch(const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
+                       cli_Launch *launch, int *refined, char *err, size_t err_len)
+{
+    long first, count;
+    cli_track_window(t, o->from_s, o->to_s, &first, &count);
+    memset(launch, 0, sizeof *launch);
+    launch->frame = first;
+    launch->chi2_dof = launch->chi2_dof_with = NAN;
+    *refined = 0;
+    if (o->start_window || o->start != CLI_START_TRACKED || count <= 0) return 0;
+    const int scan = isnan(o->from_s);
+    cli_Launch found;
+    if (cli_track_launch(setup, t, sim, first, o->to_s, scan, o->mark_angle_rad, &found, err, err_len) != 0)
+        return scan ? -1 : 0;
+    *launch = found;
+    *refined = 1;
+    return 0;
+}
+
 int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
                   cli_FitResult *out, char *err, size_t err_len)
 {
@@ -1032,44 +1036,17 @@ int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOption
         snprintf(err, err_len, "the iteration limit must be positive");
         return -1;
     }
-    /* The start alone first, on the window's first REFINE_S. */
-    jc_State refined;
-    int have_refined = 0;
-    long first, count;
-    cli_track_window(t, o->from_s, o->to_s, &first, &count);
-    if (!o->no_refine && o->start == CLI_START_TRACKED && count > 0) {
-        long last = first;
-        while (last + 1 < first + count &&
-               (t->t_s[last + 1] - t->t_s[first] <= REFINE_S || last + 1 - first < REFINE_MIN_FRAMES))
-            last++;
-        if (last + 1 < first + count) {
-            cli_FitOptions q;
-            cli_fit_options_default(&q);
-            q.from_s = t->t_s[first];
-            q.to_s = t->t_s[last];
-            q.max_iter = o->max_iter;
-            q.descents = 2;
-            q.profiles = 0;
-            q.hold_frame = 1;
-            q.no_refine = 1;
-            q.sigma_m = o->sigma_m;
-            q.seed = o->seed;
-            q.mark_angle_rad = o->mark_angle_rad;
-            q.progress = o->progress;
-            q.progress_ctx = o->progress_ctx;
-            cli_FitResult sub;
-            char sub_err[256];
-            if (cli_track_fit(setup, t, &q, sim, &sub, sub_err, sizeof sub_err) == 0) {
-                refined = sub.start;
-                have_refined = 1;
-            }
-        }
-    }
+    cli_Launch launch;
+    int refined;
+    if (find_launch(setup, t, o, sim, &launch, &refined, err, err_len) != 0) return -1;
+    cli_FitOptions q = *o;
+    if (refined) q.from_s = t->t_s[launch.frame];
     fit_ctx c;
     memset(&c, 0, sizeof c);
     c.sim = sim;
-    int rc = prepare(&c, setup, t, o, have_refined ? &refined : NULL, out, err, err_len);
-    if (rc == 0) rc = solve(&c, o, out, err, err_len);
+    int rc = prepare(&c, setup, t, &q, refined ? &launch.start : NULL, out, err, err_len);
+    if (rc == 0) rc = solve(&c, &q, out, err, err_len);
+    out->launch = launch;
     release(&c);
     return rc;
 }

@@ -93,7 +93,7 @@ static int parse_one(const char *text, size_t len, const jc_Setup *s, cli_FitPar
     return -1;
 }
 
-static int same(cli_FitParam a, cli_FitParam b) { return a.kind == b.kind && a.part == b.part; }
+int cli_fit_param_same(cli_FitParam a, cli_FitParam b) { return a.kind == b.kind && a.part == b.part; }
 
 int cli_fit_parse_free(const char *text, const jc_Setup *s, cli_FitParam *out, int *count, char *err, size_t err_len)
 {
@@ -111,7 +111,7 @@ int cli_fit_parse_free(const char *text, const jc_Setup *s, cli_FitParam *out, i
             return -1;
         }
         for (int k = 0; k < *count; ++k)
-            if (same(out[k], v)) {
+            if (cli_fit_param_same(out[k], v)) {
                 snprintf(err, err_len, "--free '%s': '%.*s' is named twice", text, (int)(len > 40 ? 40 : len), p);
                 return -1;
             }

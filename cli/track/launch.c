@@ -33,7 +33,7 @@ static double window_fit(const jc_Setup *setup, const cli_Track *t, const jc_Sim
     fo.descents = 2;
     fo.profiles = 0;
     fo.hold_frame = 1; /* 0.4 s does not tell the frame's tilt; the start is what is asked */
-    fo.no_refine = 1;  /* this is the refinement */
+    fo.start_window = 1;
     fo.mark_angle_rad = mark_angle_rad;
     cli_FitResult r;
     char err[256];
@@ -74,10 +74,10 @@ int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOpti
      * which the next fits no better (a push's last frames still raise
      * chi2/dof a little; noise moves it by about sqrt(2/dof)). */
     double best = INFINITY, q = NAN;
-    jc_State s, s_best;
+    jc_State s, s_best, s_from;
     for (long k = from; k + 3 <= end && t->t_s[k] - t->t_s[from] <= (scan ? LAUNCH_MAX_S : 0.0);) {
         if (isnan(q)) q = window_fit(setup, t, o, k, end, mark_angle_rad, &s);
-        if (k == from) out->chi2_dof_with = q;
+        if (k == from) out->chi2_dof_with = q, s_from = s;
         if (q < best) best = q, out->frame = k, out->chi2_dof = q, s_best = s;
         const long next = next_frame(t, k, stride, end);
         if (!(q <= LAUNCH_CHI2_DOF) || !scan || next + 3 > end) {
@@ -100,10 +100,8 @@ int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOpti
     out->start = s_best;
     /* No frame fits: the clip is taken from its first frame (the fit's
      * verdict then says the model does not describe it). */
-    if (best > LAUNCH_CHI2_DOF && out->frame != from) {
-        const double q0 = window_fit(setup, t, o, from, end, mark_angle_rad, &s);
-        if (isfinite(q0)) out->frame = from, out->chi2_dof = q0, out->start = s;
-    }
+    if (best > LAUNCH_CHI2_DOF && out->frame != from && isfinite(out->chi2_dof_with))
+        out->frame = from, out->chi2_dof = out->chi2_dof_with, out->start = s_from;
     out->pushed = out->frame - from;
     if (out->pushed == 0) out->chi2_dof_with = NAN;
     return 0;

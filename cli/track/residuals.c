@@ -31,6 +31,29 @@ long cli_residual_count(const cli_Residuals *r)
     return k;
 }
 
+void cli_track_misfit(const cli_Track *t, long first, long count, const double *x, const double *y,
+                      const double *th_mark, double *rms_path_m, double *max_path_m, double *rms_theta_rad)
+{
+    double path = 0.0, th = 0.0, largest = 0.0;
+    long n_path = 0, n_th = 0;
+    for (long i = 0; i < count; ++i) {
+        const long j = first + i;
+        if (isfinite(t->x_m[j])) {
+            const double d2 = pow(t->x_m[j] - x[i], 2) + pow(t->y_m[j] - y[i], 2);
+            path += d2;
+            largest = fmax(largest, d2);
+            n_path++;
+        }
+        if (t->has_mark && isfinite(t->theta_rad[j])) {
+            th += pow(remainder(t->theta_rad[j] - th_mark[i], 2.0 * CLI_TRACK_PI), 2);
+            n_th++;
+        }
+    }
+    *rms_path_m = n_path ? sqrt(path / (double)n_path) : NAN;
+    if (max_path_m) *max_path_m = sqrt(largest);
+    *rms_theta_rad = n_th ? sqrt(th / (double)n_th) : NAN;
+}
+
 void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y, const double *th, double *f,
                         unsigned char *series)
 {

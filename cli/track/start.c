@@ -121,3 +121,16 @@ void cli_track_window(const cli_Track *t, double from_s, double to_s, long *firs
     *first = a;
     *count = b - a;
 }
+
+void cli_track_start_setup(const cli_Track *t, long first, long end, double radius_m, const jc_Setup *setup,
+                           jc_State *out)
+{
+    while (first + 1 < end && !isfinite(t->x_m[first])) first++;
+    memset(out, 0, sizeof *out);
+    out->t_s = t->t_s[first];
+    out->x_m = t->x_m[first];
+    out->y_m = radius_m;
+    out->theta_rad = setup->theta0_rad;
+    out->omega_radps = setup->omega0_radps;
+    out->vx_mps = radius_m * out->omega_radps;
+}

@@ -92,6 +92,10 @@ int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *st
 
 /* ---- start.c: the state at a frame, the frames of a window, hops ---- */
 
+/* The setup's own start (θ0, ω0, rolling: y = r, vx = r ω) at the first
+ * frame from `first` on, before `end`, that has the centre. */
+void cli_track_start_setup(const cli_Track *t, long first, long end, double radius_m, const jc_Setup *setup,
+                           jc_State *out);
 /* The body's state at frame `first` from quadratic least squares over the
  * next few frames (at most `span`): in contact it rolls (y = r, vy = 0,
  * vx = r ω, ω weighted from the mark and the centre). θ is the mark's
@@ -155,8 +159,7 @@ typedef struct {
     double rms_path_m;         /* centre: sqrt(mean(dx^2 + dy^2)) over frames with a centre */
     double rms_theta_rad;      /* over frames with the mark; NaN without */
     double max_path_m;
-    cli_TrackHops measured, simulated; /* the same detector on both */
-    double threshold_m;
+    cli_TrackHops measured, simulated; /* the same detector on both, at the track's hop threshold */
     /* The model's own events (exact times): */
     int model_liftoffs, model_bounces;
     double model_liftoff_t_s, model_liftoff_x_m; /* NaN if none */
@@ -209,6 +212,8 @@ typedef struct {
 
 #define CLI_FIT_MAX_PARAMS 14
 
+/* 1 when a and b name the same value. */
+int cli_fit_param_same(cli_FitParam a, cli_FitParam b);
 /* A value's name ("mu_s", "rod_offset", ...) into buf. */
 void cli_fit_param_name(const jc_Setup *s, cli_FitParam p, char *buf, size_t len);
 /* Its unit ("", "rad", "rad/s", "m", "kg"). */
@@ -224,10 +229,6 @@ void cli_fit_allowed(const jc_Setup *s, char *buf, size_t len);
 /* The physical range of a value: [lo, hi], either may be infinite; the
  * setup gives the radius, masses and mu_s. */
 void cli_fit_range(const jc_Setup *s, cli_FitParam p, double *lo, double *hi);
-/* The model's positions and angles (n of each; th may be NULL) into the
- * video's frame: turned by the tilt about the start, moved up by the
- * surface. */
-void cli_fit_to_video(const cli_FitFrame *fr, const jc_State *start, double *x, double *y, double *th, long n);
 /* A value in a setup, start and frame, and one set into them. */
 double cli_fit_get(const jc_Setup *s, const jc_State *start, const cli_FitFrame *f, cli_FitParam p);
 void cli_fit_set(jc_Setup *s, jc_State *start, cli_FitFrame *f, cli_FitParam p, double v);
@@ -237,6 +238,10 @@ void cli_fit_set(jc_Setup *s, jc_State *start, cli_FitFrame *f, cli_FitParam p, 
 typedef enum { CLI_LOSS_LINEAR, CLI_LOSS_HUBER, CLI_LOSS_CAUCHY } cli_FitLoss;
 /* "linear", "huber", "cauchy"; -1 for an unknown name. */
 int cli_fit_parse_loss(const char *text, cli_FitLoss *out);
+/* The model's positions and angles (n of each; th may be NULL) into the
+ * video's frame: turned by the tilt about the start, moved up by the
+ * surface. */
+void cli_fit_to_video(const cli_FitFrame *fr, const jc_State *start, double *x, double *y, double *th, long n);
 
 typedef struct {
     cli_FitParam free[CLI_FIT_MAX_PARAMS]; /* the values asked for */
@@ -251,7 +256,7 @@ typedef struct {
     double sigma_m;        /* position noise; <= 0: the track's (measured: σ are then scaled by chi2/dof) */
     cli_StartKind start;   /* the start's values: tracked (estimated) or the setup's */
     int starts;            /* start points screened over the bounded values (0: by the count of them) */
-    int descents;          /* best screened points descended from (0: 4) */
+    int descents;          /* best screened points descended from (0: 3) */
     uint64_t seed;         /* the screening's Latin hypercube (Philox) */
     double mark_angle_rad; /* the mark's angle on the body, when not fitted */
     int profiles;          /* 1: a chi2 profile for each value not determined */
@@ -260,9 +265,11 @@ typedef struct {
      * (the fit prints nothing itself). */
     void (*progress)(void *ctx, const char *stage, int descents);
     void *progress_ctx;
-    int no_refine;         /* 0: the start's values are first fitted alone to the window's first
-                              0.4 s (a start estimated from a few frames is far off, and every
-                              descent would begin from it); 1: not (a refinement itself) */
+    int start_window;      /* 0: a fit: the free motion's first frame is found and the start's
+                              values fitted alone to its first 0.4 s first (launch.c: a start
+                              estimated from a few frames is far off, and every descent would
+                              begin from it); 1: such a fit of the start itself, which works out
+                              the values and chi2 only (no lift-off, RMS, verdict or profiles) */
 } cli_FitOptions;
 
 void cli_fit_options_default(cli_FitOptions *o);
@@ -297,6 +304,7 @@ typedef struct {
     double corr[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS]; /* of the values fitted at the end */
     long residuals;                   /* n */
     double chi2, chi2_dof;            /* of the residuals in units of sigma */
+    long dof;                         /* residuals less the values fitted at the end */
     int noise_measured;               /* sigma from the track: sigmas scaled by sqrt(chi2/dof) */
     int iterations;                   /* trust-region iterations, all descents */
     int screened, descents;           /* start points evaluated, descents made */
@@ -321,8 +329,6 @@ typedef struct {
     /* The verdict: the model describes the video, or not, and why. */
     int misfit;
     double runs_z;                    /* the worst Wald-Wolfowitz z of the residual series */
-    char runs_series[32];             /* which series */
-    int hops_measured, hops_model;    /* clear hops in the window */
     char verdict[400];
 } cli_FitResult;
 
@@ -346,6 +352,12 @@ typedef struct {
 
 /* How many residuals the frames give. */
 long cli_residual_count(const cli_Residuals *r);
+/* The model (x, y and the mark's angle th_mark at count frames from
+ * first) against the track: the centre's path RMS and largest distance
+ * (max_path_m may be NULL) over frames with a centre, the mark's angle RMS
+ * (modulo 2 pi) over frames with it (NaN without). */
+void cli_track_misfit(const cli_Track *t, long first, long count, const double *x, const double *y,
+                      const double *th_mark, double *rms_path_m, double *max_path_m, double *rms_theta_rad);
 /* Residuals in units of sigma for the model's centre and G's angle at the
  * frames: f[0 .. count). Series k (0, 1, 2) of residual i: which = i's. */
 void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y, const double *th, double *f,
