@@ -16,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -168,6 +169,14 @@ static inline int cli_one_line(const char *s)
 {
     const char *nl = s ? strchr(s, '\n') : NULL;
     return nl && nl[1] == '\0';
+}
+
+/* Whether a file (or anything else) is at path: what a refused run must
+ * not leave, and a run that works must write. */
+static inline int cli_file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
 }
 
 /* A fresh scratch directory from the template dir ("/tmp/name_XXXXXX",

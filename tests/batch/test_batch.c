@@ -26,12 +26,6 @@ static char dir[64];
 
 static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
 
-static int file_exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
-}
-
 /* The number of a JSON object's member, NaN when it is absent. */
 static double num(const cJSON *o, const char *name)
 {
@@ -138,7 +132,7 @@ static char *grid_sweep(const char *name, const char *opt1, const char *opt2)
     const char *args[] = {"sweep", "--vary", "incline=10:50:8", "--vary", "rod-offset=2cm:8cm:1.5cm", "--vary",
                           "impact-law=stronge,newton", "--output", out, opt1, opt2, NULL};
     cli_result r = cli_run(args);
-    char *text = r.status == 0 && !file_exists(part) ? cli_run_slurp(out) : NULL;
+    char *text = r.status == 0 && !cli_file_exists(part) ? cli_run_slurp(out) : NULL;
     if (!text) fprintf(stderr, "sweep %s %s: exit %d: %s\n", opt1 ? opt1 : "", opt2 ? opt2 : "", r.status, r.err);
     cli_result_free(&r);
     return text;
@@ -212,7 +206,7 @@ static int test_stopped_sweep_resumes_to_the_same_bytes(void)
     cli_result r = cli_run_wait(pid, out_tmp, err_tmp, 1);
     ENSURE_MSG(r.status == 143 || r.status == 0, "exit %d after SIGTERM: %s", r.status, r.err);
     if (r.status == 143) {
-        ENSURE_MSG(!file_exists(out) && file_exists(part), "a stopped job keeps FILE.part and makes no FILE");
+        ENSURE_MSG(!cli_file_exists(out) && cli_file_exists(part), "a stopped job keeps FILE.part and makes no FILE");
         ENSURE_MSG(strstr(r.err, "--resume") != NULL, "the message names --resume: %s", r.err);
         char *kept = cli_run_slurp(part);
         ENSURE(kept && strlen(kept) < strlen(expected) && strncmp(kept, expected, strlen(kept)) == 0);
@@ -240,7 +234,7 @@ static int test_stopped_sweep_resumes_to_the_same_bytes(void)
     cli_result_free(&r);
     char *got = cli_run_slurp(out);
     ENSURE_MSG(got && strcmp(got, expected) == 0, "the resumed file differs from the uninterrupted one");
-    ENSURE(!file_exists(part));
+    ENSURE(!cli_file_exists(part));
     free(got);
 
     /* Another job's rows are refused. */
@@ -426,7 +420,7 @@ static int test_bad_values(void)
         cli_result r = cli_run(args);
         ENSURE_MSG(r.status == 2 && cli_one_line(r.err), "case %zu (%s): exit %d, stderr: %s", i, cases[i], r.status,
                    r.err);
-        ENSURE_MSG(!file_exists(out), "case %zu left a file", i);
+        ENSURE_MSG(!cli_file_exists(out), "case %zu left a file", i);
         cli_result_free(&r);
     }
     printf("  %zu bad values refused with one line each\n", sizeof cases / sizeof cases[0]);
@@ -492,7 +486,7 @@ static int test_special_outputs(void)
     const char *to_null[] = {"sweep", "--vary", "incline=10,20", "--output", "/dev/null", NULL};
     cli_result r = cli_run(to_null);
     struct stat st;
-    ENSURE_MSG(r.status == 0 && stat("/dev/null", &st) == 0 && S_ISCHR(st.st_mode) && !file_exists("/dev/null.part"),
+    ENSURE_MSG(r.status == 0 && stat("/dev/null", &st) == 0 && S_ISCHR(st.st_mode) && !cli_file_exists("/dev/null.part"),
                "%s", r.err);
     cli_result_free(&r);
     const char *to_full[] = {"sweep", "--vary", "incline=10,20", "--output", "/dev/full", NULL};
@@ -503,7 +497,7 @@ static int test_special_outputs(void)
     r = cli_run(to_dir);
     char part[128];
     snprintf(part, sizeof part, "%s.part", dir);
-    ENSURE_MSG(r.status == 2 && cli_one_line(r.err) && !file_exists(part), "%d %s", r.status, r.err);
+    ENSURE_MSG(r.status == 2 && cli_one_line(r.err) && !cli_file_exists(part), "%d %s", r.status, r.err);
     cli_result_free(&r);
     const char *resume_null[] = {"mc", "--samples", "5", "--output", "/dev/null", "--resume", NULL};
     r = cli_run(resume_null);

@@ -67,7 +67,7 @@ static int no_script_or_rows(const char *stem)
     for (int i = 0; i < 2; ++i) {
         char path[1100];
         snprintf(path, sizeof path, "%s/%s.%s", dir, stem, kept[i]);
-        ENSURE_MSG(!fig_exists(path), "%s was written", path);
+        ENSURE_MSG(!cli_file_exists(path), "%s was written", path);
     }
     return 0;
 }
@@ -108,7 +108,7 @@ static int test_kept_csv_is_the_sweep(void)
     snprintf(args, sizeof args, "map --x " X_AXIS " --y " Y_AXIS " --output '%s' --keep-script --threads 2", out);
     ENSURE(run_says(args, "Script: ", "Rows: "));
     ENSURE(whole_png(out, 1200, 750));
-    ENSURE(fig_exists(gp));
+    ENSURE(cli_file_exists(gp));
     snprintf(args, sizeof args, "sweep --vary " Y_AXIS " --vary " X_AXIS " --output '%s' --threads 1", sweep);
     ENSURE(run_ok(args));
     char *a = cli_run_slurp(csv), *b = cli_run_slurp(sweep);
@@ -333,7 +333,7 @@ static int refused(const char *axes, const char *needle)
     if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s", args, r.status, r.err ? r.err : "?\n");
     cli_result_free(&r);
     ENSURE(ok);
-    ENSURE_MSG(!fig_exists(out), "%s was written", out);
+    ENSURE_MSG(!cli_file_exists(out), "%s was written", out);
     return no_script_or_rows("bad");
 }
 
@@ -368,7 +368,7 @@ static int test_bad_axes(void)
     const int ok = r.status == 2 && cli_one_line(r.err) && strstr(r.err, "unknown format '.jpg'");
     cli_result_free(&r);
     ENSURE(ok);
-    ENSURE(!fig_exists(out));
+    ENSURE(!cli_file_exists(out));
     /* A directory that does not exist: exit 1 naming it, before any work. */
     snprintf(out, sizeof out, "%s/no/such/dir/m.png", dir);
     snprintf(args, sizeof args, "map --x " X_AXIS " --y " Y_AXIS " --output '%s'", out);
@@ -386,7 +386,7 @@ static int test_missing_gnuplot(void)
     snprintf(args, sizeof args, "map --x " X_AXIS " --y " Y_AXIS " --output '%s' --keep-script", out);
     if (fig_without_tools(cli, dir, args, out, "gnuplot was not found", NULL, 1)) return 1;
     snprintf(out, sizeof out, "%s/nognuplot.csv", dir);
-    ENSURE(!fig_exists(out));
+    ENSURE(!cli_file_exists(out));
     return 0;
 }
 

@@ -53,12 +53,6 @@ static inline long fig_file_size(const char *path)
     return stat(path, &st) == 0 ? (long)st.st_size : -1;
 }
 
-static inline int fig_exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
-}
-
 /* The first n bytes of a file; 0 on success. */
 static inline int fig_head(const char *path, unsigned char *buf, size_t n)
 {
@@ -114,7 +108,7 @@ static inline int fig_without_tools(const char *cli, const char *dir, const char
     if (!ok) fprintf(stderr, "'%s' without tools: status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
     cli_result_free(&r);
     ENSURE(ok);
-    ENSURE_MSG(!fig_exists(out), "%s was written", out);
+    ENSURE_MSG(!cli_file_exists(out), "%s was written", out);
     return 0;
 }
 

@@ -112,7 +112,7 @@ static int usage_error(const char *opts, const char *needle)
     if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
     cli_result_free(&r);
     ENSURE(ok);
-    ENSURE(!fig_exists(out));
+    ENSURE(!cli_file_exists(out));
     return 0;
 }
 
@@ -171,7 +171,7 @@ static int test_bad_input(void)
     cli_result r = cli_run_line(cli, NULL, args);
     const int ok = r.status == 2 && r.err && strstr(r.err, ".avi");
     cli_result_free(&r);
-    ENSURE(ok && !fig_exists(out));
+    ENSURE(ok && !cli_file_exists(out));
     return 0;
 }
 

@@ -475,7 +475,7 @@ static int test_kept_script_reruns(void)
 {
     char out[1100], cmd[2400];
     snprintf(out, sizeof out, "%s/c30.png", dir);
-    ENSURE(fig_exists(out));
+    ENSURE(cli_file_exists(out));
     remove(out);
     snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot c30.gp 2>/dev/null", dir);
     ENSURE(system(cmd) == 0);
@@ -496,7 +496,7 @@ static int usage_error(const char *opts, const char *file, const char *needle)
     if (!ok) fprintf(stderr, "'%s': status %d, stderr: %s\n", args, r.status, r.err ? r.err : "?");
     cli_result_free(&r);
     ENSURE(ok);
-    ENSURE_MSG(!fig_exists(out), "%s was written", out);
+    ENSURE_MSG(!cli_file_exists(out), "%s was written", out);
     return 0;
 }
 

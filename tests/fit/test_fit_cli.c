@@ -278,11 +278,11 @@ static int test_bad_options(void)
     int bad = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         cli_result r = cli_run(cases[i]);
-        if (r.status != 2 || !cli_one_line(r.err) || file_exists(fig)) {
+        if (r.status != 2 || !cli_one_line(r.err) || cli_file_exists(fig)) {
             fprintf(stderr, "case %zu (%s %s %s %s %s ...): status %d, stderr '%s', figure %s\n", i, cases[i][0],
                     cases[i][1], cases[i][2] ? cases[i][2] : "", cases[i][3] ? cases[i][3] : "",
                     cases[i][3] && cases[i][4] ? cases[i][4] : "", r.status, r.err ? r.err : "",
-                    file_exists(fig) ? "written" : "absent");
+                    cli_file_exists(fig) ? "written" : "absent");
             bad = 1;
         }
         /* A wrong incline is refused naming the video's. */
@@ -295,7 +295,7 @@ static int test_bad_options(void)
     /* The same track and options that work: exit 0, the figure written. */
     const char *good[] = {"fit", "--track", track, "--mu-k", "0.35", "--free", "mu_k,restitution", "--output", fig, NULL};
     cli_result r = cli_run(good);
-    const int good_ok = r.status == 0 && file_exists(fig) && strstr(r.out, "chi2/dof") &&
+    const int good_ok = r.status == 0 && cli_file_exists(fig) && strstr(r.out, "chi2/dof") &&
                         strstr(r.out, "Predicted first lift-off") && strstr(r.out, "the model describes this video");
     if (!good_ok) fprintf(stderr, "good fit: status %d, stderr '%s'\n", r.status, r.err ? r.err : "");
     cli_result_free(&r);

@@ -1,5 +1,5 @@
 /* Test helpers shared by the track and fit tests: a synthetic video
- * written as Tracker's exported table, and whether a file exists. */
+ * written as Tracker's exported table. */
 #ifndef JC_TESTS_SYNTH_TABLE_H
 #define JC_TESTS_SYNTH_TABLE_H
 
@@ -8,7 +8,6 @@
 
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 
 /* A camera of fps frames/s tracking with sigma_m of noise for 1.5 s,
  * the mark (if tracked) mark_m from the centre. */
@@ -56,12 +55,6 @@ static inline int synth_table_write(const char *path, const jc_Setup *s, const c
     const int rc = f ? cli_track_write_table(f, &raw) : -1;
     cli_raw_free(&raw);
     return f && fclose(f) == 0 ? rc : -1;
-}
-
-static inline int file_exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
 }
 
 #endif

@@ -117,7 +117,7 @@ static int expect(const char *const *args, int want, const char *text, const cha
     if (r.out) squeeze(r.out);
     const char *where = want == 0 ? r.out : r.err;
     const int ok = r.status == want && where && (!text || strstr(where, text)) && (want == 0 || cli_one_line(r.err)) &&
-                   (!out || want == 0 || !file_exists(out));
+                   (!out || want == 0 || !cli_file_exists(out));
     if (!ok)
         fprintf(stderr, "%s %s ...: status %d (want %d), wanted '%s'\nstdout: %s\nstderr: %s\n", args[0], args[1],
                 r.status, want, text ? text : "", r.out ? r.out : "", r.err ? r.err : "");
