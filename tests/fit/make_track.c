@@ -4,8 +4,7 @@
  *
  * Usage: fit_make_track OUT [SIGMA_M [FPS [SEED [PRESET [TRACKS [MU_K [HAND_S]]]]]]]
  *   defaults 1e-3, 60, 1, paper, both, 0.4, 0; TRACKS: both, centre, mark. */
-#include "track_fit.h"
-#include "raw.h"
+#include "../track/synth_table.h"
 
 #include <gsl/gsl_errno.h>
 #include <math.h>
@@ -29,28 +28,16 @@ int main(int argc, char **argv)
     const char *tracks = argc > 6 ? argv[6] : "both";
     double a = 0;
     for (int i = 0; i < s.body.part_count; ++i) a = fmax(a, s.body.parts[i].offset_m);
-    cli_SynthOptions o;
-    memset(&o, 0, sizeof o);
-    o.fps_hz = argc > 3 ? atof(argv[3]) : 60.0;
-    o.sigma_m = argc > 2 ? atof(argv[2]) : 1e-3;
-    o.t_end_s = s.incline_rad > 0 ? 1.5 : 2.5;
-    o.mark_radius_m = a;
-    o.seed = argc > 4 ? strtoull(argv[4], NULL, 10) : 1u;
-    o.tracks = strcmp(tracks, "centre") == 0 ? CLI_SYNTH_CENTRE_ONLY : strcmp(tracks, "mark") == 0 ? CLI_SYNTH_MARK_ONLY
-                                                                                                   : CLI_SYNTH_BOTH;
+    const cli_SynthTracks which = strcmp(tracks, "centre") == 0 ? CLI_SYNTH_CENTRE_ONLY
+                                  : strcmp(tracks, "mark") == 0 ? CLI_SYNTH_MARK_ONLY
+                                                                : CLI_SYNTH_BOTH;
+    cli_SynthOptions o = synth_camera(argc > 3 ? atof(argv[3]) : 60.0, argc > 2 ? atof(argv[2]) : 1e-3, which,
+                                      argc > 4 ? strtoull(argv[4], NULL, 10) : 1u, a);
+    o.t_end_s = s.incline_rad > 0 ? 1.5 : 2.5; /* a floor's run is filmed longer */
     o.hand_s = argc > 8 ? atof(argv[8]) : 0.0;
-    cli_RawData raw;
-    if (cli_track_synth_raw(&s, &o, &raw, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    if (synth_table_write(argv[1], &s, &o, NULL) != 0) {
+        fprintf(stderr, "%s: cannot make or write %s\n", argv[0], argv[1]);
         return 1;
     }
-    FILE *f = fopen(argv[1], "w");
-    if (!f) {
-        perror(argv[1]);
-        cli_raw_free(&raw);
-        return 1;
-    }
-    const int rc = cli_track_write_table(f, &raw);
-    cli_raw_free(&raw);
-    return fclose(f) == 0 && rc == 0 ? 0 : 1;
+    return 0;
 }
