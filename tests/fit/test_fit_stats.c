@@ -151,7 +151,9 @@ static int run_trials(int trials, uint64_t seed)
                    r->misfit);
             for (int v = 0; v < NV; ++v) {
                 const int k = slot(r, v);
-                if (r->flag[k] != CLI_FIT_DETERMINED) printf(" %s held (%s)", vname[v], cli_fit_flag_text(r->flag[k]));
+                if (k < 0) printf(" %s not fitted", vname[v]);
+                else if (r->flag[k] != CLI_FIT_DETERMINED)
+                    printf(" %s held (%s)", vname[v], cli_fit_flag_text(r->flag[k]));
                 else printf(" %+.2f", (r->value[k] - tr[i].truth[v]) / r->sigma[k]);
             }
             printf("\n");
@@ -182,8 +184,9 @@ static int run_trials(int trials, uint64_t seed)
     printf("  all values: within 2 sigma in %.1f %% of %d intervals; the verdict 'describes' in %d of %d\n",
            100.0 * pooled, all_n, described, trials);
     if (trials < 100) return 0; /* too few to judge a coverage by */
-    /* mu_k, e and the start are always determined by these videos. */
-    ENSURE_MSG(flagged[V_MU_K] == 0 && flagged[V_E] == 0 && flagged[V_X0] == 0,
+    /* mu_k, e and the start (theta0, omega0, x0) are always determined by these videos. */
+    ENSURE_MSG(flagged[V_MU_K] == 0 && flagged[V_E] == 0 && flagged[V_THETA0] == 0 && flagged[V_OMEGA0] == 0 &&
+                   flagged[V_X0] == 0,
                "a value these videos determine was held (seed %llu)", (unsigned long long)seed);
     ENSURE_MSG(pooled >= COVERAGE_MIN && pooled <= COVERAGE_MAX, "pooled coverage %.3f (seed %llu)", pooled,
                (unsigned long long)seed);
