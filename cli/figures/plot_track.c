@@ -14,26 +14,15 @@ static void put(FILE *f, double v)
     else fputs(" NaN", f);
 }
 
-/* The frames' residuals in units of sigma: the centre along and across the
- * incline and the mark across its radius (a tracked centre), or the mark
- * along and across (a centre recovered from the mark). */
+/* The frames' residuals in units of sigma (cli_residuals_frame, as the fit
+ * has them): the centre along and across the incline and the mark across
+ * its radius (a tracked centre), or the mark along and across (a centre
+ * recovered from the mark); NaN where the frame has none. */
 static void residuals_at(const cli_TrackFigure *f, long i, double r[3])
 {
-    const cli_Track *t = f->track;
-    const long j = f->first + i;
-    const double s = f->sigma_m > 0 ? f->sigma_m : t->sigma_m, a = f->mark_radius_m, thm = f->sim_theta[i];
+    const double s = f->sigma_m > 0 ? f->sigma_m : f->track->sigma_m;
     r[0] = r[1] = r[2] = NAN;
-    if (t->centre_source == CLI_CENTRE_FROM_MARK) {
-        if (!isfinite(t->mark_x_m[j])) return;
-        r[0] = (t->mark_x_m[j] - (f->sim_x[i] + a * sin(thm))) / s;
-        r[1] = (t->mark_y_m[j] - (f->sim_y[i] + a * cos(thm))) / s;
-        return;
-    }
-    if (!isfinite(t->x_m[j])) return;
-    const double dx = t->x_m[j] - f->sim_x[i], dy = t->y_m[j] - f->sim_y[i], th = t->theta_rad[j];
-    r[0] = dx / s;
-    r[1] = dy / s;
-    if (a > 0.0 && isfinite(th)) r[2] = (a * remainder(th - thm, 2.0 * CLI_TRACK_PI) + dx * cos(th) - dy * sin(th)) / s;
+    cli_residuals_frame(f->track, f->first + i, s, f->mark_radius_m, f->sim_x[i], f->sim_y[i], f->sim_theta[i], r);
 }
 
 static void write_data(FILE *gp, const cli_TrackFigure *f)

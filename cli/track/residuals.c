@@ -54,33 +54,38 @@ void cli_track_misfit(const cli_Track *t, long first, long count, const double *
     *rms_theta_rad = n_th ? sqrt(th / (double)n_th) : NAN;
 }
 
+int cli_residuals_frame(const cli_Track *t, long j, double sigma, double a, double x, double y, double thm,
+                        double f[3])
+{
+    if (t->centre_source == CLI_CENTRE_FROM_MARK) {
+        if (!isfinite(t->mark_x_m[j])) return 0;
+        f[0] = (t->mark_x_m[j] - (x + a * sin(thm))) / sigma;
+        f[1] = (t->mark_y_m[j] - (y + a * cos(thm))) / sigma;
+        return 2;
+    }
+    if (!isfinite(t->x_m[j])) return 0;
+    const double dx = t->x_m[j] - x, dy = t->y_m[j] - y, tht = t->theta_rad[j];
+    f[0] = dx / sigma;
+    f[1] = dy / sigma;
+    if (!(a > 0.0 && isfinite(tht))) return 2;
+    /* The angles' difference within half a turn: an unwrapping across
+     * dropped frames may have counted a turn more or less. */
+    f[2] = (a * remainder(tht - thm, 2.0 * CLI_TRACK_PI) + dx * cos(tht) - dy * sin(tht)) / sigma;
+    return 3;
+}
+
 void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y, const double *th, double *f,
                         unsigned char *series)
 {
-    const cli_Track *t = r->t;
-    const double s = r->sigma;
     long k = 0;
     for (long i = 0; i < r->count; ++i) {
-        const long j = r->first + i;
-        const double thm = th[i] - r->mark_offset; /* the model's mark angle */
-        if (from_mark(r)) {
-            if (!isfinite(t->mark_x_m[j])) continue;
-            if (series) series[k] = 0, series[k + 1] = 1;
-            f[k++] = (t->mark_x_m[j] - (x[i] + r->mark_radius * sin(thm))) / s;
-            f[k++] = (t->mark_y_m[j] - (y[i] + r->mark_radius * cos(thm))) / s;
-            continue;
-        }
-        if (!isfinite(t->x_m[j])) continue;
-        const double dx = t->x_m[j] - x[i], dy = t->y_m[j] - y[i];
-        if (series) series[k] = 0, series[k + 1] = 1;
-        f[k++] = dx / s;
-        f[k++] = dy / s;
-        const double tht = t->theta_rad[j];
-        if (r->mark_radius > 0.0 && isfinite(tht)) {
-            if (series) series[k] = 2;
-            /* The angles' difference within half a turn: an unwrapping across
-             * dropped frames may have counted a turn more or less. */
-            f[k++] = (r->mark_radius * remainder(tht - thm, 2.0 * CLI_TRACK_PI) + dx * cos(tht) - dy * sin(tht)) / s;
+        double v[3];
+        /* the model's mark angle: G's less the offset */
+        const int n = cli_residuals_frame(r->t, r->first + i, r->sigma, r->mark_radius, x[i], y[i],
+                                          th[i] - r->mark_offset, v);
+        for (int m = 0; m < n; ++m) {
+            if (series) series[k] = (unsigned char)m;
+            f[k++] = v[m];
         }
     }
 }

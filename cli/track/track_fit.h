@@ -358,6 +358,14 @@ long cli_residual_count(const cli_Residuals *r);
  * (modulo 2 pi) over frames with it (NaN without). */
 void cli_track_misfit(const cli_Track *t, long first, long count, const double *x, const double *y,
                       const double *th_mark, double *rms_path_m, double *max_path_m, double *rms_theta_rad);
+
+/* The residuals of frame j (an index into t) against the model's centre
+ * (x, y) and mark angle thm, in units of sigma, into f: the centre's x and
+ * y, then (a > 0, θ tracked there) the mark's displacement across its
+ * radius a; or, with a centre recovered from the mark, the mark's x and y.
+ * Returns how many (0: nothing tracked there); f[m] is of series m. */
+int cli_residuals_frame(const cli_Track *t, long j, double sigma, double a, double x, double y, double thm,
+                        double f[3]);
 /* Residuals in units of sigma for the model's centre and G's angle at the
  * frames: f[0 .. count). Series k (0, 1, 2) of residual i: which = i's. */
 void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y, const double *th, double *f,
