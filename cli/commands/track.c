@@ -112,7 +112,6 @@ static cJSON *series(const double *v, long n)
 }
 
 static const char *const quantity_names[CLI_Q_COUNT] = {"centre", "surface", "hops", "theta"};
-static const char *const centre_sources[] = {"none", "tracked", "recovered from the mark"};
 static const char *const incline_sources[] = {"unknown", "measured", "given"};
 
 static cJSON *hop_json(const cli_Track *t, const cli_TrackHop *h)
@@ -143,7 +142,7 @@ static cJSON *track_json(const char *file, const cli_Track *t)
     }
     if (t->centre_name[0]) cJSON_AddStringToObject(d, "centre", t->centre_name);
     else cJSON_AddNullToObject(d, "centre");
-    cJSON_AddStringToObject(d, "centre_source", centre_sources[t->centre_source]);
+    cJSON_AddStringToObject(d, "centre_source", cli_track_centre_sources[t->centre_source]);
     if (t->has_mark) cJSON_AddStringToObject(d, "mark", t->mark_name);
     else cJSON_AddNullToObject(d, "mark");
     cJSON_AddNumberToObject(d, "clip_frames", (double)t->clip_frames);

@@ -188,14 +188,15 @@ int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const
     return 0;
 }
 
+const char *const cli_track_centre_sources[CLI_CENTRE_FROM_MARK + 1] = {"none", "tracked", "recovered from the mark"};
+
 void cli_track_print_head(const char *file, const cli_Track *t, long first, long count)
 {
-    static const char *const source[] = {"none", "tracked", "recovered from the mark"};
     printf("Track: %s: %ld of %ld frames used (t = %.4f to %.4f s), %.4g fps nominal, %ld gap(s);\n"
            "       noise sigma %.3g mm (the frames %s); centre %s; mark %s\n",
            file, count, t->n, t->t_s[first], t->t_s[first + count - 1], t->frame_rate_hz, t->gaps, t->sigma_m * 1e3,
            t->centre_source == CLI_CENTRE_FROM_MARK ? "the mark rolls in" : "in contact",
-           source[t->centre_source], t->has_mark ? "tracked" : "not tracked (theta is not compared)");
+           cli_track_centre_sources[t->centre_source], t->has_mark ? "tracked" : "not tracked (theta is not compared)");
     printf("       incline %.2f deg (%s)\n", cli_deg(t->incline_rad),
            t->incline_source == CLI_INCLINE_MEASURED ? "measured from the video" : "as given");
 }

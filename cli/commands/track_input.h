@@ -52,6 +52,9 @@ int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *
  * takes the track's incline. */
 int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const cli_SetupArgs *sa, jc_Setup *setup,
                                   cli_Track *t);
+/* How the reports name the centre's source, by its CLI_CENTRE_* value
+ * (track's report and JSON, compare's and fit's head). */
+extern const char *const cli_track_centre_sources[CLI_CENTRE_FROM_MARK + 1];
 void cli_track_print_head(const char *file, const cli_Track *t, long first, long count);
 /* The model's path every quarter frame from start to t_end_s (for the
  * figure); 0, or -1 (the arrays are then to be freed all the same). */
