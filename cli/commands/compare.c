@@ -87,7 +87,6 @@ static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, con
     f.sim_y = c->y_m;
     f.sim_theta = c->theta_rad;
     f.mark_radius_m = t->has_mark ? cli_track_mark_radius(t, m) : 0.0;
-    f.mark_offset_rad = 0.0; /* c->theta_rad holds the mark's angle already */
     f.sigma_m = t->sigma_m;
     f.hop_threshold_m = t->hop_threshold_m;
     snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; path residuals RMS %.2f mm (%.2f σ)",

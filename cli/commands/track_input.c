@@ -238,7 +238,6 @@ int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *s
         f->path_x = px;
         f->path_y = py;
         f->radius_m = t->radius_m;
-        f->incline_rad = t->incline_rad;
         char cmdline[2048];
         fig_command_line(argc, argv, cmdline, sizeof cmdline);
         rc = cli_track_figure(cmd, f, out, cmdline);

@@ -61,10 +61,10 @@ void cli_track_print_head(const char *file, const cli_Track *t, long first, long
 int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_State *start, const jc_SimOptions *o,
                         double t_end_s, double **pt, double **px, double **py, long *n);
 /* The last step of compare's and fit's figure: the caller fills f's frames,
- * model values, mark radius and offset, sigma, threshold and title; this
- * samples the model's fine path from start to the last frame shown (in the
- * video's frame when frame is not NULL), draws
- * the figure to out and frees the path. EXIT_OK or an exit status after a
+ * model values (the mark's angle, not G's), mark radius, sigma, threshold
+ * and title; this sets the radius, samples the model's fine path from start
+ * to the last frame shown (in the video's frame when frame is not NULL),
+ * draws the figure to out and frees the path. EXIT_OK or an exit status after a
  * message, or CLI_TRACK_FIGURE_NO_PATH when the path could not be made. */
 #define CLI_TRACK_FIGURE_NO_PATH (-1)
 int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_State *start,

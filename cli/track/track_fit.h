@@ -382,9 +382,8 @@ typedef struct {
     const double *sim_x, *sim_y, *sim_theta; /* the model at those frames (theta: the mark's) */
     const double *path_t, *path_x, *path_y;  /* the model finely sampled, for its curves */
     long path_n;
-    double radius_m, incline_rad;
+    double radius_m;                 /* the body's: a height shown is the centre's y less it */
     double mark_radius_m;            /* > 0: the mark's residual across its radius is shown */
-    double mark_offset_rad;
     double sigma_m;                  /* residuals are shown in units of it */
     double hop_threshold_m;
     char title[256];                 /* text the tool made (numbers, fixed words) */
