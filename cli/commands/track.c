@@ -374,6 +374,7 @@ int cmd_track(int argc, char **argv)
         cli_error("track: --csv and --json name the same file");
         return EXIT_USAGE;
     }
+    if ((st = cli_track_args_check_reading("track", &o.read)) != 0) return st;
     cli_Track t;
     if ((st = cli_track_args_load("track", file, &o.read, &sa, &setup, &t)) != 0) return st;
     if (o.csv && t.centre_source == CLI_CENTRE_NONE) {

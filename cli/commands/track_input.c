@@ -75,7 +75,7 @@ static int parse_time(const char *cmd, const char *name, const char *text, doubl
     return 0;
 }
 
-static int check_reading(const char *cmd, const cli_TrackArgs *a)
+int cli_track_args_check_reading(const char *cmd, cli_TrackArgs *a)
 {
     if (a->axes && strcmp(a->axes, "level") != 0 && strcmp(a->axes, "incline") != 0) {
         cli_error("%s: --axes '%s' (allowed: level, incline)", cmd, a->axes);
@@ -88,6 +88,7 @@ static int check_reading(const char *cmd, const cli_TrackArgs *a)
             cli_error("%s: --hop-sigmas '%s': a number from 1 to 100", cmd, a->hop_sigmas);
             return EXIT_USAGE;
         }
+        a->hop_sigmas_k = k;
     }
     return 0;
 }
@@ -100,7 +101,7 @@ int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
         cli_error("%s: --track FILE is required (a Tracker .trk file or an exported data table)", cmd);
         return EXIT_USAGE;
     }
-    int rc = check_reading(cmd, a);
+    int rc = cli_track_args_check_reading(cmd, a);
     if (rc == 0) rc = parse_time(cmd, "from", a->from, &a->from_s);
     if (rc == 0) rc = parse_time(cmd, "to", a->to, &a->to_s);
     if (rc != 0) return rc;
@@ -150,8 +151,6 @@ static int incline_given(const cli_SetupArgs *sa)
 int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *a, const cli_SetupArgs *sa,
                         const jc_Setup *setup, cli_Track *t)
 {
-    int rc = check_reading(cmd, a);
-    if (rc != 0) return rc;
     cli_TrackOptions opt;
     cli_track_options_default(&opt);
     opt.centre = a->centre;
@@ -161,10 +160,7 @@ int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *
     opt.gravity_mps2 = setup->gravity_mps2;
     opt.fit_tilt = a->fit_tilt;
     opt.axes = a->axes && strcmp(a->axes, "incline") == 0 ? CLI_TRACK_AXES_INCLINE : CLI_TRACK_AXES_LEVEL;
-    if (a->hop_sigmas) {
-        char err[64];
-        cli_parse_quantity(a->hop_sigmas, Q_NUMBER, &opt.hop_sigmas, err, sizeof err);
-    }
+    if (a->hop_sigmas) opt.hop_sigmas = a->hop_sigmas_k;
     char err[1024];
     if (cli_track_load(path, &opt, t, err, sizeof err) != 0) {
         cli_error("%s: %s", cmd, err);

@@ -31,18 +31,23 @@ typedef struct {
     int from_setup_start, fit_tilt;
     /* checked values */
     double from_s, to_s, mark_angle_rad;
+    double hop_sigmas_k; /* --hop-sigmas's K, when given */
 } cli_TrackArgs;
 
 /* 0 when it took the option, EXIT_USAGE after a message, 1 when the option is not one of these. */
 int cli_track_args_take(const char *cmd, cli_TrackArgs *a, int opt, const char *arg);
 /* The help of the reading options; with window 1, those of compare and fit too. */
 void cli_track_args_help(int window);
-/* Checks the options before any work (names, the window, the mark's angle,
- * the figure's name and target, gnuplot); 0 or the exit status after a
- * one-line message. */
+/* Checks the reading options (--axes, --hop-sigmas) and keeps their values;
+ * 0 or EXIT_USAGE after a one-line message. */
+int cli_track_args_check_reading(const char *cmd, cli_TrackArgs *a);
+/* Checks the options before any work (the reading options, the window, the
+ * mark's angle, the figure's name and target, gnuplot); 0 or the exit
+ * status after a one-line message. */
 int cli_track_args_check(const char *cmd, cli_TrackArgs *a);
 /* Reads the track for the setup's radius and g, with the incline given
- * (--incline, or an experiment file's) or the video's. 0, or the exit
+ * (--incline, or an experiment file's) or the video's; a's reading options
+ * checked first (either check above). 0, or the exit
  * status after a one-line message (EXIT_USAGE for a file that cannot be
  * read or an incline the video refuses). */
 int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *a, const cli_SetupArgs *sa,
