@@ -111,10 +111,14 @@ int cmd_compare(int argc, char **argv)
     if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
     cli_Track t;
     if ((st = cli_track_args_load_for_model("compare", &a, &sa, &setup, &t)) != 0) return st;
-    const jc_Setup used = cli_track_setup(&setup, &t);
+    /* The setup the runs use, its ramp without their margin uphill: printed,
+     * and its body for the report and the figure (built once: a failure is
+     * an error, not a setup left unprinted). */
+    jc_Setup shown = cli_track_setup(&setup, &t);
+    shown.ramp_length_m -= CLI_TRACK_RAMP_MARGIN_M;
     jc_Model model;
     char err[512];
-    if (jc_model_init(&model, &used, err, sizeof err) != JC_OK) {
+    if (jc_model_init(&model, &shown, err, sizeof err) != JC_OK) {
         cli_error("compare: %s", err);
         cli_track_free(&t);
         return EXIT_USAGE;
@@ -127,10 +131,7 @@ int cmd_compare(int argc, char **argv)
         return EXIT_USAGE;
     }
     cli_track_print_head(a.track, &t, c.first, c.count);
-    jc_Setup shown = used;
-    shown.ramp_length_m -= CLI_TRACK_RAMP_MARGIN_M;
-    jc_Model shown_model;
-    if (jc_model_init(&shown_model, &shown, err, sizeof err) == JC_OK) cli_print_setup(stdout, &shown_model, 1);
+    cli_print_setup(stdout, &model, 1);
     putchar('\n');
     report(&model, &t, &c, a.from_setup_start);
     st = a.output ? figure(a.output, &setup, &model, &t, &c, &opts, argc, argv) : EXIT_OK;
