@@ -7,6 +7,7 @@
 
 #include <getopt.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <sys/types.h>
 
@@ -152,6 +153,9 @@ int cli_run_inputs_parse(int argc, char **argv, const cli_Command *cmd, void *ct
 int cli_run_inputs_build(const char *cmd, cli_RunInputs *in);
 /* A single-valued option: stores arg in *slot, or refuses a second value. */
 int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg);
+/* A --seed value: a whole number from 0 to 2^64 - 1, no sign (mc, fit).
+ * 0, or EXIT_USAGE after a one-line message. */
+int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed);
 void cli_sim_help(FILE *out);
 /* The help of the shared options: simulation options (with_sim) and setup options. */
 void cli_options_help(FILE *out, int with_sim);

@@ -104,16 +104,7 @@ static int parse_numbers(const mc_opts *o, long *samples, uint64_t *seed, double
             return EXIT_USAGE;
         }
     }
-    if (o->seed) {
-        errno = 0;
-        const unsigned long long s = strtoull(o->seed, &end, 10);
-        if (end == o->seed || *end || errno || o->seed[0] == '-' || o->seed[0] == '+') {
-            cli_error("mc: --seed '%s' is not valid (allowed: a whole number from 0 to 18446744073709551615)",
-                      o->seed);
-            return EXIT_USAGE;
-        }
-        *seed = (uint64_t)s;
-    }
+    if (o->seed && cli_parse_seed("mc", o->seed, seed) != 0) return EXIT_USAGE;
     char msg[256];
     if (o->gap && (cli_parse_quantity(o->gap, Q_LENGTH, gap, msg, sizeof msg) != 0 || !(*gap > 0))) {
         cli_error("mc: --region-gap '%s' is not valid (allowed: a length > 0, e.g. 2cm)", o->gap);

@@ -1,7 +1,10 @@
 /* The setup options every command shares, and how they build a jc_Setup. */
 #include "cli.h"
 
+#include <ctype.h>
+#include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -455,6 +458,22 @@ int cli_take_once(const char *cmd, const char **slot, const char *name, const ch
         return EXIT_USAGE;
     }
     *slot = arg;
+    return 0;
+}
+
+int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed)
+{
+    char *end;
+    errno = 0;
+    const unsigned long long s = strtoull(text, &end, 10);
+    /* Digits alone: strtoull would also skip blanks and take a sign (and
+     * wrap "-1" round); past 2^64 - 1 it sets errno. */
+    if (!isdigit((unsigned char)text[0]) || *end || errno) {
+        cli_error("%s: --seed '%s' is not valid (allowed: a whole number from 0 to %llu)", cmd, text,
+                  (unsigned long long)UINT64_MAX);
+        return EXIT_USAGE;
+    }
+    *seed = (uint64_t)s;
     return 0;
 }
 

@@ -404,6 +404,9 @@ static int test_bad_values(void)
         "mc --range mu=0.5",
         "mc --samples 0",
         "mc --samples 10 --seed -4",
+        "mc --samples 10 --seed +4",
+        "mc --samples 10 --seed 18446744073709551616", /* 2^64 */
+        "mc --samples 10 --seed 4.0",
         "mc --sigma rod-offset=1mm --sigma rod-offset=2mm",
         "sweep --vary incline=10 --sample-dt 0.01",
         "mc --samples 10 --sample-dt 0.01",
