@@ -53,53 +53,84 @@ static const struct option own[] = {CLI_TRACK_READ_OPTIONS,
                                     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
-/* Whether the long option written as text ("--inc", "--incline=30") takes
- * the next argument as its value: matched as getopt_long matches it, by an
- * exact name or an unambiguous prefix. */
+/* The option the long option written as text ("--inc", "--incline=30")
+ * names, matched as getopt_long matches it: by an exact name or an
+ * unambiguous prefix. NULL for none (or an ambiguous prefix). */
+static const struct option *long_match(const char *text)
+{
+    const size_t n_own = sizeof own / sizeof own[0];
+    const char *name = text + 2, *eq = strchr(name, '=');
+    const size_t len = eq ? (size_t)(eq - name) : strlen(name);
+    const struct option *found = NULL;
+    int matches = 0;
+    for (size_t i = 0; i < n_own + CLI_SETUP_OPTION_COUNT; ++i) {
+        const struct option *o = i < n_own ? &own[i] : &cli_setup_options[i - n_own];
+        if (strncmp(o->name, name, len) != 0) continue;
+        if (strlen(o->name) == len) return o;
+        matches++;
+        found = o;
+    }
+    return matches == 1 ? found : NULL;
+}
+
+/* Whether the option written as text takes the next argument as its value. */
 static int takes_next(const char *text)
 {
     if (strncmp(text, "--", 2) != 0 || strchr(text, '=')) return 0;
-    const char *name = text + 2;
-    const size_t len = strlen(name);
-    int matches = 0, needs = 0;
-    for (size_t i = 0; i < sizeof own / sizeof own[0] + CLI_SETUP_OPTION_COUNT; ++i) {
-        const struct option *o = i < sizeof own / sizeof own[0] ? &own[i] : &cli_setup_options[i - sizeof own / sizeof own[0]];
-        if (strncmp(o->name, name, len) != 0) continue;
-        if (strlen(o->name) == len) return o->has_arg == required_argument;
-        matches++;
-        needs = o->has_arg == required_argument;
-    }
-    return matches == 1 && needs;
+    const struct option *o = long_match(text);
+    return o && o->has_arg == required_argument;
 }
 
-/* The one argument that is not an option or an option's value: the file.
- * It is taken out of argv (which keeps its order). NULL after a message. */
-static const char *take_file(int *argc, char **argv, int *help)
+/* Whether the option written as text is one the parser refuses (the only
+ * short option is -h; "--" ends the options). */
+static int is_unknown(const char *text)
 {
-    const char *file = NULL;
-    int out = 1;
+    if (strcmp(text, "--") == 0) return 0;
+    if (strncmp(text, "--", 2) == 0) return long_match(text) == NULL;
+    return text[strspn(text + 1, "h") + 1] != '\0';
+}
+
+/* The arguments that are not options or their values, taken out of argv
+ * (which keeps its order): the file, and an extra one (NULL when none).
+ * Returns whether an option is one the parser will refuse. */
+static int take_file(int *argc, char **argv, int *help, const char **file, const char **extra)
+{
+    int out = 1, unknown = 0;
+    *file = *extra = NULL;
     for (int i = 1; i < *argc; ++i) {
         const char *a = argv[i];
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) *help = 1;
-        if (strcmp(a, "--") == 0 && i + 1 < *argc && !file) {
-            file = argv[++i];
+        if (strcmp(a, "--") == 0 && i + 1 < *argc && !*file) {
+            *file = argv[++i];
             continue;
         }
         if (a[0] == '-' && a[1]) {
+            unknown |= is_unknown(a);
             argv[out++] = argv[i];
             if (takes_next(a) && i + 1 < *argc) argv[out++] = argv[++i];
             continue;
         }
-        if (file) {
-            cli_error("track: one file at a time ('%s' and '%s')", file, a);
-            return NULL;
-        }
-        file = a;
+        if (!*file) *file = a;
+        else if (!*extra) *extra = a;
     }
     *argc = out;
     argv[out] = NULL;
-    if (!file && !*help) cli_error("track: which file? 'jumpcyl track FILE' (see 'jumpcyl track --help')");
-    return file;
+    return unknown;
+}
+
+/* One file, not two, and none only for --help: 0, or EXIT_USAGE after a
+ * message. */
+static int one_file(const char *file, const char *extra, int help)
+{
+    if (extra) {
+        cli_error("track: one file at a time ('%s' and '%s')", file, extra);
+        return EXIT_USAGE;
+    }
+    if (!file && !help) {
+        cli_error("track: which file? 'jumpcyl track FILE' (see 'jumpcyl track --help')");
+        return EXIT_USAGE;
+    }
+    return 0;
 }
 
 static cJSON *num(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
@@ -353,8 +384,11 @@ int cmd_track(int argc, char **argv)
     memcpy(args, argv, (size_t)argc * sizeof *args);
     args[argc] = NULL;
     int n = argc;
-    const char *file = take_file(&n, args, &want_help);
-    if (!file && !want_help) {
+    const char *file, *extra;
+    /* An unknown option is reported first (by the parser): its value may
+     * have been taken for a file ("--from 1"). */
+    const int unknown = take_file(&n, args, &want_help, &file, &extra);
+    if (!unknown && one_file(file, extra, want_help) != 0) {
         free(args);
         return EXIT_USAGE;
     }
@@ -364,6 +398,7 @@ int cmd_track(int argc, char **argv)
     int st = cli_command_parse(n, args, &command, &o, &sa, NULL);
     free(args);
     if (st != CLI_GO_ON) return st;
+    if ((st = one_file(file, extra, 0)) != 0) return st;
     jc_Setup setup;
     if ((st = cli_build_inputs("track", &sa, NULL, &setup, NULL, NULL)) != 0) return st;
     if ((o.csv && strcmp(o.csv, "-") == 0) || (o.json && strcmp(o.json, "-") == 0)) {

@@ -346,6 +346,41 @@ static int test_good_small_files(void)
     return 0;
 }
 
+/* Arguments: one file, and an option of compare's or fit's reported as
+ * unknown, not its value as a second file. */
+static int test_arguments(void)
+{
+    static const char table[] = "mass A\nt\tx\ty\n0\t0\t0\n0.04\t0.01\t-0.001\n0.08\t0.02\t-0.002\n0.12\t0.03\t-0.003\n";
+    char a[256], b[256];
+    put("arg-a.txt", table);
+    put("arg-b.txt", table);
+    scratch_path(a, sizeof a, "arg-a.txt");
+    scratch_path(b, sizeof b, "arg-b.txt");
+    const struct {
+        const char *args[8];
+        const char *want;
+    } cases[] = {
+        {{"track", a, "--from", "1", NULL}, "unknown option '--from'"},
+        {{"track", "--from", "1", a, NULL}, "unknown option '--from'"},
+        {{"track", a, "--to=1", b, NULL}, "unknown option '--to=1'"},
+        {{"track", a, b, NULL}, "one file at a time"},
+        {{"track", a, "--incline", "5.711", b, NULL}, "one file at a time"},
+        {{"track", "--incline", "5.711", NULL}, "which file?"},
+    };
+    int bad = 0;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        cli_result r = cli_run(cases[i].args);
+        if (r.status != 2 || !cli_one_line(r.err) || !strstr(r.err, cases[i].want)) {
+            fprintf(stderr, "case %zu: status %d, stderr '%s' (wanted '%s')\n", i, r.status, r.err ? r.err : "",
+                    cases[i].want);
+            bad = 1;
+        }
+        cli_result_free(&r);
+    }
+    ENSURE(!bad);
+    return 0;
+}
+
 /* Tables as people make them: Tracker's single-track export (a name row
  * starting with the delimiter, a trailing delimiter), units in the header,
  * a byte order mark and CRLF line ends. */
@@ -506,6 +541,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_tables);
     RUN_TEST(test_camera_moved);
     RUN_TEST(test_good_small_files);
+    RUN_TEST(test_arguments);
     RUN_TEST(test_table_forms);
     RUN_TEST(test_refusals);
     RUN_TEST(test_cli_outputs);
