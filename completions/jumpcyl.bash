@@ -26,7 +26,12 @@ _jumpcyl()
             COMPREPLY=($(compgen -W "linear huber cauchy" -- "$cur"))
             return ;;
         --free)
-            COMPREPLY=($(compgen -W "mu_s mu_k restitution theta0 omega0 x0 mark_angle disc_mass hoop_mass rod_mass rod_offset point_mass point_offset" -- "${cur##*,}"))
+            # the names fit --help lists under --free, from "): " to "(those its parts have)";
+            # the list's earlier names kept before the one completed
+            COMPREPLY=($(compgen -P "${cur%"${cur##*,}"}" -W "$("${COMP_WORDS[0]}" fit --help 2>/dev/null |
+                awk '/^  --free / {on = 1; sub(/.*\): /, "")} on {s = s " " $0} on && /\(those/ {exit}
+                     END {sub(/\(those.*/, "", s); gsub(/and the body.s:/, "", s); gsub(/,/, " ", s); print s}')" \
+                -- "${cur##*,}"))
             return ;;
         --track)
             COMPREPLY=($(compgen -f -- "$cur"))

@@ -34,5 +34,7 @@ complete_words "$tool" sweep --va | grep -qx -- --vary || fail "completion: swee
 complete_words "$tool" simulate --preset ho | grep -qx hoop || fail "completion: --preset ho -> hoop"
 complete_words "$tool" plot --what paper-u | grep -qx paper-uncertainty || fail "completion: --what paper-u"
 complete_words "$tool" simulate --impact-law n | grep -qx newton || fail "completion: --impact-law n"
-echo "passed: bash completion of commands, options, presets, figure kinds and impact laws"
+complete_words "$tool" fit --free su | grep -qx surface || fail "completion: fit --free su -> surface"
+complete_words "$tool" fit --free mu_k,ti | grep -qx mu_k,tilt || fail "completion: fit --free mu_k,ti -> mu_k,tilt"
+echo "passed: bash completion of commands, options, presets, figure kinds, impact laws and fit's values"
 echo "3 passed, 0 failed"

@@ -54,8 +54,11 @@ void cli_track_args_help(int window)
     puts("  --from T, --to T    the frames from T to T (s; default: all). --from sets where the free\n"
          "                      motion starts; without it, frames at the start that the model cannot\n"
          "                      follow (a hand's push) are found and left out\n"
-         "  --from-setup-start  start the model with the setup's theta0 and omega0 at the first\n"
-         "                      frame's position, not with the state the frames show\n"
+         "  --from-setup-start  the start at the first frame used (no push is looked for): its\n"
+         "                      position with the setup's theta0 and omega0, not the state the\n"
+         "                      frames show. compare runs the model from it; fit's start values\n"
+         "                      begin there and are fitted with the others, unless --hold-start,\n"
+         "                      which holds them there\n"
          "  --mark-angle ANGLE  the tracked mark's angle on the body, as a part's angle (default 0:\n"
          "                      the reference direction, where the paper's rod and the hoop's mass sit)\n"
          "  --output FILE       the figure (gnuplot): .png, .svg or .pdf, written whole or not at all");
