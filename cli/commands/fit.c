@@ -129,10 +129,7 @@ static int check(const fit_opts *o, const jc_Setup *setup, cli_FitOptions *fo)
         if (whole(o->starts, "starts", 1, MAX_STARTS, &v) != 0) return EXIT_USAGE;
         fo->starts = (int)v;
     }
-    if (o->seed) {
-        if (whole(o->seed, "seed", 0, 9007199254740992.0, &v) != 0) return EXIT_USAGE;
-        fo->seed = (uint64_t)v;
-    }
+    if (o->seed && cli_parse_seed("fit", o->seed, &fo->seed) != 0) return EXIT_USAGE;
     if (o->sigma && (cli_parse_quantity(o->sigma, Q_LENGTH, &fo->sigma_m, err, sizeof err) != 0 ||
                      !(fo->sigma_m > 0.0 && fo->sigma_m <= 1.0))) {
         cli_error("fit: --sigma '%s' (allowed: a length in (0, 1] m, e.g. 1mm)", o->sigma);
