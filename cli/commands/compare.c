@@ -49,11 +49,7 @@ static void print_liftoff(const char *label, const cli_TrackHops *h)
 static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, int setup_start)
 {
     const jc_State *s = &c->launch.start;
-    if (c->launch.pushed > 0)
-        printf("Launch: the first %ld frame(s) (to t = %.4f s) show a push the model cannot follow (chi2/dof %.3g\n"
-               "        with them, %.3g from frame %ld): the free motion starts at t = %.4f s\n",
-               c->launch.pushed, t->t_s[c->launch.frame - 1], c->launch.chi2_dof_with, c->launch.chi2_dof,
-               c->launch.frame, t->t_s[c->launch.frame]);
+    cli_track_print_launch(t, &c->launch);
     printf("Start (%s) at t = %.4f s: x = %.2f cm, %s, theta = %.4f rad, omega = %.4f rad/s\n\n",
            setup_start ? "the setup's theta0 and omega0" : "the state the frames show, fitted to the next 0.4 s",
            s->t_s, s->x_m * 100, s->y_m > m->body.radius_m ? "in flight" : "rolling", s->theta_rad, s->omega_radps);

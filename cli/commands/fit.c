@@ -260,11 +260,7 @@ static void report(const char *file, const cli_Track *t, const cli_FitResult *r,
 {
     static const char *const loss_names[] = {"linear", "huber", "cauchy"};
     cli_track_print_head(file, t, r->first, r->frames);
-    const cli_Launch *L = &r->launch;
-    if (L->pushed > 0)
-        printf("Launch: the first %ld frame(s) show a push the model cannot follow (chi2/dof %.3g with them,\n"
-               "        %.3g without): the fit starts at t = %.4f s\n",
-               L->pushed, L->chi2_dof_with, L->chi2_dof, t->t_s[r->first]);
+    cli_track_print_launch(t, &r->launch);
     int asked = 0;
     for (int k = 0; k < r->count; ++k) asked += !r->start_value[k];
     printf("Fit: %ld residuals (sigma %.3g mm, %s), %d value(s) asked for, %s%s, loss %s\n", r->residuals,

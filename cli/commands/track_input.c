@@ -249,3 +249,11 @@ int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *s
     free(py);
     return rc;
 }
+
+void cli_track_print_launch(const cli_Track *t, const cli_Launch *L)
+{
+    if (L->pushed <= 0) return;
+    printf("Launch: the first %ld frame(s) (to t = %.4f s) show a push the model cannot follow (chi2/dof %.3g\n"
+           "        with them, %.3g from frame %ld): the free motion starts at t = %.4f s\n",
+           L->pushed, t->t_s[L->frame - 1], L->chi2_dof_with, L->chi2_dof, L->frame, t->t_s[L->frame]);
+}

@@ -61,6 +61,8 @@ int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const
  * (track's report and JSON, compare's and fit's head). */
 extern const char *const cli_track_centre_sources[CLI_CENTRE_FROM_MARK + 1];
 void cli_track_print_head(const char *file, const cli_Track *t, long first, long count);
+/* The frames before the free motion, when a push was found there (nothing otherwise). */
+void cli_track_print_launch(const cli_Track *t, const cli_Launch *L);
 /* The model's path every quarter frame from start to t_end_s (for the
  * figure); 0, or -1 (the arrays are then to be freed all the same). */
 int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_State *start, const jc_SimOptions *o,
