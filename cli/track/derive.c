@@ -301,14 +301,13 @@ static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame
         t->contact[i] = r->rolling[i];
     }
     t->sigma_m = r->noise_m;
-    t->contact_frames = t->rolling_frames = r->rolling_frames;
+    t->contact_frames = r->rolling_frames;
     t->surface_sigma_m = r->line_sigma_m;
     t->mark_radius_m = r->a_m;
     t->mark_radius_sigma_m = r->a_sigma_m;
-    t->hop_threshold_m = t->hop_sigmas * t->sigma_m;
     /* A departure smaller than this leaves the mark within the outlier
      * cut of the rolling path, and does not show. */
-    t->detect_m = t->hop_threshold_m;
+    t->hop_threshold_m = t->hop_sigmas * t->sigma_m;
     surface_note(t, opt, frame_angle - r->tilt_rad, 0);
     t->hops = 0;
     for (long k = 0; k < r->departures; ++k) {
@@ -400,7 +399,7 @@ static void hop_note(cli_Track *t)
         snprintf(tail, sizeof tail, "; %ld departure(s) from rolling: %ld fitted as flights (hops), %ld a slip or "
                  "a hop the mark cannot resolve", t->hops, hops, open);
     note(t, CLI_Q_HOPS, 1, "the only track is a mark on the body: hops cannot be told apart from the mark's own "
-         "motion to better than %.1f mm%s", t->detect_m * 1e3, tail);
+         "motion to better than %.1f mm%s", t->hop_threshold_m * 1e3, tail);
 }
 
 static void theta_note(cli_Track *t)
@@ -425,7 +424,7 @@ static void centre_note(cli_Track *t, const cli_RawData *raw)
         note(t, CLI_Q_CENTRE, 1, "recovered from the mark '%s' by fitting rolling (the mark at a = %.2f +- %.2f cm "
              "from it): %ld of %ld frames, standard error %.2f mm (median; up to %.1f mm where the mark passes the "
              "contact point or the clip ends); noise %.2f mm", t->mark_name, t->mark_radius_m * 100,
-             t->mark_radius_sigma_m * 100, t->rolling_frames, t->n, t->centre_sigma_median_m * 1e3,
+             t->mark_radius_sigma_m * 100, t->contact_frames, t->n, t->centre_sigma_median_m * 1e3,
              t->centre_sigma_max_m * 1e3, t->sigma_m * 1e3);
     } else if (t->centre_ambiguous) {
         char names[400];

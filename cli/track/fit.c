@@ -647,7 +647,7 @@ static int hops_agree(const fit_ctx *c, const cli_FitResult *r, char *why, size_
         for (long k = 0; k < t->hops; ++k)
             seen |= t->hop[k].first <= b + 1 && t->hop[k].last + 1 >= a;
         /* A mark-only video cannot show a hop below its detection bound. */
-        if (!seen && t->centre_source == CLI_CENTRE_FROM_MARK && model.height_m[m] < t->detect_m) seen = 1;
+        if (!seen && t->centre_source == CLI_CENTRE_FROM_MARK && model.height_m[m] < t->hop_threshold_m) seen = 1;
         if (!seen && ok) {
             snprintf(why, len, "the model hops at t = %.3f s (%.1f mm) where the video shows none",
                      t->t_s[a], model.height_m[m] * 1e3);

@@ -208,7 +208,7 @@ static void copy_report(const cli_RawData *raw, const cli_TrackOptions *opt, cli
     out->axes = opt->axes;
     out->hop_sigmas = opt->hop_sigmas >= 1 ? opt->hop_sigmas : 5.0;
     out->incline_rad = out->incline_sigma_rad = NAN;
-    out->mark_radius_m = out->mark_radius_sigma_m = out->centre_sigma_median_m = out->detect_m = NAN;
+    out->mark_radius_m = out->mark_radius_sigma_m = out->centre_sigma_median_m = NAN;
     out->centre_sigma_max_m = NAN;
     out->surface_tilt_rad = out->surface_tilt_sigma_rad = out->surface_sigma_m = NAN;
     out->sigma_m = out->x0_m = out->hop_threshold_m = NAN;

@@ -97,7 +97,8 @@ typedef struct {
     double given_incline_rad;  /* what the caller gave (NaN: none) */
     int uphill;                /* the body went up a slope (the incline is then unknown) */
     double radius_m;           /* r used for the height above the surface */
-    long contact_frames;       /* frames the surface was placed through */
+    long contact_frames;       /* frames the surface was placed through (a centre recovered from a
+                                  mark: the frames the rolling fit explains) */
     double surface_tilt_rad;   /* the line through them against the axes' x (level axes: the
                                   incline measured; incline axes: the axes' misalignment) */
     double surface_tilt_sigma_rad;
@@ -105,7 +106,8 @@ typedef struct {
 
     /* Hops. */
     double hop_sigmas;         /* K: a hop is K sigma above the surface for at least 2 frames */
-    double hop_threshold_m;    /* K sigma */
+    double hop_threshold_m;    /* K sigma; with a mark alone also the smallest departure from
+                                  rolling that shows */
     long hops;
     cli_TrackHop *hop;
 
@@ -115,8 +117,6 @@ typedef struct {
     double centre_sigma_median_m; /* the median of centre_sigma_m over the frames with a centre ... */
     double centre_sigma_max_m;    /* ... and the largest (a mark alone tells the centre least as it
                                      passes the contact point) */
-    long rolling_frames;       /* frames the rolling fit explains */
-    double detect_m;           /* the smallest departure from rolling that shows (mark only) */
 
     /* What the file held, for the report. */
     char format[8];                                         /* "trk", "table" or "model" */
