@@ -277,7 +277,7 @@ static int run_rim(const cli_TrackOptions *opt, double frame_angle, const cli_Tr
  * noise, with rolling explaining most frames. */
 static int plausible_mark(const cli_RimResult *r, const cli_Track *t)
 {
-    return r->ok && r->a_m >= MARK_MIN_RADIUS_R * t->radius_m && r->a_m >= MARK_MIN_NOISES * r->noise_m &&
+    return r->a_m >= MARK_MIN_RADIUS_R * t->radius_m && r->a_m >= MARK_MIN_NOISES * r->noise_m &&
            (double)r->rolling_frames >= MARK_MIN_ROLLING * (double)t->n;
 }
 

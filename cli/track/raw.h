@@ -81,9 +81,7 @@ typedef struct {
 } cli_RimInput;
 
 typedef struct {
-    int ok;
     double tilt_rad, tilt_sigma_rad; /* the rolling line against the frame's x */
-    double incline_rad;              /* the incline it gives (level axes) or the one given; NaN */
     double a_m, a_sigma_m;           /* the mark's distance from C */
     double line_sigma_m;             /* standard error of the centre line's height */
     double noise_m;                  /* the mark's position noise (per coordinate) */
@@ -98,7 +96,7 @@ typedef struct {
 /* The frames a rolling fit takes at most (its Jacobian is dense, 2 n by
  * about n / 2: a second or two at 1000 frames). */
 #define CLI_RIM_MAX_FRAMES 1000
-/* 0, or -1 when the frames are too few or too many or the fit fails (out->ok 0). */
+/* 0, or -1 when the frames are too few or too many or the fit fails. */
 int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out);
 
 /* derive.c: the surface, the incline, heights and hops, θ and ω, the

@@ -22,7 +22,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAD_TO_SIGMA 1.4826
 /* A frame whose mark lies farther than this many sigma from the rolling
  * path is not explained by it (the distance of a 2-D Gaussian exceeds 4.5
  * sigma once in 25,000 frames). */
@@ -637,9 +636,10 @@ static void departures(const rim_ctx *c, const double *p, const unsigned char *b
                 const double w0 = b >= 0 ? out->omega[b] : 0.0, th0 = b >= 0 ? out->theta[b] : 0.0;
                 const double dt = c->t[i] - (b >= 0 ? c->t[b] : c->t[i]);
                 const double span = c->t[j] - c->t[i] + 2.0 * (c->t[c->n - 1] - c->t[0]) / (double)(c->n - 1);
-                double q0[6] = {b >= 0 ? out->cx[b] + c->r * w0 * dt : out->mark_x[i], c->r,
-                                c->r * w0, -0.5 * gy * span, th0 + w0 * dt, w0};
-                q0[1] = c->r + q0[3] * 0.5 * span / 2.0;
+                /* Up at the speed that brings it down after span, from half its peak height. */
+                const double vy0 = -0.5 * gy * span, y0 = c->r + vy0 * 0.5 * span / 2.0;
+                const double q0[6] = {b >= 0 ? out->cx[b] + c->r * w0 * dt : out->mark_x[i], y0, c->r * w0, vy0,
+                                      th0 + w0 * dt, w0};
                 double q[6];
                 const double t_lo = b >= 0 ? c->t[b] : c->t[i], t_hi = j + 1 < c->n ? c->t[j + 1] : c->t[j];
                 if (fit_flight(&f, c->r, q0, t_lo, t_hi, &h->height_m, &h->height_sigma_m, q) == 0) {
@@ -660,7 +660,6 @@ static void departures(const rim_ctx *c, const double *p, const unsigned char *b
 int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out)
 {
     const long n = in->n;
-    out->ok = 0;
     out->departures = 0;
     if (n < 2 * MIN_STRETCH || n > CLI_RIM_MAX_FRAMES || !(in->radius_m > 0)) return -1;
     rim_ctx c;
@@ -737,9 +736,7 @@ int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out)
     /* Gravity in the surface frame: the incline is the frame's angle less the
      * tilt (level axes), or the one given; unknown otherwise (no flights). */
     const double alpha = in->level_axes ? in->frame_angle_rad - p[0] : in->incline_rad;
-    out->incline_rad = alpha;
     departures(&c, p, bad, in->gravity_mps2 * sin(alpha), -in->gravity_mps2 * cos(alpha), out);
-    out->ok = 1;
     rc = 0;
 done:
     free(bad);
