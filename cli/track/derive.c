@@ -446,7 +446,7 @@ static void nothing_more(cli_Track *t, const char *why)
 int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *t, char *err,
                      size_t err_len)
 {
-    const double frame_angle = opt->axes == CLI_TRACK_AXES_LEVEL && !isnan(opt->incline_rad) ? opt->incline_rad : 0.0;
+    const double frame_angle = cli_track_frame_angle(opt);
     t->hop = calloc((size_t)(t->n / 2 + 1), sizeof *t->hop);
     double *work = malloc((size_t)(2 * t->n + 2) * sizeof *work);
     if (!t->hop || !work) {

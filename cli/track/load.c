@@ -24,11 +24,7 @@ void cli_track_options_default(cli_TrackOptions *opt)
 int cli_track_from_raw_data(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *out,
                             char *err, size_t err_len)
 {
-    /* Level axes turned by the incline given (or not at all: the video's
-     * is measured); incline axes as they are. derive.c turns the frame
-     * onto the surface the frames in contact show. */
-    const double angle = opt->axes == CLI_TRACK_AXES_LEVEL && !isnan(opt->incline_rad) ? opt->incline_rad : 0.0;
-    int rc = cli_track_from_raw(name, raw, opt, angle, out, err, err_len);
+    int rc = cli_track_from_raw(name, raw, opt, cli_track_frame_angle(opt), out, err, err_len);
     if (rc == 0) rc = cli_track_derive(name, raw, opt, out, err, err_len);
     if (rc != 0) cli_track_free(out);
     return rc;

@@ -6,6 +6,8 @@
 
 #include "track.h"
 
+#include <math.h>
+
 typedef struct {
     char name[CLI_TRACK_NAME_LEN];
     double *x_m, *y_m; /* world axes, metres; NaN where the frame has no position */
@@ -29,6 +31,15 @@ int cli_table_parse(const char *name, const char *data, size_t len, cli_RawData 
 /* Allocates frames rows for the times and track_count tracks (NaN filled). 0 or -1. */
 int cli_raw_alloc(cli_RawData *raw, long frames, int track_count);
 void cli_raw_free(cli_RawData *raw);
+
+/* The angle Tracker's level axes are turned by to put the tracks in the
+ * incline frame: the incline given, or none (no incline given: the video's
+ * is measured; incline axes: taken as they are). derive.c then turns the
+ * frame onto the surface the frames in contact show. */
+static inline double cli_track_frame_angle(const cli_TrackOptions *opt)
+{
+    return opt->axes == CLI_TRACK_AXES_LEVEL && !isnan(opt->incline_rad) ? opt->incline_rad : 0.0;
+}
 
 /* frame.c: the chosen tracks in a frame turned by angle_rad from
  * Tracker's level axes (or in Tracker's own with incline axes), into out
