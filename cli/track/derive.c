@@ -502,7 +502,6 @@ int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOp
     }
     if (rc == 0) {
         if (t->centre_source == CLI_CENTRE_TRACKED && t->has_mark) derive_angles(t, work);
-        if (t->centre_source == CLI_CENTRE_TRACKED && !t->has_mark) t->mark_radius_m = NAN;
         for (long i = 0; i < t->n && isnan(t->x0_m); ++i) t->x0_m = t->x_m[i];
         long m = 0;
         t->centre_sigma_max_m = 0.0;
