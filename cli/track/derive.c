@@ -75,20 +75,15 @@ static int agrees(double given, double measured, double sigma)
 /* ---- a tracked centre ---- */
 
 
-/* The incline and the frame's turn from the line through the frames in
- * contact (tilt tau against the frame's x, sigma its error). *turn_by is
- * the angle to turn the frame by so that the surface lies along x; *level
- * is 1 when the surface is taken parallel to x as it is (a given incline
- * the frames agree with). -1 with a message when the given one is refused. */
+/* The incline from the line through the frames in contact (tilt tau
+ * against the frame's x, sigma its error), into t. -1 with a message when
+ * the given one is refused. */
 static int decide_incline(const char *name, const cli_TrackOptions *opt, double frame_angle, double tau,
-                          double sig, long frames, cli_Track *t, double *turn_by, int *level, char *err,
-                          size_t err_len)
+                          double sig, long frames, cli_Track *t, char *err, size_t err_len)
 {
     const int given = !isnan(opt->incline_rad);
     t->surface_tilt_rad = tau;
     t->surface_tilt_sigma_rad = sig;
-    *turn_by = tau;
-    *level = 0;
     if (opt->axes == CLI_TRACK_AXES_LEVEL) {
         const double measured = frame_angle - tau;
         if (given && refuses(opt->incline_rad, measured, sig)) {
@@ -102,7 +97,6 @@ static int decide_incline(const char *name, const cli_TrackOptions *opt, double 
         t->incline_source = given ? CLI_INCLINE_GIVEN : CLI_INCLINE_MEASURED;
         t->incline_rad = given ? opt->incline_rad : measured_incline(measured, sig, t);
         t->incline_sigma_rad = given ? 0.0 : sig;
-        if (given && agrees(opt->incline_rad, measured, sig) && !opt->fit_tilt) *turn_by = 0.0, *level = 1;
         return 0;
     }
     /* Axes along the incline: the line should lie along x. */
@@ -116,8 +110,18 @@ static int decide_incline(const char *name, const cli_TrackOptions *opt, double 
     t->incline_source = given ? CLI_INCLINE_GIVEN : CLI_INCLINE_UNKNOWN;
     t->incline_rad = given ? opt->incline_rad : NAN;
     t->incline_sigma_rad = given ? 0.0 : NAN;
-    if (agrees(0.0, tau, sig) && !opt->fit_tilt) *turn_by = 0.0, *level = 1;
     return 0;
+}
+
+/* Whether the surface is taken along the frame's x as it is: the frames in
+ * contact (tilt tau, sigma its error) agree with the incline given (level
+ * axes) or with the axes (incline axes), and the line is not to be fitted. */
+static int along_axes(const cli_TrackOptions *opt, double frame_angle, double tau, double sig)
+{
+    if (opt->fit_tilt) return 0;
+    if (opt->axes == CLI_TRACK_AXES_LEVEL)
+        return !isnan(opt->incline_rad) && agrees(opt->incline_rad, frame_angle - tau, sig);
+    return agrees(0.0, tau, sig);
 }
 
 /* Degrees as printed to places decimals: a value that rounds to zero is
@@ -128,8 +132,10 @@ static double shown_deg(double rad, int places)
     return fabs(d) < 0.5 * pow(10.0, -places) ? 0.0 : d;
 }
 
-static void surface_note(cli_Track *t, const cli_TrackOptions *opt, double measured_rad, int level)
+/* level: the surface taken along the frame's x (along_axes). */
+static void surface_note(cli_Track *t, const cli_TrackOptions *opt, int level)
 {
+    const double measured_rad = cli_track_frame_angle(opt) - t->surface_tilt_rad;
     const double sig = t->surface_tilt_sigma_rad * DEG;
     /* A level line may also be a video whose axes were laid along an incline. */
     const char *hint = opt->axes == CLI_TRACK_AXES_LEVEL && isnan(opt->incline_rad)
@@ -181,9 +187,9 @@ static int tracked_surface(const char *name, const cli_TrackOptions *opt, double
     }
     if (st != 0) return 1;
     const double tau = atan(L.b), sig = sqrt(L.var_b) / (1.0 + L.b * L.b);
-    double turn_by;
-    int level;
-    if (decide_incline(name, opt, frame_angle, tau, sig, L.contact, t, &turn_by, &level, err, err_len) != 0) return -1;
+    if (decide_incline(name, opt, frame_angle, tau, sig, L.contact, t, err, err_len) != 0) return -1;
+    const int level = along_axes(opt, frame_angle, tau, sig);
+    double turn_by = level ? 0.0 : tau;
     /* Turned until the line through the frames in contact (which may change
      * with the turn) lies along x: the frame is then the incline's exactly,
      * not sheared onto it. */
@@ -214,7 +220,7 @@ static int tracked_surface(const char *name, const cli_TrackOptions *opt, double
     t->contact_frames = L.contact;
     t->sigma_m = L.sigma_m;
     t->surface_sigma_m = sqrt(L.var_a);
-    surface_note(t, opt, frame_angle - (turned != 0.0 ? turned : tau), level);
+    surface_note(t, opt, level);
     t->hop_threshold_m = t->hop_sigmas * t->sigma_m;
     /* Hops: runs of at least 2 frames clearly above the surface; a peak's
      * error holds the noise and the surface's, there. */
@@ -286,10 +292,8 @@ static int plausible_mark(const cli_RimResult *r, const cli_Track *t)
 static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame_angle, const cli_RimResult *r,
                      cli_Track *t, char *err, size_t err_len)
 {
-    double turn_by;
-    int level;
-    if (decide_incline(name, opt, frame_angle, r->tilt_rad, r->tilt_sigma_rad, r->rolling_frames, t, &turn_by,
-                       &level, err, err_len) != 0)
+    if (decide_incline(name, opt, frame_angle, r->tilt_rad, r->tilt_sigma_rad, r->rolling_frames, t, err,
+                       err_len) != 0)
         return -1;
     t->centre_source = CLI_CENTRE_FROM_MARK;
     t->has_mark = 1;
@@ -308,7 +312,7 @@ static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame
     /* A departure smaller than this leaves the mark within the outlier
      * cut of the rolling path, and does not show. */
     t->hop_threshold_m = t->hop_sigmas * t->sigma_m;
-    surface_note(t, opt, frame_angle - r->tilt_rad, 0);
+    surface_note(t, opt, 0);
     t->hops = 0;
     for (long k = 0; k < r->departures; ++k) {
         cli_TrackHop h = r->dep[k];
