@@ -170,17 +170,15 @@ static void surface_note(cli_Track *t, const cli_TrackOptions *opt, int level)
              shown_deg(t->surface_tilt_rad, 2), sig, level ? "" : ": the surface is their line", t->sigma_m * 1e3);
 }
 
-/* The surface under a tracked centre, the frame turned onto it, heights. 1
- * when no line holds the centre (too few frames in contact), 0 when placed,
- * -1 with a message (refused incline, memory). */
-static int tracked_surface(const char *name, const cli_TrackOptions *opt, double frame_angle, cli_Track *t,
-                           char *err, size_t err_len)
+/* The surface under a tracked centre (frame_noise_m: the frame-to-frame
+ * noise of its frames), the frame turned onto it, heights. 1 when no line
+ * holds the centre (too few frames in contact), 0 when placed, -1 with a
+ * message (refused incline, memory). */
+static int tracked_surface(const char *name, const cli_TrackOptions *opt, double frame_angle, double frame_noise_m,
+                           cli_Track *t, char *err, size_t err_len)
 {
     cli_SurfaceLine L;
-    double *work = malloc((size_t)(2 * t->n + 2) * sizeof *work);
-    const double start = work ? cli_track_frame_noise(t->x_m, t->y_m, t->n, work) : 0.0;
-    free(work);
-    int st = cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, start, t->contact, &L);
+    int st = cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, frame_noise_m, t->contact, &L);
     if (st == -2) {
         snprintf(err, err_len, "%s: out of memory", name);
         return -1;
@@ -198,7 +196,7 @@ static int tracked_surface(const char *name, const cli_TrackOptions *opt, double
         turn(t->x_m, t->y_m, t->n, turn_by);
         turn(t->mark_x_m, t->mark_y_m, t->n, turn_by);
         turned += turn_by;
-        if (cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, start, t->contact,
+        if (cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, frame_noise_m, t->contact,
                             &L) != 0)
             return 1;
         turn_by = fabs(L.b) > 1e-12 ? atan(L.b) : 0.0;
@@ -326,20 +324,20 @@ static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame
 }
 
 /* A single track not named as the centre that swings about its line by
- * more than its frame-to-frame noise may be a mark on the body: rolling is
- * fitted to it and kept if it fits (0, or -1 with a message); 1: a centre
- * after all (*tried: rolling was fitted and did not explain it). */
+ * more than its frame-to-frame noise (frame_noise_m) may be a mark on the
+ * body: rolling is fitted to it and kept if it fits (0, or -1 with a
+ * message); 1: a centre after all (*tried: rolling was fitted and did not
+ * explain it). */
 static int single_track_as_mark(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt,
-                                double frame_angle, cli_Track *t, double *work, int *tried, char *err,
+                                double frame_angle, double frame_noise_m, cli_Track *t, int *tried, char *err,
                                 size_t err_len)
 {
     *tried = 0;
     if (raw->track_count != 1 || t->has_mark || opt->centre || opt->mark || cli_track_named_centre(t->centre_name))
         return 1;
-    const double frame_noise = cli_track_frame_noise(t->x_m, t->y_m, t->n, work);
     cli_SurfaceLine L;
     const int st = cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, 0.0, t->contact, &L);
-    if (st == 0 && !(L.sigma_m > MARK_SWING_RATIO * frame_noise)) return 1;
+    if (st == 0 && !(L.sigma_m > MARK_SWING_RATIO * frame_noise_m)) return 1;
     for (long i = 0; i < t->n; ++i) t->mark_x_m[i] = t->x_m[i], t->mark_y_m[i] = t->y_m[i];
     cli_RimResult r;
     int rc = 1;
@@ -460,9 +458,12 @@ int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOp
     }
     int rc = 0;
     if (t->centre_source == CLI_CENTRE_TRACKED && t->n >= 3) {
+        /* The frame-to-frame noise, for both: single_track_as_mark leaves
+         * the frames as they are when it returns 1. */
+        const double frame_noise_m = cli_track_frame_noise(t->x_m, t->y_m, t->n, work);
         int tried = 0;
-        rc = single_track_as_mark(name, raw, opt, frame_angle, t, work, &tried, err, err_len);
-        if (rc == 1) rc = tracked_surface(name, opt, frame_angle, t, err, err_len);
+        rc = single_track_as_mark(name, raw, opt, frame_angle, frame_noise_m, t, &tried, err, err_len);
+        if (rc == 1) rc = tracked_surface(name, opt, frame_angle, frame_noise_m, t, err, err_len);
         if (rc == 1) {
             nothing_more(t, tried ? "the track's frames lie on no line (fewer than 3 of them in runs of 4 within 3 "
                                     "sigma of one), and rolling does not explain them as a mark on the body either"
