@@ -5,7 +5,6 @@
  * quantity, a note saying how well it is known or why it is not. */
 #include "raw.h"
 
-#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -30,11 +29,6 @@ static void note(cli_Track *t, cli_TrackQuantity q, int ok, const char *fmt, ...
     vsnprintf(t->note[q].text, sizeof t->note[q].text, fmt, ap);
     va_end(ap);
     t->note[q].ok = ok;
-}
-
-static double median(double *v, long n)
-{
-    return n > 0 ? gsl_stats_median(v, 1, (size_t)n) : NAN;
 }
 
 static void turn(double *x, double *y, long n, double angle)
@@ -371,7 +365,7 @@ static void derive_angles(cli_Track *t, double *work)
         t->theta_rad[i] = th;
         prev = i;
     }
-    t->mark_radius_m = median(work, m);
+    t->mark_radius_m = cli_track_median(work, m);
     for (long i = 0; i < t->n; ++i) {
         t->omega_radps[i] = NAN;
         if (isnan(t->theta_rad[i])) continue;
@@ -515,7 +509,7 @@ int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOp
                 work[m++] = t->centre_sigma_m[i];
                 t->centre_sigma_max_m = fmax(t->centre_sigma_max_m, t->centre_sigma_m[i]);
             }
-        t->centre_sigma_median_m = median(work, m);
+        t->centre_sigma_median_m = cli_track_median(work, m);
         if (!t->note[CLI_Q_CENTRE].text[0]) centre_note(t, raw);
         if (t->centre_source != CLI_CENTRE_NONE && !isnan(t->sigma_m)) hop_note(t);
         if (t->centre_source != CLI_CENTRE_NONE) theta_note(t);

@@ -167,6 +167,8 @@ static double frame_step(const cli_RawData *raw)
     double *d = malloc((size_t)(raw->frames - 1) * sizeof *d);
     if (!d) return NAN;
     for (long f = 1; f < raw->frames; ++f) d[f - 1] = raw->t_s[f] - raw->t_s[f - 1];
+    /* The middle step (the upper of the middle two for an even count, not
+     * their mean: it only sets the unit the steps are rounded to). */
     gsl_sort(d, 1, (size_t)(raw->frames - 1));
     const double step = d[(raw->frames - 1) / 2];
     free(d);

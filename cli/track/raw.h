@@ -73,6 +73,10 @@ typedef struct {
 int cli_surface_fit(const double *x, const double *y, long n, double fps, double floor_m, double start_m,
                     unsigned char *contact, cli_SurfaceLine *out);
 
+/* The median of v[0..n) (reordered; the mean of the middle two for an
+ * even n); NaN for n = 0. */
+double cli_track_median(double *v, long n);
+
 /* The noise of a path from its third differences (work: 2 n doubles):
  * those of a smooth path are small next to noise, whose third difference
  * has variance 20 sigma^2; their median absolute value (x 1.4826 for a

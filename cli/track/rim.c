@@ -17,7 +17,6 @@
 #include <gsl/gsl_multifit.h>
 #include <gsl/gsl_multifit_nlinear.h>
 #include <gsl/gsl_sort_double.h>
-#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -132,11 +131,6 @@ static int df_eval(const gsl_vector *pv, void *ctx, gsl_matrix *J)
         k += 2;
     }
     return GSL_SUCCESS;
-}
-
-static double median(double *v, long n)
-{
-    return n > 0 ? gsl_stats_median(v, 1, (size_t)n) : NAN;
 }
 
 /* The major axis of the points' spread: the rolling line's direction. */
@@ -330,7 +324,7 @@ static void init_params(const rim_ctx *c, const double *theta, double a, double 
                 const double u = c->xd[i] * cfi + c->yd[i] * sfi;
                 x0s[i - S->first] = u - c->r * theta[i] - a * sin(theta[i]);
             }
-            p[S->x0] = median(x0s, m);
+            p[S->x0] = cli_track_median(x0s, m);
         }
         gsl_matrix_free(X);
         gsl_vector_free(y);

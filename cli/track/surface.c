@@ -4,6 +4,7 @@
 #include "raw.h"
 
 #include <gsl/gsl_sort_double.h>
+#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,7 +29,13 @@ static double truncated_variance(double c)
     return 1.0 - 2.0 * c * phi / mass;
 }
 
-/* The q-quantile of v[0..n) (reordered); NaN for n = 0. */
+double cli_track_median(double *v, long n)
+{
+    return n > 0 ? gsl_stats_median(v, 1, (size_t)n) : NAN;
+}
+
+/* The q-quantile of v[0..n) (reordered): the element of nearest rank, not
+ * a mean of two (cli_track_median's); NaN for n = 0. */
 static double quantile(double *v, long n, double q)
 {
     if (n <= 0) return NAN;
