@@ -12,7 +12,6 @@
 #include <string.h>
 
 #define DEG (180.0 / CLI_TRACK_PI)
-#define NOISE_FLOOR_M 1e-5      /* no video resolves 10 µm */
 #define HOP_MIN_FRAMES 2
 #define TURN_PASSES 8
 /* A single track whose scatter about its line is this many times the
@@ -172,7 +171,8 @@ static int tracked_surface(const char *name, const cli_TrackOptions *opt, double
                            cli_Track *t, char *err, size_t err_len)
 {
     cli_SurfaceLine L;
-    int st = cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, frame_noise_m, t->contact, &L);
+    int st = cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, CLI_TRACK_NOISE_FLOOR_M, frame_noise_m,
+                             t->contact, &L);
     if (st == -2) {
         snprintf(err, err_len, "%s: out of memory", name);
         return -1;
@@ -190,8 +190,8 @@ static int tracked_surface(const char *name, const cli_TrackOptions *opt, double
         turn(t->x_m, t->y_m, t->n, turn_by);
         turn(t->mark_x_m, t->mark_y_m, t->n, turn_by);
         turned += turn_by;
-        if (cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, frame_noise_m, t->contact,
-                            &L) != 0)
+        if (cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, CLI_TRACK_NOISE_FLOOR_M, frame_noise_m,
+                            t->contact, &L) != 0)
             return 1;
         turn_by = fabs(L.b) > 1e-12 ? atan(L.b) : 0.0;
     }
@@ -265,7 +265,7 @@ static void free_rim(cli_RimResult *r)
 static int run_rim(const cli_TrackOptions *opt, double frame_angle, const cli_Track *t, cli_RimResult *r)
 {
     if (alloc_rim(r, t->n) != 0) return -2;
-    cli_RimInput in = {t->t_s, t->mark_x_m, t->mark_y_m, t->n, opt->radius_m, NOISE_FLOOR_M,
+    cli_RimInput in = {t->t_s, t->mark_x_m, t->mark_y_m, t->n, opt->radius_m, CLI_TRACK_NOISE_FLOOR_M,
                        opt->gravity_mps2 > 0 ? opt->gravity_mps2 : 9.81, opt->axes == CLI_TRACK_AXES_LEVEL,
                        frame_angle, opt->incline_rad};
     return cli_rim_recover(&in, r);
@@ -330,7 +330,8 @@ static int single_track_as_mark(const char *name, const cli_RawData *raw, const 
     if (raw->track_count != 1 || t->has_mark || opt->centre || opt->mark || cli_track_named_centre(t->centre_name))
         return 1;
     cli_SurfaceLine L;
-    const int st = cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, NOISE_FLOOR_M, 0.0, t->contact, &L);
+    const int st =
+        cli_surface_fit(t->x_m, t->y_m, t->n, t->frame_rate_hz, CLI_TRACK_NOISE_FLOOR_M, 0.0, t->contact, &L);
     if (st == 0 && !(L.sigma_m > MARK_SWING_RATIO * frame_noise_m)) return 1;
     for (long i = 0; i < t->n; ++i) t->mark_x_m[i] = t->x_m[i], t->mark_y_m[i] = t->y_m[i];
     cli_RimResult r;

@@ -86,7 +86,8 @@ static long contact_frames_of(const cli_RawTrack *k, const cli_RawData *raw, dou
         for (long f = 0; f < n; ++f)
             if (!isnan(k->x_m[f])) x[m] = k->x_m[f], y[m] = k->y_m[f], m++;
         cli_SurfaceLine L;
-        if (cli_surface_fit(x, y, m, dt > 0 ? 1.0 / dt : NAN, 1e-5, cli_track_frame_noise(x, y, m, w), keep, &L) == 0)
+        if (cli_surface_fit(x, y, m, dt > 0 ? 1.0 / dt : NAN, CLI_TRACK_NOISE_FLOOR_M,
+                            cli_track_frame_noise(x, y, m, w), keep, &L) == 0)
             contact = L.contact;
     }
     free(x), free(y), free(w), free(keep);

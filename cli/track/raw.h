@@ -57,6 +57,9 @@ void cli_track_list_names(const cli_RawData *raw, char *buf, size_t len);
 /* 1 when a track's name says it is the centre (centre, center, axle, axis, hub). */
 int cli_track_named_centre(const char *name);
 
+/* The least noise a track is taken to have: no video resolves 10 µm. */
+#define CLI_TRACK_NOISE_FLOOR_M 1e-5
+
 /* surface.c: the line y = a + b (x - x_mid) through the frames in contact
  * (runs within 3 sigma of it of at least 4 frames and 0.1 s at fps, less
  * 0.05 s at an end that meets a frame off it; sigma the scatter of those
