@@ -30,14 +30,12 @@ static void note(cli_Track *t, cli_TrackQuantity q, int ok, const char *fmt, ...
     t->note[q].ok = ok;
 }
 
+/* The points (x NaN: none) in axes turned counter-clockwise by angle. */
 static void turn(double *x, double *y, long n, double angle)
 {
     const double c = cos(angle), s = sin(angle);
-    for (long i = 0; i < n; ++i) {
-        if (isnan(x[i])) continue;
-        const double u = x[i] * c + y[i] * s, v = -x[i] * s + y[i] * c;
-        x[i] = u, y[i] = v;
-    }
+    for (long i = 0; i < n; ++i)
+        if (!isnan(x[i])) cli_track_turn(x[i], y[i], c, s, &x[i], &y[i]);
 }
 
 /* The incline a measured one gives the model: a floor measured a hair

@@ -41,6 +41,14 @@ static inline double cli_track_frame_angle(const cli_TrackOptions *opt)
     return opt->axes == CLI_TRACK_AXES_LEVEL && !isnan(opt->incline_rad) ? opt->incline_rad : 0.0;
 }
 
+/* (x, y) in axes turned counter-clockwise by an angle of cosine c and
+ * sine s: (x c + y s, -x s + y c). */
+static inline void cli_track_turn(double x, double y, double c, double s, double *u, double *v)
+{
+    *u = x * c + y * s;
+    *v = -x * s + y * c;
+}
+
 /* frame.c: the chosen tracks in a frame turned by angle_rad from
  * Tracker's level axes (or in Tracker's own with incline axes), into out
  * (whose report fields are set here). 0, or -1 with a message for a track

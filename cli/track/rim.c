@@ -232,8 +232,7 @@ static void first_guess(const rim_ctx *c, double *tilt, double *h, double *a, do
         const double cf = cos(*tilt), sf = sin(*tilt);
         double umin = INFINITY, umax = -INFINITY;
         for (long i = 0; i < c->n; ++i) {
-            u[i] = c->xd[i] * cf + c->yd[i] * sf;
-            v[i] = -c->xd[i] * sf + c->yd[i] * cf;
+            cli_track_turn(c->xd[i], c->yd[i], cf, sf, &u[i], &v[i]);
             umin = fmin(umin, u[i]), umax = fmax(umax, u[i]);
             w[i] = v[i];
         }
@@ -570,8 +569,9 @@ static void fill_rolling(const rim_ctx *c, const double *p, const gsl_matrix *co
     long m = 0;
     for (long i = 0; i < c->n; ++i) {
         /* Every frame in the surface frame: turned by the tilt, the surface at y = 0. */
-        out->mark_x[i] = c->xd[i] * cf + c->yd[i] * sf;
-        out->mark_y[i] = -c->xd[i] * sf + c->yd[i] * cf - p[1] + c->r;
+        double across;
+        cli_track_turn(c->xd[i], c->yd[i], cf, sf, &out->mark_x[i], &across);
+        out->mark_y[i] = across - p[1] + c->r;
         out->cx[i] = out->cy[i] = out->c_sigma[i] = out->theta[i] = out->omega[i] = NAN;
         out->rolling[i] = 0;
         const int s = c->st_of[i];

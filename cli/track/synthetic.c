@@ -42,8 +42,7 @@ static int on_grid(double t, double dt)
 /* The incline frame into Tracker's level axes: downhill to the right. */
 static void world(double alpha, double x, double y, double *X, double *Y)
 {
-    *X = x * cos(alpha) + y * sin(alpha);
-    *Y = -x * sin(alpha) + y * cos(alpha);
+    cli_track_turn(x, y, cos(alpha), sin(alpha), X, Y);
 }
 
 /* The state at time u before the free start (u < 0): a hand pushing the
