@@ -254,11 +254,10 @@ static int convert(const cli_RawData *raw, const cli_RawTrack *P, const cli_RawT
             out->mark_y_m[n] = M->x_m[f] * nh[0] + M->y_m[f] * nh[1];
         }
         /* Positions a ramp could have: far ones would lose every digit in
-         * the sums that follow. */
-        if (!(fabs(out->x_m[n]) <= CLI_TRACK_MAX_COORD_M) && !isnan(out->x_m[n])) return -2;
-        if (!(fabs(out->y_m[n]) <= CLI_TRACK_MAX_COORD_M) && !isnan(out->y_m[n])) return -2;
-        if (!(fabs(out->mark_x_m[n]) <= CLI_TRACK_MAX_COORD_M) && !isnan(out->mark_x_m[n])) return -2;
-        if (!(fabs(out->mark_y_m[n]) <= CLI_TRACK_MAX_COORD_M) && !isnan(out->mark_y_m[n])) return -2;
+         * the sums that follow (NaN, no position, passes). */
+        if (fabs(out->x_m[n]) > CLI_TRACK_MAX_COORD_M || fabs(out->y_m[n]) > CLI_TRACK_MAX_COORD_M ||
+            fabs(out->mark_x_m[n]) > CLI_TRACK_MAX_COORD_M || fabs(out->mark_y_m[n]) > CLI_TRACK_MAX_COORD_M)
+            return -2;
         if (prev >= 0) {
             const double step = out->t_s[n] - out->t_s[n - 1];
             const double k = fmax(1.0, floor(step / dt + 0.5));
