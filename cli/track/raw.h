@@ -7,6 +7,7 @@
 #include "track.h"
 
 #include <math.h>
+#include <stdio.h>
 
 typedef struct {
     char name[CLI_TRACK_NAME_LEN];
@@ -28,6 +29,9 @@ typedef struct cli_RawData_s {
 /* Each reader fills raw (zeroed first) or returns -1 with "NAME: message". */
 int cli_trk_parse(const char *name, const char *data, size_t len, cli_RawData *raw, char *err, size_t err_len);
 int cli_table_parse(const char *name, const char *data, size_t len, cli_RawData *raw, char *err, size_t err_len);
+/* table.c: raw data written as Tracker exports a table (tab-separated, a
+ * name row), which cli_table_parse reads back. 0, or -1 on a write error. */
+int cli_track_write_table(FILE *f, const cli_RawData *raw);
 /* Allocates frames rows for the times and track_count tracks (NaN filled). 0 or -1. */
 int cli_raw_alloc(cli_RawData *raw, long frames, int track_count);
 void cli_raw_free(cli_RawData *raw);

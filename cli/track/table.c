@@ -6,7 +6,9 @@
  * a comma or a semicolon (the user's choice); numbers follow the user's
  * locale, so a decimal comma appears with tab or semicolon delimiters.
  * Hand-made tables are read too: no name row, units in the header
- * ("t (s)", "x (cm)"), blank fields or spaces as the delimiter. */
+ * ("t (s)", "x (cm)"), blank fields or spaces as the delimiter. Tables
+ * are written as Tracker exports them too (cli_track_write_table: the
+ * synthetic experiments of the tests and examples). */
 #include "raw.h"
 
 #include <stdio.h>
@@ -336,4 +338,31 @@ done:
     free(g);
     if (st != 0) cli_raw_free(raw);
     return st;
+}
+
+/* A number as Tracker exports it "as formatted" at full precision, or an
+ * empty field for a missing point. */
+static void field(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, "\t%.7g", v);
+    else fputc('\t', f);
+}
+
+int cli_track_write_table(FILE *f, const cli_RawData *raw)
+{
+    /* Tracker's export of point masses: the names above their first column. */
+    fputs("#multi:\n", f);
+    for (int k = 0; k < raw->track_count; ++k) fprintf(f, "\t%s\t", raw->tracks[k].name);
+    fputs("\nt", f);
+    for (int k = 0; k < raw->track_count; ++k) fputs("\tx\ty", f);
+    fputc('\n', f);
+    for (long i = 0; i < raw->frames; ++i) {
+        fprintf(f, "%.6f", raw->t_s[i]);
+        for (int k = 0; k < raw->track_count; ++k) {
+            field(f, raw->tracks[k].x_m[i]);
+            field(f, raw->tracks[k].y_m[i]);
+        }
+        fputc('\n', f);
+    }
+    return ferror(f) ? -1 : 0;
 }

@@ -44,8 +44,6 @@ int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, struct
 /* The same read as a file is: the incline measured, the setup's radius. */
 int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, cli_Track *out, char *err,
                          size_t err_len);
-/* Raw data written as Tracker exports a table (tab-separated, a name row). */
-int cli_track_write_table(FILE *f, const struct cli_RawData_s *raw);
 
 /* ---- model_path.c: the model at the frames' times ---- */
 
