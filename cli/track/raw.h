@@ -1,6 +1,9 @@
 /* What a track file holds before it is put in the incline frame: positions
- * in Tracker's world axes (metres), one row per frame. Shared by the
- * readers (trk.c, table.c), the conversion (frame.c) and derive.c. */
+ * in Tracker's world axes (metres), one row per frame; and the steps from
+ * it to a cli_Track. Shared by the readers and the table writer (trk.c,
+ * table.c), the conversion (frame.c), the derivation (surface.c, rim.c,
+ * derive.c), the whole of it (load.c), and synthetic.c, which makes raw
+ * data from the model (as do the tests, tests/track and tests/fit). */
 #ifndef JUMPCYL_TRACK_RAW_H
 #define JUMPCYL_TRACK_RAW_H
 
@@ -55,8 +58,11 @@ static inline void cli_track_turn(double x, double y, double c, double s, double
 
 /* frame.c: the chosen tracks in a frame turned by angle_rad from
  * Tracker's level axes (or in Tracker's own with incline axes), into out
- * (whose report fields are set here). 0, or -1 with a message for a track
- * name that is not in the file or a time that jumps too far. */
+ * (whose report fields are set here). 0, or -1 with a message (out then
+ * holds nothing to free): a radius not > 0 or an incline outside [0, 90)
+ * deg, a track name given that is not in the file (or --centre and --mass
+ * naming one track), a time that jumps by more than CLI_TRACK_MAX_FRAMES
+ * frames, a position beyond CLI_TRACK_MAX_COORD_M, out of memory. */
 int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, double angle_rad,
                        cli_Track *out, char *err, size_t err_len);
 /* The whole of it: the frame for the incline given (or Tracker's level one
@@ -130,8 +136,8 @@ typedef struct {
 int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out);
 
 /* derive.c: the surface, the incline, heights and hops, θ and ω, the
- * noise, and the notes. 0, or -1 with a message (a given incline the
- * frames in contact refuse, out of memory). */
+ * noise, and the notes. 0, or -1 with a message (a given incline, or
+ * incline axes, the frames in contact refuse; out of memory). */
 int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *t, char *err,
                      size_t err_len);
 

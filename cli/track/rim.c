@@ -483,9 +483,12 @@ static double flight_peak(const flight_ctx *f, const double *q, double t0, doubl
     return best;
 }
 
-/* Fits a flight to the mark's frames [first, last], starting from the
- * rolling state before them (cx, w, th at t_before). The peak height and
- * its standard error (delta method) when the flight explains the frames. */
+/* Fits a flight to the mark's frames [f->first, f->last] from the first
+ * guess start (q: the centre's x and y, their rates, θ and ω at the first
+ * frame). 0 when it explains them: q_out the values, *height the centre's
+ * highest point above contact over [t_lo, t_hi] and *sigma its standard
+ * error (delta method); -1 with fewer than 3 frames, or a fit that fails
+ * or fits badly. */
 static int fit_flight(flight_ctx *f, double r, const double start[6], double t_lo, double t_hi, double *height,
                       double *sigma, double *q_out)
 {

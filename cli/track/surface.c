@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A run of frames in contact is at least min_run long (the caller's: 4
- * frames and 0.1 s): a flight's low first and last frames and a low bounce
+/* A run of frames in contact is at least min_run long (cli_surface_fit's:
+ * 4 frames and 0.1 s at the frame rate): a flight's low first and last frames and a low bounce
  * between two flights make shorter runs, left out as they would tilt the
  * line where the body is mostly in the air. */
 #define SURFACE_CUT_SIGMAS 3.0

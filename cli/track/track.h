@@ -33,7 +33,8 @@ typedef enum {
     CLI_INCLINE_UNKNOWN = 0, /* axes laid along the incline and no angle given: the incline
                                 frame is known, its angle is not */
     CLI_INCLINE_MEASURED,    /* the line through the frames in contact (level axes) */
-    CLI_INCLINE_GIVEN        /* given, and the frames in contact agree with it */
+    CLI_INCLINE_GIVEN        /* given, and not refused: the frames in contact lie within 3 of their
+                                sigma or within 2 deg of it (CLI_TRACK_INCLINE_SIGMAS, _TOL_RAD) */
 } cli_InclineSource;
 
 /* What a video can tell, one line each in the report. */
