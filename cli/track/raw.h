@@ -134,6 +134,11 @@ typedef struct {
 #define CLI_RIM_MAX_FRAMES 1000
 /* 0, or -1 when the frames are too few or too many or the fit fails. */
 int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out);
+/* A flight (a parabola under gravity at incline_rad to the rolling line,
+ * with a constant spin) fitted to each departure in out, from the rolling
+ * state before it; where one fits, its peak is the departure's height and
+ * its path the frames' centre, θ and ω. Nothing with incline_rad NaN. */
+void cli_rim_flights(const cli_RimInput *in, double incline_rad, cli_RimResult *out);
 
 /* derive.c: the surface, the incline, heights and hops, θ and ω, the
  * noise, and the notes. 0, or -1 with a message (a given incline, or

@@ -598,10 +598,9 @@ static void fill_rolling(const rim_ctx *c, const double *p, const gsl_matrix *co
 }
 
 /* Departures: runs of frames outside the rolling stretches or flagged as
- * departures. A flight is fitted to each (when gravity's direction is
- * known); its peak is a hop's height when it fits. */
-static void departures(const rim_ctx *c, const double *p, const unsigned char *bad, double gx, double gy,
-                       cli_RimResult *out)
+ * departures, each with what the mark alone allows of its height (the
+ * flights are fitted after, by cli_rim_flights). */
+static void departures(const rim_ctx *c, const double *p, const unsigned char *bad, cli_RimResult *out)
 {
     out->departures = 0;
     const double a = p[2];
@@ -626,32 +625,44 @@ static void departures(const rim_ctx *c, const double *p, const unsigned char *b
                 if (out->mark_y[k] > out->mark_y[h->peak]) h->peak = k;
             }
             h->bound_m = bound;
-            if (isfinite(gx)) {
-                flight_ctx f = {c->t, out->mark_x, out->mark_y, i, j, a, out->noise_m, gx, gy};
-                /* From the rolling state just before: the centre, its velocity, θ and ω. */
-                const long b = i > 0 && c->st_of[i - 1] >= 0 ? i - 1 : -1;
-                const double w0 = b >= 0 ? out->omega[b] : 0.0, th0 = b >= 0 ? out->theta[b] : 0.0;
-                const double dt = c->t[i] - (b >= 0 ? c->t[b] : c->t[i]);
-                const double span = c->t[j] - c->t[i] + 2.0 * (c->t[c->n - 1] - c->t[0]) / (double)(c->n - 1);
-                /* Up at the speed that brings it down after span, from half its peak height. */
-                const double vy0 = -0.5 * gy * span, y0 = c->r + vy0 * 0.5 * span / 2.0;
-                const double q0[6] = {b >= 0 ? out->cx[b] + c->r * w0 * dt : out->mark_x[i], y0, c->r * w0, vy0,
-                                      th0 + w0 * dt, w0};
-                double q[6];
-                const double t_lo = b >= 0 ? c->t[b] : c->t[i], t_hi = j + 1 < c->n ? c->t[j + 1] : c->t[j];
-                if (fit_flight(&f, c->r, q0, t_lo, t_hi, &h->height_m, &h->height_sigma_m, q) == 0) {
-                    h->fitted_flight = 1;
-                    for (long k = i; k <= j; ++k) {
-                        double cx, cy, th;
-                        flight_at(&f, q, c->t[k], &cx, &cy, &th);
-                        out->cx[k] = cx, out->cy[k] = cy, out->theta[k] = th, out->omega[k] = q[5];
-                        out->c_sigma[k] = h->height_sigma_m;
-                    }
-                }
-            }
         }
         i = j + 1;
     }
+}
+
+/* A flight under gravity (gx, gy) fitted to the departure h; when it fits,
+ * its height is h's and its centre, θ and ω the frames'. */
+static void fit_departure(const cli_RimInput *in, double gx, double gy, cli_TrackHop *h, cli_RimResult *out)
+{
+    const double *t = in->t_s, r = in->radius_m;
+    const long n = in->n, i = h->first, j = h->last;
+    flight_ctx f = {t, out->mark_x, out->mark_y, i, j, out->a_m, out->noise_m, gx, gy};
+    /* From the rolling state just before (the frame before a departure lies
+     * in a rolling stretch): the centre, its velocity, θ and ω. */
+    const long b = i > 0 && !isnan(out->theta[i - 1]) ? i - 1 : -1;
+    const double w0 = b >= 0 ? out->omega[b] : 0.0, th0 = b >= 0 ? out->theta[b] : 0.0;
+    const double dt = t[i] - (b >= 0 ? t[b] : t[i]);
+    const double span = t[j] - t[i] + 2.0 * (t[n - 1] - t[0]) / (double)(n - 1);
+    /* Up at the speed that brings it down after span, from half its peak height. */
+    const double vy0 = -0.5 * gy * span, y0 = r + vy0 * 0.5 * span / 2.0;
+    const double q0[6] = {b >= 0 ? out->cx[b] + r * w0 * dt : out->mark_x[i], y0, r * w0, vy0, th0 + w0 * dt, w0};
+    double q[6];
+    const double t_lo = b >= 0 ? t[b] : t[i], t_hi = j + 1 < n ? t[j + 1] : t[j];
+    if (fit_flight(&f, r, q0, t_lo, t_hi, &h->height_m, &h->height_sigma_m, q) != 0) return;
+    h->fitted_flight = 1;
+    for (long k = i; k <= j; ++k) {
+        double cx, cy, th;
+        flight_at(&f, q, t[k], &cx, &cy, &th);
+        out->cx[k] = cx, out->cy[k] = cy, out->theta[k] = th, out->omega[k] = q[5];
+        out->c_sigma[k] = h->height_sigma_m;
+    }
+}
+
+void cli_rim_flights(const cli_RimInput *in, double incline_rad, cli_RimResult *out)
+{
+    const double gx = in->gravity_mps2 * sin(incline_rad), gy = -in->gravity_mps2 * cos(incline_rad);
+    if (!isfinite(gx)) return;
+    for (long k = 0; k < out->departures; ++k) fit_departure(in, gx, gy, &out->dep[k], out);
 }
 
 int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out)
@@ -733,7 +744,8 @@ int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out)
     /* Gravity in the surface frame: the incline is the frame's angle less the
      * tilt (level axes), or the one given; unknown otherwise (no flights). */
     const double alpha = in->level_axes ? in->frame_angle_rad - p[0] : in->incline_rad;
-    departures(&c, p, bad, in->gravity_mps2 * sin(alpha), -in->gravity_mps2 * cos(alpha), out);
+    departures(&c, p, bad, out);
+    cli_rim_flights(in, alpha, out);
     rc = 0;
 done:
     free(bad);
