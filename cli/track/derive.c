@@ -260,12 +260,17 @@ static void free_rim(cli_RimResult *r)
     free(r->rolling), free(r->dep);
 }
 
-static int run_rim(const cli_TrackOptions *opt, double frame_angle, const cli_Track *t, cli_RimResult *r)
+static cli_RimInput rim_input(const cli_TrackOptions *opt, const cli_Track *t)
+{
+    const cli_RimInput in = {t->t_s, t->mark_x_m, t->mark_y_m, t->n, opt->radius_m, CLI_TRACK_NOISE_FLOOR_M,
+                             opt->gravity_mps2 > 0 ? opt->gravity_mps2 : 9.81};
+    return in;
+}
+
+static int run_rim(const cli_TrackOptions *opt, const cli_Track *t, cli_RimResult *r)
 {
     if (alloc_rim(r, t->n) != 0) return -2;
-    cli_RimInput in = {t->t_s, t->mark_x_m, t->mark_y_m, t->n, opt->radius_m, CLI_TRACK_NOISE_FLOOR_M,
-                       opt->gravity_mps2 > 0 ? opt->gravity_mps2 : 9.81, opt->axes == CLI_TRACK_AXES_LEVEL,
-                       frame_angle, opt->incline_rad};
+    const cli_RimInput in = rim_input(opt, t);
     return cli_rim_recover(&in, r);
 }
 
@@ -278,13 +283,18 @@ static int plausible_mark(const cli_RimResult *r, const cli_Track *t)
 }
 
 /* The recovered centre into the track: the surface frame, the incline
- * (checked against one given), heights, the departures and hops. */
-static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame_angle, const cli_RimResult *r,
+ * (checked against one given), the flights fitted to the departures under
+ * it, heights, the departures and hops. */
+static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame_angle, cli_RimResult *r,
                      cli_Track *t, char *err, size_t err_len)
 {
     if (decide_incline(name, opt, frame_angle, r->tilt_rad, r->tilt_sigma_rad, r->rolling_frames, t, err,
                        err_len) != 0)
         return -1;
+    /* Gravity at the incline decided, the model's; a body that went up a
+     * slope, which the model has no incline for, flew under the slope's. */
+    const cli_RimInput in = rim_input(opt, t);
+    cli_rim_flights(&in, t->uphill ? frame_angle - r->tilt_rad : t->incline_rad, r);
     t->centre_source = CLI_CENTRE_FROM_MARK;
     t->has_mark = 1;
     for (long i = 0; i < t->n; ++i) {
@@ -334,7 +344,7 @@ static int single_track_as_mark(const char *name, const cli_RawData *raw, const 
     for (long i = 0; i < t->n; ++i) t->mark_x_m[i] = t->x_m[i], t->mark_y_m[i] = t->y_m[i];
     cli_RimResult r;
     int rc = 1;
-    const int fit = run_rim(opt, frame_angle, t, &r);
+    const int fit = run_rim(opt, t, &r);
     *tried = fit != -2;
     if (fit == -2) {
         snprintf(err, err_len, "%s: out of memory", name);
@@ -466,7 +476,7 @@ int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOp
         }
     } else if (t->centre_source == CLI_CENTRE_FROM_MARK && t->n >= 3) {
         cli_RimResult r;
-        const int st = run_rim(opt, frame_angle, t, &r);
+        const int st = run_rim(opt, t, &r);
         if (st == -2) {
             rc = -1;
             snprintf(err, err_len, "%s: out of memory", name);

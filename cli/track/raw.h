@@ -110,10 +110,7 @@ typedef struct {
     long n;
     double radius_m;               /* r */
     double sigma_floor_m;          /* the noise is not taken below this */
-    double gravity_mps2;
-    int level_axes;                /* the frame is Tracker's level one turned by frame_angle_rad */
-    double frame_angle_rad;
-    double incline_rad;            /* with incline axes: the incline given, or NaN */
+    double gravity_mps2;           /* for the flights */
 } cli_RimInput;
 
 typedef struct {
@@ -132,7 +129,9 @@ typedef struct {
 /* The frames a rolling fit takes at most (its Jacobian is dense, 2 n by
  * about n / 2: a second or two at 1000 frames). */
 #define CLI_RIM_MAX_FRAMES 1000
-/* 0, or -1 when the frames are too few or too many or the fit fails. */
+/* The rolling fit and the departures from it (no flights fitted to them
+ * yet: cli_rim_flights, once the incline is decided). 0, or -1 when the
+ * frames are too few or too many or the fit fails. */
 int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out);
 /* A flight (a parabola under gravity at incline_rad to the rolling line,
  * with a constant spin) fitted to each departure in out, from the rolling

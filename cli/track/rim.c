@@ -7,8 +7,9 @@
  * together by least squares (gsl_multifit_nlinear, analytic Jacobian).
  * Frames the rolling fit cannot explain for two frames or more are
  * departures from rolling (a hop or a slip); a flight (a parabola under
- * gravity with a constant spin) is fitted to each, and its height is a hop's
- * when it fits. */
+ * gravity with a constant spin) is fitted to each once the caller has
+ * decided the incline (cli_rim_flights), and its height is a hop's when it
+ * fits. */
 #include "raw.h"
 
 #include <gsl/gsl_blas.h>
@@ -741,11 +742,7 @@ int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out)
     out->a_sigma_m = sqrt(gsl_matrix_get(cov, 2, 2));
     out->line_sigma_m = sqrt(gsl_matrix_get(cov, 1, 1));
     fill_rolling(&c, p, cov, bad, out);
-    /* Gravity in the surface frame: the incline is the frame's angle less the
-     * tilt (level axes), or the one given; unknown otherwise (no flights). */
-    const double alpha = in->level_axes ? in->frame_angle_rad - p[0] : in->incline_rad;
     departures(&c, p, bad, out);
-    cli_rim_flights(in, alpha, out);
     rc = 0;
 done:
     free(bad);
