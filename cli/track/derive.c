@@ -19,7 +19,9 @@
 #define MARK_SWING_RATIO 4.0
 #define MARK_MIN_RADIUS_R 0.2   /* a recovered mark at least 0.2 r from C ... */
 #define MARK_MIN_NOISES 10.0    /* ... and 10 noises */
-#define MARK_MIN_ROLLING 0.5    /* rolling explains at least half the frames */
+#define MARK_MIN_ROLLING 0.5    /* rolling explains at least half the frames ... */
+#define MARK_MAX_NOISE_RATIO 2.0 /* ... scattered at most twice the frames' own noise */
+#define CENTRE_MAX_NOISES 2.0   /* a recovered centre whose error is above 2 noises is left out */
 
 static void note(cli_Track *t, cli_TrackQuantity q, int ok, const char *fmt, ...)
 {
@@ -275,10 +277,16 @@ static int run_rim(const cli_TrackOptions *opt, const cli_Track *t, cli_RimResul
 }
 
 /* Whether a recovered mark is one: far enough from C to be told from
- * noise, with rolling explaining most frames. */
-static int plausible_mark(const cli_RimResult *r, const cli_Track *t)
+ * noise, within the rim, with rolling explaining most frames at about
+ * the noise the frames show by themselves (frame_noise_m, from their third
+ * differences: it can only run high for a fast mark, never low; a rolling
+ * path fitted to a body that slides scatters the frames far wider). */
+static int plausible_mark(const cli_RimResult *r, const cli_Track *t, double frame_noise_m)
 {
+    /* Every point of the body lies within the rim: a mark found farther
+     * out than its error allows is rolling fitted to motion it is not. */
     return r->a_m >= MARK_MIN_RADIUS_R * t->radius_m && r->a_m >= MARK_MIN_NOISES * r->noise_m &&
+           r->a_m <= t->radius_m + 3.0 * r->a_sigma_m && r->noise_m <= MARK_MAX_NOISE_RATIO * frame_noise_m &&
            (double)r->rolling_frames >= MARK_MIN_ROLLING * (double)t->n;
 }
 
@@ -297,12 +305,19 @@ static int adopt_rim(const char *name, const cli_TrackOptions *opt, double frame
     cli_rim_flights(&in, t->uphill ? frame_angle - r->tilt_rad : t->incline_rad, r);
     t->centre_source = CLI_CENTRE_FROM_MARK;
     t->has_mark = 1;
+    /* Where the mark barely moves (it passes the contact point), above
+     * all at the clip's ends, it tells the centre poorly, and the linear
+     * error understates how poorly: a centre whose error is above
+     * CENTRE_MAX_NOISES noises is left out, with its angle. */
+    t->centre_left_out = 0;
     for (long i = 0; i < t->n; ++i) {
+        const int known = r->c_sigma[i] <= CENTRE_MAX_NOISES * r->noise_m;
         t->mark_x_m[i] = r->mark_x[i], t->mark_y_m[i] = r->mark_y[i];
-        t->x_m[i] = r->cx[i], t->y_m[i] = r->cy[i];
-        t->centre_sigma_m[i] = r->c_sigma[i];
-        t->theta_rad[i] = r->theta[i], t->omega_radps[i] = r->omega[i];
+        t->x_m[i] = known ? r->cx[i] : NAN, t->y_m[i] = known ? r->cy[i] : NAN;
+        t->centre_sigma_m[i] = known ? r->c_sigma[i] : NAN;
+        t->theta_rad[i] = known ? r->theta[i] : NAN, t->omega_radps[i] = known ? r->omega[i] : NAN;
         t->contact[i] = r->rolling[i];
+        t->centre_left_out += !known && isfinite(r->cx[i]);
     }
     t->sigma_m = r->noise_m;
     t->contact_frames = r->rolling_frames;
@@ -349,7 +364,7 @@ static int single_track_as_mark(const char *name, const cli_RawData *raw, const 
     if (fit == -2) {
         snprintf(err, err_len, "%s: out of memory", name);
         rc = -1;
-    } else if (fit == 0 && plausible_mark(&r, t)) {
+    } else if (fit == 0 && plausible_mark(&r, t, frame_noise_m)) {
         memcpy(t->mark_name, t->centre_name, sizeof t->mark_name);
         t->centre_name[0] = '\0';
         rc = adopt_rim(name, opt, frame_angle, &r, t, err, err_len);
@@ -426,11 +441,15 @@ static void centre_note(cli_Track *t, const cli_RawData *raw)
         note(t, CLI_Q_CENTRE, 1, "tracked ('%s': %ld frames, %ld missing between its first and last)",
              t->centre_name, t->n, t->gaps);
     } else if (t->centre_source == CLI_CENTRE_FROM_MARK) {
-        note(t, CLI_Q_CENTRE, 1, "recovered from the mark '%s' by fitting rolling (the mark at a = %.2f +- %.2f cm "
-             "from it): %ld of %ld frames, standard error %.2f mm (median; up to %.1f mm where the mark passes the "
-             "contact point or the clip ends); noise %.2f mm", t->mark_name, t->mark_radius_m * 100,
+        char left_out[128] = "";
+        if (t->centre_left_out > 0)
+            snprintf(left_out, sizeof left_out, "; left out in %ld frame(s) where the mark, passing the contact "
+                     "point, tells it worse", t->centre_left_out);
+        note(t, CLI_Q_CENTRE, 1, "recovered from the mark '%s' (a = %.2f +- %.2f cm from it) by fitting rolling, "
+             "which explains %ld of its %ld frames: standard error %.2f mm (median; up to %.1f mm, %.0f noises)%s; "
+             "noise %.2f mm", t->mark_name, t->mark_radius_m * 100,
              t->mark_radius_sigma_m * 100, t->contact_frames, t->n, t->centre_sigma_median_m * 1e3,
-             t->centre_sigma_max_m * 1e3, t->sigma_m * 1e3);
+             t->centre_sigma_max_m * 1e3, CENTRE_MAX_NOISES, left_out, t->sigma_m * 1e3);
     } else if (t->centre_ambiguous) {
         char names[400];
         cli_track_list_names(raw, names, sizeof names);
@@ -480,7 +499,7 @@ int cli_track_derive(const char *name, const cli_RawData *raw, const cli_TrackOp
         if (st == -2) {
             rc = -1;
             snprintf(err, err_len, "%s: out of memory", name);
-        } else if (st == 0) {
+        } else if (st == 0 && plausible_mark(&r, t, cli_track_frame_noise(t->mark_x_m, t->mark_y_m, t->n, work))) {
             rc = adopt_rim(name, opt, frame_angle, &r, t, err, err_len);
         } else {
             t->centre_source = CLI_CENTRE_NONE;

@@ -134,28 +134,39 @@ static void first_line(const double *x, const double *y, long n, double scale, c
 }
 
 /* The frames within cut of the line, in runs of at least min_run (or all
- * of them when the clip is shorter than a run). A run's end that meets a
- * frame off the line loses erode frames: a flight rises from contact by
- * less than the noise for a while (by t^3 from a slide), and those frames,
- * last before the hop and so far along the ramp, would tilt the line. */
+ * of them when the clip is shorter than a run). A run goes on across a
+ * lone frame off the line (noise: a hop lasts 2 frames at least), which is
+ * itself left out. A run's end that meets frames off the line loses erode
+ * frames: a flight rises from contact by less than the noise for a while
+ * (by t^3 from a slide), and those frames, last before the hop and so far
+ * along the ramp, would tilt the line. */
+static int near_line(const double *x, const double *y, const cli_SurfaceLine *L, double cut, long i)
+{
+    return fabs(y[i] - (L->a + L->b * (x[i] - L->x_mid))) <= cut;
+}
+
 static long mark_contact(const double *x, const double *y, long n, const cli_SurfaceLine *L, double cut,
                          long min_run, long erode, unsigned char *keep)
 {
     const long need = n < min_run ? 1 : min_run;
-    long run = 0, kept = 0;
-    for (long i = 0; i <= n; ++i) {
-        const int near = i < n && fabs(y[i] - (L->a + L->b * (x[i] - L->x_mid))) <= cut;
-        if (i < n) keep[i] = 0;
-        if (near) {
-            run++;
+    long kept = 0, i = 0;
+    memset(keep, 0, (size_t)(n > 0 ? n : 0));
+    while (i < n) {
+        if (!near_line(x, y, L, cut, i)) {
+            i++;
             continue;
         }
-        if (run >= need) {
-            const long a = i - run > 0 ? i - run + erode : 0, b = i < n ? i - erode : n;
-            for (long k = a; k < b; ++k) keep[k] = 1;
-            kept += b > a ? b - a : 0;
+        long last = i; /* the run's last frame near the line */
+        for (long j = i + 1; j < n; ++j) {
+            if (near_line(x, y, L, cut, j)) last = j;
+            else if (!(j + 1 < n && near_line(x, y, L, cut, j + 1))) break;
         }
-        run = 0;
+        if (last - i + 1 >= need) {
+            const long a = i > 0 ? i + erode : 0, b = last + 1 < n ? last + 1 - erode : n;
+            for (long k = a; k < b; ++k)
+                if (near_line(x, y, L, cut, k)) keep[k] = 1, kept++;
+        }
+        i = last + 1;
     }
     return kept;
 }
@@ -187,20 +198,25 @@ static long drop_runs_above(const double *x, const double *y, long n, double noi
             a++;
             continue;
         }
+        /* A run, as mark_contact makes them: across a lone frame left out. */
         long b = a;
         sums run = {0};
-        while (b < n && keep[b]) add_frame(&run, x[b], y[b], 1.0), b++;
+        while (b < n && (keep[b] || (b + 1 < n && keep[b + 1]))) {
+            if (keep[b]) add_frame(&run, x[b], y[b], 1.0);
+            b++;
+        }
         const sums rest = {all.w - run.w, all.x - run.x, all.y - run.y, all.xx - run.xx, all.xy - run.xy};
         const double det = rest.w * rest.xx - rest.x * rest.x;
         /* The others outweigh the run: a line they give is the better. */
         if (rest.w >= 3 && rest.w > run.w && det > 1e-12 * rest.w * rest.xx) {
             const double bb = (rest.w * rest.xy - rest.x * rest.y) / det, aa = (rest.y - bb * rest.x) / rest.w;
             double mean = 0;
-            for (long k = a; k < b; ++k) mean += y[k] - (aa + bb * x[k]);
-            mean /= (double)(b - a);
-            if (mean > RUN_ABOVE_SIGMAS * noise / sqrt((double)(b - a)) && mean > 0.5 * noise) {
+            for (long k = a; k < b; ++k)
+                if (keep[k]) mean += y[k] - (aa + bb * x[k]);
+            mean /= run.w;
+            if (mean > RUN_ABOVE_SIGMAS * noise / sqrt(run.w) && mean > 0.5 * noise) {
                 for (long k = a; k < b; ++k) keep[k] = 0;
-                dropped += b - a;
+                dropped += (long)run.w;
             }
         }
         a = b;

@@ -118,6 +118,8 @@ typedef struct {
     double centre_sigma_median_m; /* the median of centre_sigma_m over the frames with a centre ... */
     double centre_sigma_max_m;    /* ... and the largest (a mark alone tells the centre least as it
                                      passes the contact point) */
+    long centre_left_out;      /* a centre recovered from a mark: frames left without one (its error there
+                                  above 3 noises) */
 
     /* What the file held, for the report. */
     char format[8];                                         /* "trk", "table" or "model" */
