@@ -17,6 +17,7 @@
 /* A single track whose scatter about its line is this many times the
  * frame-to-frame noise swings about the line: a mark, not a centre. */
 #define MARK_SWING_RATIO 4.0
+#define DIRECTION_TOL_RAD (0.5 * CLI_TRACK_PI / 180.0) /* see along_axes */
 #define MARK_MIN_RADIUS_R 0.2   /* a recovered mark at least 0.2 r from C ... */
 #define MARK_MIN_NOISES 10.0    /* ... and 10 noises */
 #define MARK_MIN_ROLLING 0.5    /* rolling explains at least half the frames ... */
@@ -106,15 +107,33 @@ static int decide_incline(const char *name, const cli_TrackOptions *opt, double 
     return 0;
 }
 
-/* Whether the surface is taken along the frame's x as it is: the frames in
- * contact (tilt tau, sigma its error) agree with the incline given (level
- * axes) or with the axes (incline axes), and the line is not to be fitted. */
+/* Whether the surface is taken along the frame's x as it is: along the
+ * incline given (level axes) or along the axes (incline axes), when the
+ * frames in contact (tilt tau, sigma its error) lie within 3 sigma of it
+ * or within DIRECTION_TOL_RAD, unless --fit-tilt asks for their line. The
+ * line through the frames in contact can be off by more than its sigma
+ * (bounces too low to show lift its far end: up to 0.28 deg, 4.6 sigma, in
+ * tests/track/test_track.c's synthetic videos of the paper's cylinder), and
+ * a measured angle that close is the better direction. */
 static int along_axes(const cli_TrackOptions *opt, double frame_angle, double tau, double sig)
 {
     if (opt->fit_tilt) return 0;
-    if (opt->axes == CLI_TRACK_AXES_LEVEL)
-        return !isnan(opt->incline_rad) && agrees(opt->incline_rad, frame_angle - tau, sig);
-    return agrees(0.0, tau, sig);
+    const double d = opt->axes == CLI_TRACK_AXES_LEVEL ? opt->incline_rad - (frame_angle - tau) : tau;
+    return fabs(d) <= fmax(CLI_TRACK_INCLINE_SIGMAS * sig, DIRECTION_TOL_RAD);
+}
+
+/* How the surface's direction came about, for the notes. */
+static const char *direction_words(const cli_TrackOptions *opt, const cli_Track *t, int level, int agreed)
+{
+    const int level_axes = opt->axes == CLI_TRACK_AXES_LEVEL;
+    if (level && agreed) return level_axes ? " (agreed)" : "";
+    if (level)
+        return level_axes ? ": beyond 3 sigma but within 0.5 deg, so the surface is taken along the incline given"
+                          : ": beyond 3 sigma but within 0.5 deg, so the surface is taken along the axes";
+    if (t->centre_source != CLI_CENTRE_FROM_MARK && opt->fit_tilt) return ": the surface is their line (--fit-tilt)";
+    return level_axes && t->incline_source == CLI_INCLINE_GIVEN
+               ? ": the surface is their line, the model's incline the one given"
+               : ": the surface is their line";
 }
 
 /* Degrees as printed to places decimals: a value that rounds to zero is
@@ -136,6 +155,10 @@ static void surface_note(cli_Track *t, const cli_TrackOptions *opt, int level)
                            : "";
     /* A mark alone: the frames it rolls in (the body in contact). */
     const char *in = t->centre_source == CLI_CENTRE_FROM_MARK ? "frames the mark rolls in" : "frames in contact";
+    const int agreed = opt->axes == CLI_TRACK_AXES_LEVEL
+                           ? !isnan(opt->incline_rad) && agrees(opt->incline_rad, measured_rad, t->surface_tilt_sigma_rad)
+                           : agrees(0.0, t->surface_tilt_rad, t->surface_tilt_sigma_rad);
+    const char *words = direction_words(opt, t, level, agreed);
 
     if (t->uphill)
         note(t, CLI_Q_SURFACE, 1, "the body went up a slope: the %s lie at %.2f +- %.2f deg against its travel; "
@@ -150,17 +173,16 @@ static void surface_note(cli_Track *t, const cli_TrackOptions *opt, int level)
              "scatter about it)%s", shown_deg(t->incline_rad, 2), sig, t->contact_frames, in, t->sigma_m * 1e3,
              t->incline_rad < 3.0 * t->surface_tilt_sigma_rad ? hint : "");
     else if (t->incline_source == CLI_INCLINE_UNKNOWN)
-        note(t, CLI_Q_SURFACE, 1, "the surface: the line through %ld %s (%+.2f +- %.2f deg to the axes); noise "
+        note(t, CLI_Q_SURFACE, 1, "the surface: the %ld %s lie at %+.2f +- %.2f deg to the axes%s; noise "
              "%.2f mm; the incline's angle is not known: the axes lie along it and none was given",
-             t->contact_frames, in, shown_deg(t->surface_tilt_rad, 2), sig, t->sigma_m * 1e3);
+             t->contact_frames, in, shown_deg(t->surface_tilt_rad, 2), sig, words, t->sigma_m * 1e3);
     else if (opt->axes == CLI_TRACK_AXES_LEVEL)
         note(t, CLI_Q_SURFACE, 1, "incline %.2f deg as given; the %ld %s lie at %.2f +- %.2f deg%s; noise %.2f mm",
-             t->incline_rad * DEG, t->contact_frames, in, shown_deg(measured_rad, 2), sig,
-             level ? " (agreed)" : ": the surface is their line, the model's incline the one given", t->sigma_m * 1e3);
+             t->incline_rad * DEG, t->contact_frames, in, shown_deg(measured_rad, 2), sig, words, t->sigma_m * 1e3);
     else
         note(t, CLI_Q_SURFACE, 1, "incline %.2f deg as given (axes along it); the %ld %s lie at %+.2f +- %.2f deg to "
              "the axes%s; noise %.2f mm", t->incline_rad * DEG, t->contact_frames, in,
-             shown_deg(t->surface_tilt_rad, 2), sig, level ? "" : ": the surface is their line", t->sigma_m * 1e3);
+             shown_deg(t->surface_tilt_rad, 2), sig, words, t->sigma_m * 1e3);
 }
 
 /* The surface under a tracked centre (frame_noise_m: the frame-to-frame
@@ -180,7 +202,7 @@ static int tracked_surface(const char *name, const cli_TrackOptions *opt, double
     if (st != 0) return 1;
     const double tau = atan(L.b), sig = sqrt(L.var_b) / (1.0 + L.b * L.b);
     if (decide_incline(name, opt, frame_angle, tau, sig, L.contact, t, err, err_len) != 0) return -1;
-    const int level = along_axes(opt, frame_angle, tau, sig);
+    const int level = t->incline_source != CLI_INCLINE_MEASURED && along_axes(opt, frame_angle, tau, sig);
     double turn_by = level ? 0.0 : tau;
     /* Turned until the line through the frames in contact (which may change
      * with the turn) lies along x: the frame is then the incline's exactly,

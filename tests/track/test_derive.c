@@ -126,8 +126,9 @@ static int expect(const char *const *args, int want, const char *text, const cha
 }
 
 /* The paper's cylinder on 30 deg with level axes: the incline measured;
- * --incline 25 refused naming it; 30.5 (within 2 deg, beyond 3 sigma) read
- * with the data's surface; axes along the incline without an angle: the
+ * --incline 25 refused naming it; 31 (within 2 deg, beyond 3 sigma and 0.5
+ * deg) read with the data's surface, 30.3 (within 0.5 deg) with the surface
+ * along it; axes along the incline without an angle: the
  * report says unknown, compare refuses and says to give --incline. */
 static int test_incline(void)
 {
@@ -143,8 +144,11 @@ static int test_incline(void)
     bad += expect(measured, 0, "measured: the line through", NULL);
     const char *wrong[] = {"track", level, "--incline", "25", NULL};
     bad += expect(wrong, 2, "disagrees with the video: the centres in contact lie on a line at", NULL);
-    const char *near[] = {"track", level, "--incline", "30.5", NULL};
-    bad += expect(near, 0, "the surface is their line", NULL);
+    const char *near[] = {"track", level, "--incline", "31", NULL};
+    bad += expect(near, 0, "the surface is their line, the model's incline the one given", NULL);
+    const char *nearer[] = {"track", level, "--incline", "30.3", NULL};
+    bad += expect(nearer, 0, "beyond 3 sigma but within 0.5 deg, so the surface is taken along the incline given",
+                  NULL);
     const char *compare_wrong[] = {"compare", "--track", level, "--incline", "35", NULL};
     bad += expect(compare_wrong, 2, "disagrees with the video", NULL);
     /* Axes along the incline: Tracker's world is then the incline frame.
