@@ -3,16 +3,13 @@
 #ifndef JUMPCYL_CLI_H
 #define JUMPCYL_CLI_H
 
+#include "outputs.h" /* and process.h: exit statuses, cli_error */
+
 #include <jumpcyl/jumpcyl.h>
 
 #include <getopt.h>
-#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <sys/types.h>
-
-/* Exit statuses. */
-enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_MISFIT = 3 /* fit: the model does not describe the video */ };
 
 /* ---- units.c ---- */
 typedef enum {
@@ -159,83 +156,6 @@ int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed);
 void cli_sim_help(FILE *out);
 /* The help of the shared options: simulation options (with_sim) and setup options. */
 void cli_options_help(FILE *out, int with_sim);
-
-/* ---- record.c: the simulation, stopped by a signal ---- */
-/* Runs the full model into run's arrays; prints the library's message on
- * failure (nothing for a stop by a signal). Returns a status (JC_OK, ...,
- * JC_ESTOPPED after a signal). The caller frees the run. */
-int cli_simulate(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd);
-/* The same without keeping events or samples: for the run's end and counts. */
-int cli_simulate_probe(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd);
-/* Runs the full model into a caller's recorder; a signal stops it. No
- * message for JC_ESTOPPED (a signal, or the recorder's own stop). */
-int cli_simulate_stream(const jc_Model *m, const jc_SimOptions *o, const jc_Recorder *rec, jc_Run *run,
-                        const char *cmd);
-
-/* ---- safe_output.c: files written whole or not at all (safe_output.h) ---- */
-#define CLI_PATH_MAX 4096
-#include "safe_output.h"
-/* Flushes standard output: EXIT_OK, or EXIT_FAIL after a message. */
-int cli_stdout_finish(void);
-
-/* ---- signals.c: SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ ---- */
-/* At start-up. The first signal sets a flag (and ends the running child);
- * commands check cli_stop_requested where they can stop, keep targets as
- * they were and return cli_stop_status(). A second signal ends the process
- * at once, after removing the recorded temporary files and directories. */
-void cli_signals_install(void);
-int cli_stop_requested(void); /* the signal number, 0 if none */
-int cli_stop_status(void);    /* 128 + the signal number: 130 SIGINT, 143 SIGTERM */
-const char *cli_signal_name(int sig);
-/* Blocks the stop signals (while a record and the thing it records change
- * together, or around starting a child); release restores the old mask. */
-void cli_signals_hold(sigset_t *old);
-void cli_signals_release(const sigset_t *old);
-/* The running child, ended by a signal; 0 when none. */
-void cli_child_set(pid_t pid);
-/* mkstemp, recorded so that a signal that ends the process removes the file.
- * Returns the descriptor or -1 (errno); *slot is the record. */
-int cli_tmpfile_create(char *template_path, int *slot);
-/* Renames the temporary file to final_path (removes it if final_path is
- * NULL, or if the rename fails) and drops the record. 0 or -1 (errno). */
-int cli_tmpfile_finish(int slot, const char *tmp_path, const char *final_path);
-/* A scratch directory, removed with its files by a signal that ends the
- * process; returns the record (-1 if none is free) for cli_tmpdir_untrack. */
-int cli_tmpdir_track(const char *path);
-void cli_tmpdir_untrack(int slot);
-
-/* ---- report.c ---- */
-#define CLI_PI 3.14159265358979323846
-double cli_deg(double rad);
-/* v as printf shows it with that many decimals, without a negative zero:
- * values that round to zero become +0. */
-double cli_shown(double v, int decimals);
-void cli_print_setup(FILE *out, const jc_Model *m, int show_incline);
-/* A word as the shell reads it: single-quoted unless plainly safe; control
- * characters shown as '?', so that it stays on one line (and a comment line
- * of a script never ends in a backslash). */
-void cli_shell_word(FILE *out, const char *s);
-/* Prints "jumpcyl: <msg>" on stderr. */
-void cli_error(const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 1, 2)))
-#endif
-    ;
-
-/* JSON helpers (cJSON). */
-struct cJSON;
-/* {"theta": rad, "x": m, "omega": rad/s, "normal": N, "friction": N, "grazing": bool} or null */
-struct cJSON *cli_json_crossing(const jc_RollingCrossing *c);
-struct cJSON *cli_json_setup(const jc_Model *m);
-struct cJSON *cli_json_event(const jc_Event *e);
-struct cJSON *cli_json_energy(const jc_EnergyReport *e);
-/* Prints the document on stdout and frees it; EXIT_FAIL if that fails. */
-int cli_json_print(struct cJSON *doc);
-/* sim_json.c: `simulate --json`, whole or streamed (the same text). */
-struct cJSON *cli_sim_json_doc(const jc_Model *m, const jc_Run *run);
-int cli_sim_json_begin(FILE *out, const jc_Model *m); /* 0, or -1 (a write or memory failed) */
-int cli_sim_json_event(FILE *out, const jc_Event *e, int index);
-int cli_sim_json_end(FILE *out, const jc_Model *m, const jc_Run *run, const jc_RunSummary *sum);
 
 /* ---- commands ---- */
 int cmd_paper(int argc, char **argv);

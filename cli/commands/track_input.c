@@ -3,7 +3,6 @@
  * path for the figure. */
 #include "track_input.h"
 #include "figures.h"
-#include "plot.h"
 
 #include <math.h>
 #include <stdlib.h>
