@@ -92,10 +92,17 @@ typedef struct {
 void cli_design_eval(const cli_DesignJob *job, double p, jc_Workspace *ws, cli_DesignPoint *out);
 /* The calling thread's number in the parallel loops: the index of its workspace. */
 int cli_design_thread_index(void);
-/* The scan, the edges and the branches; then the solutions (solve.c).
- * EXIT_OK, EXIT_FAIL after a message (out of memory), or the stop status. */
-int cli_design_run(const cli_DesignJob *job, cli_DesignResult *r);
+/* The scan, the edges and the branches into r (ws: one workspace per
+ * thread). 0, or -1 when memory ran out; a stop signal cuts it short. */
+int cli_design_scan(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace **ws);
 void cli_design_free(cli_DesignResult *r);
+
+/* ---- run.c: the whole search ---- */
+
+/* The scan, the edges and the branches (scan.c); then the solutions
+ * (solve.c). EXIT_OK, EXIT_FAIL after a message (out of memory), or the
+ * stop status. */
+int cli_design_run(const cli_DesignJob *job, cli_DesignResult *r);
 
 /* ---- solve.c: roots within branches ---- */
 
@@ -123,7 +130,7 @@ void cli_design_print(const cli_DesignJob *job, const cli_DesignResult *r, const
 int cli_design_write_json(const cli_DesignJob *job, const cli_DesignResult *r, const char *path);
 int cli_design_write_csv(const cli_DesignJob *job, const cli_DesignResult *r, const char *path);
 
-/* ---- plot_design.c: x(p) with X and the solutions (gnuplot) ---- */
+/* ---- figure.c: x(p) with X and the solutions (gnuplot, figures.h) ---- */
 int cli_design_figure(const cli_DesignJob *job, const cli_DesignResult *r, const char *path, const char *cmdline);
 
 /* ---- commands/design.c ---- */

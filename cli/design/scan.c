@@ -1,9 +1,8 @@
 /* design: the runs, the dense scan, the discontinuities' edges and the
- * continuous branches between them. Every run goes through cli_case_setup
+ * continuous branches between them (run.c runs it, then solve.c). Every run goes through cli_case_setup
  * and cli_case_run, the sweep engine's path: a design value is exactly the
  * run `jumpcyl simulate` makes with that option. */
 #include "design.h"
-#include "figures.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -125,17 +124,6 @@ static int edge_order(const void *a, const void *b)
     return (pa > pb) - (pa < pb);
 }
 
-static int thread_count(int threads)
-{
-#ifdef _OPENMP
-    if (threads > 0) omp_set_num_threads(threads);
-    return omp_get_max_threads();
-#else
-    (void)threads;
-    return 1;
-#endif
-}
-
 /* The calling thread's number in the design's parallel loops (0 without
  * OpenMP): which workspace it may use. */
 int cli_design_thread_index(void)
@@ -239,28 +227,16 @@ static int make_branches(const cli_DesignJob *job, cli_DesignResult *r)
     return 0;
 }
 
-int cli_design_run(const cli_DesignJob *job, cli_DesignResult *r)
+int cli_design_scan(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace **ws)
 {
-    memset(r, 0, sizeof *r);
-    const double t0 = cli_now_s();
-    r->threads_used = thread_count(job->threads);
     r->scan_count = job->points;
     r->edge_width = (job->hi - job->lo) * EDGE_REL_WIDTH;
     r->scan = malloc((size_t)job->points * sizeof *r->scan);
-    jc_Workspace **ws = calloc((size_t)r->threads_used, sizeof *ws);
-    int ok = r->scan && ws;
-    for (int t = 0; ok && t < r->threads_used; ++t) ok = (ws[t] = jc_workspace_new()) != NULL;
-    int st = ok ? EXIT_OK : EXIT_FAIL;
-    if (st == EXIT_OK) scan(job, r, ws);
-    if (st == EXIT_OK && !cli_stop_requested() && locate_edges(job, r, ws) != 0) st = EXIT_FAIL;
-    if (st == EXIT_OK && !cli_stop_requested() && make_branches(job, r) != 0) st = EXIT_FAIL;
-    if (st == EXIT_FAIL) cli_error("design: out of memory for %ld points", job->points);
-    if (st == EXIT_OK && !cli_stop_requested()) st = cli_design_solve(job, r, ws);
-    if (st == EXIT_OK && cli_stop_requested()) st = cli_stop_status();
-    for (int t = 0; ws && t < r->threads_used; ++t) jc_workspace_free(ws[t]);
-    free(ws);
-    r->seconds = cli_now_s() - t0;
-    return st;
+    if (!r->scan) return -1;
+    scan(job, r, ws);
+    if (!cli_stop_requested() && locate_edges(job, r, ws) != 0) return -1;
+    if (!cli_stop_requested() && make_branches(job, r) != 0) return -1;
+    return 0;
 }
 
 void cli_design_free(cli_DesignResult *r)
