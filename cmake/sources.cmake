@@ -1,5 +1,5 @@
-# The library's sources, listed once: the native build (CMakeLists.txt)
-# and the web build (web/CMakeLists.txt) both include this file. The
+# The source lists that the native build (CMakeLists.txt) and the web build
+# (web/CMakeLists.txt) share, listed once: both include this file. The
 # paths are absolute, so that either build can use them.
 get_filename_component(JC_SOURCE_ROOT "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 
@@ -9,3 +9,14 @@ set(JC_LIB_SOURCES
   src/simulate.c src/run.c src/record.c src/workspace.c src/ode.c src/dop853.c
   src/sample_columns.c)
 list(TRANSFORM JC_LIB_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
+
+# The tool's files that the web page compiles too, so that the page and the
+# tool read a setup and write a run the same way: the setup and simulation
+# options and units (options.c, units.c), the experiment-file writer (the
+# page's download), the JSON of a run (sim_json.c, report.c), Table 1's row
+# (paper_row.c) and the tool's one-line errors (error.c). The native tool
+# builds them into jc_cli_common with the rest.
+set(JC_TOOL_SHARED_SOURCES
+  cli/commands/options.c cli/commands/units.c cli/commands/config_write.c
+  cli/outputs/report.c cli/outputs/sim_json.c cli/figures/paper_row.c cli/process/error.c)
+list(TRANSFORM JC_TOOL_SHARED_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
