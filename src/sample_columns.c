@@ -95,7 +95,7 @@ double jc_sample_value(const jc_Sample *s, int col)
 
 int jc_sample_format_row(const jc_Sample *s, char *buf, size_t len)
 {
-    return snprintf(buf, len, SAMPLE_COLUMNS(FORMAT_NUMBER, FORMAT_MODE) + 1 SAMPLE_COLUMNS(ARGS_NUMBER, ARGS_MODE));
+    return snprintf(buf, len, &SAMPLE_COLUMNS(FORMAT_NUMBER, FORMAT_MODE)[1] SAMPLE_COLUMNS(ARGS_NUMBER, ARGS_MODE));
 }
 
 int jc_sample_format(const jc_Sample *s, int col, char *buf, size_t len)
