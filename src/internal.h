@@ -3,6 +3,7 @@
 #define JUMPCYL_INTERNAL_H
 
 #include "jumpcyl/jumpcyl.h"
+#include "rolling_law.h"
 #include "sincos.h"
 
 #include <gsl/gsl_integration.h>
@@ -28,6 +29,9 @@ typedef struct {
     jc_TrigLin inertia_p_poly; /* I_P(th) */
     /* The paper's Eq. 9 as (LHS - RHS) * d cos th * den, > 0 on the jump side. */
     jc_TrigLin paper_poly;
+    /* The rolling law's constants (rolling_law.h): with the model's
+     * resistances, and without them (the exact rolling model). */
+    jc_RollConsts roll, roll_bare;
     int has_resistance;        /* air or rolling resistance on */
     double inv_mass_per_kg;    /* 1 / M */
     double inv_inertia_g;      /* 1 / I_G, 1/(kg m^2) */
@@ -37,6 +41,9 @@ static inline const jc_ModelTables *jc_model_tables(const jc_Model *m)
 {
     return (const jc_ModelTables *)(const void *)m->internal.reserved;
 }
+/* Whether air or rolling resistance is on; inline: asked at every stage of
+ * the drag runs' rolling. */
+static inline int jc_model_has_resistance(const jc_Model *m) { return jc_model_tables(m)->has_resistance; }
 
 /* Writes a formatted message into err (if any) and returns status. */
 int jc_fail(char *err, size_t err_len, int status, const char *fmt, ...)
@@ -297,22 +304,16 @@ int jc_record_push(jc_Sim *sim);
 
 #include "air.h"
 
-/* rolling.c: rolling accelerations and contact force; loads NULL for none. */
-void jc_rolling_accel(const jc_Model *m, double sin_th, double cos_th, double w, const jc_Loads *loads, double *thdd,
-                   double *normal, double *friction);
+/* rolling.c: the rolling law (rolling_law.h) at th of the model's exact
+ * rolling model, without loads (sin and cos from libm). */
 void jc_rolling_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction);
-/* With the model's loads at the rolling velocity; dir is the direction for
- * rolling resistance when w = 0. */
-void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
-                jc_Loads *loads);
-void jc_rolling_at_sc(const jc_Model *m, double sin_th, double cos_th, double w, int dir, double *thdd, double *normal,
-                   double *friction, jc_Loads *loads);
-/* I_P at th given by its cosine; inline: the rolling time's integrand
- * evaluates it at every node. */
+/* The same with the model's resistances when it has any; dir is the
+ * direction for rolling resistance when w = 0. */
+void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction);
+/* I_P at th given by its cosine. */
 static inline double jc_rolling_inertia_p(const jc_Model *m, double cos_th)
 {
-    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    return m->body.inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * cos_th;
+    return jc_roll_inertia_p(&jc_model_tables(m)->roll_bare, cos_th);
 }
 /* The rolling path from a state (th, w): its functions of th for the state's
  * energy, cleared of positive factors: I_P w^2, N I_P^2, F I_P^2 and

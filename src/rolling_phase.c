@@ -47,14 +47,15 @@ static time_integrand time_integrand_at(const jc_Model *m, double sigma, double 
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     double sa, ca;
     jc_sincos(anchor, &sa, &ca); /* inline: libm's sin and cos are calls through the PLT */
+    const jc_RollConsts *k = &jc_model_tables(m)->roll_bare;
     return (time_integrand){sigma,
                             sa,
                             ca,
                             p0,
                             p1,
                             linear,
-                            m->body.inertia_c_kgm2 + M * r * r,
-                            2.0 * M * r * d,
+                            k->ip0_kgm2,
+                            k->mrd2_kgm2,
                             M * m->setup.gravity_mps2,
                             d * m->cos_incline,
                             m->sin_incline,
@@ -70,7 +71,7 @@ static double dt_du(double u, void *params)
     jc_sincos(0.5 * delta, &sh, &ch);
     const double s_mid = ti->sin_a * ch + ti->cos_a * sh, c_mid = ti->cos_a * ch - ti->sin_a * sh;
     const double c_th = c_mid * ch - s_mid * sh; /* cos(anchor + delta) */
-    const double ip = ti->ip0 + ti->ip1 * c_th;  /* jc_rolling_inertia_p */
+    const double ip = ti->ip0 + ti->ip1 * c_th;  /* jc_roll_inertia_p */
     if (u == 0.0 && !ti->linear) return ti->p0 > 0.0 || ti->p1 <= 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
     const double dcos = -2.0 * s_mid * sh, dsin = 2.0 * c_mid * sh;
     const double du = ti->mg * (ti->dca * dcos - ti->sin_inc * (ti->r * delta + ti->d * dsin));
@@ -312,21 +313,24 @@ static jc_State roll_state_at(const jc_Model *m, const jc_RollingPath *path, con
 }
 
 /* th' = w, th'' = a and th''' = j at th on the path, where I_P w^2 = p
- * (w of sign dir): from I_P a = T(th) + k sin th w^2 (physics.md §2,
- * k = M r d), differentiated along the motion (I_P' = -2 k sin th):
+ * (w of sign dir): a from the rolling law without loads, I_P a = T(th) +
+ * k sin th w^2 (physics.md §2, k = M r d, T = M g Q), and j from it
+ * differentiated along the motion (I_P' = -2 k sin th):
  * I_P j = w (T'(th) + k (cos th w^2 + 4 sin th a)). */
 static void roll_derivs(const jc_Model *m, double th, double p, int dir, double d[3])
 {
-    const double M = m->body.mass_kg, r = m->body.radius_m, dd = m->body.cm_offset_m, g = m->setup.gravity_mps2;
+    const jc_RollConsts *k = &jc_model_tables(m)->roll_bare;
     double s, c;
     jc_sincos(th, &s, &c);
-    const double ip = jc_rolling_inertia_p(m, c), k = M * r * dd;
+    const double ip = jc_roll_inertia_p(k, c);
     const double w = dir * sqrt(p / ip), w2 = w * w;
-    const double a = (M * g * ((r + dd * c) * m->sin_incline + dd * s * m->cos_incline) + k * s * w2) / ip;
-    const double dtorque = M * g * dd * (c * m->cos_incline - s * m->sin_incline);
+    jc_RollForces f;
+    jc_roll_law(k, s, c, w, dir, &f);
+    const double a = f.thdd_radps2;
+    const double dtorque = k->mg_N * k->d_m * (c * k->cos_a - s * k->sin_a);
     d[0] = w;
     d[1] = a;
-    d[2] = w * (dtorque + k * (c * w2 + 4.0 * s * a)) / ip;
+    d[2] = w * (dtorque + k->mrd_kgm2 * (c * w2 + 4.0 * s * a)) / ip;
 }
 
 /* I_P w^2 at th from the swing's start (p0 there) by the exact potential
@@ -495,7 +499,7 @@ typedef struct {
     int dir;   /* sign of w during the phase */
     int armed; /* 1: watch for w falling into the rolling-resistance band */
     double x0_m, th0_rad; /* at the start of the integration: x = x0 + r (th - th0) */
-    jc_RollConsts k;      /* the right-hand side's constants */
+    jc_RollConsts k;      /* the rolling law's constants, with the model's resistances */
     /* N and F at the last state the events were evaluated at (sin, cos, w):
      * their rates start from there. */
     double at_sin, at_cos, at_w, at_n, at_f;
@@ -519,7 +523,11 @@ static double roll_ode_x(const roll_ode *c, double th)
 
 static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f)
 {
-    jc_roll_forces(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, thdd, n, f);
+    jc_RollForces rf;
+    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, &rf);
+    *thdd = rf.thdd_radps2;
+    *n = rf.normal_N;
+    *f = rf.friction_N;
 }
 
 static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
@@ -527,9 +535,9 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     (void)t;
     const roll_ode *c = params;
     const double w = y[JC_Y_W];
-    double thdd, n, air_W, rr_W;
-    jc_roll_rates(&c->k, y[JC_Y_SIN], y[JC_Y_COS], w, c->dir, &thdd, &n, &air_W, &rr_W);
-    const double r = c->k.r_m;
+    jc_RollForces rf;
+    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], w, c->dir, &rf);
+    const double r = c->k.r_m, thdd = rf.thdd_radps2;
     dydt[JC_Y_X] = r * w;
     dydt[JC_Y_Y] = 0.0;
     dydt[JC_Y_TH] = w;
@@ -537,8 +545,8 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     dydt[JC_Y_VY] = 0.0;
     dydt[JC_Y_W] = thdd;
     dydt[JC_Y_FRICTION] = 0.0;
-    dydt[JC_Y_AIR] = air_W;
-    dydt[JC_Y_RR] = rr_W;
+    dydt[JC_Y_AIR] = jc_roll_air_power(&c->k, w);
+    dydt[JC_Y_RR] = rf.rr_m * rf.normal_N * w;
     dydt[JC_Y_COS] = -w * y[JC_Y_SIN];
     dydt[JC_Y_SIN] = w * y[JC_Y_COS];
     return 0;
@@ -623,9 +631,9 @@ static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[]
 static int rest_direction(const jc_Model *m, double th)
 {
     double thdd, n, f;
-    jc_rolling_at(m, th, 0.0, 1, &thdd, &n, &f, NULL);
+    jc_rolling_at(m, th, 0.0, 1, &thdd, &n, &f);
     if (thdd > 0.0) return 1;
-    jc_rolling_at(m, th, 0.0, -1, &thdd, &n, &f, NULL);
+    jc_rolling_at(m, th, 0.0, -1, &thdd, &n, &f);
     return thdd < 0.0 ? -1 : 0;
 }
 
@@ -638,7 +646,7 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
                     .dir = w0 > 0.0 ? 1 : (w0 < 0.0 ? -1 : rest_direction(sim->m, sim->s.theta_rad)),
                     .armed = fabs(w0) > ROLL_REST_BAND_RADPS,
                     .at_sin = NAN};
-    jc_roll_consts(sim->m, &ctx.k);
+    ctx.k = jc_model_tables(sim->m)->roll;
     for (long turn = 0; turn < ROLL_ODE_MAX_TURNS; ++turn) {
         if (ctx.dir == 0) {
             *end = PHASE_AT_REST;
