@@ -159,11 +159,6 @@ static jc_State flight_state(const flight *f, double t, double t0)
     return s;
 }
 
-double jc_flight_gap(const jc_Model *m, const jc_State *s)
-{
-    return s->y_m - m->body.radius_m;
-}
-
 /* Time after which the gap is surely negative: the centre of mass has fallen
  * below r - d, so no point of the rim can still be above the incline. */
 static double fall_bound(const flight *f)
@@ -290,7 +285,7 @@ static int emit_samples(jc_Sim *sim, const flight *f, double t0, double t_end)
     while (jc_record_sample_due(sim, t_end, &ts)) {
         jc_State s = flight_state(f, ts - t0, t0);
         s.t_s = ts; /* the grid time itself: t0 + (ts - t0) may round below it */
-        int st = jc_record_sample(sim, &s, JC_MODE_FLIGHT, 0.0, 0.0);
+        int st = jc_record_sample(sim, &s, JC_MODE_FLIGHT, 0.0, 0.0, jc_flight_gap(f->m, &s));
         if (st != JC_OK) return st;
     }
     return JC_OK;

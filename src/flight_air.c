@@ -97,7 +97,7 @@ static int flight_ode_sample(jc_Sim *sim, void *params, double t, const double y
     (void)params;
     jc_State s;
     jc_y_to_state(y, t, &s);
-    return jc_record_sample_y(sim, &s, y, JC_MODE_FLIGHT, 0.0, 0.0);
+    return jc_record_sample_y(sim, &s, y, JC_MODE_FLIGHT, 0.0, 0.0, jc_flight_gap(sim->m, &s));
 }
 
 #define FLIGHT_MAX_APEXES 100000L

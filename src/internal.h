@@ -282,11 +282,14 @@ int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, in
 void jc_energies_sc(const jc_Model *m, const jc_State *s, double sn, double cs, double *kinetic_J,
                     double *potential_J);
 
-/* record.c: pushes a trajectory sample (derived fields computed here). */
-int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);
+/* record.c: pushes a trajectory sample: the contact force and, in
+ * flight, the gap (jc_flight_gap) given by the phase, the other derived
+ * fields computed here. */
+int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N,
+                     double gap_m);
 /* The sample with the losses carried in y (ode phases). */
 int jc_record_sample_y(jc_Sim *sim, const jc_State *s, const double y[], jc_Mode mode, double normal_N,
-                       double friction_N);
+                       double friction_N, double gap_m);
 /* Whether a fixed-step sample falls in (.., t_end]; its time in *t. A 1
  * takes that sample off the schedule (the counter advances): the caller
  * records it with jc_record_sample, so the loop always moves on. */
@@ -340,7 +343,9 @@ void jc_sliding_at(const jc_Model *m, const jc_State *s, int dir, jc_SlidingForc
 int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
 
 /* flight.c */
-double jc_flight_gap(const jc_Model *m, const jc_State *s); /* rim's lowest point above the incline */
+/* The gap: the rim's lowest point above the incline (inline: the flight
+ * phases and the driver give it to the recorder with each sample). */
+static inline double jc_flight_gap(const jc_Model *m, const jc_State *s) { return s->y_m - m->body.radius_m; }
 int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len);
 /* flight_air.c: the same with air or rolling resistance on (an ODE), called by jc_flight_phase. */
 int jc_flight_air_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len);

@@ -484,7 +484,7 @@ static int emit_samples(jc_Sim *sim, const jc_RollingPath *path, const jc_State 
         s.t_s = ts;
         double thdd, n, f;
         jc_rolling_forces(sim->m, th, s.omega_radps, &thdd, &n, &f);
-        if ((st = jc_record_sample(sim, &s, JC_MODE_ROLLING, n, f)) != JC_OK)
+        if ((st = jc_record_sample(sim, &s, JC_MODE_ROLLING, n, f, 0.0)) != JC_OK)
             return jc_fail(err, err_len, st, "out of memory for samples");
     }
     return JC_OK;
@@ -623,7 +623,7 @@ static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[]
     ys[JC_Y_VX] = c->m->body.radius_m * y[JC_Y_W];
     jc_State s;
     jc_y_to_state(ys, t, &s);
-    return jc_record_sample_y(sim, &s, ys, JC_MODE_ROLLING, n, f);
+    return jc_record_sample_y(sim, &s, ys, JC_MODE_ROLLING, n, f, 0.0);
 }
 
 /* Direction in which a body at rest (w = 0) starts to roll, 0 if rolling

@@ -37,7 +37,8 @@ static int sample_now(jc_Sim *sim)
 {
     double n, f;
     contact_force(sim, &n, &f);
-    return jc_record_sample(sim, &sim->s, sim->mode, n, f);
+    const double gap = sim->mode == JC_MODE_FLIGHT ? jc_flight_gap(sim->m, &sim->s) : 0.0;
+    return jc_record_sample(sim, &sim->s, sim->mode, n, f, gap);
 }
 
 /* Puts the body into the mode consistent with the forces at its contact state.

@@ -206,7 +206,7 @@ static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
     forces_y(c, y, &f, NULL);
     jc_State s;
     jc_y_to_state(y, t, &s);
-    return jc_record_sample_y(sim, &s, y, JC_MODE_SLIDING, f.normal_N, f.friction_N);
+    return jc_record_sample_y(sim, &s, y, JC_MODE_SLIDING, f.normal_N, f.friction_N, 0.0);
 }
 
 int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)
