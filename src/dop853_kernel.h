@@ -3,12 +3,15 @@
  * stages, error estimate and end rate, written as inline functions of the
  * right-hand side and of the integrated range, so that a phase can make its
  * own instance with its right-hand side inlined into the stages
- * (JC_DOP853_TRY_INSTANCE below). Internal.
+ * (JC_DOP853_TRY_INSTANCE below). It calls only the step size control
+ * (dop853_control.c); the stepper (dop853.c) is built on it, not the other
+ * way round. Internal.
  */
 #ifndef JUMPCYL_DOP853_KERNEL_H
 #define JUMPCYL_DOP853_KERNEL_H
 
-#include "dop853.h"
+#include "dop853_control.h"
+#include "dop853_state.h"
 
 #include <math.h>
 
@@ -291,16 +294,14 @@ static JC_ALWAYS_INLINE double jc_dop853_try_n(jc_Dop853 *d, jc_DopRhs rhs, void
  * range once instead. Measured with make bench, alternated with the
  * generic stepper: a drag run 63.6 -> 58.7 us, a paper run 17.7 -> 17.3
  * us (median of 7 each; the instructions the same to 0.3 %).
- * In the web page's module each instance is the generic stepper, for the
- * page's download: inlined, the four instances made jumpcyl.wasm 18 kB
+ * In the web page's module no instance is made: the name is a null
+ * jc_DopTry, and ode.c steps with the generic stepper (jc_dop853_try), for
+ * the page's download: inlined, the four instances made jumpcyl.wasm 18 kB
  * (9 %) larger (197.4 -> 215.4 kB; natively the library's code grows by
- * 50 kB). */
+ * 50 kB). A null pointer, not a function calling jc_dop853_try, so that
+ * this header calls nothing in dop853.c, which includes it. */
 #if defined(__EMSCRIPTEN__)
-#define JC_DOP853_TRY_INSTANCE(name, rhs, first, dim)                                                             \
-    static double name(jc_Dop853 *d, void *ctx, double h, double *h_next)                                        \
-    {                                                                                                             \
-        return jc_dop853_try(d, rhs, ctx, h, h_next);                                                            \
-    }
+#define JC_DOP853_TRY_INSTANCE(name, rhs, first, dim) static const jc_DopTry name = 0;
 #else
 /* flatten: everything called inside is inlined. Without it GCC kept the
  * right-hand side out of line in the stage loop, called as before, and
