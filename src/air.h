@@ -38,18 +38,15 @@ typedef struct {
 } jc_Loads;
 
 /* The loads at angle th given by its sine and cosine. Inline: they run at
- * every stage of every step of the drag runs' phases (measured with
- * callgrind: a drag run 1.318M -> 1.227M instructions once inlined). */
+ * every stage of every step of the sliding phase with resistance. */
 static inline void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, double vx, double vy, double w, jc_Loads *out)
 {
     const jc_Setup *s = &m->setup;
     const double d = m->body.cm_offset_m;
-    /* Not hypot: velocities here are far from overflow, and hypot was 1 % of
-     * a drag run's time (measured). In contact (vy = 0) no square root at
-     * all: sqrt(vx^2) is |vx| to the last bit (unless vx^2 underflows, below
-     * 1e-154 m/s), and the root's latency held up every stage of the
-     * rolling and sliding phases with drag (measured: a drag run 3-4 % less
-     * time, the same numbers). */
+    /* Not hypot, a call into libm: velocities here are far from overflow.
+     * In contact (vy = 0) no square root at all: sqrt(vx^2) is |vx| to the
+     * last bit (unless vx^2 underflows, below 1e-154 m/s), and the root's
+     * latency would hold up every stage of the sliding phase with drag. */
     const double speed = vy == 0.0 ? fabs(vx) : sqrt(vx * vx + vy * vy);
     const double r = m->body.radius_m;
     const double cd = s->drag_coefficient, cl = s->lift_coefficient;
@@ -71,9 +68,9 @@ static inline void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, 
 }
 
 /* The air loads at any velocity (flight) by constants of the model taken
- * once per phase: the same as jc_loads_at without rolling resistance (no
- * contact), tests/sim/test_roll_rates.c checks them against it. Measured
- * with callgrind: a drag run 0.851M -> 0.841M instructions. */
+ * once per phase, not at every stage: the same as jc_loads_at without
+ * rolling resistance (no contact); tests/sim/test_rolling_law.c checks them
+ * against it. */
 typedef struct {
     double r_m, d_m;
     double qcd_kgpm, qcl_kgpm; /* 1/2 rho A C_d, 1/2 rho A C_L */
@@ -102,9 +99,8 @@ static inline void jc_air_loads(const jc_AirConsts *k, double sin_th, double cos
     /* The forces per unit speed, and their moment, do not wait for the
      * speed's square root (without lift: with it the spin ratio does);
      * after the root, one product for each force and a product and a
-     * difference for the torque d (sin th fy - cos th fx) - k w |w|
-     * (measured with make bench, alternated with the build before: a drag
-     * run 68.5 -> 66.4 us, median of 9). */
+     * difference for the torque d (sin th fy - cos th fx) - k w |w|: the
+     * stages each wait for the last one's rates. */
     const double fx1 = -k->qcd_kgpm * vx + k->qcl_kgpm * spin * vy;
     const double fy1 = -k->qcd_kgpm * vy - k->qcl_kgpm * spin * vx;
     const double moment1 = (k->d_m * sin_th) * fy1 - (k->d_m * cos_th) * fx1;

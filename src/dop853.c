@@ -45,8 +45,7 @@ static const double *stage(const jc_Dop853 *d, int j)
 }
 
 /* The weighted sum of stages, per component: the stage pointers are looked
- * up once per row, not per component (measured: the lookups inside the
- * component loop made this 22 % of a run's time). */
+ * up once per row, not per component. */
 static void combine(const jc_Dop853 *d, int count, const int *stages, const double *w, double *out)
 {
     const double *ks[12];
@@ -61,13 +60,9 @@ static void combine(const jc_Dop853 *d, int count, const int *stages, const doub
 /* The stages with the phases' ranges as constants ([0, 7): sliding,
  * [0, 9): sliding with resistance, [2, 9): rolling with resistance,
  * [0, 11): flight with air), so that each sum is unrolled over the
- * components without alias checks; any other range by the general loop.
- * Measured with callgrind: a paper run 231.1k -> 223.8k instructions, a
- * drag run 1.206M -> 1.150M, the same numbers; in wall time no difference
- * above the noise (the stages wait on one another). Chosen once per step,
- * not per stage, and the carried components not copied per stage
- * (callgrind, with the rolling range below: a drag run 1.061M -> 0.995M
- * instructions, the paper's run 228.1k -> 223.1k). */
+ * components without alias checks (the same numbers); any other range by
+ * the general loop. Chosen once per step, not per stage, and the carried
+ * components not copied per stage. */
 static int stages(jc_Dop853 *d, jc_DopRhs rhs, void *ctx, int from, int to, double h)
 {
     switch (d->first * 16 + d->dim) {

@@ -8,11 +8,9 @@
  * re-stepped the integrator from the step's start (3 to 6 extra 13-stage
  * steps per event). With the continuous extension an event is found on a
  * polynomial and the state there costs 3 extra stages per step, and the
- * stepper keeps its workspace in fixed arrays (no allocation per run).
- * Measured (make bench, the paper's three runs): a full run took 85 us with
- * rk8pd and 49 us with this stepper, before the other speedups of the
- * same work (docs/architecture.md has the figure now). The step itself is
- * in dop853_kernel.h, from which each ODE phase makes its own instance.
+ * stepper keeps its workspace in fixed arrays (no allocation per run). The
+ * step itself is in dop853_kernel.h, from which each ODE phase makes its
+ * own instance.
  */
 #ifndef JUMPCYL_DOP853_H
 #define JUMPCYL_DOP853_H

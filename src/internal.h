@@ -234,12 +234,12 @@ typedef struct jc_Sim {
 /* ode.c: phases without a closed form, integrated with DOP853 and ended by
  * the first event. The state vector is the same in every mode; it carries
  * cos th and sin th (cos' = -w sin, sin' = w cos), so that no right-hand side
- * computes a sine (measured: sincos was 26 % of a run's time before). */
+ * computes a sine. */
 /* Ordered so that a phase integrates a range of the vector and carries the
- * rest unchanged: sliding without resistance the first 7 (y, vy are
- * constant in contact; measured: 7 components instead of 11 take a
- * quarter fewer instructions per step), with it the first 9, rolling with
- * resistance th to rr (x and vx follow from th and w), flight all. */
+ * rest unchanged, fewer components being less work per stage: sliding
+ * without resistance the first 7 (y, vy are constant in contact), with it
+ * the first 9, rolling with resistance th to rr (x and vx follow from th
+ * and w), flight all. */
 enum { JC_Y_X, JC_Y_VX, JC_Y_TH, JC_Y_W, JC_Y_COS, JC_Y_SIN, JC_Y_FRICTION, JC_Y_AIR, JC_Y_RR, JC_Y_Y, JC_Y_VY,
        JC_Y_DIM };
 #define JC_ODE_MAX_EVENTS 8

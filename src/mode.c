@@ -15,7 +15,7 @@ double jc_free_gap_accel(const jc_Model *m, const jc_State *s)
 {
     const double d = m->body.cm_offset_m, th = s->theta_rad, w = s->omega_radps;
     double sn, cs;
-    jc_sincos(th, &sn, &cs); /* inline: libm's pair was 0.7k of a paper run's 224k instructions */
+    jc_sincos(th, &sn, &cs); /* inline: libm's sin and cos are calls through the PLT */
     double acc = d * w * w * cs - m->setup.gravity_mps2 * m->cos_incline;
     if (jc_model_has_resistance(m)) {
         jc_Loads l;

@@ -83,8 +83,7 @@ int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal
     p.friction_N = friction_N;
     p.slip_mps = mode == JC_MODE_FLIGHT ? 0.0 : s->vx_mps - m->body.radius_m * s->omega_radps;
     p.gap_m = mode == JC_MODE_FLIGHT ? gap_m : 0.0;
-    /* the sample's own sine and cosine, not three more (callgrind:
-     * jc_record_sample 490 -> 313 instructions) */
+    /* the sample's own sine and cosine, not three more */
     jc_energies_sc(m, s, sn, cs, &p.kinetic_J, &p.potential_J);
     p.friction_loss_J = sim->friction_loss_J;
     p.impact_loss_J = sim->impact_loss_J;

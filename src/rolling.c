@@ -71,9 +71,7 @@ int jc_rolling_state(const jc_Model *m, double th, jc_RollingState *out, char *e
     const double th0 = m->setup.theta0_rad, w0 = m->setup.omega0_radps;
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2;
-    /* One inline sincos for th and one for th0, shared by every term below
-     * (callgrind: a rolling prediction at 30 deg 15.8k -> 15.1k
-     * instructions, with jc_rolling_path_init's). */
+    /* One inline sincos for th and one for th0, shared by every term below. */
     double s, c, s0, c0;
     jc_sincos(th, &s, &c);
     jc_sincos(th0, &s0, &c0);
@@ -128,8 +126,7 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
     out->end_theta_rad = th_end;
 
     /* One prepared set for both scans (to the first event, then on past a
-     * slip for the lift-off): its bounds are computed once (callgrind: at
-     * 30 deg 16.4k -> 15.8k instructions a prediction). */
+     * slip for the lift-off): its bounds are computed once. */
     jc_ScanSet set = {WATCH_COUNT, {watch[0], watch[1], watch[2], watch[3]}, {1.0, 1.0, 1.0, 1.0}};
     jc_TrigScan scan;
     jc_trig_scan_init(&scan, &set);

@@ -26,18 +26,16 @@
  * rounding). The change is written without cancellation for small delta:
  * cos(a + delta) - cos a = -2 sin(a + delta/2) sin(delta/2), likewise for
  * sin; every angle is built from sin and cos of the anchor (kept) and of
- * delta/2, one sincos per point (measured: the integrand with three sines
- * and a trigonometric-polynomial I_P was 20 % of a run's time). */
+ * delta/2: one sincos per point, the integrand's main cost. */
 typedef struct {
     double sigma;        /* th = anchor + sigma u^2 */
     double sin_a, cos_a; /* of the anchor */
     double p0, p1;       /* P and sigma * P' at the anchor */
     int linear;          /* 1: th = anchor + sigma u instead, dt/du = 1 / |w| */
-    /* The model's products the integrand uses, formed once per piece (the
-     * same values: each is a leading product of the expression it stands
-     * in): I_P = ip0 + ip1 cos th; U's change is mg (dca dcos - sin a (r
-     * delta + d dsin)). Callgrind: 121 integrand values a paper run, 157
-     * -> 140 instructions each (a run 217.8k -> 215.8k). */
+    /* The model's products the integrand uses, formed once per piece, not
+     * at every point (the same values: each is a leading product of the
+     * expression it stands in): I_P = ip0 + ip1 cos th; U's change is mg
+     * (dca dcos - sin a (r delta + d dsin)). */
     double ip0, ip1, mg, dca, sin_inc, r, d;
 } time_integrand;
 
@@ -81,17 +79,14 @@ static double dt_du(double u, void *params)
 }
 
 /* Where neither end is near a turning point (P at each end at least a
- * quarter of P at the other), 1/|w| is smooth in th itself (roll_time now
- * takes that case by qng, the same first rule; the sample walk uses this
- * one with its 15-point rule first): one 21-point
- * Gauss-Kronrod rule over [th_a, th_b], accepted when its error estimate
- * meets what gsl_integration_qng asks of the same rule (1e-13 of the
- * result, or rounding); 1 if it did, with the time in *dt. Measured on the
- * paper's three runs: 5 of their 8 rolling phases settle so, at 21
- * integrand values instead of 42 (two ends of 21 points each; agreeing to
- * 1e-16 s), one falls back (21 more); the phases from rest are not tried.
- * Callgrind: 185 -> 164 integrand values and 321k -> 316k instructions a
- * full run. */
+ * quarter of P at the other), 1/|w| is smooth in th itself: one
+ * Gauss-Kronrod rule over [th_a, th_b] (21 points; the sample walk tries
+ * 15 first), accepted when its error estimate meets what
+ * gsl_integration_qng asks of the same rule (1e-13 of the result, or
+ * rounding); 1 if it did, with the time in *dt. One rule over the piece
+ * instead of one from each end: half the integrand values, the same time
+ * to 1e-16 s. (roll_time takes this case by qng, whose first rule is the
+ * same.) */
 typedef void gk_rule(const gsl_function *f, double a, double b, double *result, double *abserr, double *resabs,
                      double *resasc);
 
@@ -140,9 +135,8 @@ static int roll_piece_with(jc_Sim *sim, double end, double p, double dp, double 
     size_t evals;
     /* GSL's nested Gauss-Kronrod-Patterson rule first (21, 43, 87 points,
      * each reusing the last): the integrand is smooth after the u^2
-     * substitution. Measured on the paper's three runs: 14 of 18 ends
-     * settle at 21 or 43 points, against 21 to 63 for the adaptive
-     * rule; the adaptive rule takes the rest. */
+     * substitution, and most ends settle at 21 or 43 points, fewer than
+     * the adaptive rule takes; the adaptive rule takes the rest. */
     int st = gsl_integration_qng(&fn, 0.0, upper, 0.0, 1e-13, part, &abserr, &evals);
     if (qng_only) return st == GSL_SUCCESS ? JC_OK : JC_ENUMERIC; /* the caller has another way */
     if (st != GSL_SUCCESS)
@@ -166,16 +160,14 @@ static int roll_piece(jc_Sim *sim, double end, double p, double dp, double sigma
 /* With one end near a turning point and the other not, the u^2 piece from
  * the turning end covers this fraction of the range and a piece linear in
  * th, from the other end, the rest: only near the turning point is 1/|w|
- * singular. Measured on the paper's runs that start from rest (0 -> 12.5,
- * 0 -> 6.0 and 0 -> 1.3 rad): 108, 64 and 64 integrand values, where
- * halves with u^2 at both ends took 174, 86 and 64 (fractions 0.05, 0.2,
- * 0.3, 0.5: 108/130/130/174, 108/64/64/64, 108/64/42/42); the times agree
- * to 1e-16 s. */
+ * singular. 0.1 takes the fewest integrand values on the paper's runs from
+ * rest of the fractions tried (docs/performance.md); the times agree with
+ * halves' to 1e-16 s. */
 #define TURN_PIECE 0.1
 /* rad: the longest range taken by one u^2 piece from a turning point (see
  * roll_time). On longer ranges u^2 crowds the path's oscillation in th
- * (cos th, sin th terms of P) into the far end: the 12.5 rad swing from
- * rest took the adaptive fallback (callgrind: 220k -> 234k a run). */
+ * (cos th, sin th terms of P) into the far end: the paper's 12.5 rad swing
+ * from rest needed the adaptive fallback. */
 #define WHOLE_U2_MAX_RAD 1.5707963267948966
 
 /* Time to roll from th_a to th_b (either may be a turning point). p_a is
@@ -197,9 +189,8 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
      * linear in th, whose first 21 points are the same Gauss-Kronrod rule
      * with the same test, and which goes on to 43 and 87 points reusing
      * them where the 21 fall short, instead of dropping them for the
-     * halves (found: a 3.2 rad swing of the paper's runs took 21 + 43 + 21
-     * integrand values that way). Callgrind: a paper run 215.1k -> 212.4k
-     * instructions. */
+     * halves (a 3.2 rad swing of the paper's runs took 21 + 43 + 21
+     * integrand values that way). */
     if (smooth_between(p[0], p[1])) {
         if (roll_piece_with(sim, th_a, p[0], dp[0], sig[0], len, 1, 1, dt, NULL, 0) == JC_OK) return JC_OK;
         *dt = 0.0;
@@ -215,14 +206,12 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
              * whole range. With P = 0 at the end, 2 u / |w| is analytic in u
              * up to the other end (no pole near [0, sqrt(len)]), while the
              * split's linear piece, ending 0.1 of the range short of the
-             * turning point, has one close by. Measured on the paper's runs
-             * from rest (0 -> 12.5, 6.0 and 1.3 rad): 87, 87 and 21 integrand
-             * values, where the split took 108, 64 and 64 (times agree to 4e-16
-             * of a 64-piece 21-point reference; qng's own estimate failed the
-             * 12.5 rad one, hence WHOLE_U2_MAX_RAD); callgrind: a paper run
-             * 220.4k -> 217.7k instructions. Where the other end is near a
-             * turning point too (a creep, P small at both ends), qng fails:
-             * then the split (found in tests/sim/test_random_setups.c). */
+             * turning point, has one close by: fewer integrand values over
+             * the paper's runs from rest, the times within 4e-16 of a
+             * 64-piece 21-point reference (qng's own estimate failed the
+             * 12.5 rad swing, hence WHOLE_U2_MAX_RAD). Where the other end is
+             * near a turning point too (a creep, P small at both ends), qng
+             * fails: then the split (found in tests/sim/test_random_setups.c). */
             if (roll_piece_with(sim, ends[turn], p[turn], dp[turn], sig[turn], len, 0, 1, dt, NULL, 0) == JC_OK)
                 return JC_OK;
             *dt = 0.0;
@@ -369,9 +358,8 @@ static void anchor_at_start(const jc_Model *m, const jc_State *start, int dir,
 }
 
 /* roll_time_one_piece's rule for the short step between two samples: 15
- * Gauss-Kronrod points, or its 21 when they do not meet the same test
- * (measured, paper's cylinder at 30 deg sampled every 1 ms, the floor at
- * 1e-3: 4.59M -> 3.96M instructions a run). */
+ * Gauss-Kronrod points, which mostly meet the test on so short a step, or
+ * its 21 when they do not. */
 static int walk_piece(const jc_Model *m, double th_a, double p_a, double th_b, double p_b, double *dt)
 {
     return roll_time_one_piece_with(gsl_integration_qk15, m, th_a, p_a, th_b, p_b, dt) ||
@@ -381,17 +369,15 @@ static int walk_piece(const jc_Model *m, double th_a, double p_a, double th_b, d
 /* The time after the swing's start at th: from the last anchor by one
  * short Gauss-Kronrod rule where 1/|w| is smooth between the two
  * (walk_piece, with I_P w^2 at th by the exact potential change), else by
- * the quadrature from the swing's start. Measured on the paper's cylinder
- * at 30 deg sampled every 1 ms: 9.18M -> 4.2M instructions a run (the
- * quadrature from the start took 21 to 87 integrand values, or two pieces,
- * at every sample). Not where P is below JC_WALK_P_FLOOR of its scale (near
- * a turning point): chained there too, the times drifted from the whole
- * swing's quadrature by up to 2e-8 of it; with the floor at 1e-3, by up to
- * 2.6e-12 of it, which put an event 1.1e-11 rad off the ODE from the last
- * sample before it; at 1e-2 the worst over eight seeds of
- * tests/sim/test_rolling_samples.c is 0.31 of that test's bound (0.1: 0.07,
- * at 4.9M instructions). p_th: I_P w^2 at th (path_p). 1 when the time
- * is known. */
+ * the quadrature from the swing's start, which takes 21 to 87 integrand
+ * values, or two pieces, at every sample. Not where P is below
+ * JC_WALK_P_FLOOR of its scale (near a turning point): chained there too,
+ * the times drifted from the whole swing's quadrature by up to 2e-8 of it;
+ * with the floor at 1e-3, by up to 2.6e-12 of it, which put an event
+ * 1.1e-11 rad off the ODE from the last sample before it; at 1e-2 the worst
+ * over eight seeds of tests/sim/test_rolling_samples.c is 0.31 of that
+ * test's bound (0.1: 0.07, at more cost). p_th: I_P w^2 at th (path_p). 1
+ * when the time is known. */
 #define JC_WALK_P_FLOOR 1e-2
 static int roll_time_from_anchor(jc_Sim *sim, const jc_RollingPath *path, const jc_State *start, double p_start,
                                  int dir, const roll_anchor *an, double th, double p_th, double *tau)
@@ -507,9 +493,8 @@ typedef struct {
 
 /* Only th, w, cos th, sin th and the losses are integrated (friction's is
  * carried with them, unchanged): x and vx follow from th and w exactly,
- * x = x0 + r (th - th0) and vx = r w, and were a third of the stages' work
- * (callgrind: a drag run 1.061M -> 0.995M instructions with the stages'
- * range chosen once per step, dop853.c; 470 -> 466 steps). */
+ * x = x0 + r (th - th0) and vx = r w, and integrating them was a third of
+ * the stages' work. */
 static double roll_ode_x(const roll_ode *c, double th)
 {
     return c->x0_m + c->m->body.radius_m * (th - c->th0_rad);
@@ -584,8 +569,8 @@ static void roll_ode_events(void *params, const double y[], double ev[])
  * closed form, those of N and F by a forward difference from y (whose
  * forces the events just computed) over a time far below the rotation
  * period, accurate to ~1e-6 of the rate, ample for the dip check that
- * uses them. ode.c's central difference took two more evaluations of all
- * events per step (callgrind: a drag run 0.988M -> 0.968M instructions). */
+ * uses them. ode.c's central difference takes two more evaluations of all
+ * events per step. */
 static void roll_ode_event_rates(void *params, const double y[], const double f[], double dev[])
 {
     roll_ode *c = params;
