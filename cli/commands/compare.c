@@ -46,7 +46,7 @@ static void print_liftoff(const char *label, const cli_TrackHops *h)
                 h->first_liftoff_x_m * 100);
 }
 
-static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, int setup_start)
+static void report(const jc_Model *m, const jc_Track *t, const cli_Compare *c, int setup_start)
 {
     const jc_State *s = &c->launch.start;
     cli_track_print_launch(t, &c->launch);
@@ -68,10 +68,10 @@ static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, 
            c->count, c->rms_path_m * 1e3, c->rms_path_m / t->sigma_m, c->max_path_m * 1e3);
     if (t->has_mark && isfinite(c->rms_theta_rad)) printf("  mark's angle:  RMS %.4f rad\n", c->rms_theta_rad);
     printf("  (agreement at the noise is an RMS of the path near sqrt(2) sigma%s)\n",
-           t->centre_source == CLI_CENTRE_FROM_MARK ? "; the centre here is recovered from the mark" : "");
+           t->centre_source == JC_TRACK_CENTRE_FROM_MARK ? "; the centre here is recovered from the mark" : "");
 }
 
-static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, const cli_Track *t, const cli_Compare *c,
+static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, const jc_Track *t, const cli_Compare *c,
                   const jc_SimOptions *o, int argc, char **argv)
 {
     cli_TrackFigure f;
@@ -105,7 +105,7 @@ int cmd_compare(int argc, char **argv)
     jc_Setup setup;
     jc_SimOptions opts;
     if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
-    cli_Track t;
+    jc_Track t;
     if ((st = cli_track_args_load_for_model("compare", &a, &sa, &setup, &t)) != 0) return st;
     /* The setup the runs use, its ramp without their margin uphill: printed,
      * and its body for the report and the figure (built once: a failure is
@@ -116,14 +116,14 @@ int cmd_compare(int argc, char **argv)
     char err[512];
     if (jc_model_init(&model, &shown, err, sizeof err) != JC_OK) {
         cli_error("compare: %s", err);
-        cli_track_free(&t);
+        jc_track_free(&t);
         return EXIT_USAGE;
     }
     cli_Compare c;
     if (cli_track_compare(&setup, &t, &opts, a.from_setup_start ? CLI_START_SETUP : CLI_START_TRACKED, a.from_s,
                           a.to_s, a.mark_angle_rad, &c, err, sizeof err) != 0) {
         cli_error("compare: %s", err);
-        cli_track_free(&t);
+        jc_track_free(&t);
         return EXIT_USAGE;
     }
     cli_track_print_head(a.track, &t, c.first, c.count);
@@ -133,6 +133,6 @@ int cmd_compare(int argc, char **argv)
     st = a.output ? figure(a.output, &setup, &model, &t, &c, &opts, argc, argv) : EXIT_OK;
     if (st == EXIT_OK && a.output) printf("Figure: %s\n", a.output);
     cli_compare_free(&c);
-    cli_track_free(&t);
+    jc_track_free(&t);
     return st == EXIT_OK ? cli_stdout_finish() : st;
 }

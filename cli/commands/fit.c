@@ -256,7 +256,7 @@ static void print_correlations(const cli_FitResult *r)
     }
 }
 
-static void report(const char *file, const cli_Track *t, const cli_FitResult *r, const cli_FitOptions *fo)
+static void report(const char *file, const jc_Track *t, const cli_FitResult *r, const cli_FitOptions *fo)
 {
     static const char *const loss_names[] = {"linear", "huber", "cauchy"};
     cli_track_print_head(file, t, r->first, r->frames);
@@ -271,12 +271,12 @@ static void report(const char *file, const cli_Track *t, const cli_FitResult *r,
            r->iterations);
     printf("chi2/dof = %.4g (chi2 %.4g, dof %ld)\n", r->chi2_dof, r->chi2, r->dof);
     const double deg = 180.0 / CLI_TRACK_PI;
-    if (t->incline_source == CLI_INCLINE_MEASURED && r->incline_sigma_rad > 0.0)
+    if (t->incline_source == JC_TRACK_INCLINE_MEASURED && r->incline_sigma_rad > 0.0)
         printf("Incline in the model: %.3f +- %.3f deg (the video's %.3f deg turned by the fitted tilt)\n\n",
                r->setup.incline_rad * deg, r->incline_sigma_rad * deg, t->incline_rad * deg);
     else
         printf("Incline in the model: %.3f deg (%s)\n\n", r->setup.incline_rad * deg,
-               t->incline_source == CLI_INCLINE_MEASURED ? "measured" : "as given");
+               t->incline_source == JC_TRACK_INCLINE_MEASURED ? "measured" : "as given");
     print_values(r);
     print_held(r);
     print_minima(r);
@@ -291,7 +291,7 @@ static void report(const char *file, const cli_Track *t, const cli_FitResult *r,
     printf("\n\nVerdict: %s\n", r->verdict);
 }
 
-static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, const jc_SimOptions *o, int argc,
+static int figure(const char *out, const jc_Track *t, const cli_FitResult *r, const jc_SimOptions *o, int argc,
                   char **argv)
 {
     jc_Model m;
@@ -363,7 +363,7 @@ int cmd_fit(int argc, char **argv)
     if ((st = cli_build_inputs("fit", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
     cli_FitOptions fo;
     if ((st = check(&o, &setup, &fo)) != 0) return st;
-    cli_Track t;
+    jc_Track t;
     if ((st = cli_track_args_load_for_model("fit", &o.track, &sa, &setup, &t)) != 0) return st;
     char err[512];
     cli_FitResult r;
@@ -375,13 +375,13 @@ int cmd_fit(int argc, char **argv)
     cli_progress_end(&progress);
     if (fitted != 0) {
         cli_error("fit: %s", err);
-        cli_track_free(&t);
+        jc_track_free(&t);
         return EXIT_USAGE;
     }
     report(o.track.track, &t, &r, &fo);
     st = o.track.output ? figure(o.track.output, &t, &r, &opts, argc, argv) : EXIT_OK;
     if (st == EXIT_OK && o.track.output) printf("Figure: %s\n", o.track.output);
-    cli_track_free(&t);
+    jc_track_free(&t);
     if (st != EXIT_OK) return st;
     st = cli_stdout_finish();
     if (st == EXIT_OK && r.misfit && !o.allow_misfit) {

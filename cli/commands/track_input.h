@@ -51,21 +51,21 @@ int cli_track_args_check(const char *cmd, cli_TrackArgs *a);
  * status after a one-line message (EXIT_USAGE for a file that cannot be
  * read or an incline the video refuses). */
 int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *a, const cli_SetupArgs *sa,
-                        const jc_Setup *setup, cli_Track *t);
+                        const jc_Setup *setup, jc_Track *t);
 /* As cli_track_args_load, then what compare and fit need (the centre, the
  * incline), refused with exit 2 and the reason when missing; the setup
  * takes the track's incline. */
 int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const cli_SetupArgs *sa, jc_Setup *setup,
-                                  cli_Track *t);
+                                  jc_Track *t);
 /* How the reports name the centre's source, by its CLI_CENTRE_* value
  * (track's report and JSON, compare's and fit's head). */
-extern const char *const cli_track_centre_sources[CLI_CENTRE_FROM_MARK + 1];
-void cli_track_print_head(const char *file, const cli_Track *t, long first, long count);
+extern const char *const cli_track_centre_sources[JC_TRACK_CENTRE_FROM_MARK + 1];
+void cli_track_print_head(const char *file, const jc_Track *t, long first, long count);
 /* The frames before the free motion, when a push was found there (nothing otherwise). */
-void cli_track_print_launch(const cli_Track *t, const cli_Launch *L);
+void cli_track_print_launch(const jc_Track *t, const cli_Launch *L);
 /* The model's path every quarter frame from start to t_end_s (for the
  * figure); 0, or -1 (the arrays are then to be freed all the same). */
-int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_State *start, const jc_SimOptions *o,
+int cli_track_fine_path(const jc_Setup *setup, const jc_Track *t, const jc_State *start, const jc_SimOptions *o,
                         double t_end_s, double **pt, double **px, double **py, long *n);
 /* The last step of compare's and fit's figure: the caller fills f's frames,
  * model values (the mark's angle, not G's), mark radius, sigma, threshold

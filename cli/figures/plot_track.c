@@ -27,7 +27,7 @@ static void residuals_at(const cli_TrackFigure *f, long i, double r[3])
 
 static void write_data(FILE *gp, const cli_TrackFigure *f)
 {
-    const cli_Track *t = f->track;
+    const jc_Track *t = f->track;
     fig_block_begin(gp, "frames");
     fputs("# t_s x_cm height_mm height_sigma_mm r_along r_across r_mark (residuals in sigma)\n", gp);
     for (long i = 0; i < f->count; ++i) {
@@ -59,7 +59,7 @@ static void write_data(FILE *gp, const cli_TrackFigure *f)
 
 static void write_panels(FILE *gp, const cli_TrackFigure *f)
 {
-    const int from_mark = f->track->centre_source == CLI_CENTRE_FROM_MARK;
+    const int from_mark = f->track->centre_source == JC_TRACK_CENTRE_FROM_MARK;
     fputs("\nset multiplot layout 3,1 title ", gp);
     fig_quote(gp, f->title);
     fputs(" font F_TITLE\n", gp);

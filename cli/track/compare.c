@@ -16,19 +16,19 @@ void cli_compare_free(cli_Compare *c)
     memset(c, 0, sizeof *c);
 }
 
-static void residuals(cli_Compare *c, const cli_Track *t, double mark_offset)
+static void residuals(cli_Compare *c, const jc_Track *t, double mark_offset)
 {
     for (long i = 0; i < c->count; ++i) c->theta_rad[i] -= mark_offset; /* G's angle to the mark's */
     cli_track_misfit(t, c->first, c->count, c->x_m, c->y_m, c->theta_rad, &c->rms_path_m, &c->max_path_m,
                      &c->rms_theta_rad);
 }
 
-int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, cli_StartKind start,
+int cli_track_compare(const jc_Setup *setup, const jc_Track *t, const jc_SimOptions *o, cli_StartKind start,
                       double from_s, double to_s, double mark_angle_rad, cli_Compare *out, char *err,
                       size_t err_len)
 {
     memset(out, 0, sizeof *out);
-    if (cli_track_require("the track", t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, err_len) != 0) return -1;
+    if (jc_track_require("the track", t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, err_len) != 0) return -1;
     long first, count;
     cli_track_window(t, from_s, to_s, &first, &count);
     if (count < 3) {

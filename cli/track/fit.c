@@ -56,7 +56,7 @@
 #define MAX_SCREEN 64
 
 typedef struct {
-    const cli_Track *t;
+    const jc_Track *t;
     const jc_SimOptions *sim;
     jc_Setup base;             /* the runs' setup (cli_track_setup): held values set in it */
     jc_State start0;           /* the start before the fit: held start values set in it */
@@ -145,7 +145,7 @@ static void u_of(const fit_ctx *c, const double *v, double *u, double edge)
 }
 
 /* The incline was measured: the frame's tilt turns the model's gravity too. */
-static int tilt_tilts_gravity(const fit_ctx *c) { return c->t->incline_source == CLI_INCLINE_MEASURED; }
+static int tilt_tilts_gravity(const fit_ctx *c) { return c->t->incline_source == JC_TRACK_INCLINE_MEASURED; }
 
 /* The setup, start and frame (mark angle, tilt, surface) that u describes. */
 static void apply(const fit_ctx *c, const double *u, jc_Setup *s, jc_State *start, cli_FitFrame *frame)
@@ -620,13 +620,13 @@ static void profile(fit_ctx *c, cli_FitParam p, const double *u_best, const cli_
  * disagreement's text in why. */
 static int hops_agree(const fit_ctx *c, const cli_FitResult *r, char *why, size_t len, int *n_video, int *n_model)
 {
-    const cli_Track *t = c->t;
+    const jc_Track *t = c->t;
     cli_TrackHops model;
     cli_track_find_hops(t->t_s + r->first, c->x, c->y, r->frames, t->radius_m, t->hop_threshold_m, &model);
     *n_video = *n_model = 0;
     int ok = 1;
     for (long k = 0; k < t->hops; ++k) {
-        const cli_TrackHop *h = &t->hop[k];
+        const jc_TrackHop *h = &t->hop[k];
         if (h->last < r->first || h->first >= r->first + r->frames || isnan(h->height_m)) continue;
         if (!(h->height_m - t->hop_threshold_m > CLEAR_HOP_SIGMAS * h->height_sigma_m)) continue;
         (*n_video)++;
@@ -647,7 +647,7 @@ static int hops_agree(const fit_ctx *c, const cli_FitResult *r, char *why, size_
         for (long k = 0; k < t->hops; ++k)
             seen |= t->hop[k].first <= b + 1 && t->hop[k].last + 1 >= a;
         /* A mark-only video cannot show a hop below its detection bound. */
-        if (!seen && t->centre_source == CLI_CENTRE_FROM_MARK && model.height_m[m] < t->hop_threshold_m) seen = 1;
+        if (!seen && t->centre_source == JC_TRACK_CENTRE_FROM_MARK && model.height_m[m] < t->hop_threshold_m) seen = 1;
         if (!seen && ok) {
             snprintf(why, len, "the model hops at t = %.3f s (%.1f mm) where the video shows none",
                      t->t_s[a], model.height_m[m] * 1e3);
@@ -708,11 +708,11 @@ static int add_param(cli_FitParam *list, int *n, cli_FitParam p)
     return 1;
 }
 
-static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o,
+static int prepare(fit_ctx *c, const jc_Setup *setup, const jc_Track *t, const cli_FitOptions *o,
                    const jc_State *refined, cli_FitResult *out, char *err, size_t err_len)
 {
     c->t = t;
-    if (cli_track_require("the track", t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, err_len) != 0) return -1;
+    if (jc_track_require("the track", t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, err_len) != 0) return -1;
     c->base = cli_track_setup(setup, t);
     c->base.incline_rad = t->incline_rad; /* the frames' incline frame */
     c->frame0.mark_angle_rad = o->mark_angle_rad;
@@ -764,10 +764,10 @@ static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const 
         out->initial[k] = cli_fit_get(&c->base, &c->start0, &c->frame0, c->param[k]);
         cli_fit_range(&c->base, c->param[k], &out->lo[k], &out->hi[k]);
     }
-    const double a = t->centre_source == CLI_CENTRE_FROM_MARK ? t->mark_radius_m : cli_track_mark_radius(t, &m);
+    const double a = t->centre_source == JC_TRACK_CENTRE_FROM_MARK ? t->mark_radius_m : cli_track_mark_radius(t, &m);
     long marks = 0;
     for (long i = 0; i < c->res.count; ++i) marks += t->has_mark && isfinite(t->theta_rad[first + i]);
-    c->res.mark_radius = marks > 0 || t->centre_source == CLI_CENTRE_FROM_MARK ? a : 0.0;
+    c->res.mark_radius = marks > 0 || t->centre_source == JC_TRACK_CENTRE_FROM_MARK ? a : 0.0;
     c->nres = cli_residual_count(&c->res);
     if (c->nres <= c->np) {
         snprintf(err, err_len, "%ld residuals cannot fix %d free values", c->nres, c->np);
@@ -1009,7 +1009,7 @@ int cli_fit_parse_loss(const char *text, cli_FitLoss *out)
  * (0 for the setup's start, a fit of a start window itself, or a given
  * window whose first frames the model cannot start from: the start is
  * then estimated from them). 0, or -1 with a message. */
-static int find_launch(const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
+static int find_launch(const jc_Setup *setup, const jc_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
                        cli_Launch *launch, int *refined, char *err, size_t err_len)
 {
     long first, count;
@@ -1028,7 +1028,7 @@ static int find_launch(const jc_Setup *setup, const cli_Track *t, const cli_FitO
     return 0;
 }
 
-int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
+int cli_track_fit(const jc_Setup *setup, const jc_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
                   cli_FitResult *out, char *err, size_t err_len)
 {
     memset(out, 0, sizeof *out);

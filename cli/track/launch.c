@@ -19,7 +19,7 @@
 
 /* The start fitted to the frames from k on (up to frame end, exclusive);
  * its chi2/dof (NaN on failure). */
-static double window_fit(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long k, long end,
+static double window_fit(const jc_Setup *setup, const jc_Track *t, const jc_SimOptions *o, long k, long end,
                          double mark_angle_rad, jc_State *start)
 {
     long last = k;
@@ -43,19 +43,19 @@ static double window_fit(const jc_Setup *setup, const cli_Track *t, const jc_Sim
 }
 
 /* The next frame with a centre after k (end if none). */
-static long next_frame(const cli_Track *t, long k, long stride, long end)
+static long next_frame(const jc_Track *t, long k, long stride, long end)
 {
     long j = k + stride;
     while (j < end && !isfinite(t->x_m[j])) j++;
     return j < end ? j : end;
 }
 
-int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long from, double to_s,
+int cli_track_launch(const jc_Setup *setup, const jc_Track *t, const jc_SimOptions *o, long from, double to_s,
                      int scan, double mark_angle_rad, cli_Launch *out, char *err, size_t err_len)
 {
     memset(out, 0, sizeof *out);
     out->chi2_dof_with = NAN;
-    if (cli_track_require("the track", t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, err_len) != 0) return -1;
+    if (jc_track_require("the track", t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, err_len) != 0) return -1;
     long end = t->n;
     while (end > 0 && !isnan(to_s) && t->t_s[end - 1] > to_s) end--;
     long left = 0;

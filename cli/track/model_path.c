@@ -29,7 +29,7 @@ int cli_track_sim_init(cli_TrackSim *s)
     return s->ws ? 0 : -1;
 }
 
-double cli_track_sim_shift(const cli_Track *t)
+double cli_track_sim_shift(const jc_Track *t)
 {
     return CLI_TRACK_RAMP_MARGIN_M - (isfinite(t->x0_m) ? t->x0_m : 0.0);
 }
@@ -45,7 +45,7 @@ void cli_track_sim_free(cli_TrackSim *s)
 /* Beyond the last frame the ramp goes on this far at least. */
 #define RAMP_BEYOND_M 0.5
 
-jc_Setup cli_track_setup(const jc_Setup *setup, const cli_Track *t)
+jc_Setup cli_track_setup(const jc_Setup *setup, const jc_Track *t)
 {
     jc_Setup s = *setup;
     /* A video that goes on past the setup's ramp shows a longer one (a
@@ -58,7 +58,7 @@ jc_Setup cli_track_setup(const jc_Setup *setup, const cli_Track *t)
     return s;
 }
 
-int cli_track_model(const jc_Setup *setup, const cli_Track *t, jc_Model *model, char *err, size_t err_len)
+int cli_track_model(const jc_Setup *setup, const jc_Track *t, jc_Model *model, char *err, size_t err_len)
 {
     const jc_Setup s = cli_track_setup(setup, t);
     return jc_model_init(model, &s, err, err_len) == JC_OK ? 0 : -1;

@@ -13,11 +13,11 @@
 #include <math.h>
 #include <string.h>
 
-static int from_mark(const cli_Residuals *r) { return r->t->centre_source == CLI_CENTRE_FROM_MARK; }
+static int from_mark(const cli_Residuals *r) { return r->t->centre_source == JC_TRACK_CENTRE_FROM_MARK; }
 
 long cli_residual_count(const cli_Residuals *r)
 {
-    const cli_Track *t = r->t;
+    const jc_Track *t = r->t;
     long k = 0;
     for (long i = r->first; i < r->first + r->count; ++i) {
         if (from_mark(r)) {
@@ -31,7 +31,7 @@ long cli_residual_count(const cli_Residuals *r)
     return k;
 }
 
-void cli_track_misfit(const cli_Track *t, long first, long count, const double *x, const double *y,
+void cli_track_misfit(const jc_Track *t, long first, long count, const double *x, const double *y,
                       const double *th_mark, double *rms_path_m, double *max_path_m, double *rms_theta_rad)
 {
     double path = 0.0, th = 0.0, largest = 0.0;
@@ -54,10 +54,10 @@ void cli_track_misfit(const cli_Track *t, long first, long count, const double *
     *rms_theta_rad = n_th ? sqrt(th / (double)n_th) : NAN;
 }
 
-int cli_residuals_frame(const cli_Track *t, long j, double sigma, double a, double x, double y, double thm,
+int cli_residuals_frame(const jc_Track *t, long j, double sigma, double a, double x, double y, double thm,
                         double f[3])
 {
-    if (t->centre_source == CLI_CENTRE_FROM_MARK) {
+    if (t->centre_source == JC_TRACK_CENTRE_FROM_MARK) {
         if (!isfinite(t->mark_x_m[j])) return 0;
         f[0] = (t->mark_x_m[j] - (x + a * sin(thm))) / sigma;
         f[1] = (t->mark_y_m[j] - (y + a * cos(thm))) / sigma;

@@ -34,7 +34,7 @@ static int quad_fit(const double *t, const double *v, long n, double t0, double 
     return 0;
 }
 
-int cli_track_start_estimate(const cli_Track *t, long first, long span, double radius_m, double theta_fallback_rad,
+int cli_track_start_estimate(const jc_Track *t, long first, long span, double radius_m, double theta_fallback_rad,
                              double hop_threshold_m, jc_State *out)
 {
     if (first < 0 || span < 3 || t->n - first < 3) return -1;
@@ -74,7 +74,7 @@ double cli_track_mark_offset_rad(const jc_Model *m, double mark_angle_rad)
     return m->body.cm_angle_rad - mark_angle_rad;
 }
 
-double cli_track_mark_radius(const cli_Track *t, const jc_Model *m)
+double cli_track_mark_radius(const jc_Track *t, const jc_Model *m)
 {
     if (t->has_mark && isfinite(t->mark_radius_m) && t->mark_radius_m > 0.0) return t->mark_radius_m;
     double a = 0.0;
@@ -113,7 +113,7 @@ void cli_track_find_hops(const double *t_s, const double *x_m, const double *y_m
     }
 }
 
-void cli_track_window(const cli_Track *t, double from_s, double to_s, long *first, long *count)
+void cli_track_window(const jc_Track *t, double from_s, double to_s, long *first, long *count)
 {
     long a = 0, b = t->n;
     while (a < t->n && !isnan(from_s) && t->t_s[a] < from_s) ++a;
@@ -122,7 +122,7 @@ void cli_track_window(const cli_Track *t, double from_s, double to_s, long *firs
     *count = b - a;
 }
 
-void cli_track_start_setup(const cli_Track *t, long first, long end, double radius_m, const jc_Setup *setup,
+void cli_track_start_setup(const jc_Track *t, long first, long end, double radius_m, const jc_Setup *setup,
                            jc_State *out)
 {
     while (first + 1 < end && !isfinite(t->x_m[first])) first++;

@@ -5,7 +5,6 @@
  * the sample experiments of examples/tracker. Random numbers are Philox
  * draws (cli/batch/random.c), so a track is a pure function of (seed, trial). */
 #include "track_fit.h"
-#include "raw.h"
 #include "batch.h"
 
 #include <math.h>
@@ -42,7 +41,9 @@ static int on_grid(double t, double dt)
 /* The incline frame into Tracker's level axes: downhill to the right. */
 static void world(double alpha, double x, double y, double *X, double *Y)
 {
-    cli_track_turn(x, y, cos(alpha), sin(alpha), X, Y);
+    const double c = cos(alpha), s = sin(alpha);
+    *X = x * c + y * s;
+    *Y = -x * s + y * c;
 }
 
 /* The state at time u before the free start (u < 0): a hand pushing the
@@ -59,7 +60,7 @@ static void pushed(const jc_State *s0, double r, double hand_s, double u, jc_Sta
     out->vx_mps = r * out->omega_radps;
 }
 
-int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_RawData *raw, char *err,
+int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, jc_TrackRaw *raw, char *err,
                         size_t err_len)
 {
     memset(raw, 0, sizeof *raw);
@@ -83,7 +84,7 @@ int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_Ra
     }
     const int centre = o->tracks != CLI_SYNTH_MARK_ONLY;
     const int mark = o->tracks != CLI_SYNTH_CENTRE_ONLY && o->mark_radius_m > 0.0;
-    if (cli_raw_alloc(raw, run.sample_count + (long)hand_frames + 1, (centre ? 1 : 0) + (mark ? 1 : 0)) != 0) {
+    if (jc_track_raw_alloc(raw, run.sample_count + (long)hand_frames + 1, (centre ? 1 : 0) + (mark ? 1 : 0)) != 0) {
         jc_run_free(&run);
         snprintf(err, err_len, "out of memory for a synthetic track");
         return -1;
@@ -92,8 +93,8 @@ int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_Ra
     raw->px_per_m = raw->tape_length_m = NAN;
     raw->nominal_dt_s = 1.0 / o->fps_hz;
     int ci = centre ? 0 : -1, mi = mark ? (centre ? 1 : 0) : -1;
-    if (ci >= 0) snprintf(raw->tracks[ci].name, CLI_TRACK_NAME_LEN, "centre");
-    if (mi >= 0) snprintf(raw->tracks[mi].name, CLI_TRACK_NAME_LEN, "%s", centre ? "mark" : "LED");
+    if (ci >= 0) snprintf(raw->tracks[ci].name, JC_TRACK_NAME_LEN, "centre");
+    if (mi >= 0) snprintf(raw->tracks[mi].name, JC_TRACK_NAME_LEN, "%s", centre ? "mark" : "LED");
     const double mark_offset = cli_track_mark_offset_rad(&m, o->mark_angle_rad), s = o->sigma_m, r = m.body.radius_m;
     const double alpha = setup->incline_rad, t0 = -hand_frames / o->fps_hz;
     long n = 0;
@@ -125,24 +126,24 @@ int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_Ra
     raw->frames = n;
     jc_run_free(&run);
     if (n < 3) {
-        cli_raw_free(raw);
+        jc_track_raw_free(raw);
         snprintf(err, err_len, "synthetic track: only %ld frames", n);
         return -1;
     }
     return 0;
 }
 
-int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, cli_Track *out, char *err,
+int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, jc_Track *out, char *err,
                          size_t err_len)
 {
     memset(out, 0, sizeof *out);
-    cli_RawData raw;
+    jc_TrackRaw raw;
     if (cli_track_synth_raw(setup, o, &raw, err, err_len) != 0) return -1;
-    cli_TrackOptions opt;
-    cli_track_options_default(&opt);
+    jc_TrackOptions opt;
+    jc_track_options_default(&opt);
     opt.radius_m = setup->body.radius_m;
     opt.gravity_mps2 = setup->gravity_mps2;
-    const int rc = cli_track_from_raw_data("synthetic", &raw, &opt, out, err, err_len);
-    cli_raw_free(&raw);
+    const int rc = jc_track_from_raw("synthetic", &raw, &opt, out, err, err_len);
+    jc_track_raw_free(&raw);
     return rc;
 }

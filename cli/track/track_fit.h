@@ -7,7 +7,9 @@
 #ifndef JUMPCYL_TRACK_FIT_H
 #define JUMPCYL_TRACK_FIT_H
 
-#include "track.h"
+#include <jumpcyl/track.h>
+
+#define CLI_TRACK_PI 3.14159265358979323846
 
 #include <stdint.h>
 #include <stdio.h>
@@ -38,11 +40,10 @@ typedef struct {
  * it (metres, the start's contact point at the origin, downhill to the
  * right), each tracked point with independent noise. The raw data of
  * raw.h; 0, or -1 with a message. */
-struct cli_RawData_s;
-int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, struct cli_RawData_s *raw, char *err,
+int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, jc_TrackRaw *raw, char *err,
                         size_t err_len);
 /* The same read as a file is: the incline measured, the setup's radius. */
-int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, cli_Track *out, char *err,
+int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, jc_Track *out, char *err,
                          size_t err_len);
 
 /* ---- model_path.c: the model at the frames' times ---- */
@@ -68,15 +69,15 @@ typedef struct {
 } cli_TrackSim;
 
 int cli_track_sim_init(cli_TrackSim *s);
-double cli_track_sim_shift(const cli_Track *t);
+double cli_track_sim_shift(const jc_Track *t);
 void cli_track_sim_free(cli_TrackSim *s);
 
 /* The setup as runs against a track use it: the ramp lengthened uphill by
  * CLI_TRACK_RAMP_MARGIN_M and downhill to hold every frame. (The incline is
  * the caller's: compare and fit take the track's.) */
-int cli_track_model(const jc_Setup *setup, const cli_Track *t, jc_Model *model, char *err, size_t err_len);
+int cli_track_model(const jc_Setup *setup, const jc_Track *t, jc_Model *model, char *err, size_t err_len);
 /* The setup's values for runs against the track (what cli_track_model builds). */
-jc_Setup cli_track_setup(const jc_Setup *setup, const cli_Track *t);
+jc_Setup cli_track_setup(const jc_Setup *setup, const jc_Track *t);
 
 /* Runs the model from start (track coordinates; the model's setup θ0 and ω0
  * should be the start's) and gives the centre and G's angle at each of the
@@ -92,13 +93,13 @@ int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *st
 
 /* The setup's own start (θ0, ω0, rolling: y = r, vx = r ω) at the first
  * frame from `first` on, before `end`, that has the centre. */
-void cli_track_start_setup(const cli_Track *t, long first, long end, double radius_m, const jc_Setup *setup,
+void cli_track_start_setup(const jc_Track *t, long first, long end, double radius_m, const jc_Setup *setup,
                            jc_State *out);
 /* The body's state at frame `first` from quadratic least squares over the
  * next few frames (at most `span`): in contact it rolls (y = r, vy = 0,
  * vx = r ω, ω weighted from the mark and the centre). θ is the mark's
  * (theta_fallback_rad without one). -1 when fewer than 3 frames are left. */
-int cli_track_start_estimate(const cli_Track *t, long first, long span, double radius_m, double theta_fallback_rad,
+int cli_track_start_estimate(const jc_Track *t, long first, long span, double radius_m, double theta_fallback_rad,
                              double hop_threshold_m, jc_State *out);
 
 /* G's angle minus the mark's: the body's angle of G less the mark's
@@ -108,7 +109,7 @@ double cli_track_mark_offset_rad(const jc_Model *m, double mark_angle_rad);
 
 /* The mark's distance from C: the track's when it has one, else the
  * off-centre part farthest from C. */
-double cli_track_mark_radius(const cli_Track *t, const jc_Model *m);
+double cli_track_mark_radius(const jc_Track *t, const jc_Model *m);
 
 #define CLI_TRACK_MAX_HOPS 64
 /* Hops seen in a sampled height: runs of at least 2 frames whose centre is
@@ -125,7 +126,7 @@ void cli_track_find_hops(const double *t_s, const double *x_m, const double *y_m
                          double threshold_m, cli_TrackHops *out);
 
 /* The frames of a window [from, to] (NaN: open end): first index and count. */
-void cli_track_window(const cli_Track *t, double from_s, double to_s, long *first, long *count);
+void cli_track_window(const jc_Track *t, double from_s, double to_s, long *first, long *count);
 
 /* ---- launch.c: where the free motion starts ---- */
 
@@ -145,7 +146,7 @@ typedef struct {
  * start frames are tried, a stride apart at high frame rates. scan 0:
  * `from` is the start (set by the user), only its state is fitted. 0, or
  * -1 with a message. */
-int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long from, double to_s,
+int cli_track_launch(const jc_Setup *setup, const jc_Track *t, const jc_SimOptions *o, long from, double to_s,
                      int scan, double mark_angle_rad, cli_Launch *out, char *err, size_t err_len);
 
 /* ---- compare.c: measured against simulated ---- */
@@ -169,7 +170,7 @@ typedef enum { CLI_START_TRACKED, CLI_START_SETUP } cli_StartKind;
 /* Runs the model from the free motion's first frame in [from, to] (the
  * state the frames show, or the setup's θ0 and ω0 at the tracked position)
  * and compares. 0, or -1 with a message. Free with cli_compare_free. */
-int cli_track_compare(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, cli_StartKind start,
+int cli_track_compare(const jc_Setup *setup, const jc_Track *t, const jc_SimOptions *o, cli_StartKind start,
                       double from_s, double to_s, double mark_angle_rad, cli_Compare *out, char *err,
                       size_t err_len);
 void cli_compare_free(cli_Compare *c);
@@ -332,7 +333,7 @@ typedef struct {
 
 /* Fits the free values to the track's frames in the window. 0, or -1 with a
  * message (no frames, a setup the model refuses, a numerical failure). */
-int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
+int cli_track_fit(const jc_Setup *setup, const jc_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
                   cli_FitResult *out, char *err, size_t err_len);
 
 /* ---- residuals.c: the residuals of a model against the frames ---- */
@@ -341,7 +342,7 @@ int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOption
  * y per frame and the mark's displacement across its radius (a tracked
  * centre), or the mark's x and y (a centre recovered from the mark). */
 typedef struct {
-    const cli_Track *t;
+    const jc_Track *t;
     long first, count;
     double sigma;         /* metres per sigma */
     double mark_radius;   /* a: the mark's distance from C (0: no mark in the residuals) */
@@ -354,7 +355,7 @@ long cli_residual_count(const cli_Residuals *r);
  * first) against the track: the centre's path RMS and largest distance
  * (max_path_m may be NULL) over frames with a centre, the mark's angle RMS
  * (modulo 2 pi) over frames with it (NaN without). */
-void cli_track_misfit(const cli_Track *t, long first, long count, const double *x, const double *y,
+void cli_track_misfit(const jc_Track *t, long first, long count, const double *x, const double *y,
                       const double *th_mark, double *rms_path_m, double *max_path_m, double *rms_theta_rad);
 
 /* The residuals of frame j (an index into t) against the model's centre
@@ -362,7 +363,7 @@ void cli_track_misfit(const cli_Track *t, long first, long count, const double *
  * y, then (a > 0, θ tracked there) the mark's displacement across its
  * radius a; or, with a centre recovered from the mark, the mark's x and y.
  * Returns how many (0: nothing tracked there); f[m] is of series m. */
-int cli_residuals_frame(const cli_Track *t, long j, double sigma, double a, double x, double y, double thm,
+int cli_residuals_frame(const jc_Track *t, long j, double sigma, double a, double x, double y, double thm,
                         double f[3]);
 /* Residuals in units of sigma for the model's centre and G's angle at the
  * frames: f[0 .. count). Series k (0, 1, 2) of residual i: which = i's. */
@@ -375,7 +376,7 @@ double cli_residuals_runs_z(const double *f, const unsigned char *series, long n
 /* ---- cli/figures/plot_track.c: the figure of compare and fit ---- */
 
 typedef struct {
-    const cli_Track *track;
+    const jc_Track *track;
     long first, count;               /* the frames shown */
     const double *sim_x, *sim_y, *sim_theta; /* the model at those frames (theta: the mark's) */
     const double *path_t, *path_x, *path_y;  /* the model finely sampled, for its curves */

@@ -10,7 +10,7 @@
  *  - a wrong --incline is refused naming the video's;
  *  - bad option values: one line, exit 2, no file. */
 #include "track_fit.h"
-#include "raw.h"
+#include <jumpcyl/track.h>
 #include "../track/synth_table.h"
 #include "../cli_run.h"
 #include "../test.h"
@@ -49,7 +49,7 @@ static int test_noise_free_compare(void)
 {
     const jc_Setup s = truth();
     const cli_SynthOptions so = synth_camera(60.0, 0.0, CLI_SYNTH_BOTH, 1u, 0.055);
-    cli_Track t;
+    jc_Track t;
     char err[256];
     ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
     printf("noise-free video: incline measured %.12f deg (true 30)\n", t.incline_rad * 180 / CLI_TRACK_PI);
@@ -83,7 +83,7 @@ static int test_noise_free_compare(void)
     printf("off the grid: largest path residual %.3g m, theta RMS %.3g rad\n", c.max_path_m, c.rms_theta_rad);
     const int ok3 = c.max_path_m > 0.0 && c.max_path_m < 1e-6 && c.rms_theta_rad < 1e-5;
     cli_compare_free(&c);
-    cli_track_free(&t);
+    jc_track_free(&t);
     ENSURE(ok1);
     ENSURE(ok2);
     ENSURE(ok3);
@@ -116,7 +116,7 @@ static int test_robust_loss(void)
     const jc_Setup s = truth();
     cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 5u, 0.055);
     so.drop_fraction = 0.1;
-    cli_Track t;
+    jc_Track t;
     char err[256];
     ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
     ENSURE(t.gaps > 0);
@@ -134,7 +134,7 @@ static int test_robust_loss(void)
     const int rc1 = cli_track_fit(&guess, &t, &fo, &o, &lin, err, sizeof err);
     fo.loss = CLI_LOSS_CAUCHY;
     const int rc2 = rc1 == 0 ? cli_track_fit(&guess, &t, &fo, &o, &cau, err, sizeof err) : -1;
-    cli_track_free(&t);
+    jc_track_free(&t);
     ENSURE_MSG(rc1 == 0 && rc2 == 0, "%s", err);
     const int k = slot(&lin, CLI_FIT_MU_K), e = slot(&lin, CLI_FIT_RESTITUTION);
     printf("linear: chi2/dof %.2f, mu_k %.5f +- %.5f, e %.5f +- %.5f; %s\n", lin.chi2_dof, lin.value[k], lin.sigma[k],
@@ -154,7 +154,7 @@ static int test_undetermined_flagged(void)
 {
     const jc_Setup s = truth();
     const cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 7u, 0.055);
-    cli_Track t;
+    jc_Track t;
     char err[256];
     ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
     cli_FitOptions fo = fit_options();
@@ -163,7 +163,7 @@ static int test_undetermined_flagged(void)
     const jc_SimOptions o = jc_default_sim_options();
     cli_FitResult r;
     const int rc = cli_track_fit(&s, &t, &fo, &o, &r, err, sizeof err);
-    cli_track_free(&t);
+    jc_track_free(&t);
     ENSURE_MSG(rc == 0, "%s", err);
     const int e = slot(&r, CLI_FIT_RESTITUTION), k = slot(&r, CLI_FIT_MU_K);
     printf("before the lift-off: restitution %s (%s), held at %.3g; mu_k %.5f +- %.5f; %s\n",
@@ -234,7 +234,7 @@ static int test_launch_found(void)
     so.mark_radius_m = 0.1;
     so.t_end_s = 1.0;
     so.hand_s = 0.2;
-    cli_Track t;
+    jc_Track t;
     ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
     const jc_SimOptions o = jc_default_sim_options();
     cli_Compare c;
@@ -246,7 +246,7 @@ static int test_launch_found(void)
            t.sigma_m * 1e3);
     const int ok = fabs(t_free - 0.2) <= 1.01 / 60.0 && c.rms_path_m < 3.0 * t.sigma_m && c.launch.chi2_dof_with > 10;
     cli_compare_free(&c);
-    cli_track_free(&t);
+    jc_track_free(&t);
     ENSURE(ok);
     return 0;
 }

@@ -74,7 +74,7 @@ static const char *const vname[NV] = {"mu_s", "mu_k", "restitution", "theta0", "
  * (the centre r above the contact point, released at rest with G straight
  * up) is seen from the video's frame: x0 turned by the tilt about the
  * contact point, theta0 in the model's own frame. */
-static double true_value(int v, const cli_Track *t)
+static double true_value(int v, const jc_Track *t)
 {
     const jc_Setup s = truth();
     const double d = s.incline_rad - t->incline_rad;
@@ -125,7 +125,7 @@ static int run_trials(int trials, uint64_t seed)
      * memory): on every core. */
 #pragma omp parallel for schedule(dynamic)
     for (int i = 0; i < trials; ++i) {
-        cli_Track t;
+        jc_Track t;
         char err[256];
         const cli_SynthOptions o = synth(seed, i);
         const jc_Setup ts = truth();
@@ -137,7 +137,7 @@ static int run_trials(int trials, uint64_t seed)
             for (int v = 0; v < NV; ++v) tr[i].truth[v] = true_value(v, &t);
             tr[i].measured_sigma = t.sigma_m;
             tr[i].contact = t.contact_frames;
-            cli_track_free(&t);
+            jc_track_free(&t);
         }
         if (tr[i].rc) fprintf(stderr, "trial %d (seed %llu): %s\n", i, (unsigned long long)seed, err);
     }
@@ -191,7 +191,7 @@ static int run_trials(int trials, uint64_t seed)
     if (trials < 100) return 0; /* too few to judge a coverage by */
     /* mu_k, e and the start (theta0, omega0, x0) are always determined by these videos. */
     ENSURE_MSG(flagged[V_MU_K] == 0 && flagged[V_E] == 0 && flagged[V_THETA0] == 0 && flagged[V_OMEGA0] == 0 &&
-                   flagged[V_X0] == 0,
+               flagged[V_X0] == 0,
                "a value these videos determine was held (seed %llu)", (unsigned long long)seed);
     ENSURE_MSG(pooled >= COVERAGE_MIN && pooled <= COVERAGE_MAX, "pooled coverage %.3f (seed %llu)", pooled,
                (unsigned long long)seed);

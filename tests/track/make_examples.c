@@ -19,7 +19,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "synth.h"
 #include "track_fit.h"
-#include "raw.h"
+#include <jumpcyl/track.h>
 #include "synth_table.h"
 
 #include <gsl/gsl_errno.h>

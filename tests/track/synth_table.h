@@ -3,7 +3,7 @@
 #ifndef JC_TESTS_SYNTH_TABLE_H
 #define JC_TESTS_SYNTH_TABLE_H
 
-#include "raw.h"
+#include <jumpcyl/track.h>
 #include "track_fit.h"
 
 #include <stdio.h>
@@ -47,13 +47,14 @@ static inline jc_Setup synth_loaded_ring(void)
 static inline int synth_table_write(const char *path, const jc_Setup *s, const cli_SynthOptions *o,
                                     const char *first_name)
 {
-    cli_RawData raw;
+    jc_TrackRaw raw;
     char err[256];
     if (cli_track_synth_raw(s, o, &raw, err, sizeof err) != 0) return -1;
-    if (first_name) snprintf(raw.tracks[0].name, CLI_TRACK_NAME_LEN, "%s", first_name);
+    if (first_name) snprintf(raw.tracks[0].name, JC_TRACK_NAME_LEN, "%s", first_name);
     FILE *f = fopen(path, "w");
-    const int rc = f ? cli_track_write_table(f, &raw) : -1;
-    cli_raw_free(&raw);
+    if (f) jc_track_write_table(f, &raw);
+    const int rc = f && !ferror(f) ? 0 : -1;
+    jc_track_raw_free(&raw);
     return f && fclose(f) == 0 ? rc : -1;
 }
 
