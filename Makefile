@@ -24,7 +24,7 @@ FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := options config simulate names batch track
 LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/test_signals.c tests/test_fuzz_findings.c tests/cli_run.h \
                 tests/test_safe_output.c tests/test_sim_json.c tests/sim/test_stream.c tests/batch/test_map.c tests/design/test_design.c tests/track \
-                tests/fit/test_fit_cli.c tests/fit/test_fit_stats.c tests/fit/make_track.c
+                tests/fit/test_fit_cli.c tests/fit/test_fit_stats.c tests/fit/make_track.c tests/fit/test_fit_api.c
 
 .PHONY: all deps configure build run test asan test-asan bench install-check clean help
 .PHONY: test-valgrind fuzz lint test-mpi install deps-fuzz deps-valgrind deps-lint deps-mpi deps-install
@@ -138,7 +138,7 @@ fuzz: deps-fuzz
 # says why it is not a defect.
 lint: deps-lint
 	cppcheck --enable=warning,style,performance,portability --std=c11 --error-exitcode=1 --inline-suppr --quiet \
-	  -I include -I cli -I cli/track -I src --suppressions-list=lint/cppcheck-suppressions.txt $(LINT_SOURCES)
+	  -I include -I cli -I src --suppressions-list=lint/cppcheck-suppressions.txt $(LINT_SOURCES)
 
 bench: build
 	cmake --build $(BUILD) --target jumpcyl_bench -j $(JOBS)

@@ -3,7 +3,6 @@
  * path for the figure. */
 #include "track_input.h"
 #include "figures.h"
-#include "plot.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -201,38 +200,30 @@ void cli_track_print_head(const char *file, const jc_Track *t, long first, long 
 }
 
 /* The model's path every quarter frame, for the figure's curves. */
-int cli_track_fine_path(const jc_Setup *setup, const jc_Track *t, const jc_State *start, const jc_SimOptions *o,
-                        double t_end_s, double **pt, double **px, double **py, long *n)
+int cli_track_fine_path(const jc_Setup *setup, const jc_Track *t, const jc_State *start,
+                        const jc_TrackFitFrame *frame, const jc_SimOptions *o, double t_end_s, double **pt,
+                        double **px, double **py, long *n)
 {
-    jc_Setup at_start = *setup;
-    at_start.theta0_rad = start->theta_rad;
-    at_start.omega0_radps = start->omega_radps;
-    jc_Model model;
-    char err[256];
-    if (cli_track_model(&at_start, t, &model, err, sizeof err) != 0) return -1;
     const double dt = 0.25 / (t->frame_rate_hz > 0.0 ? t->frame_rate_hz : 60.0);
     const double span = t_end_s - start->t_s;
     *n = span > 0.0 ? (long)fmin(floor(span / dt) + 1.0, 2e6) : 1;
     *pt = malloc((size_t)*n * sizeof **pt);
     *px = malloc((size_t)*n * sizeof **px);
     *py = malloc((size_t)*n * sizeof **py);
-    cli_TrackSim sim;
-    if (!*pt || !*px || !*py || cli_track_sim_init(&sim) != 0) return -1;
+    if (!*pt || !*px || !*py) return -1;
     for (long i = 0; i < *n; ++i) (*pt)[i] = start->t_s + (double)i * dt;
-    sim.shift_m = cli_track_sim_shift(t);
-    const int rc = cli_track_sim_run(&sim, &model, start, o, *pt, *n, *px, *py, NULL, err, sizeof err);
-    cli_track_sim_free(&sim);
-    return rc;
+    char err[256];
+    return jc_track_model_path(setup, t, start, frame, o, *pt, *n, *px, *py, NULL, err, sizeof err) == JC_OK ? 0 : -1;
 }
 
 int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_State *start,
-                          const cli_FitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv)
+                          const jc_TrackFitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv)
 {
     const jc_Track *t = f->track;
     double *pt = NULL, *px = NULL, *py = NULL;
-    int rc = cli_track_fine_path(setup, t, start, o, t->t_s[f->first + f->count - 1], &pt, &px, &py, &f->path_n);
+    int rc = cli_track_fine_path(setup, t, start, frame, o, t->t_s[f->first + f->count - 1], &pt, &px, &py,
+                                 &f->path_n);
     if (rc == 0) {
-        if (frame) cli_fit_to_video(frame, start, px, py, NULL, f->path_n);
         f->path_t = pt;
         f->path_x = px;
         f->path_y = py;
@@ -250,7 +241,7 @@ int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *s
     return rc;
 }
 
-void cli_track_print_launch(const jc_Track *t, const cli_Launch *L)
+void cli_track_print_launch(const jc_Track *t, const jc_TrackLaunch *L)
 {
     if (L->pushed <= 0) return;
     printf("Launch: the first %ld frame(s) (to t = %.4f s) show a push the model cannot follow (chi2/dof %.3g\n"

@@ -112,7 +112,7 @@ static int decide_incline(const char *name, const jc_TrackOptions *opt, double f
 /* Whether the surface is taken along the frame's x as it is: along the
  * incline given (level axes) or along the axes (incline axes), when the
  * frames in contact (tilt tau, sigma its error) lie within 3 sigma of it
- * or within DIRECTION_TOL_RAD, unless --fit-tilt asks for their line. The
+ * or within DIRECTION_TOL_RAD, unless opt->fit_tilt asks for their line. The
  * line through the frames in contact can be off by more than its sigma
  * (bounces too low to show lift its far end: up to 0.28 deg, 4.6 sigma, in
  * tests/track/test_track.c's synthetic videos of the paper's cylinder), and

@@ -146,7 +146,7 @@ static int pick_tracks(const char *name, const jc_TrackRaw *raw, const jc_TrackO
         *centre = centre_by_motion(raw, dt);
         if (*centre >= 0) *mark = 1 - *centre;
     }
-    if (*centre < 0 && *mark >= 0 && raw->track_count == 1) return 0; /* --mass NAME alone: mark only */
+    if (*centre < 0 && *mark >= 0 && raw->track_count == 1) return 0; /* a mark named alone: mark only */
     if (*centre < 0) {
         *ambiguous = 1;
         return 0;

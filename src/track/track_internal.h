@@ -2,8 +2,18 @@
  * holds them (jc_TrackRaw, <jumpcyl/track.h>) and the steps from them to a
  * jc_Track: the readers (trk.c, table.c), the conversion to the incline
  * frame (frame.c), the derivation (surface.c, rim.c, derive.c), and the
- * whole of it (read.c); data.c allocates and frees. Calls run one way:
- * read.c -> the readers, frame.c, derive.c -> surface.c, rim.c -> data.c. */
+ * whole of it (read.c); data.c allocates and frees. Then the model against
+ * a track: runs sampled at the frames (model_path.c), starts, windows and
+ * hops (start.c), residuals (residuals.c), the fit's values (fit_params.c),
+ * the least squares (fit.c), where the free motion starts (launch.c), the
+ * whole fit (fit_video.c), the comparison (compare.c), synthetic videos
+ * (synthetic.c) and their random numbers (random.c).
+ *
+ * Calls run one way, no file calling back into one that calls it:
+ *   read.c -> trk.c, table.c, frame.c, derive.c; derive.c -> rim.c, frame.c;
+ *   frame.c, rim.c -> surface.c; everything -> data.c;
+ *   fit_video.c -> launch.c -> fit.c -> model_path.c, start.c, residuals.c,
+ *   fit_params.c, random.c; compare.c -> launch.c; synthetic.c -> read.c. */
 #ifndef JUMPCYL_TRACK_INTERNAL_H
 #define JUMPCYL_TRACK_INTERNAL_H
 
@@ -42,7 +52,7 @@ static inline void jc_track_turn(double x, double y, double c, double s, double 
  * (whose report fields are set here). JC_OK, or JC_EINVAL or JC_ENOMEM
  * with a message (out then holds nothing to free): a radius not > 0 or an
  * incline outside [0, 90) deg, a track name given that is not in the file
- * (or --centre and --mass naming one track), a time that jumps by more than
+ * (or the centre and the mark naming one track), a time that jumps by more than
  * JC_TRACK_MAX_FRAMES frames, a position beyond JC_TRACK_MAX_COORD_M. */
 int jc_track_frame_raw(const char *name, const jc_TrackRaw *raw, const jc_TrackOptions *opt, double angle_rad,
                        jc_Track *out, char *err, size_t err_len);
@@ -120,5 +130,155 @@ void jc_track_rim_flights(const jc_TrackRimInput *in, double incline_rad, jc_Tra
  * incline, or incline axes, the frames in contact refuse), JC_ENOMEM. */
 int jc_track_derive(const char *name, const jc_TrackRaw *raw, const jc_TrackOptions *opt, jc_Track *t, char *err,
                     size_t err_len);
+
+/* ---- model_path.c: the model at the frames' times ---- */
+
+/* A run's samples kept for interpolation, and the workspace: made once and
+ * reused by every run of a fit, so that runs do not allocate. */
+typedef struct {
+    jc_Sample *samples;
+    int count, cap;
+    double *impact_t_s; /* times of impacts: velocities jump there */
+    int impacts, impact_cap;
+    jc_Workspace *ws;
+    /* x in the run = x in the track + shift_m (jc_track_sim_shift). */
+    double shift_m;
+    jc_RunSummary sum;   /* of the last run */
+    jc_Run run;          /* its end */
+    int failed;          /* out of memory in the recorder */
+} jc_TrackSim;
+
+/* JC_OK or JC_ENOMEM. */
+int jc_track_sim_init(jc_TrackSim *s);
+double jc_track_sim_shift(const jc_Track *t);
+void jc_track_sim_free(jc_TrackSim *s);
+
+/* jc_track_setup's setup as a model. JC_OK, or jc_model_init's status. */
+int jc_track_model(const jc_Setup *setup, const jc_Track *t, jc_Model *model, char *err, size_t err_len);
+
+/* Runs the model from start (track coordinates; the model's setup θ0 and ω0
+ * should be the start's) and gives the centre and G's angle at each of the
+ * n times (increasing, >= start->t_s), by cubic Hermite interpolation
+ * between samples a fraction of a frame apart (linear in an interval that
+ * ends at an impact). Past the run's end the body flies on freely. JC_OK,
+ * or a status with a message. */
+int jc_track_sim_run(jc_TrackSim *s, const jc_Model *model, const jc_State *start, const jc_SimOptions *o,
+                     const double *t_s, long n, double *x_m, double *y_m, double *theta_rad, char *err,
+                     size_t err_len);
+
+/* The model's positions and angles (n of each; th may be NULL) into the
+ * video's frame: turned by the tilt about the start, moved up by the
+ * surface. */
+void jc_fit_to_video(const jc_TrackFitFrame *fr, const jc_State *start, double *x, double *y, double *th, long n);
+
+/* ---- start.c: the state at a frame, the frames of a window, hops ---- */
+
+/* The setup's own start (θ0, ω0, rolling: y = r, vx = r ω) at the first
+ * frame from `first` on, before `end`, that has the centre. */
+void jc_track_start_setup(const jc_Track *t, long first, long end, double radius_m, const jc_Setup *setup,
+                          jc_State *out);
+/* The body's state at frame `first` from quadratic least squares over the
+ * next few frames (at most `span`): in contact it rolls (y = r, vy = 0,
+ * vx = r ω, ω weighted from the mark and the centre). θ is the mark's
+ * (theta_fallback_rad without one). -1 when fewer than 3 frames are left. */
+int jc_track_start_estimate(const jc_Track *t, long first, long span, double radius_m, double theta_fallback_rad,
+                            double hop_threshold_m, jc_State *out);
+
+/* G's angle minus the mark's: the body's angle of G less the mark's
+ * angle on the body (mark_angle_rad, a part's angle; 0: the reference
+ * direction, where the paper's rod and the hoop's mass sit). */
+double jc_track_mark_offset_rad(const jc_Model *m, double mark_angle_rad);
+
+/* Hops (jc_TrackHops) in a sampled height. */
+void jc_track_find_hops(const double *t_s, const double *x_m, const double *y_m, long n, double radius_m,
+                        double threshold_m, jc_TrackHops *out);
+
+/* The frames of a window [from, to] (NaN: open end): first index and count. */
+void jc_track_window(const jc_Track *t, double from_s, double to_s, long *first, long *count);
+
+/* ---- residuals.c: the residuals of a model against the frames ---- */
+
+/* What a fit or a comparison holds against the frames: the centre's x and
+ * y per frame and the mark's displacement across its radius (a tracked
+ * centre), or the mark's x and y (a centre recovered from the mark). */
+typedef struct {
+    const jc_Track *t;
+    long first, count;
+    double sigma;         /* metres per sigma */
+    double mark_radius;   /* a: the mark's distance from C (0: no mark in the residuals) */
+    double mark_offset;   /* G's angle minus the mark's */
+} jc_TrackResiduals;
+
+/* How many residuals the frames give. */
+long jc_track_residual_count(const jc_TrackResiduals *r);
+/* The model (x, y and the mark's angle th_mark at count frames from
+ * first) against the track: the centre's path RMS and largest distance
+ * (max_path_m may be NULL) over frames with a centre, the mark's angle RMS
+ * (modulo 2 pi) over frames with it (NaN without). */
+void jc_track_misfit(const jc_Track *t, long first, long count, const double *x, const double *y,
+                     const double *th_mark, double *rms_path_m, double *max_path_m, double *rms_theta_rad);
+/* Residuals in units of sigma for the model's centre and G's angle at the
+ * frames: f[0 .. count). Series k (0, 1, 2) of residual i: which = i's. */
+void jc_track_residuals_eval(const jc_TrackResiduals *r, const double *x, const double *y, const double *th,
+                             double *f, unsigned char *series);
+/* The Wald-Wolfowitz runs test on each series' signs in frame order: the
+ * most negative z (too few runs) and its series' name. */
+double jc_track_residuals_runs_z(const double *f, const unsigned char *series, long n, const char **which);
+
+/* ---- fit_params.c: the values a fit can free ---- */
+
+/* 1 when a and b name the same value. */
+int jc_fit_param_same(jc_TrackFitParam a, jc_TrackFitParam b);
+/* JC_OK when the setup's body has p (a kind of the enum; a part that is
+ * there, with an offset for an offset); else JC_EINVAL. */
+int jc_fit_param_check(const jc_Setup *s, jc_TrackFitParam p);
+/* The physical range of a value: [lo, hi], either may be infinite; the
+ * setup gives the radius, masses and mu_s. */
+void jc_fit_range(const jc_Setup *s, jc_TrackFitParam p, double *lo, double *hi);
+/* A value in a setup, start and frame, and one set into them. */
+double jc_fit_get(const jc_Setup *s, const jc_State *start, const jc_TrackFitFrame *f, jc_TrackFitParam p);
+void jc_fit_set(jc_Setup *s, jc_State *start, jc_TrackFitFrame *f, jc_TrackFitParam p, double v);
+
+/* ---- fit.c: the least squares; launch.c: where the free motion starts ---- */
+
+/* The part [lo, hi] of the caller's whole that a fit's progress covers
+ * (fn NULL: no progress reported). */
+typedef struct {
+    jc_TrackFitProgressFn fn;
+    void *ctx;
+    double lo, hi;
+} jc_TrackFitSpan;
+
+/* The options checked: a positive iteration limit, values to free that
+ * the setup's body has, a loss and a start kind of their enums. JC_OK, or
+ * JC_EINVAL with a message. */
+int jc_fit_options_check(const jc_Setup *setup, const jc_TrackFitOptions *o, char *err, size_t err_len);
+/* The least squares from the window's first frame, its start estimated
+ * there, or refined (not NULL: the launch's fitted start), or the setup's
+ * (o->start): jc_track_fit without the search for the free motion's start.
+ * out->launch is left zeroed. JC_OK, or a status with a message. */
+int jc_track_fit_solve(const jc_Setup *setup, const jc_Track *t, const jc_TrackFitOptions *o,
+                       const jc_SimOptions *sim, const jc_State *refined, const jc_TrackFitSpan *span,
+                       jc_TrackFitResult *out, char *err, size_t err_len);
+
+/* From frame `from` on, the first frame from which the model, started with
+ * the state the frames show (x0, ω0 and θ0 fitted to the next 0.4 s),
+ * follows them at the noise: frames before it show a push (an acceleration
+ * the model cannot produce). theta0 is searched around the circle when no
+ * mark tells it; frames after to_s (NaN: none) are not used; at most 45
+ * start frames are tried, a stride apart at high frame rates. scan 0:
+ * `from` is the start (set by the user), only its state is fitted. span:
+ * the window fits' progress (NULL: none). JC_OK, or a status with a
+ * message (JC_ESTOPPED when the progress callback asked). */
+int jc_track_launch(const jc_Setup *setup, const jc_Track *t, const jc_SimOptions *o, long from, double to_s,
+                    int scan, double mark_angle_rad, const jc_TrackFitSpan *span, jc_TrackLaunch *out, char *err,
+                    size_t err_len);
+
+/* ---- random.c: counter-based random numbers (Random123's Philox4x32-10) ---- */
+
+/* A uniform in (0, 1) and a standard normal, each a pure function of
+ * (seed, sample, draw): the same for any thread or order. */
+double jc_random_uniform(uint64_t seed, uint64_t sample, uint32_t draw);
+double jc_random_normal(uint64_t seed, uint64_t sample, uint32_t draw);
 
 #endif
