@@ -8,7 +8,8 @@
  *    value finds the right one;
  *  - a hand's push before the free motion is found and left out;
  *  - a wrong --incline is refused naming the video's;
- *  - bad option values: one line, exit 2, no file. */
+ *  - bad option values: one line, exit 2, no file;
+ *  - a stop signal ends a long fit at once, without a report. */
 #include <jumpcyl/track.h>
 #include "../track/synth_table.h"
 #include "../cli_run.h"
@@ -17,6 +18,7 @@
 #include <gsl/gsl_errno.h>
 #include <stdlib.h>
 #include <sys/stat.h>
+#include <time.h>
 
 static jc_Setup truth(void)
 {
@@ -408,6 +410,40 @@ static int test_examples(void)
     return 0;
 }
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The hoop on a floor with mu_s free takes 13 s (its profile of mu_s):
+ * SIGTERM after 1.5 s ends it at the fit's next iteration (the progress
+ * callback tells the library to stop), exit 143, no report. Before, the
+ * fit ran to its end and printed it. */
+static int test_stop_signal(void)
+{
+    ENSURE(examples_dir && *examples_dir);
+    char floor[512];
+    snprintf(floor, sizeof floor, "%s/floor.trk", examples_dir);
+    const char *args[] = {"fit", "--track", floor, "--preset", "hoop", "--free", "mu_s,mu_k,restitution", NULL};
+    char out_tmp[64], err_tmp[64];
+    const pid_t pid = cli_run_start(args, NULL, out_tmp, err_tmp);
+    ENSURE(pid > 0);
+    const struct timespec wait = {1, 500000000L};
+    nanosleep(&wait, NULL);
+    const double sent = now_s();
+    kill(pid, SIGTERM);
+    cli_result r = cli_run_wait(pid, out_tmp, err_tmp, 1);
+    const double took = now_s() - sent;
+    printf("SIGTERM during a fit: exit %d %.3f s after the signal, %zu bytes of report\n", r.status, took,
+           r.out ? strlen(r.out) : 0);
+    const int ok = r.status == 143 && took < 3.0 && r.out && r.out[0] == '\0';
+    cli_result_free(&r);
+    ENSURE(ok);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
@@ -421,5 +457,6 @@ int main(int argc, char **argv)
     RUN_TEST(test_wrong_body);
     RUN_TEST(test_bad_options);
     RUN_TEST(test_examples);
+    RUN_TEST(test_stop_signal);
     TEST_MAIN_END();
 }
