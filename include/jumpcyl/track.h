@@ -13,8 +13,9 @@
  * What a video cannot tell is not an error: the track's notes say it, for
  * the caller to show.
  *
- * Reading .trk files uses libxml2 (linked into libjumpcyl), which keeps its
- * own process-wide parser state, set up once and thread-safe.
+ * Reading .trk files uses libxml2 (linked into libjumpcyl), which keeps
+ * process-wide state of its own: a program reading .trk files on several
+ * threads at once calls libxml2's xmlInitParser() once first.
  */
 #ifndef JUMPCYL_TRACK_H
 #define JUMPCYL_TRACK_H
