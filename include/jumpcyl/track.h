@@ -435,7 +435,8 @@ typedef int (*jc_TrackFitProgressFn)(void *ctx, const jc_TrackFitProgress *p);
 
 typedef struct {
     jc_TrackFitParam free[JC_FIT_MAX_PARAMS]; /* the values asked for */
-    int free_count;        /* at most JC_FIT_MAX_PARAMS - 5: the start's 3 and the frame's 2 join them */
+    int free_count;        /* the start's 3 and the frame's 2 join them (unless held or named here):
+                              at most JC_FIT_MAX_PARAMS in all, so up to 9 always fit */
     int hold_start;        /* 0: x0, θ0 and ω0 are fitted with them (the start is never exact);
                               1: held at the start fitted to the first 0.4 s */
     int hold_frame;        /* 0: the frame's tilt and surface are fitted with them (with a

@@ -11,9 +11,11 @@
  *
  * Calls run one way, no file calling back into one that calls it:
  *   read.c -> trk.c, table.c, frame.c, derive.c; derive.c -> rim.c, frame.c;
- *   frame.c, rim.c -> surface.c; everything -> data.c;
+ *   frame.c, rim.c -> surface.c; read.c, trk.c, table.c, frame.c -> data.c;
  *   fit_video.c -> launch.c -> fit.c -> model_path.c, start.c, residuals.c,
- *   fit_params.c, random.c; compare.c -> launch.c; synthetic.c -> read.c. */
+ *   fit_params.c, random.c; model_path.c -> start.c; compare.c -> launch.c,
+ *   model_path.c; synthetic.c -> read.c, data.c, random.c; compare.c,
+ *   launch.c and fit.c check the track with read.c's jc_track_require. */
 #ifndef JUMPCYL_TRACK_INTERNAL_H
 #define JUMPCYL_TRACK_INTERNAL_H
 
