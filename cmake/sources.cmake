@@ -6,9 +6,22 @@ get_filename_component(JC_SOURCE_ROOT "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 set(JC_LIB_SOURCES
   src/status.c src/trigpoly.c src/scan.c src/body.c src/setup.c src/model.c
   src/paper_model.c src/rolling.c src/rolling_phase.c src/sliding.c src/flight.c src/flight_air.c src/impact.c src/mode.c
-  src/simulate.c src/run.c src/record.c src/workspace.c src/ode.c src/dop853.c
+  src/simulate.c src/run.c src/record.c src/workspace.c src/ode.c src/dop853.c src/dop853_control.c
   src/sample_columns.c)
 list(TRANSFORM JC_LIB_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
+
+# Tracked videos (include/jumpcyl/track.h, docs/tracker.md): Tracker's files
+# read (.trk through libxml2, exported tables) or the caller's arrays, the
+# incline frame and what the video tells; the model compared with them and
+# fitted to them (GSL's multifit), synthetic videos (Random123's Philox).
+# Part of the library, in a list of its own: the web build, which has no
+# libxml2, compiles JC_LIB_SOURCES alone.
+set(JC_TRACK_SOURCES
+  src/track/data.c src/track/read.c src/track/trk.c src/track/table.c src/track/frame.c src/track/surface.c
+  src/track/rim.c src/track/derive.c
+  src/track/model_path.c src/track/start.c src/track/residuals.c src/track/fit_params.c src/track/fit.c
+  src/track/launch.c src/track/fit_video.c src/track/compare.c src/track/synthetic.c src/track/random.c)
+list(TRANSFORM JC_TRACK_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 
 # The tool's files that the web page compiles too, so that the page and the
 # tool read a setup and write a run the same way: the setup and simulation

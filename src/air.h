@@ -2,7 +2,9 @@
  * Air and rolling resistance (docs/physics.md, "Air and rolling resistance"),
  * included by internal.h.
  * All optional; with every coefficient 0 the simulator keeps its closed forms
- * and these loads are never evaluated.
+ * and these loads are never evaluated. In rolling they are those of the
+ * rolling law (rolling_law.h), at the rolling velocity; here, those of
+ * sliding and flight, at any velocity.
  *
  * - Drag through the centre C, against its velocity v: -1/2 rho C_d A |v| v,
  *   A = 2 r L (diameter times length, the frontal area in cross-flow).
@@ -18,10 +20,12 @@
  * Both switches are continuous: a sign switch at w = 0 made the integrator
  * chatter for 10^7 steps where the other torques drive w to 0 (found by
  * fuzzing). The rolling phase still treats w = 0 exactly (a turn event and a
- * static check, rolling.c).
+ * static check, rolling_phase.c).
  */
 #ifndef JUMPCYL_AIR_H
 #define JUMPCYL_AIR_H
+
+#include "rolling_law.h"
 
 #include <math.h>
 
@@ -32,24 +36,17 @@ typedef struct {
     double rr_torque_per_N;  /* rolling resistance torque per newton of N (-b sgn w) */
     double air_power_W;      /* rate of energy lost to the air, >= 0 */
 } jc_Loads;
-/* Whether any of them is on; inline: asked at every stage of the drag runs' rolling. */
-static inline int jc_model_has_resistance(const jc_Model *m) { return jc_model_tables(m)->has_resistance; }
-/* rad/s: below this spin rolling resistance ramps linearly to 0. */
-#define JC_RR_BAND_RADPS 1e-3
 
 /* The loads at angle th given by its sine and cosine. Inline: they run at
- * every stage of every step of the drag runs' phases (measured with
- * callgrind: a drag run 1.318M -> 1.227M instructions once inlined). */
+ * every stage of every step of the sliding phase with resistance. */
 static inline void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, double vx, double vy, double w, jc_Loads *out)
 {
     const jc_Setup *s = &m->setup;
     const double d = m->body.cm_offset_m;
-    /* Not hypot: velocities here are far from overflow, and hypot was 1 % of
-     * a drag run's time (measured). In contact (vy = 0) no square root at
-     * all: sqrt(vx^2) is |vx| to the last bit (unless vx^2 underflows, below
-     * 1e-154 m/s), and the root's latency held up every stage of the
-     * rolling and sliding phases with drag (measured: a drag run 3-4 % less
-     * time, the same numbers). */
+    /* Not hypot, a call into libm: velocities here are far from overflow.
+     * In contact (vy = 0) no square root at all: sqrt(vx^2) is |vx| to the
+     * last bit (unless vx^2 underflows, below 1e-154 m/s), and the root's
+     * latency would hold up every stage of the sliding phase with drag. */
     const double speed = vy == 0.0 ? fabs(vx) : sqrt(vx * vx + vy * vy);
     const double r = m->body.radius_m;
     const double cd = s->drag_coefficient, cl = s->lift_coefficient;
@@ -57,10 +54,7 @@ static inline void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, 
      * only the Magnus force uses it: without lift its division is skipped
      * (it waits for the square root above, at every stage of every step). */
     const double spin = cl == 0.0 ? 0.0 : (fabs(r * w) >= speed ? (w > 0.0) - (w < 0.0) : r * w / speed);
-    /* clamp(w / band, -1, 1) as fmax(-1, fmin(1, .)) has it (NaN -> 1),
-     * without the calls into libm, and dividing only inside the band (the
-     * same values: w / band reaches +-1 exactly at w = +-band). */
-    const double roll = !(w < JC_RR_BAND_RADPS) ? 1.0 : (w > -JC_RR_BAND_RADPS ? w / JC_RR_BAND_RADPS : -1.0);
+    const double roll = jc_rr_ramp(w);
     const double q = 0.5 * s->air_density_kgpm3 * 2.0 * m->body.radius_m * s->length_m * speed;
     out->fx_N = q * (-cd * vx + cl * spin * vy);
     out->fy_N = q * (-cd * vy - cl * spin * vx);
@@ -73,97 +67,10 @@ static inline void jc_loads_at(const jc_Model *m, double sin_th, double cos_th, 
     out->air_power_W = q * cd * speed * speed + s->spin_drag_Nms2 * fabs(w) * w * w;
 }
 
-/* Rolling (the centre at r w along the incline, vy = 0) with these loads,
- * by constants of the model taken once per phase: the rolling phase's
- * right-hand side, called at every stage of every step. The same loads as
- * jc_loads_at with vx = r w, vy = 0 (spin ratio 1: the Magnus force is
- * -1/2 rho C_L A (r w)^2 normal to the incline) and the same law as
- * jc_rolling_accel (rolling.c); tests/sim/test_roll_rates.c checks them
- * against each other. Measured with callgrind: the right-hand side 205 ->
- * 114 instructions a call, a drag run 0.951M -> 0.868M; the events' forces
- * too, 0.866M -> 0.851M. */
-typedef struct {
-    double m_kg, r_m, d_m;
-    double ip0_kgm2;       /* I_C + M r^2: I_P = ip0 + 2 M r d cos th */
-    double mrd2_kgm2;      /* 2 M r d */
-    double md_kgm;         /* M d */
-    double mg_cos_N, mg_sin_N;
-    double qcd_kgpm, qcl_kgpm; /* 1/2 rho A C_d, 1/2 rho A C_L (drag = qcd v^2) */
-    double spin_drag_Nms2, rr_m;
-} jc_RollConsts;
-
-static inline void jc_roll_consts(const jc_Model *m, jc_RollConsts *k)
-{
-    const jc_Setup *s = &m->setup;
-    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m, g = s->gravity_mps2;
-    const double half_rho_area = 0.5 * s->air_density_kgpm3 * 2.0 * r * s->length_m;
-    k->m_kg = M;
-    k->r_m = r;
-    k->d_m = d;
-    k->ip0_kgm2 = m->body.inertia_c_kgm2 + M * r * r;
-    k->mrd2_kgm2 = 2.0 * M * r * d;
-    k->md_kgm = M * d;
-    k->mg_cos_N = M * g * m->cos_incline;
-    k->mg_sin_N = M * g * m->sin_incline;
-    k->qcd_kgpm = half_rho_area * s->drag_coefficient;
-    k->qcl_kgpm = half_rho_area * s->lift_coefficient;
-    k->spin_drag_Nms2 = s->spin_drag_Nms2;
-    k->rr_m = s->rolling_resistance_m;
-}
-
-/* th'', N, the drag's x component and b clamp(w / band) at th given by its
- * sine and cosine, spin w (dir: the direction about to be taken when
- * w = 0, against which rolling resistance acts then). */
-static inline void jc_roll_core(const jc_RollConsts *k, double s, double c, double w, int dir, double *thdd,
-                                double *normal, double *fx_N, double *bs_m)
-{
-    const double r = k->r_m, d = k->d_m, md = k->md_kgm;
-    const double rw = r * w, speed = fabs(rw), w2 = w * w;
-    const double fx = -k->qcd_kgpm * speed * rw; /* drag against the centre's velocity */
-    const double fy = -k->qcl_kgpm * rw * rw;    /* Magnus, into the incline for w > 0 */
-    const double torque = ((d * s) * fy - k->spin_drag_Nms2 * w * fabs(w)) - (d * c) * fx;
-    /* b times clamp(w / band, -1, 1), as jc_loads_at; dir at w = 0 */
-    const double roll = w == 0.0 ? (double)dir
-                                 : (!(w < JC_RR_BAND_RADPS) ? 1.0 : (w > -JC_RR_BAND_RADPS ? w / JC_RR_BAND_RADPS : -1.0));
-    const double bs = k->rr_m * roll;
-    /* 1/I_eff and the products that wait for w alone first, the drag's
-     * terms last: each stage waits for the last one's rates (measured with
-     * make bench, alternated with the build before: a drag run 67.2 -> 66.3
-     * us, median of 7; 2 more steps of 468, from the rounding). */
-    const double inv_ieff = 1.0 / (k->ip0_kgm2 + k->mrd2_kgm2 * c - bs * md * s);
-    const double rhs = (d * s - bs) * ((k->mg_cos_N - (md * c) * w2) - fy) +
-                       (r + d * c) * (((md * s) * w2 + k->mg_sin_N) + fx) + torque;
-    const double acc = rhs * inv_ieff;
-    *thdd = acc;
-    *normal = k->mg_cos_N - md * (s * acc + c * w2) - fy;
-    *fx_N = fx;
-    *bs_m = bs;
-}
-
-/* th'', N, and the power lost to the air and to rolling resistance. */
-static inline void jc_roll_rates(const jc_RollConsts *k, double s, double c, double w, int dir, double *thdd,
-                                 double *normal, double *air_power_W, double *rr_power_W)
-{
-    double fx, bs;
-    jc_roll_core(k, s, c, w, dir, thdd, normal, &fx, &bs);
-    const double speed = fabs(k->r_m * w);
-    *air_power_W = k->qcd_kgpm * speed * speed * speed + k->spin_drag_Nms2 * fabs(w) * w * w;
-    *rr_power_W = bs * *normal * w;
-}
-
-/* th'', N and the friction force F (the rolling phase's events). */
-static inline void jc_roll_forces(const jc_RollConsts *k, double s, double c, double w, int dir, double *thdd,
-                                  double *normal, double *friction_N)
-{
-    double fx, bs;
-    jc_roll_core(k, s, c, w, dir, thdd, normal, &fx, &bs);
-    *friction_N = k->m_kg * (k->r_m + k->d_m * c) * *thdd - k->md_kgm * s * w * w - k->mg_sin_N - fx;
-}
-
 /* The air loads at any velocity (flight) by constants of the model taken
- * once per phase: the same as jc_loads_at without rolling resistance (no
- * contact), tests/sim/test_roll_rates.c checks them against it. Measured
- * with callgrind: a drag run 0.851M -> 0.841M instructions. */
+ * once per phase, not at every stage: the same as jc_loads_at without
+ * rolling resistance (no contact); tests/sim/test_rolling_law.c checks them
+ * against it. */
 typedef struct {
     double r_m, d_m;
     double qcd_kgpm, qcl_kgpm; /* 1/2 rho A C_d, 1/2 rho A C_L */
@@ -192,9 +99,8 @@ static inline void jc_air_loads(const jc_AirConsts *k, double sin_th, double cos
     /* The forces per unit speed, and their moment, do not wait for the
      * speed's square root (without lift: with it the spin ratio does);
      * after the root, one product for each force and a product and a
-     * difference for the torque d (sin th fy - cos th fx) - k w |w|
-     * (measured with make bench, alternated with the build before: a drag
-     * run 68.5 -> 66.4 us, median of 9). */
+     * difference for the torque d (sin th fy - cos th fx) - k w |w|: the
+     * stages each wait for the last one's rates. */
     const double fx1 = -k->qcd_kgpm * vx + k->qcl_kgpm * spin * vy;
     const double fy1 = -k->qcd_kgpm * vy - k->qcl_kgpm * spin * vx;
     const double moment1 = (k->d_m * sin_th) * fy1 - (k->d_m * cos_th) * fx1;

@@ -3,12 +3,15 @@
  * stages, error estimate and end rate, written as inline functions of the
  * right-hand side and of the integrated range, so that a phase can make its
  * own instance with its right-hand side inlined into the stages
- * (JC_DOP853_TRY_INSTANCE below). Internal.
+ * (JC_DOP853_TRY_INSTANCE below). It calls only the step size control
+ * (dop853_control.c); the stepper (dop853.c) is built on it, not the other
+ * way round. Internal.
  */
 #ifndef JUMPCYL_DOP853_KERNEL_H
 #define JUMPCYL_DOP853_KERNEL_H
 
-#include "dop853.h"
+#include "dop853_control.h"
+#include "dop853_state.h"
 
 #include <math.h>
 
@@ -47,19 +50,15 @@ static const double JC_DOP_BHH[3] = {0.244094488188976377952755905512e+00, 0.733
 
 /* The input of stage s, y0 + h sum_j a_sj k_j (k1 = f0, k13 = f1), the
  * Butcher matrix written out row by row so that the coefficients are
- * constants and the loop over components is vectorized (measured: a
- * generic loop over a table of rows took 40 % of a run's instructions;
- * written out, the run takes 23 % fewer). The last stage's term is added
- * apart, (y0 + h sum_{j<last}) + (h a_s,last) k_last: each stage waits for
- * the one before it, and this way only a multiply and an add lie between
- * that stage's rates and this one's input, where the sum of all the terms,
- * times h, plus y0 put four there (measured with make bench, alternated
- * with the build before: a drag run 72.2-72.7 -> 69.4-69.7 us; the same
- * instructions, rounding moved by an ulp). */
+ * constants and the loop over components is vectorized (a generic loop
+ * over a table of rows was the largest part of a run's work). The
+ * last stage's term is added apart, (y0 + h sum_{j<last}) + (h a_s,last)
+ * k_last: each stage waits for the one before it, and this way only a
+ * multiply and an add lie between that stage's rates and this one's input,
+ * where the sum of all the terms, times h, plus y0 put four there. */
 /* Inlined into every specialization of stages() in dop853.c and into each
  * phase's instance, where its ranges are constants (GCC otherwise kept one
- * copy out of line with a runtime range: callgrind, the paper's run 223k
- * -> 237k instructions). */
+ * copy out of line with a runtime range). */
 #if defined(__GNUC__)
 #define JC_ALWAYS_INLINE inline __attribute__((always_inline))
 #else
@@ -286,25 +285,19 @@ static JC_ALWAYS_INLINE double jc_dop853_try_n(jc_Dop853 *d, jc_DopRhs rhs, void
  * pointer at every stage, and each stage's rates reach the next stage's
  * input in registers, not through a call and memory. The same operations
  * in the same order: the same numbers to the last bit
- * (tests/sim/test_dop853.c). A check of the range at each step made a
- * drag run 60.1 -> 65.2 us (alternated medians of 7): the phases name the
- * range once instead. Measured with make bench, alternated with the
- * generic stepper: a drag run 63.6 -> 58.7 us, a paper run 17.7 -> 17.3
- * us (median of 7 each; the instructions the same to 0.3 %).
- * In the web page's module each instance is the generic stepper, for the
- * page's download: inlined, the four instances made jumpcyl.wasm 18 kB
- * (9 %) larger (197.4 -> 215.4 kB; natively the library's code grows by
- * 50 kB). */
+ * (tests/sim/test_dop853.c). The phases name the range once, for both: a
+ * check of the range at each step cost more than the instance saves.
+ * In the web page's module no instance is made: the name is a null
+ * jc_DopTry, and ode.c steps with the generic stepper (jc_dop853_try), for
+ * the page's download size (the instances make the module larger). A null
+ * pointer, not a function calling jc_dop853_try, so that this header calls
+ * nothing in dop853.c, which includes it. */
 #if defined(__EMSCRIPTEN__)
-#define JC_DOP853_TRY_INSTANCE(name, rhs, first, dim)                                                             \
-    static double name(jc_Dop853 *d, void *ctx, double h, double *h_next)                                        \
-    {                                                                                                             \
-        return jc_dop853_try(d, rhs, ctx, h, h_next);                                                            \
-    }
+#define JC_DOP853_TRY_INSTANCE(name, rhs, first, dim) static const jc_DopTry name = 0;
 #else
-/* flatten: everything called inside is inlined. Without it GCC kept the
- * right-hand side out of line in the stage loop, called as before, and
- * the drag run its 63.6 us (measured). */
+/* flatten: everything called inside is inlined. Without it GCC keeps the
+ * right-hand side out of line in the stage loop, called through the
+ * pointer as by the generic stepper. */
 #if defined(__GNUC__)
 #define JC_FLATTEN __attribute__((flatten))
 #else

@@ -16,8 +16,8 @@
 #include <math.h>
 
 /* The remainders of cos and sin after their Taylor terms, without
- * cancellation, from one sincos of u/2 (measured: three separate sines per
- * evaluation made the flight search a quarter of a run's time). */
+ * cancellation, from one sincos of u/2 (three separate sines per
+ * evaluation made the flight search a large part of a run's time). */
 typedef struct {
     double rem2; /* 1 - u^2/2 - cos u */
     double rem1; /* sin u - u */
@@ -159,11 +159,6 @@ static jc_State flight_state(const flight *f, double t, double t0)
     return s;
 }
 
-double jc_flight_gap(const jc_Model *m, const jc_State *s)
-{
-    return s->y_m - m->body.radius_m;
-}
-
 /* Time after which the gap is surely negative: the centre of mass has fallen
  * below r - d, so no point of the rim can still be above the incline. */
 static double fall_bound(const flight *f)
@@ -234,12 +229,11 @@ static double gap_rate_root(const flight *f, double a, double b)
  * Between two of them gap' is monotone: it has at most one root there, a
  * maximum of the gap exactly where gap' goes from + to - across the piece
  * (k >= 1: gap' decreases all along, one piece). Each such root is polished
- * by safeguarded Newton. This replaced a scan of gap' over the whole flight
- * (safe steps under the bound d w^4 on its third derivative; measured with
- * callgrind: a paper run 245k -> 234k instructions, hop heights the same
- * to 2e-15); the scan stays for flights of more than GAP_PIECES_MAX
- * pieces. tests/sim/test_flight.c holds the hop height to a fine grid of
- * the gap. */
+ * by safeguarded Newton: a few evaluations per piece, where a scan of gap'
+ * over the whole flight (safe steps under the bound d w^4 on its third
+ * derivative) takes many; the hop heights are the same to 2e-15. The scan
+ * stays for flights of more than GAP_PIECES_MAX pieces.
+ * tests/sim/test_flight.c holds the hop height to a fine grid of the gap. */
 static int largest_gap(const flight *f, double T, gsl_root_fsolver *brent, double *hop, char *err, size_t err_len)
 {
     const double d = f->m->body.cm_offset_m, w = f->w, gc = f->m->setup.gravity_mps2 * f->m->cos_incline;
@@ -290,7 +284,7 @@ static int emit_samples(jc_Sim *sim, const flight *f, double t0, double t_end)
     while (jc_record_sample_due(sim, t_end, &ts)) {
         jc_State s = flight_state(f, ts - t0, t0);
         s.t_s = ts; /* the grid time itself: t0 + (ts - t0) may round below it */
-        int st = jc_record_sample(sim, &s, JC_MODE_FLIGHT, 0.0, 0.0);
+        int st = jc_record_sample(sim, &s, JC_MODE_FLIGHT, 0.0, 0.0, jc_flight_gap(f->m, &s));
         if (st != JC_OK) return st;
     }
     return JC_OK;
@@ -354,8 +348,7 @@ int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, 
          * some fivefold each from 1 ps (15 to 19 steps per lift-off). So up
          * to |u| = 2 kappa, where the gap is at least d kappa^4 2/3 (far
          * above its rounding for kappa >= 1e-2), only the ramp's ends are
-         * searched; the gap from there on. Measured with callgrind: a paper
-         * run took 400k instructions with the crawl, 382k without. */
+         * searched; the gap from there on, which spares the crawl. */
         const double t_open = fmin(2.0 * kappa / fabs(f.w), horizon);
         if (t_open > t_start) {
             int st = jc_scan_fns_with(fns + 1, 2, t_start, t_open, tol, sim->ws->brent, &hit, err, err_len);

@@ -22,8 +22,7 @@ typedef struct {
 static void flight_ode_consts(const jc_Model *m, flight_ode *c)
 {
     /* Reciprocals from the model, as in sliding.c: three divisions at every
-     * stage of every step, on its chain of dependent operations (measured:
-     * user time of 4500 drag runs 0.51 -> 0.47 s, the same instructions). */
+     * stage of every step would lie on its chain of dependent operations. */
     const jc_ModelTables *tb = jc_model_tables(m);
     jc_air_consts(m, &c->air);
     c->inv_m_per_kg = tb->inv_mass_per_kg;
@@ -97,7 +96,7 @@ static int flight_ode_sample(jc_Sim *sim, void *params, double t, const double y
     (void)params;
     jc_State s;
     jc_y_to_state(y, t, &s);
-    return jc_record_sample_y(sim, &s, y, JC_MODE_FLIGHT, 0.0, 0.0);
+    return jc_record_sample_y(sim, &s, y, JC_MODE_FLIGHT, 0.0, 0.0, jc_flight_gap(sim->m, &s));
 }
 
 #define FLIGHT_MAX_APEXES 100000L
@@ -105,10 +104,9 @@ static int flight_ode_sample(jc_Sim *sim, void *params, double t, const double y
 /* An apex (or a dip) of the centre is passed through, not a phase's end:
  * its height from the continuous extension (there vy = 0: an error in its
  * time changes the height in second order only), the event's sign flipped,
- * and the integration goes on in the same step. Stopping there cost a
- * located real step, a restart and the rest of the step again (callgrind:
- * a drag run has about 7 apexes; 1.121M -> 1.061M instructions, the
- * paper's three drag runs 486 -> 470 steps). */
+ * and the integration goes on in the same step. Stopping there would cost
+ * a located real step, a restart and the rest of the step again (a drag
+ * run has about 7 apexes). */
 static int flight_ode_pass(jc_Sim *sim, void *params, int k, double t, const double y[])
 {
     (void)t;

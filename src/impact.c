@@ -157,8 +157,7 @@ void jc_impact_input(const jc_Model *m, const jc_State *s, jc_ImpactInput *in)
     const double r = m->body.radius_m, d = m->body.cm_offset_m;
     const double w = s->omega_radps;
     /* The inline sincos, not libm's sin and cos (each a call through the
-     * PLT): with jc_impact_apply_law's, 2.4k of a paper run's 224k
-     * instructions went to them (callgrind). */
+     * PLT). */
     double sn, cs;
     jc_sincos(s->theta_rad, &sn, &cs);
     const double rx = -d * sn, ry = -(r + d * cs);

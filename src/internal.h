@@ -3,6 +3,7 @@
 #define JUMPCYL_INTERNAL_H
 
 #include "jumpcyl/jumpcyl.h"
+#include "rolling_law.h"
 #include "sincos.h"
 
 #include <gsl/gsl_integration.h>
@@ -28,6 +29,9 @@ typedef struct {
     jc_TrigLin inertia_p_poly; /* I_P(th) */
     /* The paper's Eq. 9 as (LHS - RHS) * d cos th * den, > 0 on the jump side. */
     jc_TrigLin paper_poly;
+    /* The rolling law's constants (rolling_law.h): with the model's
+     * resistances, and without them (the exact rolling model). */
+    jc_RollConsts roll, roll_bare;
     int has_resistance;        /* air or rolling resistance on */
     double inv_mass_per_kg;    /* 1 / M */
     double inv_inertia_g;      /* 1 / I_G, 1/(kg m^2) */
@@ -37,6 +41,9 @@ static inline const jc_ModelTables *jc_model_tables(const jc_Model *m)
 {
     return (const jc_ModelTables *)(const void *)m->internal.reserved;
 }
+/* Whether air or rolling resistance is on; inline: asked at every stage of
+ * the drag runs' rolling. */
+static inline int jc_model_has_resistance(const jc_Model *m) { return jc_model_tables(m)->has_resistance; }
 
 /* Writes a formatted message into err (if any) and returns status. */
 int jc_fail(char *err, size_t err_len, int status, const char *fmt, ...)
@@ -227,12 +234,12 @@ typedef struct jc_Sim {
 /* ode.c: phases without a closed form, integrated with DOP853 and ended by
  * the first event. The state vector is the same in every mode; it carries
  * cos th and sin th (cos' = -w sin, sin' = w cos), so that no right-hand side
- * computes a sine (measured: sincos was 26 % of a run's time before). */
+ * computes a sine. */
 /* Ordered so that a phase integrates a range of the vector and carries the
- * rest unchanged: sliding without resistance the first 7 (y, vy are
- * constant in contact; measured: 7 components instead of 11 take a
- * quarter fewer instructions per step), with it the first 9, rolling with
- * resistance th to rr (x and vx follow from th and w), flight all. */
+ * rest unchanged, fewer components being less work per stage: sliding
+ * without resistance the first 7 (y, vy are constant in contact), with it
+ * the first 9, rolling with resistance th to rr (x and vx follow from th
+ * and w), flight all. */
 enum { JC_Y_X, JC_Y_VX, JC_Y_TH, JC_Y_W, JC_Y_COS, JC_Y_SIN, JC_Y_FRICTION, JC_Y_AIR, JC_Y_RR, JC_Y_Y, JC_Y_VY,
        JC_Y_DIM };
 #define JC_ODE_MAX_EVENTS 8
@@ -275,11 +282,14 @@ int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, in
 void jc_energies_sc(const jc_Model *m, const jc_State *s, double sn, double cs, double *kinetic_J,
                     double *potential_J);
 
-/* record.c: pushes a trajectory sample (derived fields computed here). */
-int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N);
+/* record.c: pushes a trajectory sample: the contact force and, in
+ * flight, the gap (jc_flight_gap) given by the phase, the other derived
+ * fields computed here. */
+int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N,
+                     double gap_m);
 /* The sample with the losses carried in y (ode phases). */
 int jc_record_sample_y(jc_Sim *sim, const jc_State *s, const double y[], jc_Mode mode, double normal_N,
-                       double friction_N);
+                       double friction_N, double gap_m);
 /* Whether a fixed-step sample falls in (.., t_end]; its time in *t. A 1
  * takes that sample off the schedule (the counter advances): the caller
  * records it with jc_record_sample, so the loop always moves on. */
@@ -297,22 +307,16 @@ int jc_record_push(jc_Sim *sim);
 
 #include "air.h"
 
-/* rolling.c: rolling accelerations and contact force; loads NULL for none. */
-void jc_rolling_accel(const jc_Model *m, double sin_th, double cos_th, double w, const jc_Loads *loads, double *thdd,
-                   double *normal, double *friction);
+/* rolling.c: the rolling law (rolling_law.h) at th of the model's exact
+ * rolling model, without loads (sin and cos from libm). */
 void jc_rolling_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction);
-/* With the model's loads at the rolling velocity; dir is the direction for
- * rolling resistance when w = 0. */
-void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
-                jc_Loads *loads);
-void jc_rolling_at_sc(const jc_Model *m, double sin_th, double cos_th, double w, int dir, double *thdd, double *normal,
-                   double *friction, jc_Loads *loads);
-/* I_P at th given by its cosine; inline: the rolling time's integrand
- * evaluates it at every node. */
+/* The same with the model's resistances when it has any; dir is the
+ * direction for rolling resistance when w = 0. */
+void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction);
+/* I_P at th given by its cosine. */
 static inline double jc_rolling_inertia_p(const jc_Model *m, double cos_th)
 {
-    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    return m->body.inertia_c_kgm2 + M * r * r + 2.0 * M * r * d * cos_th;
+    return jc_roll_inertia_p(&jc_model_tables(m)->roll_bare, cos_th);
 }
 /* The rolling path from a state (th, w): its functions of th for the state's
  * energy, cleared of positive factors: I_P w^2, N I_P^2, F I_P^2 and
@@ -339,7 +343,9 @@ void jc_sliding_at(const jc_Model *m, const jc_State *s, int dir, jc_SlidingForc
 int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len);
 
 /* flight.c */
-double jc_flight_gap(const jc_Model *m, const jc_State *s); /* rim's lowest point above the incline */
+/* The gap: the rim's lowest point above the incline (inline: the flight
+ * phases and the driver give it to the recorder with each sample). */
+static inline double jc_flight_gap(const jc_Model *m, const jc_State *s) { return s->y_m - m->body.radius_m; }
 int jc_flight_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len);
 /* flight_air.c: the same with air or rolling resistance on (an ODE), called by jc_flight_phase. */
 int jc_flight_air_phase(jc_Sim *sim, int from_liftoff, jc_PhaseEnd *end, char *err, size_t err_len);

@@ -15,7 +15,7 @@ double jc_free_gap_accel(const jc_Model *m, const jc_State *s)
 {
     const double d = m->body.cm_offset_m, th = s->theta_rad, w = s->omega_radps;
     double sn, cs;
-    jc_sincos(th, &sn, &cs); /* inline: libm's pair was 0.7k of a paper run's 224k instructions */
+    jc_sincos(th, &sn, &cs); /* inline: libm's sin and cos are calls through the PLT */
     double acc = d * w * w * cs - m->setup.gravity_mps2 * m->cos_incline;
     if (jc_model_has_resistance(m)) {
         jc_Loads l;
@@ -72,7 +72,7 @@ jc_ModeChoice jc_mode_choose(const jc_Model *m, const jc_State *s, int allow_rol
     }
     double thdd, normal, friction;
     const int roll_dir = s->omega_radps > 0.0 ? 1 : (s->omega_radps < 0.0 ? -1 : 0);
-    jc_rolling_at(m, s->theta_rad, s->omega_radps, roll_dir, &thdd, &normal, &friction, NULL);
+    jc_rolling_at(m, s->theta_rad, s->omega_radps, roll_dir, &thdd, &normal, &friction);
     if (allow_roll && normal > 0.0 && fabs(friction) <= m->setup.mu_static * normal) {
         if (s->omega_radps == 0.0 && thdd == 0.0) return CHOICE_REST;
         return CHOICE_ROLL;

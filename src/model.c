@@ -3,7 +3,10 @@
  * Built once, then only read: any number of predictions and runs may share it.
  *
  * The rolling quantities are stored as the exact functions of th they are
- * (docs/physics.md §2), cleared of the positive factor I_P(th):
+ * (docs/physics.md §2), cleared of the positive factor I_P(th): the rolling
+ * law of rolling_law.h without loads (th'', N, F at a state), times I_P^2,
+ * with w^2 from the energy integral, so that rolling from a start is a set
+ * of functions of th alone, which the crossing search (scan.c) needs:
  *   P(th)      = I_P w^2        = e - 2 U(th),  e = I_P(th0) w0^2 + 2 U(th0)
  *   Z(th)      = I_P^2 th''     = M g Q I_P + M r d sin(th) P
  *   N I_P^2    = M [ g cos(a) I_P^2 - d sin(th) Z - d cos(th) P I_P ]
@@ -14,6 +17,8 @@
  * with I_P = I_C + M r^2 + 2 M r d cos th,
  *      U   = M g [ (r + d cos th) cos a - (r th + d sin th) sin a ],
  *      Q   = (r + d cos th) sin a + d sin th cos a.
+ * The model also keeps the rolling law's constants, with its resistances
+ * and without them (jc_RollConsts).
  */
 #include "internal.h"
 
@@ -111,6 +116,8 @@ int jc_model_init(jc_Model *model, const jc_Setup *setup, char *err, size_t err_
     _Static_assert(sizeof(jc_ModelTables) <= sizeof model->internal.reserved, "jc_Model's private room is too small");
     jc_ModelTables *tb = (jc_ModelTables *)(void *)model->internal.reserved;
     tb->has_resistance = jc_setup_has_resistance(setup);
+    jc_roll_consts(model, 1, &tb->roll);
+    jc_roll_consts(model, 0, &tb->roll_bare);
     tb->inv_mass_per_kg = 1.0 / model->body.mass_kg;
     tb->inv_inertia_g = 1.0 / model->body.inertia_g_kgm2;
     if (build_rolling(model, tb) != JC_OK || build_paper(model, tb) != JC_OK)

@@ -264,8 +264,8 @@ int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, in
      * converts, the kinetic energy now plus M g (r + d + L sin a), the
      * accuracy to which K + U themselves are known: on their own size, a
      * loss starting at 0 held every sliding step to the absolute
-     * tolerance. Measured: the paper's three runs 75 -> 63 steps, with
-     * drag 542 -> 510; first lift-off unchanged to 2e-13 s. */
+     * tolerance, with steps the motion did not need (first lift-off the
+     * same to 2e-13 s with either scale). */
     const jc_Model *m = sim->m;
     double energy_scale_J =
         jc_kinetic_energy(m, &sim->s) +
@@ -276,9 +276,7 @@ int jc_ode_run_with(jc_Sim *sim, const jc_OdePhase *p, const jc_OdeExtras *x, in
     /* The centre's velocity components on the body's speed (the centre's
      * and the rim's), not on their own size: vy passes through 0 at every
      * apex of a flight, where its own size held the steps of the drag runs'
-     * flights (measured: the component that limited 157 of their 247
-     * steps; with this floor the drag runs take 515 -> 486 steps, the
-     * paper's 58 -> 55). */
+     * flights (it limited most of them). */
     const double speed_scale_mps =
         sqrt(sim->s.vx_mps * sim->s.vx_mps + sim->s.vy_mps * sim->s.vy_mps) +
         m->body.radius_m * fabs(sim->s.omega_radps);

@@ -61,7 +61,8 @@ static long long grid_index_after(double t, double dt)
     return k > 0.0 ? (long long)k : 0;
 }
 
-int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N)
+int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal_N, double friction_N,
+                     double gap_m)
 {
     if (!sim->trace.rec->sample || sim->trace.sample_limit_hit) return JC_OK;
     if (sim->trace.samples_made >= sim->opt->max_samples) {
@@ -81,9 +82,8 @@ int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal
     p.normal_N = normal_N;
     p.friction_N = friction_N;
     p.slip_mps = mode == JC_MODE_FLIGHT ? 0.0 : s->vx_mps - m->body.radius_m * s->omega_radps;
-    p.gap_m = mode == JC_MODE_FLIGHT ? jc_flight_gap(m, s) : 0.0;
-    /* the sample's own sine and cosine, not three more (callgrind:
-     * jc_record_sample 490 -> 313 instructions) */
+    p.gap_m = mode == JC_MODE_FLIGHT ? gap_m : 0.0;
+    /* the sample's own sine and cosine, not three more */
     jc_energies_sc(m, s, sn, cs, &p.kinetic_J, &p.potential_J);
     p.friction_loss_J = sim->friction_loss_J;
     p.impact_loss_J = sim->impact_loss_J;
@@ -101,13 +101,13 @@ int jc_record_sample(jc_Sim *sim, const jc_State *s, jc_Mode mode, double normal
 }
 
 int jc_record_sample_y(jc_Sim *sim, const jc_State *s, const double y[], jc_Mode mode, double normal_N,
-                    double friction_N)
+                       double friction_N, double gap_m)
 {
     const double saved[3] = {sim->friction_loss_J, sim->air_loss_J, sim->rr_loss_J};
     sim->friction_loss_J = y[JC_Y_FRICTION];
     sim->air_loss_J = y[JC_Y_AIR];
     sim->rr_loss_J = y[JC_Y_RR];
-    const int st = jc_record_sample(sim, s, mode, normal_N, friction_N);
+    const int st = jc_record_sample(sim, s, mode, normal_N, friction_N, gap_m);
     sim->friction_loss_J = saved[0];
     sim->air_loss_J = saved[1];
     sim->rr_loss_J = saved[2];

@@ -28,13 +28,17 @@ static double potential(const jc_Model *m, double th, double s, double c)
     return M * m->setup.gravity_mps2 * ((r + d * c) * m->cos_incline - (r * th + d * s) * m->sin_incline);
 }
 
-/* th'' for a given w^2 (physics.md §2), at th given by its sine and cosine. */
-static double angular_accel(const jc_Model *m, double s, double c, double w2)
+/* The rolling law (rolling_law.h) of model m, with its resistances when
+ * loaded is 1, at th given by its sine and cosine. */
+static void law_at(const jc_Model *m, int loaded, double s, double c, double w, int dir, double *thdd,
+                   double *normal, double *friction)
 {
-    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    const double g = m->setup.gravity_mps2;
-    const double torque = M * g * ((r + d * c) * m->sin_incline + d * s * m->cos_incline);
-    return (torque + M * r * d * s * w2) / jc_rolling_inertia_p(m, c);
+    const jc_ModelTables *tb = jc_model_tables(m);
+    jc_RollForces f;
+    jc_roll_law(loaded ? &tb->roll : &tb->roll_bare, s, c, w, dir, &f);
+    *thdd = f.thdd_radps2;
+    *normal = f.normal_N;
+    *friction = f.friction_N;
 }
 
 /* Direction of motion along th at the start (th0 given by its sine and
@@ -43,68 +47,21 @@ static int start_direction(const jc_Model *m, double s0, double c0)
 {
     const double w0 = m->setup.omega0_radps;
     if (w0 != 0.0) return w0 > 0.0 ? 1 : -1;
-    const double a0 = angular_accel(m, s0, c0, 0.0);
+    double a0, n, f;
+    law_at(m, 0, s0, c0, 0.0, 0, &a0, &n, &f);
     return a0 > 0.0 ? 1 : (a0 < 0.0 ? -1 : 0);
-}
-
-/* Rolling with loads (air force (Fx, Fy) at C, torque T about G, rolling
- * resistance b sgn(w) = bs): with x_C'' = r th'' and y_C'' = 0,
- *   (I_P - bs M d sin th) th'' = (d sin th - bs)(M g cos a - M d cos th w^2 - Fy)
- *                              + (r + d cos th)(M d sin th w^2 + M g sin a + Fx) + T,
- * which without loads is I_P th'' = M g Q + M r d sin th w^2 (physics.md §2).
- * Then F and N follow from Newton's law for G. */
-void jc_rolling_accel(const jc_Model *m, double s, double c, double w, const jc_Loads *l, double *thdd, double *normal,
-                   double *friction)
-{
-    const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
-    const double g = m->setup.gravity_mps2, w2 = w * w;
-    if (!l) {
-        /* The closed-form model's own expressions, kept exact for it. */
-        const double acc = angular_accel(m, s, c, w2);
-        *thdd = acc;
-        *normal = M * (g * m->cos_incline - d * s * acc - d * c * w2);
-        *friction = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline);
-        return;
-    }
-    const double bs = -l->rr_torque_per_N, fx = l->fx_N, fy = l->fy_N;
-    const double ieff = jc_rolling_inertia_p(m, c) - bs * M * d * s;
-    const double rhs = (d * s - bs) * (M * g * m->cos_incline - M * d * c * w2 - fy) +
-                       (r + d * c) * (M * d * s * w2 + M * g * m->sin_incline + fx) + l->torque_Nm;
-    const double acc = rhs / ieff;
-    *thdd = acc;
-    *normal = M * (g * m->cos_incline - d * s * acc - d * c * w2) - fy;
-    *friction = M * ((r + d * c) * acc - d * s * w2 - g * m->sin_incline) - fx;
 }
 
 void jc_rolling_forces(const jc_Model *m, double th, double w, double *thdd, double *normal, double *friction)
 {
-    jc_rolling_accel(m, sin(th), cos(th), w, NULL, thdd, normal, friction);
+    law_at(m, 0, sin(th), cos(th), w, 0, thdd, normal, friction);
 }
 
-void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction,
-                jc_Loads *loads)
+void jc_rolling_at(const jc_Model *m, double th, double w, int dir, double *thdd, double *normal, double *friction)
 {
-    /* The inline sincos, not libm's sin and cos (calls through the PLT;
-     * callgrind: a paper run 215.8k -> 215.1k instructions). */
     double s, c;
     jc_sincos(th, &s, &c);
-    jc_rolling_at_sc(m, s, c, w, dir, thdd, normal, friction, loads);
-}
-
-void jc_rolling_at_sc(const jc_Model *m, double s, double c, double w, int dir, double *thdd, double *normal,
-                   double *friction, jc_Loads *loads)
-{
-    if (!jc_model_has_resistance(m)) {
-        jc_rolling_accel(m, s, c, w, NULL, thdd, normal, friction);
-        if (loads) *loads = (jc_Loads){0};
-        return;
-    }
-    jc_Loads l;
-    jc_loads_at(m, s, c, m->body.radius_m * w, 0.0, w, &l);
-    /* At w = 0 rolling resistance opposes the direction about to be taken. */
-    if (w == 0.0) l.rr_torque_per_N = -m->setup.rolling_resistance_m * dir;
-    jc_rolling_accel(m, s, c, w, &l, thdd, normal, friction);
-    if (loads) *loads = l;
+    law_at(m, jc_model_has_resistance(m), s, c, w, dir, thdd, normal, friction);
 }
 
 int jc_rolling_state(const jc_Model *m, double th, jc_RollingState *out, char *err, size_t err_len)
@@ -114,9 +71,7 @@ int jc_rolling_state(const jc_Model *m, double th, jc_RollingState *out, char *e
     const double th0 = m->setup.theta0_rad, w0 = m->setup.omega0_radps;
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     const double g = m->setup.gravity_mps2;
-    /* One inline sincos for th and one for th0, shared by every term below
-     * (callgrind: a rolling prediction at 30 deg 15.8k -> 15.1k
-     * instructions, with jc_rolling_path_init's). */
+    /* One inline sincos for th and one for th0, shared by every term below. */
     double s, c, s0, c0;
     jc_sincos(th, &s, &c);
     jc_sincos(th0, &s0, &c0);
@@ -133,7 +88,7 @@ int jc_rolling_state(const jc_Model *m, double th, jc_RollingState *out, char *e
     const double w2 = two_ke / ip;
     out->theta_rad = th;
     out->omega_radps = start_direction(m, s0, c0) * sqrt(w2);
-    jc_rolling_accel(m, s, c, out->omega_radps, NULL, &out->alpha_radps2, &out->normal_N, &out->friction_N);
+    law_at(m, 0, s, c, out->omega_radps, 0, &out->alpha_radps2, &out->normal_N, &out->friction_N);
     out->x_m = r * (th - th0);
     out->kinetic_J = 0.5 * two_ke;
     out->potential_J = u - u0;
@@ -171,8 +126,7 @@ int jc_rolling_predict(const jc_Model *m, jc_RollingResult *out, char *err, size
     out->end_theta_rad = th_end;
 
     /* One prepared set for both scans (to the first event, then on past a
-     * slip for the lift-off): its bounds are computed once (callgrind: at
-     * 30 deg 16.4k -> 15.8k instructions a prediction). */
+     * slip for the lift-off): its bounds are computed once. */
     jc_ScanSet set = {WATCH_COUNT, {watch[0], watch[1], watch[2], watch[3]}, {1.0, 1.0, 1.0, 1.0}};
     jc_TrigScan scan;
     jc_trig_scan_init(&scan, &set);

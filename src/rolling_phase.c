@@ -26,18 +26,16 @@
  * rounding). The change is written without cancellation for small delta:
  * cos(a + delta) - cos a = -2 sin(a + delta/2) sin(delta/2), likewise for
  * sin; every angle is built from sin and cos of the anchor (kept) and of
- * delta/2, one sincos per point (measured: the integrand with three sines
- * and a trigonometric-polynomial I_P was 20 % of a run's time). */
+ * delta/2: one sincos per point, the integrand's main cost. */
 typedef struct {
     double sigma;        /* th = anchor + sigma u^2 */
     double sin_a, cos_a; /* of the anchor */
     double p0, p1;       /* P and sigma * P' at the anchor */
     int linear;          /* 1: th = anchor + sigma u instead, dt/du = 1 / |w| */
-    /* The model's products the integrand uses, formed once per piece (the
-     * same values: each is a leading product of the expression it stands
-     * in): I_P = ip0 + ip1 cos th; U's change is mg (dca dcos - sin a (r
-     * delta + d dsin)). Callgrind: 121 integrand values a paper run, 157
-     * -> 140 instructions each (a run 217.8k -> 215.8k). */
+    /* The model's products the integrand uses, formed once per piece, not
+     * at every point (the same values: each is a leading product of the
+     * expression it stands in): I_P = ip0 + ip1 cos th; U's change is mg
+     * (dca dcos - sin a (r delta + d dsin)). */
     double ip0, ip1, mg, dca, sin_inc, r, d;
 } time_integrand;
 
@@ -47,14 +45,15 @@ static time_integrand time_integrand_at(const jc_Model *m, double sigma, double 
     const double M = m->body.mass_kg, r = m->body.radius_m, d = m->body.cm_offset_m;
     double sa, ca;
     jc_sincos(anchor, &sa, &ca); /* inline: libm's sin and cos are calls through the PLT */
+    const jc_RollConsts *k = &jc_model_tables(m)->roll_bare;
     return (time_integrand){sigma,
                             sa,
                             ca,
                             p0,
                             p1,
                             linear,
-                            m->body.inertia_c_kgm2 + M * r * r,
-                            2.0 * M * r * d,
+                            k->ip0_kgm2,
+                            k->mrd2_kgm2,
                             M * m->setup.gravity_mps2,
                             d * m->cos_incline,
                             m->sin_incline,
@@ -70,7 +69,7 @@ static double dt_du(double u, void *params)
     jc_sincos(0.5 * delta, &sh, &ch);
     const double s_mid = ti->sin_a * ch + ti->cos_a * sh, c_mid = ti->cos_a * ch - ti->sin_a * sh;
     const double c_th = c_mid * ch - s_mid * sh; /* cos(anchor + delta) */
-    const double ip = ti->ip0 + ti->ip1 * c_th;  /* jc_rolling_inertia_p */
+    const double ip = ti->ip0 + ti->ip1 * c_th;  /* jc_roll_inertia_p */
     if (u == 0.0 && !ti->linear) return ti->p0 > 0.0 || ti->p1 <= 0.0 ? 0.0 : 2.0 / sqrt(ti->p1 / ip);
     const double dcos = -2.0 * s_mid * sh, dsin = 2.0 * c_mid * sh;
     const double du = ti->mg * (ti->dca * dcos - ti->sin_inc * (ti->r * delta + ti->d * dsin));
@@ -80,17 +79,14 @@ static double dt_du(double u, void *params)
 }
 
 /* Where neither end is near a turning point (P at each end at least a
- * quarter of P at the other), 1/|w| is smooth in th itself (roll_time now
- * takes that case by qng, the same first rule; the sample walk uses this
- * one with its 15-point rule first): one 21-point
- * Gauss-Kronrod rule over [th_a, th_b], accepted when its error estimate
- * meets what gsl_integration_qng asks of the same rule (1e-13 of the
- * result, or rounding); 1 if it did, with the time in *dt. Measured on the
- * paper's three runs: 5 of their 8 rolling phases settle so, at 21
- * integrand values instead of 42 (two ends of 21 points each; agreeing to
- * 1e-16 s), one falls back (21 more); the phases from rest are not tried.
- * Callgrind: 185 -> 164 integrand values and 321k -> 316k instructions a
- * full run. */
+ * quarter of P at the other), 1/|w| is smooth in th itself: one
+ * Gauss-Kronrod rule over [th_a, th_b] (21 points; the sample walk tries
+ * 15 first), accepted when its error estimate meets what
+ * gsl_integration_qng asks of the same rule (1e-13 of the result, or
+ * rounding); 1 if it did, with the time in *dt. One rule over the piece
+ * instead of one from each end: half the integrand values, the same time
+ * to 1e-16 s. (roll_time takes this case by qng, whose first rule is the
+ * same.) */
 typedef void gk_rule(const gsl_function *f, double a, double b, double *result, double *abserr, double *resabs,
                      double *resasc);
 
@@ -139,9 +135,8 @@ static int roll_piece_with(jc_Sim *sim, double end, double p, double dp, double 
     size_t evals;
     /* GSL's nested Gauss-Kronrod-Patterson rule first (21, 43, 87 points,
      * each reusing the last): the integrand is smooth after the u^2
-     * substitution. Measured on the paper's three runs: 14 of 18 ends
-     * settle at 21 or 43 points, against 21 to 63 for the adaptive
-     * rule; the adaptive rule takes the rest. */
+     * substitution, and most ends settle at 21 or 43 points, fewer than
+     * the adaptive rule takes; the adaptive rule takes the rest. */
     int st = gsl_integration_qng(&fn, 0.0, upper, 0.0, 1e-13, part, &abserr, &evals);
     if (qng_only) return st == GSL_SUCCESS ? JC_OK : JC_ENUMERIC; /* the caller has another way */
     if (st != GSL_SUCCESS)
@@ -165,16 +160,14 @@ static int roll_piece(jc_Sim *sim, double end, double p, double dp, double sigma
 /* With one end near a turning point and the other not, the u^2 piece from
  * the turning end covers this fraction of the range and a piece linear in
  * th, from the other end, the rest: only near the turning point is 1/|w|
- * singular. Measured on the paper's runs that start from rest (0 -> 12.5,
- * 0 -> 6.0 and 0 -> 1.3 rad): 108, 64 and 64 integrand values, where
- * halves with u^2 at both ends took 174, 86 and 64 (fractions 0.05, 0.2,
- * 0.3, 0.5: 108/130/130/174, 108/64/64/64, 108/64/42/42); the times agree
- * to 1e-16 s. */
+ * singular. 0.1 takes the fewest integrand values on the paper's runs from
+ * rest of the fractions tried (docs/performance.md); the times agree with
+ * halves' to 1e-16 s. */
 #define TURN_PIECE 0.1
 /* rad: the longest range taken by one u^2 piece from a turning point (see
  * roll_time). On longer ranges u^2 crowds the path's oscillation in th
- * (cos th, sin th terms of P) into the far end: the 12.5 rad swing from
- * rest took the adaptive fallback (callgrind: 220k -> 234k a run). */
+ * (cos th, sin th terms of P) into the far end: the paper's 12.5 rad swing
+ * from rest needed the adaptive fallback. */
 #define WHOLE_U2_MAX_RAD 1.5707963267948966
 
 /* Time to roll from th_a to th_b (either may be a turning point). p_a is
@@ -196,9 +189,8 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
      * linear in th, whose first 21 points are the same Gauss-Kronrod rule
      * with the same test, and which goes on to 43 and 87 points reusing
      * them where the 21 fall short, instead of dropping them for the
-     * halves (found: a 3.2 rad swing of the paper's runs took 21 + 43 + 21
-     * integrand values that way). Callgrind: a paper run 215.1k -> 212.4k
-     * instructions. */
+     * halves (a 3.2 rad swing of the paper's runs took 21 + 43 + 21
+     * integrand values that way). */
     if (smooth_between(p[0], p[1])) {
         if (roll_piece_with(sim, th_a, p[0], dp[0], sig[0], len, 1, 1, dt, NULL, 0) == JC_OK) return JC_OK;
         *dt = 0.0;
@@ -214,14 +206,12 @@ static int roll_time(jc_Sim *sim, const jc_RollingPath *path, double th_a, doubl
              * whole range. With P = 0 at the end, 2 u / |w| is analytic in u
              * up to the other end (no pole near [0, sqrt(len)]), while the
              * split's linear piece, ending 0.1 of the range short of the
-             * turning point, has one close by. Measured on the paper's runs
-             * from rest (0 -> 12.5, 6.0 and 1.3 rad): 87, 87 and 21 integrand
-             * values, where the split took 108, 64 and 64 (times agree to 4e-16
-             * of a 64-piece 21-point reference; qng's own estimate failed the
-             * 12.5 rad one, hence WHOLE_U2_MAX_RAD); callgrind: a paper run
-             * 220.4k -> 217.7k instructions. Where the other end is near a
-             * turning point too (a creep, P small at both ends), qng fails:
-             * then the split (found in tests/sim/test_random_setups.c). */
+             * turning point, has one close by: fewer integrand values over
+             * the paper's runs from rest, the times within 4e-16 of a
+             * 64-piece 21-point reference (qng's own estimate failed the
+             * 12.5 rad swing, hence WHOLE_U2_MAX_RAD). Where the other end is
+             * near a turning point too (a creep, P small at both ends), qng
+             * fails: then the split (found in tests/sim/test_random_setups.c). */
             if (roll_piece_with(sim, ends[turn], p[turn], dp[turn], sig[turn], len, 0, 1, dt, NULL, 0) == JC_OK)
                 return JC_OK;
             *dt = 0.0;
@@ -312,21 +302,24 @@ static jc_State roll_state_at(const jc_Model *m, const jc_RollingPath *path, con
 }
 
 /* th' = w, th'' = a and th''' = j at th on the path, where I_P w^2 = p
- * (w of sign dir): from I_P a = T(th) + k sin th w^2 (physics.md §2,
- * k = M r d), differentiated along the motion (I_P' = -2 k sin th):
+ * (w of sign dir): a from the rolling law without loads, I_P a = T(th) +
+ * k sin th w^2 (physics.md §2, k = M r d, T = M g Q), and j from it
+ * differentiated along the motion (I_P' = -2 k sin th):
  * I_P j = w (T'(th) + k (cos th w^2 + 4 sin th a)). */
 static void roll_derivs(const jc_Model *m, double th, double p, int dir, double d[3])
 {
-    const double M = m->body.mass_kg, r = m->body.radius_m, dd = m->body.cm_offset_m, g = m->setup.gravity_mps2;
+    const jc_RollConsts *k = &jc_model_tables(m)->roll_bare;
     double s, c;
     jc_sincos(th, &s, &c);
-    const double ip = jc_rolling_inertia_p(m, c), k = M * r * dd;
+    const double ip = jc_roll_inertia_p(k, c);
     const double w = dir * sqrt(p / ip), w2 = w * w;
-    const double a = (M * g * ((r + dd * c) * m->sin_incline + dd * s * m->cos_incline) + k * s * w2) / ip;
-    const double dtorque = M * g * dd * (c * m->cos_incline - s * m->sin_incline);
+    jc_RollForces f;
+    jc_roll_law(k, s, c, w, dir, &f);
+    const double a = f.thdd_radps2;
+    const double dtorque = k->mg_N * k->d_m * (c * k->cos_a - s * k->sin_a);
     d[0] = w;
     d[1] = a;
-    d[2] = w * (dtorque + k * (c * w2 + 4.0 * s * a)) / ip;
+    d[2] = w * (dtorque + k->mrd_kgm2 * (c * w2 + 4.0 * s * a)) / ip;
 }
 
 /* I_P w^2 at th from the swing's start (p0 there) by the exact potential
@@ -365,9 +358,8 @@ static void anchor_at_start(const jc_Model *m, const jc_State *start, int dir,
 }
 
 /* roll_time_one_piece's rule for the short step between two samples: 15
- * Gauss-Kronrod points, or its 21 when they do not meet the same test
- * (measured, paper's cylinder at 30 deg sampled every 1 ms, the floor at
- * 1e-3: 4.59M -> 3.96M instructions a run). */
+ * Gauss-Kronrod points, which mostly meet the test on so short a step, or
+ * its 21 when they do not. */
 static int walk_piece(const jc_Model *m, double th_a, double p_a, double th_b, double p_b, double *dt)
 {
     return roll_time_one_piece_with(gsl_integration_qk15, m, th_a, p_a, th_b, p_b, dt) ||
@@ -377,17 +369,15 @@ static int walk_piece(const jc_Model *m, double th_a, double p_a, double th_b, d
 /* The time after the swing's start at th: from the last anchor by one
  * short Gauss-Kronrod rule where 1/|w| is smooth between the two
  * (walk_piece, with I_P w^2 at th by the exact potential change), else by
- * the quadrature from the swing's start. Measured on the paper's cylinder
- * at 30 deg sampled every 1 ms: 9.18M -> 4.2M instructions a run (the
- * quadrature from the start took 21 to 87 integrand values, or two pieces,
- * at every sample). Not where P is below JC_WALK_P_FLOOR of its scale (near
- * a turning point): chained there too, the times drifted from the whole
- * swing's quadrature by up to 2e-8 of it; with the floor at 1e-3, by up to
- * 2.6e-12 of it, which put an event 1.1e-11 rad off the ODE from the last
- * sample before it; at 1e-2 the worst over eight seeds of
- * tests/sim/test_rolling_samples.c is 0.31 of that test's bound (0.1: 0.07,
- * at 4.9M instructions). p_th: I_P w^2 at th (path_p). 1 when the time
- * is known. */
+ * the quadrature from the swing's start, which takes 21 to 87 integrand
+ * values, or two pieces, at every sample. Not where P is below
+ * JC_WALK_P_FLOOR of its scale (near a turning point): chained there too,
+ * the times drifted from the whole swing's quadrature by up to 2e-8 of it;
+ * with the floor at 1e-3, by up to 2.6e-12 of it, which put an event
+ * 1.1e-11 rad off the ODE from the last sample before it; at 1e-2 the worst
+ * over eight seeds of tests/sim/test_rolling_samples.c is 0.31 of that
+ * test's bound (0.1: 0.07, at more cost). p_th: I_P w^2 at th (path_p). 1
+ * when the time is known. */
 #define JC_WALK_P_FLOOR 1e-2
 static int roll_time_from_anchor(jc_Sim *sim, const jc_RollingPath *path, const jc_State *start, double p_start,
                                  int dir, const roll_anchor *an, double th, double p_th, double *tau)
@@ -480,7 +470,7 @@ static int emit_samples(jc_Sim *sim, const jc_RollingPath *path, const jc_State 
         s.t_s = ts;
         double thdd, n, f;
         jc_rolling_forces(sim->m, th, s.omega_radps, &thdd, &n, &f);
-        if ((st = jc_record_sample(sim, &s, JC_MODE_ROLLING, n, f)) != JC_OK)
+        if ((st = jc_record_sample(sim, &s, JC_MODE_ROLLING, n, f, 0.0)) != JC_OK)
             return jc_fail(err, err_len, st, "out of memory for samples");
     }
     return JC_OK;
@@ -495,7 +485,7 @@ typedef struct {
     int dir;   /* sign of w during the phase */
     int armed; /* 1: watch for w falling into the rolling-resistance band */
     double x0_m, th0_rad; /* at the start of the integration: x = x0 + r (th - th0) */
-    jc_RollConsts k;      /* the right-hand side's constants */
+    jc_RollConsts k;      /* the rolling law's constants, with the model's resistances */
     /* N and F at the last state the events were evaluated at (sin, cos, w):
      * their rates start from there. */
     double at_sin, at_cos, at_w, at_n, at_f;
@@ -503,9 +493,8 @@ typedef struct {
 
 /* Only th, w, cos th, sin th and the losses are integrated (friction's is
  * carried with them, unchanged): x and vx follow from th and w exactly,
- * x = x0 + r (th - th0) and vx = r w, and were a third of the stages' work
- * (callgrind: a drag run 1.061M -> 0.995M instructions with the stages'
- * range chosen once per step, dop853.c; 470 -> 466 steps). */
+ * x = x0 + r (th - th0) and vx = r w, and integrating them was a third of
+ * the stages' work. */
 static double roll_ode_x(const roll_ode *c, double th)
 {
     return c->x0_m + c->m->body.radius_m * (th - c->th0_rad);
@@ -519,7 +508,11 @@ static double roll_ode_x(const roll_ode *c, double th)
 
 static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f)
 {
-    jc_roll_forces(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, thdd, n, f);
+    jc_RollForces rf;
+    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, &rf);
+    *thdd = rf.thdd_radps2;
+    *n = rf.normal_N;
+    *f = rf.friction_N;
 }
 
 static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
@@ -527,9 +520,9 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     (void)t;
     const roll_ode *c = params;
     const double w = y[JC_Y_W];
-    double thdd, n, air_W, rr_W;
-    jc_roll_rates(&c->k, y[JC_Y_SIN], y[JC_Y_COS], w, c->dir, &thdd, &n, &air_W, &rr_W);
-    const double r = c->k.r_m;
+    jc_RollForces rf;
+    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], w, c->dir, &rf);
+    const double r = c->k.r_m, thdd = rf.thdd_radps2;
     dydt[JC_Y_X] = r * w;
     dydt[JC_Y_Y] = 0.0;
     dydt[JC_Y_TH] = w;
@@ -537,8 +530,8 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     dydt[JC_Y_VY] = 0.0;
     dydt[JC_Y_W] = thdd;
     dydt[JC_Y_FRICTION] = 0.0;
-    dydt[JC_Y_AIR] = air_W;
-    dydt[JC_Y_RR] = rr_W;
+    dydt[JC_Y_AIR] = jc_roll_air_power(&c->k, w);
+    dydt[JC_Y_RR] = rf.rr_m * rf.normal_N * w;
     dydt[JC_Y_COS] = -w * y[JC_Y_SIN];
     dydt[JC_Y_SIN] = w * y[JC_Y_COS];
     return 0;
@@ -576,8 +569,8 @@ static void roll_ode_events(void *params, const double y[], double ev[])
  * closed form, those of N and F by a forward difference from y (whose
  * forces the events just computed) over a time far below the rotation
  * period, accurate to ~1e-6 of the rate, ample for the dip check that
- * uses them. ode.c's central difference took two more evaluations of all
- * events per step (callgrind: a drag run 0.988M -> 0.968M instructions). */
+ * uses them. ode.c's central difference takes two more evaluations of all
+ * events per step. */
 static void roll_ode_event_rates(void *params, const double y[], const double f[], double dev[])
 {
     roll_ode *c = params;
@@ -615,7 +608,7 @@ static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[]
     ys[JC_Y_VX] = c->m->body.radius_m * y[JC_Y_W];
     jc_State s;
     jc_y_to_state(ys, t, &s);
-    return jc_record_sample_y(sim, &s, ys, JC_MODE_ROLLING, n, f);
+    return jc_record_sample_y(sim, &s, ys, JC_MODE_ROLLING, n, f, 0.0);
 }
 
 /* Direction in which a body at rest (w = 0) starts to roll, 0 if rolling
@@ -623,9 +616,9 @@ static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[]
 static int rest_direction(const jc_Model *m, double th)
 {
     double thdd, n, f;
-    jc_rolling_at(m, th, 0.0, 1, &thdd, &n, &f, NULL);
+    jc_rolling_at(m, th, 0.0, 1, &thdd, &n, &f);
     if (thdd > 0.0) return 1;
-    jc_rolling_at(m, th, 0.0, -1, &thdd, &n, &f, NULL);
+    jc_rolling_at(m, th, 0.0, -1, &thdd, &n, &f);
     return thdd < 0.0 ? -1 : 0;
 }
 
@@ -638,7 +631,7 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
                     .dir = w0 > 0.0 ? 1 : (w0 < 0.0 ? -1 : rest_direction(sim->m, sim->s.theta_rad)),
                     .armed = fabs(w0) > ROLL_REST_BAND_RADPS,
                     .at_sin = NAN};
-    jc_roll_consts(sim->m, &ctx.k);
+    ctx.k = jc_model_tables(sim->m)->roll;
     for (long turn = 0; turn < ROLL_ODE_MAX_TURNS; ++turn) {
         if (ctx.dir == 0) {
             *end = PHASE_AT_REST;

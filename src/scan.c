@@ -33,9 +33,8 @@
  * bound is taken over the step's window rather than over the whole range
  * (the rolling path's th T1(th) terms made it grow with the ramp's end, 32
  * rad for the paper's ramp, where the first events lie at 1 to 13 rad).
- * Measured with callgrind, a rolling prediction of the paper's cylinder
- * took 41.6k instructions with the whole range's bound, 35.5k with windows
- * of 1 rad (0.7 rad: 35.3k, 1.5: 36.2k, 2.5: 37.0k); a full run 382k -> 374k. */
+ * Shorter windows give tighter bounds and longer steps, but more windows:
+ * 1 rad is about where that balances (docs/performance.md). */
 #ifndef SCAN_WINDOW
 #define SCAN_WINDOW 1.0
 #endif
@@ -53,11 +52,10 @@ static double fn_value(double u, void *params)
  * few per cent), then Halley's iteration, cubically convergent: three steps
  * reach rounding (at most 4 ulps from libm's over 2e7 values from 1e-290 to
  * 1e290; the safe step shades its root by 1e-12, and tests/test_scan.c
- * holds the cubic's root to GSL's). libm's cbrt splits and rebuilds the
- * exponent by function calls (frexp, ldexp): measured with perf, it and
- * they were 11 % of a rolling prediction's time; with this one the
- * prediction takes 3-6 % less (callgrind: 31.0k -> 29.6k instructions).
- * Outside [1e-290, 1e290], where y^3 could leave the normal range: libm. */
+ * holds the cubic's root to GSL's). Not libm's cbrt, which splits and
+ * rebuilds the exponent by function calls (frexp, ldexp), a visible part
+ * of a rolling prediction's time. Outside [1e-290, 1e290], where y^3 could
+ * leave the normal range: libm. */
 static double cube_root(double x)
 {
     if (!(x >= 1e-290 && x <= 1e290)) return cbrt(x);
@@ -76,9 +74,9 @@ static double cube_root(double x)
 double jc_cubic_first_positive(double a, double b, double c)
 {
     /* GSL's gsl_poly_solve_cubic, term for term, with a cube root for its
-     * pow(x, 1/3) and one sincos for its three cosines, and only the
-     * smallest positive root kept (measured: pow and the three cosines were
-     * 8 % of a full run's time; tests/test_scan.c compares the two). */
+     * pow(x, 1/3) and one sincos for its three cosines (calls into libm),
+     * and only the smallest positive root kept (tests/test_scan.c compares
+     * the two). */
     const double q = a * a - 3.0 * b, r = 2.0 * a * a * a - 9.0 * a * b + 27.0 * c;
     const double Q = q / 9.0, R = r / 54.0, Q3 = Q * Q * Q, R2 = R * R;
     const double CR2 = 729.0 * r * r, CQ3 = 2916.0 * q * q * q, shift = a / 3.0;
@@ -137,8 +135,8 @@ static double safe_step(double g, double g1, double g2, double m3)
 
 /* Whether g + g1 x + g2 x^2/2 - m3 x^3/6 stays >= 0 on [0, h], by a
  * sufficient test: there -m3 x^3/6 >= -m3 h x^2/6, which leaves a quadratic.
- * Spares the exact cubic root for every function but the limiting one
- * (measured: gsl_poly_solve_cubic was a fifth of a rolling prediction). */
+ * Spares the exact cubic root, the costly part of a step, for every
+ * function but the limiting one. */
 static int safe_over(double g, double g1, double g2, double m3, double h)
 {
     const double c = g2 - m3 * h / 3.0;
@@ -155,11 +153,9 @@ static int safe_over(double g, double g1, double g2, double m3, double h)
  * stops where the root is provably within tol / 4 of x or of one more,
  * free, Newton step from x (below), or where the bracket is narrower than
  * tol (then its end nearer zero, as Brent's root). Halley's rather than
- * Newton's step and no evaluation repeated at a or b: a rolling
- * prediction's roots took 6 to 7 evaluations and now take 2 (callgrind,
- * with the fused evaluation of trig_eval_all: a prediction at 30 deg 21.1k
- * -> 16.4k instructions). tests/test_scan.c compares the roots with GSL's
- * Brent solver's. */
+ * Newton's step and no evaluation repeated at a or b: a root takes about
+ * two evaluations, where Brent's method took three times as many.
+ * tests/test_scan.c compares the roots with GSL's Brent solver's. */
 static int polish_newton(const jc_ScanFn *fn, double a, const double da[3], double b, double slope_min, double m3,
                          double tol, double *root, char *err, size_t err_len)
 {
@@ -179,8 +175,8 @@ static int polish_newton(const jc_ScanFn *fn, double a, const double da[3], doub
             }
             /* The root is within e = |f| / slope_min of x, and one more
              * Newton step, free, lands within (|f''| + m3 e) e^2 / (2 |f'|)
-             * of it: done where that is below tol / 4 (callgrind: 2.5 -> 2
-             * evaluations a root; 30 deg prediction 15.1k -> 14.8k). */
+             * of it: done where that is below tol / 4, often one
+             * evaluation before the bracket would tell. */
             const double e = fabs(f) / slope_min;
             if (fabs(f) <= close || (fabs(d2f) + m3 * e) * e * e <= 0.5 * tol * fabs(df)) {
                 const double next = x - f / df;
@@ -243,11 +239,8 @@ typedef void (*scan_eval_all)(void *ctx, double u, double d[][3]);
 /* The scan, inlined into its two callers: jc_scan_fns_with (each function
  * evaluated by its own eval) and jc_trig_scan_run, where the shared
  * evaluation trig_eval_all is inlined into each step as well (SCAN_FLATTEN):
- * each step's size waits for its values, which no longer pass through a
- * call and memory. Measured with make bench, alternated with the scan
- * calling it through the pointer: a rolling prediction 1.468 -> 1.447 us
- * (median of 9), callgrind 5.64M -> 5.46M instructions for 300; the same
- * results. */
+ * each step's size waits for its values, which then do not pass through a
+ * call and memory (the same results as through the pointer). */
 #if defined(__GNUC__)
 #define SCAN_INLINE inline __attribute__((always_inline))
 #define SCAN_FLATTEN __attribute__((flatten))
@@ -318,8 +311,7 @@ static SCAN_INLINE int scan_core(const jc_ScanFn *fns, int count, scan_eval_all 
                     /* A clear sign change only: a value within noise of zero
                      * may be a double root touched, not crossed. The Taylor
                      * bound f(b) <= g + g1 w + g2 w^2/2 + m3 w^3/6 proves it
-                     * mostly without evaluating f at b (callgrind: a rolling
-                     * prediction at 30 deg 14.58k -> 14.16k instructions). */
+                     * mostly without evaluating f at b. */
                     const double f_b_max = -g + (0.5 * g2 + m3 * w / 6.0) * w * w;
                     if (f_b_max + 1e-9 * g < -fns[i].noise || fn_value(b, (void *)&fns[i]) < -fns[i].noise) {
                         double root = b;
@@ -426,9 +418,7 @@ static void run_basis(const trig_run *r, double th)
     if (r->basis->th != th) basis_upto(r->basis, th, r->degree);
 }
 
-/* All watched functions in one pass: one basis, no call per function
- * (callgrind, with Halley's polishing: a rolling prediction at 30 deg 21.1k
- * -> 16.4k instructions). */
+/* All watched functions in one pass: one basis, no call per function. */
 static void trig_eval_all(void *ctx, double th, double d[][3])
 {
     const trig_run *r = ctx;
@@ -484,12 +474,11 @@ SCAN_FLATTEN int jc_trig_scan_run(const jc_TrigScan *s, unsigned active, double 
     /* Roots are polished by Halley's iteration on the exact derivatives,
      * also where the caller lends a Brent solver (jc_scan_first_with):
      * it locates them to rounding, where Brent's stopped anywhere in a
-     * 1e-12 rad bracket, and takes fewer evaluations (callgrind: a full
-     * paper run 214k -> 209k instructions). A turning point's place enters
-     * a swing's time like the square root of its error: with Brent's roots
-     * the rocking hoop's period (tests/sim/test_repros.c) moved by 1.4e-8
-     * with the steps' lengths; with these it agrees to 1e-9.
-     * tests/test_scan.c keeps Brent's roots as the cross-check. */
+     * 1e-12 rad bracket, and takes fewer evaluations. A turning point's
+     * place enters a swing's time like the square root of its error: with
+     * Brent's roots the rocking hoop's period (tests/sim/test_repros.c)
+     * moved by 1.4e-8 with the steps' lengths; with these it agrees to
+     * 1e-9. tests/test_scan.c keeps Brent's roots as the cross-check. */
     for (int i = 0; i < s->count; ++i) {
         if (!(active & (1u << i))) continue;
         const jc_TrigBounds *b = &s->bounds[i];

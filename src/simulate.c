@@ -22,7 +22,7 @@ static void contact_force(const jc_Sim *sim, double *normal, double *friction)
     const double w = sim->s.omega_radps;
     switch (sim->mode) {
     case JC_MODE_ROLLING:
-        jc_rolling_at(sim->m, sim->s.theta_rad, w, (w > 0.0) - (w < 0.0), &thdd, normal, friction, NULL);
+        jc_rolling_at(sim->m, sim->s.theta_rad, w, (w > 0.0) - (w < 0.0), &thdd, normal, friction);
         break;
     case JC_MODE_SLIDING:
         jc_sliding_at(sim->m, &sim->s, sim->slip_dir, &f, NULL);
@@ -37,7 +37,8 @@ static int sample_now(jc_Sim *sim)
 {
     double n, f;
     contact_force(sim, &n, &f);
-    return jc_record_sample(sim, &sim->s, sim->mode, n, f);
+    const double gap = sim->mode == JC_MODE_FLIGHT ? jc_flight_gap(sim->m, &sim->s) : 0.0;
+    return jc_record_sample(sim, &sim->s, sim->mode, n, f, gap);
 }
 
 /* Puts the body into the mode consistent with the forces at its contact state.
@@ -296,7 +297,7 @@ static int start_mode(jc_Sim *sim, int *from_liftoff, int *stop)
     double thdd, n_roll, f_roll;
     const double w = sim->s.omega_radps;
     jc_rolling_at(model, sim->s.theta_rad, w, w > 0.0 || (w == 0.0 && model->setup.omega0_radps >= 0.0) ? 1 : -1, &thdd,
-                  &n_roll, &f_roll, NULL);
+                  &n_roll, &f_roll);
     if (kind >= 0) st = jc_record_event(sim, (jc_EventKind)kind, JC_MODE_ROLLING, n_roll, f_roll, 0.0, NULL);
     if (kind == JC_EVENT_LIFTOFF) {
         jc_record_open_flight(sim);

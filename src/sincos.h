@@ -3,9 +3,8 @@
  * basis of cos k th, sin k th, the rolling time's integrand, the flight's
  * gap). Why not libm's sincos: it is a call through the PLT that saves and
  * restores the floating-point environment at every call, and it was the
- * largest single cost of a run (measured with perf: 20 % of a paper run's
- * time, 19 % of a rolling prediction's). This one reduces the angle by
- * pi/2 in parts (Cody and Waite: three of at most 33 bits, whose
+ * largest single cost of a run (docs/performance.md). This one reduces the
+ * angle by pi/2 in parts (Cody and Waite: three of at most 33 bits, whose
  * products with n are exact for |n| < 2^20, and the residue), then evaluates
  * the minimax polynomials of fdlibm's __kernel_sin and __kernel_cos on
  * [-pi/4, pi/4]. Outside |x| < 1e6 (where n could reach 2^20) and for NaN

@@ -30,7 +30,7 @@ static inline void sliding_accel(const jc_Model *m, double s, double c, double w
                                  jc_SlidingForces *f)
 {
     /* Reciprocals from the model: this runs at every stage of every step,
-     * and its four divisions were its largest cost (measured). */
+     * and its four divisions were its largest cost. */
     const jc_ModelTables *tb = jc_model_tables(m);
     const double M = m->body.mass_kg, inv_ig = tb->inv_inertia_g, inv_m = tb->inv_mass_per_kg;
     const double r = m->body.radius_m, d = m->body.cm_offset_m;
@@ -39,10 +39,7 @@ static inline void sliding_accel(const jc_Model *m, double s, double c, double w
     const double k = mu * dir * (r + d * c) + d * s + (l ? l->rr_torque_per_N : 0.0);
     const double mds_ig = M * d * s * inv_ig, w2 = w * w;
     /* 1/D and the terms that do not wait for the air's loads first: the
-     * right-hand sides' stages each wait for the last one's rates
-     * (measured with make bench, alternated with the build before: a drag
-     * run 66.6 -> 65.6 us, median of 9; the paper's runs, whose sliding has
-     * its own right-hand side, unchanged). */
+     * right-hand sides' stages each wait for the last one's rates. */
     f->denominator = 1.0 + mds_ig * k;
     const double inv_d = 1.0 / f->denominator;
     const double free_x = g * m->sin_incline + d * s * w2;
@@ -68,8 +65,7 @@ void jc_sliding_forces(const jc_Model *m, double th, double w, int dir, jc_Slidi
 void jc_sliding_at(const jc_Model *m, const jc_State *s, int dir, jc_SlidingForces *f, jc_Loads *loads)
 {
     jc_Loads l = {0};
-    /* The inline sincos, not libm's sin and cos (calls through the PLT):
-     * 1.2k of a paper run's 224k instructions (callgrind). */
+    /* The inline sincos, not libm's sin and cos (calls through the PLT). */
     double sn, cs;
     jc_sincos(s->theta_rad, &sn, &cs);
     if (jc_model_has_resistance(m)) jc_loads_at(m, sn, cs, s->vx_mps, 0.0, s->omega_radps, &l);
@@ -134,8 +130,7 @@ static int slide_rhs(double t, const double y[], double dydt[], void *params)
  * one's rates; the division by D is on that chain whatever the order):
  * th'' = N (k / I_G), x'' = (g sin a + d sin th w^2) - mu_k s N / M - d cos th
  * th'', the phase's products folded into constants. The same equations as
- * jc_sliding_accel, rounded in another order. Measured: a paper run
- * 300k -> 290k instructions (callgrind), 5-6 % less time (task-clock). */
+ * jc_sliding_accel, rounded in another order. */
 static int slide_rhs_free(double t, const double y[], double dydt[], void *params)
 {
     (void)t;
@@ -184,7 +179,7 @@ static void slide_events(void *params, const double y[], double ev[])
  * k / I_G; cos th' = -w sin th, sin th' = w cos th (f carries both). They
  * replace the central difference of ode.c (two more evaluations of the
  * events per step), with which they agree to 1e-9 (its accuracy) on the
- * paper's runs. Callgrind: 316k -> 311k instructions per paper run. */
+ * paper's runs. */
 static void slide_event_rates(void *params, const double y[], const double f[], double dev[])
 {
     const slide_ctx *c = params;
@@ -206,7 +201,7 @@ static int slide_sample(jc_Sim *sim, void *params, double t, const double y[])
     forces_y(c, y, &f, NULL);
     jc_State s;
     jc_y_to_state(y, t, &s);
-    return jc_record_sample_y(sim, &s, y, JC_MODE_SLIDING, f.normal_N, f.friction_N);
+    return jc_record_sample_y(sim, &s, y, JC_MODE_SLIDING, f.normal_N, f.friction_N, 0.0);
 }
 
 int jc_sliding_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_len)

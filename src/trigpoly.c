@@ -198,10 +198,9 @@ void jc_tl_eval3(const jc_TrigLin *p, double th, double out[3])
 
 /* The amplitude of a cos(k th) + b sin(k th), sqrt(a^2 + b^2): it and its
  * n-th derivatives (times k^n) never exceed it. Up to sqrt 2 below |a| + |b|,
- * the bound used before: the crossing search's safe steps grow like
- * M3^(-1/3) (callgrind, a rolling prediction: 15 deg 29.8k -> 27.2k
- * instructions, 30 deg 17.4k -> 15.8k, 45 deg 14.0k -> 13.7k). Where a^2
- * could underflow (both below 1e-150): |a| + |b|, still a bound. */
+ * the simpler bound: the crossing search's safe steps grow like M3^(-1/3),
+ * so the tighter bound takes fewer of them. Where a^2 could underflow (both
+ * below 1e-150): |a| + |b|, still a bound. */
 static double amplitude(double a, double b)
 {
     const double sum = fabs(a) + fabs(b);
@@ -216,8 +215,7 @@ void jc_tl_bounds(const jc_TrigLin *p, jc_TrigBounds *out)
      * 3 k^2 A1 and |th| k^3 A1. 1 + 1e-12 covers the rounding of the sums. */
     double b0 = 0.0, b1 = 0.0, b2 = 0.0, m0 = fabs(p->c0[0]), m1 = fabs(p->c1[0]);
     /* The degree first: the terms above it add nothing (the energy is of
-     * degree 1 in a field of 4; callgrind: a rolling prediction at 30 deg
-     * 14.75k -> 14.58k instructions). */
+     * degree 1 in a field of 4). */
     int deg = JC_TRIG_DEGREE;
     while (deg > 0 && p->c0[deg] == 0.0 && p->s0[deg] == 0.0 && p->c1[deg] == 0.0 && p->s1[deg] == 0.0) --deg;
     if (deg == 0 && p->c0[0] == 0.0 && p->c1[0] == 0.0) deg = -1;

@@ -28,25 +28,25 @@ static int take(int opt, const char *arg, void *ctx)
 static const struct option own[] = {CLI_TRACK_ARG_OPTIONS, {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
-static void print_hops(const char *label, const cli_TrackHops *h)
+static void print_hops(const char *label, const jc_TrackHops *h)
 {
     printf("  %-28s %d", label, h->hops);
     if (h->hops > 0) {
         printf(" (heights");
-        for (int k = 0; k < h->hops && k < CLI_TRACK_MAX_HOPS; ++k) printf("%s %.1f", k ? "," : "", h->height_m[k] * 1e3);
+        for (int k = 0; k < h->hops && k < JC_TRACK_MAX_HOPS; ++k) printf("%s %.1f", k ? "," : "", h->height_m[k] * 1e3);
         printf(" mm)");
     }
     putchar('\n');
 }
 
-static void print_liftoff(const char *label, const cli_TrackHops *h)
+static void print_liftoff(const char *label, const jc_TrackHops *h)
 {
     if (isnan(h->first_liftoff_t_s)) printf("  %-28s none\n", label);
     else printf("  %-28s t = %.4f s, x = %.2f cm (the last frame in contact)\n", label, h->first_liftoff_t_s,
                 h->first_liftoff_x_m * 100);
 }
 
-static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, int setup_start)
+static void report(const jc_Model *m, const jc_Track *t, const jc_TrackCompare *c, int setup_start)
 {
     const jc_State *s = &c->launch.start;
     cli_track_print_launch(t, &c->launch);
@@ -68,10 +68,10 @@ static void report(const jc_Model *m, const cli_Track *t, const cli_Compare *c, 
            c->count, c->rms_path_m * 1e3, c->rms_path_m / t->sigma_m, c->max_path_m * 1e3);
     if (t->has_mark && isfinite(c->rms_theta_rad)) printf("  mark's angle:  RMS %.4f rad\n", c->rms_theta_rad);
     printf("  (agreement at the noise is an RMS of the path near sqrt(2) sigma%s)\n",
-           t->centre_source == CLI_CENTRE_FROM_MARK ? "; the centre here is recovered from the mark" : "");
+           t->centre_source == JC_TRACK_CENTRE_FROM_MARK ? "; the centre here is recovered from the mark" : "");
 }
 
-static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, const cli_Track *t, const cli_Compare *c,
+static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, const jc_Track *t, const jc_TrackCompare *c,
                   const jc_SimOptions *o, int argc, char **argv)
 {
     cli_TrackFigure f;
@@ -82,7 +82,7 @@ static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, con
     f.sim_x = c->x_m;
     f.sim_y = c->y_m;
     f.sim_theta = c->theta_rad;
-    f.mark_radius_m = t->has_mark ? cli_track_mark_radius(t, m) : 0.0;
+    f.mark_radius_m = t->has_mark ? jc_track_mark_radius(t, m) : 0.0;
     f.sigma_m = t->sigma_m;
     f.hop_threshold_m = t->hop_threshold_m;
     snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; path residuals RMS %.2f mm (%.2f σ)",
@@ -105,25 +105,25 @@ int cmd_compare(int argc, char **argv)
     jc_Setup setup;
     jc_SimOptions opts;
     if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
-    cli_Track t;
+    jc_Track t;
     if ((st = cli_track_args_load_for_model("compare", &a, &sa, &setup, &t)) != 0) return st;
     /* The setup the runs use, its ramp without their margin uphill: printed,
      * and its body for the report and the figure (built once: a failure is
      * an error, not a setup left unprinted). */
-    jc_Setup shown = cli_track_setup(&setup, &t);
-    shown.ramp_length_m -= CLI_TRACK_RAMP_MARGIN_M;
+    jc_Setup shown = jc_track_setup(&setup, &t);
+    shown.ramp_length_m -= JC_TRACK_RAMP_MARGIN_M;
     jc_Model model;
     char err[512];
     if (jc_model_init(&model, &shown, err, sizeof err) != JC_OK) {
         cli_error("compare: %s", err);
-        cli_track_free(&t);
+        jc_track_free(&t);
         return EXIT_USAGE;
     }
-    cli_Compare c;
-    if (cli_track_compare(&setup, &t, &opts, a.from_setup_start ? CLI_START_SETUP : CLI_START_TRACKED, a.from_s,
-                          a.to_s, a.mark_angle_rad, &c, err, sizeof err) != 0) {
+    jc_TrackCompare c;
+    if (jc_track_compare(&setup, &t, &opts, a.from_setup_start ? JC_TRACK_START_SETUP : JC_TRACK_START_TRACKED, a.from_s,
+                         a.to_s, a.mark_angle_rad, &c, err, sizeof err) != 0) {
         cli_error("compare: %s", err);
-        cli_track_free(&t);
+        jc_track_free(&t);
         return EXIT_USAGE;
     }
     cli_track_print_head(a.track, &t, c.first, c.count);
@@ -132,7 +132,7 @@ int cmd_compare(int argc, char **argv)
     report(&model, &t, &c, a.from_setup_start);
     st = a.output ? figure(a.output, &setup, &model, &t, &c, &opts, argc, argv) : EXIT_OK;
     if (st == EXIT_OK && a.output) printf("Figure: %s\n", a.output);
-    cli_compare_free(&c);
-    cli_track_free(&t);
+    jc_track_compare_free(&c);
+    jc_track_free(&t);
     return st == EXIT_OK ? cli_stdout_finish() : st;
 }

@@ -101,22 +101,83 @@ static int whole(const char *text, const char *name, double lo, double hi, doubl
     return 0;
 }
 
+/* The names the setup's body allows, comma-separated, for messages. */
+static void allowed_names(const jc_Setup *s, char *buf, size_t len)
+{
+    jc_TrackFitParam p[JC_FIT_MAX_PARAMS * 2];
+    const int n = jc_fit_param_list(s, p, (int)(sizeof p / sizeof p[0]));
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int k = 0; k < n && k < (int)(sizeof p / sizeof p[0]) && used < len; ++k) {
+        char name[48];
+        jc_fit_param_name(s, p[k], name, sizeof name);
+        used += (size_t)snprintf(buf + used, len - used, "%s%s", k ? ", " : "", name);
+    }
+}
+
+/* --free's comma-separated names ("mu_k,restitution,rod-offset") into out;
+ * 0, or -1 with a one-line message naming the bad entry and what is
+ * allowed. */
+static int parse_free(const char *text, const jc_Setup *s, jc_TrackFitParam *out, int *count, char *err,
+                      size_t err_len)
+{
+    *count = 0;
+    char allowed[512];
+    allowed_names(s, allowed, sizeof allowed);
+    const char *p = text;
+    while (*p) {
+        const char *comma = strchr(p, ',');
+        const size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        char name[32];
+        jc_TrackFitParam v;
+        int known = len < sizeof name;
+        if (known) {
+            memcpy(name, p, len);
+            name[len] = '\0';
+            known = jc_fit_param_find(s, name, &v) == JC_OK;
+        }
+        if (!known) {
+            snprintf(err, err_len, "--free '%s': '%.*s' is not a value the fit can free for this body (allowed: %s)",
+                     text, (int)(len > 40 ? 40 : len), p, allowed);
+            return -1;
+        }
+        for (int k = 0; k < *count; ++k)
+            if (out[k].kind == v.kind && out[k].part == v.part) {
+                snprintf(err, err_len, "--free '%s': '%.*s' is named twice", text, (int)(len > 40 ? 40 : len), p);
+                return -1;
+            }
+        /* Room for the start's three values and the frame's two. */
+        if (*count == JC_FIT_MAX_PARAMS - 5) {
+            snprintf(err, err_len, "--free '%s': more than %d values", text, JC_FIT_MAX_PARAMS - 5);
+            return -1;
+        }
+        out[(*count)++] = v;
+        if (!comma) break;
+        p = comma + 1;
+    }
+    if (*count == 0) {
+        snprintf(err, err_len, "--free '%s' names no value (allowed: %s)", text, allowed);
+        return -1;
+    }
+    return 0;
+}
+
 /* The fit's own options into fo; 0 or EXIT_USAGE after a one-line message. */
-static int check(const fit_opts *o, const jc_Setup *setup, cli_FitOptions *fo)
+static int check(const fit_opts *o, const jc_Setup *setup, jc_TrackFitOptions *fo)
 {
     char err[1024];
-    cli_fit_options_default(fo);
+    jc_fit_options_default(fo);
     if (!o->free_list) {
         char allowed[512];
-        cli_fit_allowed(setup, allowed, sizeof allowed);
+        allowed_names(setup, allowed, sizeof allowed);
         cli_error("fit: --free LIST is required (allowed: %s)", allowed);
         return EXIT_USAGE;
     }
-    if (cli_fit_parse_free(o->free_list, setup, fo->free, &fo->free_count, err, sizeof err) != 0) {
+    if (parse_free(o->free_list, setup, fo->free, &fo->free_count, err, sizeof err) != 0) {
         cli_error("fit: %s", err);
         return EXIT_USAGE;
     }
-    if (o->loss && cli_fit_parse_loss(o->loss, &fo->loss) != 0) {
+    if (o->loss && jc_fit_loss_parse(o->loss, &fo->loss) != 0) {
         cli_error("fit: --loss '%s' (allowed: linear, huber, cauchy)", o->loss);
         return EXIT_USAGE;
     }
@@ -139,28 +200,28 @@ static int check(const fit_opts *o, const jc_Setup *setup, cli_FitOptions *fo)
     fo->from_s = o->track.from_s;
     fo->to_s = o->track.to_s;
     fo->mark_angle_rad = o->track.mark_angle_rad;
-    fo->start = o->track.from_setup_start ? CLI_START_SETUP : CLI_START_TRACKED;
+    fo->start = o->track.from_setup_start ? JC_TRACK_START_SETUP : JC_TRACK_START_TRACKED;
     return 0;
 }
 
-static void name_of(const cli_FitResult *r, int k, char *buf, size_t len)
+static void name_of(const jc_TrackFitResult *r, int k, char *buf, size_t len)
 {
     char base[48];
-    cli_fit_param_name(&r->setup, r->param[k], base, sizeof base);
-    const cli_FitKind kind = r->param[k].kind;
+    jc_fit_param_name(&r->setup, r->param[k], base, sizeof base);
+    const jc_TrackFitKind kind = r->param[k].kind;
     snprintf(buf, len, "%s%s", base,
-             !r->start_value[k] ? "" : kind == CLI_FIT_TILT || kind == CLI_FIT_SURFACE ? " (frame)" : " (start)");
+             !r->start_value[k] ? "" : kind == JC_FIT_TILT || kind == JC_FIT_SURFACE ? " (frame)" : " (start)");
 }
 
 /* " unit", or "" for a value without one. */
-static const char *spaced_unit(const cli_FitResult *r, int k, char *buf, size_t len)
+static const char *spaced_unit(const jc_TrackFitResult *r, int k, char *buf, size_t len)
 {
-    const char *u = cli_fit_param_unit(r->param[k]);
+    const char *u = jc_fit_param_unit(r->param[k]);
     snprintf(buf, len, "%s%s", u[0] ? " " : "", u);
     return buf;
 }
 
-static void print_values(const cli_FitResult *r)
+static void print_values(const jc_TrackFitResult *r)
 {
     printf("  %-20s %13s   %13s %s\n", "value", "initial", "fitted", "+- standard error");
     for (int k = 0; k < r->count; ++k) {
@@ -168,25 +229,25 @@ static void print_values(const cli_FitResult *r)
         name_of(r, k, nm, sizeof nm);
         char u[16];
         printf("  %-20s %13.6g   %13.6g ", nm, r->initial[k], r->value[k]);
-        if (r->flag[k] == CLI_FIT_DETERMINED) printf("+- %.3g%s\n", r->sigma[k], spaced_unit(r, k, u, sizeof u));
+        if (r->flag[k] == JC_FIT_DETERMINED) printf("+- %.3g%s\n", r->sigma[k], spaced_unit(r, k, u, sizeof u));
         else printf("held (below)\n");
     }
 }
 
-static void print_held(const cli_FitResult *r)
+static void print_held(const jc_TrackFitResult *r)
 {
     int any = 0;
-    for (int k = 0; k < r->count; ++k) any |= r->flag[k] != CLI_FIT_DETERMINED;
+    for (int k = 0; k < r->count; ++k) any |= r->flag[k] != JC_FIT_DETERMINED;
     if (!any) return;
     printf("\nHeld, as the video does not determine them inside their ranges (the others fitted again):\n");
     for (int k = 0; k < r->count; ++k) {
-        if (r->flag[k] == CLI_FIT_DETERMINED) continue;
+        if (r->flag[k] == JC_FIT_DETERMINED) continue;
         char nm[64];
         name_of(r, k, nm, sizeof nm);
-        printf("  %s: %s", nm, cli_fit_flag_text(r->flag[k]));
-        if (r->flag[k] == CLI_FIT_WIDER_THAN_RANGE)
+        printf("  %s: %s", nm, jc_fit_flag_text(r->flag[k]));
+        if (r->flag[k] == JC_FIT_WIDER_THAN_RANGE)
             printf(" (%.3g against [%.3g, %.3g])", r->sigma[k], r->lo[k], r->hi[k]);
-        if (r->flag[k] == CLI_FIT_CORRELATED && r->other[k] >= 0) {
+        if (r->flag[k] == JC_FIT_CORRELATED && r->other[k] >= 0) {
             char on[64];
             name_of(r, r->other[k], on, sizeof on);
             printf(" (%s, rho = %.4f)", on, r->rho[k]);
@@ -196,7 +257,7 @@ static void print_held(const cli_FitResult *r)
         if (r->profiled[k]) {
             printf("    chi2 along it (the others fitted):");
             double least = INFINITY;
-            for (int i = 0; i < CLI_FIT_PROFILE_POINTS; ++i) {
+            for (int i = 0; i < JC_FIT_PROFILE_POINTS; ++i) {
                 printf("%s %.3g: %.5g", i ? "," : "", r->profile_x[k][i], r->profile_chi2[k][i]);
                 least = fmin(least, r->profile_chi2[k][i]);
             }
@@ -205,7 +266,7 @@ static void print_held(const cli_FitResult *r)
             least = fmin(least, r->chi2);
             const double cut = least + 3.84 * fmax(1.0, r->chi2_dof);
             double lo = r->chi2 <= cut ? r->value[k] : INFINITY, hi = r->chi2 <= cut ? r->value[k] : -INFINITY;
-            for (int i = 0; i < CLI_FIT_PROFILE_POINTS; ++i)
+            for (int i = 0; i < JC_FIT_PROFILE_POINTS; ++i)
                 if (r->profile_chi2[k][i] <= cut) lo = fmin(lo, r->profile_x[k][i]), hi = fmax(hi, r->profile_x[k][i]);
             printf("\n    chi2 within %.3g of its least from %.3g to %.3g%s (of those points and the held value)\n",
                    cut - least, lo, hi, u);
@@ -213,7 +274,7 @@ static void print_held(const cli_FitResult *r)
     }
 }
 
-static void print_minima(const cli_FitResult *r)
+static void print_minima(const jc_TrackFitResult *r)
 {
     if (r->minima <= 1) {
         printf("\nOther minima within chi2 + %.3g of the best: none of the %d descents found one\n", r->delta_chi2,
@@ -224,7 +285,7 @@ static void print_minima(const cli_FitResult *r)
            "chi2");
     for (int k = 0; k < r->count; ++k) {
         char nm[48];
-        cli_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
+        jc_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
         printf(" %12.12s", nm);
     }
     putchar('\n');
@@ -235,30 +296,29 @@ static void print_minima(const cli_FitResult *r)
     }
 }
 
-static void print_correlations(const cli_FitResult *r)
+static void print_correlations(const jc_TrackFitResult *r)
 {
     printf("\nCorrelations (of the values fitted at the end):\n  %-14s", "");
     for (int k = 0; k < r->count; ++k) {
-        if (r->flag[k] != CLI_FIT_DETERMINED) continue;
+        if (r->flag[k] != JC_FIT_DETERMINED) continue;
         char nm[48];
-        cli_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
+        jc_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
         printf(" %12.12s", nm);
     }
     putchar('\n');
     for (int i = 0; i < r->count; ++i) {
-        if (r->flag[i] != CLI_FIT_DETERMINED) continue;
+        if (r->flag[i] != JC_FIT_DETERMINED) continue;
         char nm[48];
-        cli_fit_param_name(&r->setup, r->param[i], nm, sizeof nm);
+        jc_fit_param_name(&r->setup, r->param[i], nm, sizeof nm);
         printf("  %-14.14s", nm);
         for (int j = 0; j < r->count; ++j)
-            if (r->flag[j] == CLI_FIT_DETERMINED) printf(" %12.3f", cli_shown(r->corr[i][j], 3));
+            if (r->flag[j] == JC_FIT_DETERMINED) printf(" %12.3f", cli_shown(r->corr[i][j], 3));
         putchar('\n');
     }
 }
 
-static void report(const char *file, const cli_Track *t, const cli_FitResult *r, const cli_FitOptions *fo)
+static void report(const char *file, const jc_Track *t, const jc_TrackFitResult *r, const jc_TrackFitOptions *fo)
 {
-    static const char *const loss_names[] = {"linear", "huber", "cauchy"};
     cli_track_print_head(file, t, r->first, r->frames);
     cli_track_print_launch(t, &r->launch);
     int asked = 0;
@@ -266,17 +326,17 @@ static void report(const char *file, const cli_Track *t, const cli_FitResult *r,
     printf("Fit: %ld residuals (sigma %.3g mm, %s), %d value(s) asked for, %s%s, loss %s\n", r->residuals,
            r->sigma_m * 1e3, r->noise_measured ? "measured" : "given", asked,
            fo->hold_start ? "the start held" : "the start's x0, theta0, omega0",
-           fo->hold_frame ? "" : " and the video frame's tilt and surface", loss_names[fo->loss]);
+           fo->hold_frame ? "" : " and the video frame's tilt and surface", jc_fit_loss_name(fo->loss));
     printf("Search: %d start points screened, %d descents, %d iterations in all\n", r->screened, r->descents,
            r->iterations);
     printf("chi2/dof = %.4g (chi2 %.4g, dof %ld)\n", r->chi2_dof, r->chi2, r->dof);
-    const double deg = 180.0 / CLI_TRACK_PI;
-    if (t->incline_source == CLI_INCLINE_MEASURED && r->incline_sigma_rad > 0.0)
+    const double deg = 180.0 / CLI_PI;
+    if (t->incline_source == JC_TRACK_INCLINE_MEASURED && r->incline_sigma_rad > 0.0)
         printf("Incline in the model: %.3f +- %.3f deg (the video's %.3f deg turned by the fitted tilt)\n\n",
                r->setup.incline_rad * deg, r->incline_sigma_rad * deg, t->incline_rad * deg);
     else
         printf("Incline in the model: %.3f deg (%s)\n\n", r->setup.incline_rad * deg,
-               t->incline_source == CLI_INCLINE_MEASURED ? "measured" : "as given");
+               t->incline_source == JC_TRACK_INCLINE_MEASURED ? "measured" : "as given");
     print_values(r);
     print_held(r);
     print_minima(r);
@@ -291,30 +351,20 @@ static void report(const char *file, const cli_Track *t, const cli_FitResult *r,
     printf("\n\nVerdict: %s\n", r->verdict);
 }
 
-static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, const jc_SimOptions *o, int argc,
+static int figure(const char *out, const jc_Track *t, const jc_TrackFitResult *r, const jc_SimOptions *o, int argc,
                   char **argv)
 {
-    jc_Model m;
-    char err[256];
-    if (cli_track_model(&r->setup, t, &m, err, sizeof err) != 0) {
-        cli_error("fit: %s", err);
-        return EXIT_FAIL;
-    }
     const size_t n = (size_t)r->frames;
     double *x = malloc(n * sizeof *x), *y = malloc(n * sizeof *y), *th = malloc(n * sizeof *th);
     cli_TrackFigure f;
     memset(&f, 0, sizeof f);
-    cli_TrackSim sim;
-    int rc = x && y && th && cli_track_sim_init(&sim) == 0 ? 0 : -1;
+    char err[256];
+    int rc = x && y && th ? 0 : -1;
+    /* The fitted model at the frames, in the video's frame, the mark's angle. */
+    if (rc == 0 && jc_track_model_path(&r->setup, t, &r->start, &r->frame, o, t->t_s + r->first, r->frames, x, y, th,
+                                       err, sizeof err) != JC_OK)
+        rc = -1;
     if (rc == 0) {
-        sim.shift_m = cli_track_sim_shift(t);
-        rc = cli_track_sim_run(&sim, &m, &r->start, o, t->t_s + r->first, r->frames, x, y, th, err, sizeof err);
-        cli_track_sim_free(&sim);
-    }
-    if (rc == 0) {
-        cli_fit_to_video(&r->frame, &r->start, x, y, th, r->frames);
-        const double off = cli_track_mark_offset_rad(&m, r->frame.mark_angle_rad);
-        for (size_t i = 0; i < n; ++i) th[i] -= off;
         f.track = t;
         f.first = r->first;
         f.count = r->frames;
@@ -341,12 +391,15 @@ static int figure(const char *out, const cli_Track *t, const cli_FitResult *r, c
     return rc;
 }
 
-/* The fit's progress line on a terminal: its stage and descents begun. */
-static void show_progress(void *ctx, const char *stage, int descents)
+/* The fit's progress line on a terminal: its stage, descents begun and the
+ * part done; a stop signal (SIGINT, ...) ends the fit. */
+static int show_progress(void *ctx, const jc_TrackFitProgress *p)
 {
-    cli_Progress *p = ctx;
-    snprintf(p->label, sizeof p->label, "fit: %-50.50s descent %3d", stage, descents);
-    cli_progress_update(p, 0, 0);
+    cli_Progress *bar = ctx;
+    snprintf(bar->label, sizeof bar->label, "fit: %-50.50s descent %3d, %3.0f%%", p->stage, p->descents,
+             100.0 * p->fraction);
+    cli_progress_update(bar, 0, 0);
+    return cli_stop_requested() != 0;
 }
 
 int cmd_fit(int argc, char **argv)
@@ -361,27 +414,31 @@ int cmd_fit(int argc, char **argv)
     jc_Setup setup;
     jc_SimOptions opts;
     if ((st = cli_build_inputs("fit", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
-    cli_FitOptions fo;
+    jc_TrackFitOptions fo;
     if ((st = check(&o, &setup, &fo)) != 0) return st;
-    cli_Track t;
+    jc_Track t;
     if ((st = cli_track_args_load_for_model("fit", &o.track, &sa, &setup, &t)) != 0) return st;
     char err[512];
-    cli_FitResult r;
+    jc_TrackFitResult r;
     cli_Progress progress;
     cli_progress_begin(&progress, "fit");
     fo.progress = show_progress;
     fo.progress_ctx = &progress;
-    const int fitted = cli_track_fit(&setup, &t, &fo, &opts, &r, err, sizeof err);
+    const int fitted = jc_track_fit(&setup, &t, &fo, &opts, &r, err, sizeof err);
     cli_progress_end(&progress);
+    if (fitted == JC_ESTOPPED) { /* a stop signal: no report */
+        jc_track_free(&t);
+        return cli_stop_status();
+    }
     if (fitted != 0) {
         cli_error("fit: %s", err);
-        cli_track_free(&t);
+        jc_track_free(&t);
         return EXIT_USAGE;
     }
     report(o.track.track, &t, &r, &fo);
     st = o.track.output ? figure(o.track.output, &t, &r, &opts, argc, argv) : EXIT_OK;
     if (st == EXIT_OK && o.track.output) printf("Figure: %s\n", o.track.output);
-    cli_track_free(&t);
+    jc_track_free(&t);
     if (st != EXIT_OK) return st;
     st = cli_stdout_finish();
     if (st == EXIT_OK && r.misfit && !o.allow_misfit) {

@@ -142,10 +142,10 @@ static cJSON *series(const double *v, long n)
     return a;
 }
 
-static const char *const quantity_names[CLI_Q_COUNT] = {"centre", "surface", "hops", "theta"};
+static const char *const quantity_names[JC_TRACK_Q_COUNT] = {"centre", "surface", "hops", "theta"};
 static const char *const incline_sources[] = {"unknown", "measured", "given"};
 
-static cJSON *hop_json(const cli_Track *t, const cli_TrackHop *h)
+static cJSON *hop_json(const jc_Track *t, const jc_TrackHop *h)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddItemToObject(o, "start_s", num(t->t_s[h->first]));
@@ -159,7 +159,7 @@ static cJSON *hop_json(const cli_Track *t, const cli_TrackHop *h)
     return o;
 }
 
-static cJSON *track_json(const char *file, const cli_Track *t)
+static cJSON *track_json(const char *file, const jc_Track *t)
 {
     cJSON *d = cJSON_CreateObject();
     cJSON_AddStringToObject(d, "file", file);
@@ -184,7 +184,7 @@ static cJSON *track_json(const char *file, const cli_Track *t)
     cJSON_AddItemToObject(d, "scale_px_per_m", num(t->scale_px_per_m));
     cJSON_AddBoolToObject(d, "scale_varies", t->scale_varies);
     cJSON_AddItemToObject(d, "tape_length_m", num(t->tape_length_m));
-    cJSON_AddStringToObject(d, "axes", t->axes == CLI_TRACK_AXES_INCLINE ? "incline" : "level");
+    cJSON_AddStringToObject(d, "axes", t->axes == JC_TRACK_AXES_INCLINE ? "incline" : "level");
     cJSON_AddItemToObject(d, "incline_rad", num(t->incline_rad));
     cJSON_AddItemToObject(d, "incline_sigma_rad", num(t->incline_sigma_rad));
     cJSON_AddStringToObject(d, "incline_source", incline_sources[t->incline_source]);
@@ -202,7 +202,7 @@ static cJSON *track_json(const char *file, const cli_Track *t)
     cJSON_AddItemToObject(d, "centre_sigma_max_m", num(t->centre_sigma_max_m));
     cJSON_AddItemToObject(d, "hop_threshold_m", num(t->hop_threshold_m));
     cJSON *notes = cJSON_AddObjectToObject(d, "derived");
-    for (int q = 0; q < CLI_Q_COUNT; ++q) {
+    for (int q = 0; q < JC_TRACK_Q_COUNT; ++q) {
         cJSON *o = cJSON_CreateObject();
         cJSON_AddBoolToObject(o, "known", t->note[q].ok);
         cJSON_AddStringToObject(o, "how", t->note[q].text);
@@ -233,10 +233,10 @@ static void csv_value(FILE *f, double v)
     else fputc(',', f);
 }
 
-static void write_csv(FILE *f, const cli_Track *t)
+static void write_csv(FILE *f, const jc_Track *t)
 {
     /* Heights only above a known surface: empty where the frames lie on no line. */
-    const int surface = t->note[CLI_Q_SURFACE].ok;
+    const int surface = t->note[JC_TRACK_Q_SURFACE].ok;
     fputs("t_s,x_m,y_m,height_m,centre_sigma_m,mark_x_m,mark_y_m,theta_rad,omega_radps,contact,airborne\n", f);
     for (long i = 0; i < t->n; ++i) {
         fprintf(f, "%.10g", t->t_s[i]);
@@ -278,13 +278,13 @@ static void print_wrapped(const char *label, const char *text)
     putchar('\n');
 }
 
-static void print_hops(const cli_Track *t)
+static void print_hops(const jc_Track *t)
 {
     if (t->hops == 0) return;
     printf("\n%s:\n    #   from (s)     to (s)  from x (cm)   peak above contact\n",
-           t->centre_source == CLI_CENTRE_FROM_MARK ? "Departures from rolling" : "Hops");
+           t->centre_source == JC_TRACK_CENTRE_FROM_MARK ? "Departures from rolling" : "Hops");
     for (long k = 0; k < t->hops; ++k) {
-        const cli_TrackHop *h = &t->hop[k];
+        const jc_TrackHop *h = &t->hop[k];
         printf("  %3ld %10.4f %10.4f ", k + 1, t->t_s[h->first], t->t_s[h->last]);
         if (isfinite(t->x_m[h->first])) printf("%12.2f", t->x_m[h->first] * 100);
         else printf("%12s", "?");
@@ -296,7 +296,7 @@ static void print_hops(const cli_Track *t)
     }
 }
 
-static void print_report(const char *file, const cli_Track *t)
+static void print_report(const char *file, const jc_Track *t)
 {
     printf("Track file: ");
     cli_shell_word(stdout, file);
@@ -317,14 +317,14 @@ static void print_report(const char *file, const cli_Track *t)
     else printf("Scale: the table is in metres already");
     if (isfinite(t->tape_length_m)) printf("; calibration tape %.4g m", t->tape_length_m);
     printf("\nAxes: %s; radius r = %.2f cm (the setup's)\n",
-           t->axes == CLI_TRACK_AXES_INCLINE ? "along the incline" : "level", t->radius_m * 100);
+           t->axes == JC_TRACK_AXES_INCLINE ? "along the incline" : "level", t->radius_m * 100);
     printf("\nWhat the video tells:\n");
-    for (int q = 0; q < CLI_Q_COUNT; ++q) {
+    for (int q = 0; q < JC_TRACK_Q_COUNT; ++q) {
         char label[16];
         snprintf(label, sizeof label, "%s:", quantity_names[q]);
         print_wrapped(label, t->note[q].text[0] ? t->note[q].text : "not known");
     }
-    if (t->centre_source == CLI_CENTRE_NONE || t->n == 0) return;
+    if (t->centre_source == JC_TRACK_CENTRE_NONE || t->n == 0) return;
     long i = 0;
     while (i < t->n && isnan(t->x_m[i])) i++;
     long e = t->n - 1;
@@ -338,7 +338,7 @@ static void print_report(const char *file, const cli_Track *t)
 }
 
 /* Both files made whole, then both published: neither or both appear. */
-static int write_outputs(const track_opts *o, const char *file, const cli_Track *t)
+static int write_outputs(const track_opts *o, const char *file, const jc_Track *t)
 {
     cli_Output csv, json;
     memset(&csv, 0, sizeof csv);
@@ -410,11 +410,11 @@ int cmd_track(int argc, char **argv)
         return EXIT_USAGE;
     }
     if ((st = cli_track_args_check_reading("track", &o.read)) != 0) return st;
-    cli_Track t;
+    jc_Track t;
     if ((st = cli_track_args_load("track", file, &o.read, &sa, &setup, &t)) != 0) return st;
-    if (o.csv && t.centre_source == CLI_CENTRE_NONE) {
-        cli_error("track: --csv needs the centre's path, which is %s", t.note[CLI_Q_CENTRE].text);
-        cli_track_free(&t);
+    if (o.csv && t.centre_source == JC_TRACK_CENTRE_NONE) {
+        cli_error("track: --csv needs the centre's path, which is %s", t.note[JC_TRACK_Q_CENTRE].text);
+        jc_track_free(&t);
         return EXIT_USAGE;
     }
     st = write_outputs(&o, file, &t);
@@ -423,7 +423,7 @@ int cmd_track(int argc, char **argv)
         if (o.csv) printf("CSV: %ld frames written to %s\n", t.n, o.csv);
         if (o.json) printf("JSON written to %s\n", o.json);
     }
-    cli_track_free(&t);
+    jc_track_free(&t);
     if (cli_stop_requested()) return cli_stop_status();
     return st == EXIT_OK ? cli_stdout_finish() : st;
 }

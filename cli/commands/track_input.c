@@ -151,20 +151,20 @@ static int incline_given(const cli_SetupArgs *sa)
 }
 
 int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *a, const cli_SetupArgs *sa,
-                        const jc_Setup *setup, cli_Track *t)
+                        const jc_Setup *setup, jc_Track *t)
 {
-    cli_TrackOptions opt;
-    cli_track_options_default(&opt);
+    jc_TrackOptions opt;
+    jc_track_options_default(&opt);
     opt.centre = a->centre;
     opt.mark = a->mass;
     opt.incline_rad = incline_given(sa) ? setup->incline_rad : NAN;
     opt.radius_m = setup->body.radius_m;
     opt.gravity_mps2 = setup->gravity_mps2;
     opt.fit_tilt = a->fit_tilt;
-    opt.axes = a->axes && strcmp(a->axes, "incline") == 0 ? CLI_TRACK_AXES_INCLINE : CLI_TRACK_AXES_LEVEL;
+    opt.axes = a->axes && strcmp(a->axes, "incline") == 0 ? JC_TRACK_AXES_INCLINE : JC_TRACK_AXES_LEVEL;
     if (a->hop_sigmas) opt.hop_sigmas = a->hop_sigmas_k;
     char err[1024];
-    if (cli_track_load(path, &opt, t, err, sizeof err) != 0) {
+    if (jc_track_read_file(path, &opt, t, err, sizeof err) != 0) {
         cli_error("%s: %s", cmd, err);
         return EXIT_USAGE;
     }
@@ -172,13 +172,13 @@ int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *
 }
 
 int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const cli_SetupArgs *sa, jc_Setup *setup,
-                                  cli_Track *t)
+                                  jc_Track *t)
 {
     int rc = cli_track_args_load(cmd, a->track, a, sa, setup, t);
     if (rc != 0) return rc;
     char err[1024];
-    if (cli_track_require(a->track, t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, sizeof err) != 0) {
-        cli_track_free(t);
+    if (jc_track_require(a->track, t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, sizeof err) != 0) {
+        jc_track_free(t);
         cli_error("%s: %s", cmd, err);
         return EXIT_USAGE;
     }
@@ -186,52 +186,44 @@ int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const
     return 0;
 }
 
-const char *const cli_track_centre_sources[CLI_CENTRE_FROM_MARK + 1] = {"none", "tracked", "recovered from the mark"};
+const char *const cli_track_centre_sources[JC_TRACK_CENTRE_FROM_MARK + 1] = {"none", "tracked", "recovered from the mark"};
 
-void cli_track_print_head(const char *file, const cli_Track *t, long first, long count)
+void cli_track_print_head(const char *file, const jc_Track *t, long first, long count)
 {
     printf("Track: %s: %ld of %ld frames used (t = %.4f to %.4f s), %.4g fps nominal, %ld gap(s);\n"
            "       noise sigma %.3g mm (the frames %s); centre %s; mark %s\n",
            file, count, t->n, t->t_s[first], t->t_s[first + count - 1], t->frame_rate_hz, t->gaps, t->sigma_m * 1e3,
-           t->centre_source == CLI_CENTRE_FROM_MARK ? "the mark rolls in" : "in contact",
+           t->centre_source == JC_TRACK_CENTRE_FROM_MARK ? "the mark rolls in" : "in contact",
            cli_track_centre_sources[t->centre_source], t->has_mark ? "tracked" : "not tracked (theta is not compared)");
     printf("       incline %.2f deg (%s)\n", cli_deg(t->incline_rad),
-           t->incline_source == CLI_INCLINE_MEASURED ? "measured from the video" : "as given");
+           t->incline_source == JC_TRACK_INCLINE_MEASURED ? "measured from the video" : "as given");
 }
 
 /* The model's path every quarter frame, for the figure's curves. */
-int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_State *start, const jc_SimOptions *o,
-                        double t_end_s, double **pt, double **px, double **py, long *n)
+int cli_track_fine_path(const jc_Setup *setup, const jc_Track *t, const jc_State *start,
+                        const jc_TrackFitFrame *frame, const jc_SimOptions *o, double t_end_s, double **pt,
+                        double **px, double **py, long *n)
 {
-    jc_Setup at_start = *setup;
-    at_start.theta0_rad = start->theta_rad;
-    at_start.omega0_radps = start->omega_radps;
-    jc_Model model;
-    char err[256];
-    if (cli_track_model(&at_start, t, &model, err, sizeof err) != 0) return -1;
     const double dt = 0.25 / (t->frame_rate_hz > 0.0 ? t->frame_rate_hz : 60.0);
     const double span = t_end_s - start->t_s;
     *n = span > 0.0 ? (long)fmin(floor(span / dt) + 1.0, 2e6) : 1;
     *pt = malloc((size_t)*n * sizeof **pt);
     *px = malloc((size_t)*n * sizeof **px);
     *py = malloc((size_t)*n * sizeof **py);
-    cli_TrackSim sim;
-    if (!*pt || !*px || !*py || cli_track_sim_init(&sim) != 0) return -1;
+    if (!*pt || !*px || !*py) return -1;
     for (long i = 0; i < *n; ++i) (*pt)[i] = start->t_s + (double)i * dt;
-    sim.shift_m = cli_track_sim_shift(t);
-    const int rc = cli_track_sim_run(&sim, &model, start, o, *pt, *n, *px, *py, NULL, err, sizeof err);
-    cli_track_sim_free(&sim);
-    return rc;
+    char err[256];
+    return jc_track_model_path(setup, t, start, frame, o, *pt, *n, *px, *py, NULL, err, sizeof err) == JC_OK ? 0 : -1;
 }
 
 int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_State *start,
-                          const cli_FitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv)
+                          const jc_TrackFitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv)
 {
-    const cli_Track *t = f->track;
+    const jc_Track *t = f->track;
     double *pt = NULL, *px = NULL, *py = NULL;
-    int rc = cli_track_fine_path(setup, t, start, o, t->t_s[f->first + f->count - 1], &pt, &px, &py, &f->path_n);
+    int rc = cli_track_fine_path(setup, t, start, frame, o, t->t_s[f->first + f->count - 1], &pt, &px, &py,
+                                 &f->path_n);
     if (rc == 0) {
-        if (frame) cli_fit_to_video(frame, start, px, py, NULL, f->path_n);
         f->path_t = pt;
         f->path_x = px;
         f->path_y = py;
@@ -249,7 +241,7 @@ int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *s
     return rc;
 }
 
-void cli_track_print_launch(const cli_Track *t, const cli_Launch *L)
+void cli_track_print_launch(const jc_Track *t, const jc_TrackLaunch *L)
 {
     if (L->pushed <= 0) return;
     printf("Launch: the first %ld frame(s) (to t = %.4f s) show a push the model cannot follow (chi2/dof %.3g\n"

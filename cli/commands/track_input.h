@@ -5,7 +5,9 @@
 #define JUMPCYL_TRACK_INPUT_H
 
 #include "cli.h"
-#include "track_fit.h"
+#include "figures.h"
+
+#include <jumpcyl/track.h>
 
 enum {
     CLI_TRACK_OPT_TRACK = 2000, CLI_TRACK_OPT_CENTRE, CLI_TRACK_OPT_MASS, CLI_TRACK_OPT_AXES, CLI_TRACK_OPT_FROM,
@@ -51,22 +53,24 @@ int cli_track_args_check(const char *cmd, cli_TrackArgs *a);
  * status after a one-line message (EXIT_USAGE for a file that cannot be
  * read or an incline the video refuses). */
 int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *a, const cli_SetupArgs *sa,
-                        const jc_Setup *setup, cli_Track *t);
+                        const jc_Setup *setup, jc_Track *t);
 /* As cli_track_args_load, then what compare and fit need (the centre, the
  * incline), refused with exit 2 and the reason when missing; the setup
  * takes the track's incline. */
 int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const cli_SetupArgs *sa, jc_Setup *setup,
-                                  cli_Track *t);
+                                  jc_Track *t);
 /* How the reports name the centre's source, by its CLI_CENTRE_* value
  * (track's report and JSON, compare's and fit's head). */
-extern const char *const cli_track_centre_sources[CLI_CENTRE_FROM_MARK + 1];
-void cli_track_print_head(const char *file, const cli_Track *t, long first, long count);
+extern const char *const cli_track_centre_sources[JC_TRACK_CENTRE_FROM_MARK + 1];
+void cli_track_print_head(const char *file, const jc_Track *t, long first, long count);
 /* The frames before the free motion, when a push was found there (nothing otherwise). */
-void cli_track_print_launch(const cli_Track *t, const cli_Launch *L);
+void cli_track_print_launch(const jc_Track *t, const jc_TrackLaunch *L);
 /* The model's path every quarter frame from start to t_end_s (for the
- * figure); 0, or -1 (the arrays are then to be freed all the same). */
-int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_State *start, const jc_SimOptions *o,
-                        double t_end_s, double **pt, double **px, double **py, long *n);
+ * figure), in the video's frame placed by frame (NULL: none); 0, or -1
+ * (the arrays are then to be freed all the same). */
+int cli_track_fine_path(const jc_Setup *setup, const jc_Track *t, const jc_State *start,
+                        const jc_TrackFitFrame *frame, const jc_SimOptions *o, double t_end_s, double **pt,
+                        double **px, double **py, long *n);
 /* The last step of compare's and fit's figure: the caller fills f's frames,
  * model values (the mark's angle, not G's), mark radius, sigma, threshold
  * and title; this sets the radius, samples the model's fine path from start
@@ -75,6 +79,6 @@ int cli_track_fine_path(const jc_Setup *setup, const cli_Track *t, const jc_Stat
  * message, or CLI_TRACK_FIGURE_NO_PATH when the path could not be made. */
 #define CLI_TRACK_FIGURE_NO_PATH (-1)
 int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_State *start,
-                          const cli_FitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv);
+                          const jc_TrackFitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv);
 
 #endif

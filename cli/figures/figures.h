@@ -11,6 +11,7 @@
 #include "outputs.h"
 
 #include <jumpcyl/jumpcyl.h>
+#include <jumpcyl/track.h>
 
 #include <stddef.h>
 #include <stdio.h>
@@ -167,5 +168,27 @@ typedef struct {
 /* Writes the map's data blocks and its panel into the script (after
  * fig_script_begin). */
 void fig_map_write(FILE *gp, const fig_Map *m);
+
+/* ---- plot_track.c: the figure of compare and fit ---- */
+
+typedef struct {
+    const jc_Track *track;
+    long first, count;               /* the frames shown */
+    const double *sim_x, *sim_y, *sim_theta; /* the model at those frames (theta: the mark's) */
+    const double *path_t, *path_x, *path_y;  /* the model finely sampled, for its curves */
+    long path_n;
+    double radius_m;                 /* the body's: a height shown is the centre's y less it */
+    double mark_radius_m;            /* > 0: the mark's residual across its radius is shown */
+    double sigma_m;                  /* residuals are shown in units of it */
+    double hop_threshold_m;
+    char title[256];                 /* text the tool made (numbers, fixed words) */
+} cli_TrackFigure;
+
+/* Three panels, each sized to its data: the centre along the incline
+ * against time; its height above the surface against time (the hops); the
+ * residuals in units of sigma. Rendered by gnuplot in a scratch directory
+ * and written to output (.png, .svg, .pdf) whole or not at all. cmdline is
+ * for the script's header. EXIT_OK, or an exit status after a message. */
+int cli_track_figure(const char *cmd, const cli_TrackFigure *f, const char *output, const char *cmdline);
 
 #endif

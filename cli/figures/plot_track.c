@@ -2,7 +2,6 @@
  * The data go into the script as data blocks, and every word in it is the
  * tool's own: nothing from the track file (names, text) reaches gnuplot. */
 #include "figures.h"
-#include "track_fit.h"
 
 #include <errno.h>
 #include <math.h>
@@ -14,7 +13,7 @@ static void put(FILE *f, double v)
     else fputs(" NaN", f);
 }
 
-/* The frames' residuals in units of sigma (cli_residuals_frame, as the fit
+/* The frames' residuals in units of sigma (jc_track_residuals_frame, as the fit
  * has them): the centre along and across the incline and the mark across
  * its radius (a tracked centre), or the mark along and across (a centre
  * recovered from the mark); NaN where the frame has none. */
@@ -22,12 +21,12 @@ static void residuals_at(const cli_TrackFigure *f, long i, double r[3])
 {
     const double s = f->sigma_m > 0 ? f->sigma_m : f->track->sigma_m;
     r[0] = r[1] = r[2] = NAN;
-    cli_residuals_frame(f->track, f->first + i, s, f->mark_radius_m, f->sim_x[i], f->sim_y[i], f->sim_theta[i], r);
+    jc_track_residuals_frame(f->track, f->first + i, s, f->mark_radius_m, f->sim_x[i], f->sim_y[i], f->sim_theta[i], r);
 }
 
 static void write_data(FILE *gp, const cli_TrackFigure *f)
 {
-    const cli_Track *t = f->track;
+    const jc_Track *t = f->track;
     fig_block_begin(gp, "frames");
     fputs("# t_s x_cm height_mm height_sigma_mm r_along r_across r_mark (residuals in sigma)\n", gp);
     for (long i = 0; i < f->count; ++i) {
@@ -59,7 +58,7 @@ static void write_data(FILE *gp, const cli_TrackFigure *f)
 
 static void write_panels(FILE *gp, const cli_TrackFigure *f)
 {
-    const int from_mark = f->track->centre_source == CLI_CENTRE_FROM_MARK;
+    const int from_mark = f->track->centre_source == JC_TRACK_CENTRE_FROM_MARK;
     fputs("\nset multiplot layout 3,1 title ", gp);
     fig_quote(gp, f->title);
     fputs(" font F_TITLE\n", gp);

@@ -28,11 +28,11 @@ int main(int argc, char **argv)
     const char *tracks = argc > 6 ? argv[6] : "both";
     double a = 0;
     for (int i = 0; i < s.body.part_count; ++i) a = fmax(a, s.body.parts[i].offset_m);
-    const cli_SynthTracks which = strcmp(tracks, "centre") == 0 ? CLI_SYNTH_CENTRE_ONLY
-                                  : strcmp(tracks, "mark") == 0 ? CLI_SYNTH_MARK_ONLY
-                                                                : CLI_SYNTH_BOTH;
-    cli_SynthOptions o = synth_camera(argc > 3 ? atof(argv[3]) : 60.0, argc > 2 ? atof(argv[2]) : 1e-3, which,
-                                      argc > 4 ? strtoull(argv[4], NULL, 10) : 1u, a);
+    const jc_TrackSynthTracks which = strcmp(tracks, "centre") == 0 ? JC_TRACK_SYNTH_CENTRE_ONLY
+                                      : strcmp(tracks, "mark") == 0 ? JC_TRACK_SYNTH_MARK_ONLY
+                                                                    : JC_TRACK_SYNTH_BOTH;
+    jc_TrackSynthOptions o = synth_camera(argc > 3 ? atof(argv[3]) : 60.0, argc > 2 ? atof(argv[2]) : 1e-3, which,
+                                          argc > 4 ? strtoull(argv[4], NULL, 10) : 1u, a);
     o.t_end_s = s.incline_rad > 0 ? 1.5 : 2.5; /* a floor's run is filmed longer */
     o.hand_s = argc > 8 ? atof(argv[8]) : 0.0;
     if (synth_table_write(argv[1], &s, &o, NULL) != 0) {

@@ -8,9 +8,9 @@
  *    value finds the right one;
  *  - a hand's push before the free motion is found and left out;
  *  - a wrong --incline is refused naming the video's;
- *  - bad option values: one line, exit 2, no file. */
-#include "track_fit.h"
-#include "raw.h"
+ *  - bad option values: one line, exit 2, no file;
+ *  - a stop signal ends a long fit at once, without a report. */
+#include <jumpcyl/track.h>
 #include "../track/synth_table.h"
 #include "../cli_run.h"
 #include "../test.h"
@@ -18,6 +18,7 @@
 #include <gsl/gsl_errno.h>
 #include <stdlib.h>
 #include <sys/stat.h>
+#include <time.h>
 
 static jc_Setup truth(void)
 {
@@ -48,18 +49,18 @@ static int simulate_liftoff(const jc_Setup *s, double *x, double *t)
 static int test_noise_free_compare(void)
 {
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth_camera(60.0, 0.0, CLI_SYNTH_BOTH, 1u, 0.055);
-    cli_Track t;
+    const jc_TrackSynthOptions so = synth_camera(60.0, 0.0, JC_TRACK_SYNTH_BOTH, 1u, 0.055);
+    jc_Track t;
     char err[256];
-    ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
-    printf("noise-free video: incline measured %.12f deg (true 30)\n", t.incline_rad * 180 / CLI_TRACK_PI);
+    ENSURE_MSG(jc_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
+    printf("noise-free video: incline measured %.12f deg (true 30)\n", t.incline_rad * 180 / SYNTH_PI);
     ENSURE_NEAR(t.incline_rad, s.incline_rad, 1e-9);
     double x_sim, t_sim;
     ENSURE(simulate_liftoff(&s, &x_sim, &t_sim) == 0);
     const jc_SimOptions o = jc_default_sim_options();
-    cli_Compare c;
+    jc_TrackCompare c;
     /* From the setup's own start: the same run, sampled at the frames. */
-    ENSURE_MSG(cli_track_compare(&s, &t, &o, CLI_START_SETUP, NAN, NAN, 0.0, &c, err, sizeof err) == 0, "%s", err);
+    ENSURE_MSG(jc_track_compare(&s, &t, &o, JC_TRACK_START_SETUP, NAN, NAN, 0.0, &c, err, sizeof err) == 0, "%s", err);
     printf("hops: %d measured, %d simulated\n", c.measured.hops, c.simulated.hops);
     printf("setup start: RMS path %.3g m (largest %.3g), theta %.3g rad; lift-off %.12g m at %.12g s (simulate "
            "%.12g m at %.12g s)\n",
@@ -67,41 +68,41 @@ static int test_noise_free_compare(void)
     const int ok1 = c.max_path_m < 1e-6 && c.rms_theta_rad < 1e-6 && fabs(c.model_liftoff_x_m - x_sim) < 1e-9 &&
                     fabs(c.model_liftoff_t_s - t_sim) < 1e-9 && c.measured.hops == c.simulated.hops &&
                     c.measured.hops >= 1;
-    cli_compare_free(&c);
+    jc_track_compare_free(&c);
     /* From the state the frames show (fitted to the first 0.4 s). */
-    ENSURE_MSG(cli_track_compare(&s, &t, &o, CLI_START_TRACKED, NAN, NAN, 0.0, &c, err, sizeof err) == 0, "%s", err);
+    ENSURE_MSG(jc_track_compare(&s, &t, &o, JC_TRACK_START_TRACKED, NAN, NAN, 0.0, &c, err, sizeof err) == 0, "%s", err);
     printf("tracked start: frame %ld, RMS path %.3g m (largest %.3g); lift-off %.9g m\n", c.launch.frame, c.rms_path_m,
            c.max_path_m, c.model_liftoff_x_m);
     const int ok2 = c.launch.frame == 0 && c.max_path_m < 1e-5 && fabs(c.model_liftoff_x_m - x_sim) < 1e-5 &&
                     c.measured.hops == c.simulated.hops;
-    cli_compare_free(&c);
+    jc_track_compare_free(&c);
     /* Frames off the simulator's grid (the clip starts 4.1 ms after the
      * release): the cubic Hermite interpolation between samples is what is
      * compared, to below a micron. */
     for (long i = 0; i < t.n; ++i) t.t_s[i] += 0.0041;
-    ENSURE_MSG(cli_track_compare(&s, &t, &o, CLI_START_SETUP, NAN, NAN, 0.0, &c, err, sizeof err) == 0, "%s", err);
+    ENSURE_MSG(jc_track_compare(&s, &t, &o, JC_TRACK_START_SETUP, NAN, NAN, 0.0, &c, err, sizeof err) == 0, "%s", err);
     printf("off the grid: largest path residual %.3g m, theta RMS %.3g rad\n", c.max_path_m, c.rms_theta_rad);
     const int ok3 = c.max_path_m > 0.0 && c.max_path_m < 1e-6 && c.rms_theta_rad < 1e-5;
-    cli_compare_free(&c);
-    cli_track_free(&t);
+    jc_track_compare_free(&c);
+    jc_track_free(&t);
     ENSURE(ok1);
     ENSURE(ok2);
     ENSURE(ok3);
     return 0;
 }
 
-static cli_FitOptions fit_options(void)
+static jc_TrackFitOptions fit_options(void)
 {
-    cli_FitOptions fo;
-    cli_fit_options_default(&fo);
-    fo.free[0] = (cli_FitParam){CLI_FIT_MU_K, -1};
-    fo.free[1] = (cli_FitParam){CLI_FIT_RESTITUTION, -1};
+    jc_TrackFitOptions fo;
+    jc_fit_options_default(&fo);
+    fo.free[0] = (jc_TrackFitParam){JC_FIT_MU_K, -1};
+    fo.free[1] = (jc_TrackFitParam){JC_FIT_RESTITUTION, -1};
     fo.free_count = 2;
     fo.profiles = 0;
     return fo;
 }
 
-static int slot(const cli_FitResult *r, cli_FitKind k)
+static int slot(const jc_TrackFitResult *r, jc_TrackFitKind k)
 {
     for (int i = 0; i < r->count; ++i)
         if (r->param[i].kind == k) return i;
@@ -114,11 +115,11 @@ static int slot(const cli_FitResult *r, cli_FitKind k)
 static int test_robust_loss(void)
 {
     const jc_Setup s = truth();
-    cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 5u, 0.055);
+    jc_TrackSynthOptions so = synth_camera(60.0, 1e-3, JC_TRACK_SYNTH_BOTH, 5u, 0.055);
     so.drop_fraction = 0.1;
-    cli_Track t;
+    jc_Track t;
     char err[256];
-    ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
+    ENSURE_MSG(jc_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
     ENSURE(t.gaps > 0);
     const long bad[] = {10, 25, 40, 55};
     for (int k = 0; k < 4; ++k) {
@@ -129,14 +130,14 @@ static int test_robust_loss(void)
     guess.mu_kinetic = 0.35;
     guess.restitution = 0.4;
     const jc_SimOptions o = jc_default_sim_options();
-    cli_FitOptions fo = fit_options();
-    cli_FitResult lin, cau;
-    const int rc1 = cli_track_fit(&guess, &t, &fo, &o, &lin, err, sizeof err);
-    fo.loss = CLI_LOSS_CAUCHY;
-    const int rc2 = rc1 == 0 ? cli_track_fit(&guess, &t, &fo, &o, &cau, err, sizeof err) : -1;
-    cli_track_free(&t);
+    jc_TrackFitOptions fo = fit_options();
+    jc_TrackFitResult lin, cau;
+    const int rc1 = jc_track_fit(&guess, &t, &fo, &o, &lin, err, sizeof err);
+    fo.loss = JC_FIT_LOSS_CAUCHY;
+    const int rc2 = rc1 == 0 ? jc_track_fit(&guess, &t, &fo, &o, &cau, err, sizeof err) : -1;
+    jc_track_free(&t);
     ENSURE_MSG(rc1 == 0 && rc2 == 0, "%s", err);
-    const int k = slot(&lin, CLI_FIT_MU_K), e = slot(&lin, CLI_FIT_RESTITUTION);
+    const int k = slot(&lin, JC_FIT_MU_K), e = slot(&lin, JC_FIT_RESTITUTION);
     printf("linear: chi2/dof %.2f, mu_k %.5f +- %.5f, e %.5f +- %.5f; %s\n", lin.chi2_dof, lin.value[k], lin.sigma[k],
            lin.value[e], lin.sigma[e], lin.verdict);
     printf("cauchy: chi2/dof %.2f, mu_k %.5f +- %.5f, e %.5f +- %.5f\n", cau.chi2_dof, cau.value[k], cau.sigma[k],
@@ -153,23 +154,23 @@ static int test_robust_loss(void)
 static int test_undetermined_flagged(void)
 {
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 7u, 0.055);
-    cli_Track t;
+    const jc_TrackSynthOptions so = synth_camera(60.0, 1e-3, JC_TRACK_SYNTH_BOTH, 7u, 0.055);
+    jc_Track t;
     char err[256];
-    ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
-    cli_FitOptions fo = fit_options();
+    ENSURE_MSG(jc_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
+    jc_TrackFitOptions fo = fit_options();
     fo.to_s = 0.7;
     fo.profiles = 1;
     const jc_SimOptions o = jc_default_sim_options();
-    cli_FitResult r;
-    const int rc = cli_track_fit(&s, &t, &fo, &o, &r, err, sizeof err);
-    cli_track_free(&t);
+    jc_TrackFitResult r;
+    const int rc = jc_track_fit(&s, &t, &fo, &o, &r, err, sizeof err);
+    jc_track_free(&t);
     ENSURE_MSG(rc == 0, "%s", err);
-    const int e = slot(&r, CLI_FIT_RESTITUTION), k = slot(&r, CLI_FIT_MU_K);
+    const int e = slot(&r, JC_FIT_RESTITUTION), k = slot(&r, JC_FIT_MU_K);
     printf("before the lift-off: restitution %s (%s), held at %.3g; mu_k %.5f +- %.5f; %s\n",
-           r.flag[e] ? "flagged" : "determined", cli_fit_flag_text(r.flag[e]), r.value[e], r.value[k], r.sigma[k],
+           r.flag[e] ? "flagged" : "determined", jc_fit_flag_text(r.flag[e]), r.value[e], r.value[k], r.sigma[k],
            r.verdict);
-    ENSURE(r.flag[e] != CLI_FIT_DETERMINED && r.flag[k] == CLI_FIT_DETERMINED && !r.misfit);
+    ENSURE(r.flag[e] != JC_FIT_DETERMINED && r.flag[k] == JC_FIT_DETERMINED && !r.misfit);
     ENSURE(fabs(r.value[k] - 0.4) < 3.0 * r.sigma[k]);
     return 0;
 }
@@ -192,7 +193,7 @@ static int test_wrong_body(void)
     char dir[] = "/tmp/jc_fit_cli_XXXXXX", track[256];
     ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 3u, 0.055);
+    const jc_TrackSynthOptions so = synth_camera(60.0, 1e-3, JC_TRACK_SYNTH_BOTH, 3u, 0.055);
     ENSURE(synth_table_write(track, &s, &so, NULL) == 0);
     const char *wrong[] = {"fit", "--track", track, "--rod-offset", "4.5cm", "--mu-k", "0.4", "--free", "mu_k,restitution", NULL};
     cli_result r = cli_run(wrong);
@@ -230,23 +231,23 @@ static int test_launch_found(void)
     char err[256];
     ENSURE(jc_preset_setup("hoop", &s, err, sizeof err) == JC_OK);
     s.mu_static = s.mu_kinetic = 0.8;
-    cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 11u, 0.055);
+    jc_TrackSynthOptions so = synth_camera(60.0, 1e-3, JC_TRACK_SYNTH_BOTH, 11u, 0.055);
     so.mark_radius_m = 0.1;
     so.t_end_s = 1.0;
     so.hand_s = 0.2;
-    cli_Track t;
-    ENSURE_MSG(cli_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
+    jc_Track t;
+    ENSURE_MSG(jc_track_synthesize(&s, &so, &t, err, sizeof err) == 0, "%s", err);
     const jc_SimOptions o = jc_default_sim_options();
-    cli_Compare c;
-    ENSURE_MSG(cli_track_compare(&s, &t, &o, CLI_START_TRACKED, NAN, NAN, 0.0, &c, err, sizeof err) == 0, "%s", err);
+    jc_TrackCompare c;
+    ENSURE_MSG(jc_track_compare(&s, &t, &o, JC_TRACK_START_TRACKED, NAN, NAN, 0.0, &c, err, sizeof err) == 0, "%s", err);
     const double t_free = t.t_s[c.launch.frame];
     printf("hand for 0.2 s: free motion from t = %.4f s (frame %ld, %ld pushed, chi2/dof %.3g with them, %.3g "
            "without); path RMS %.2f mm at sigma %.2f mm\n",
            t_free, c.launch.frame, c.launch.pushed, c.launch.chi2_dof_with, c.launch.chi2_dof, c.rms_path_m * 1e3,
            t.sigma_m * 1e3);
     const int ok = fabs(t_free - 0.2) <= 1.01 / 60.0 && c.rms_path_m < 3.0 * t.sigma_m && c.launch.chi2_dof_with > 10;
-    cli_compare_free(&c);
-    cli_track_free(&t);
+    jc_track_compare_free(&c);
+    jc_track_free(&t);
     ENSURE(ok);
     return 0;
 }
@@ -269,7 +270,7 @@ static int test_bad_options(void)
     ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     snprintf(fig, sizeof fig, "%s/out.png", dir);
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth_camera(60.0, 1e-3, CLI_SYNTH_BOTH, 1u, 0.055);
+    const jc_TrackSynthOptions so = synth_camera(60.0, 1e-3, JC_TRACK_SYNTH_BOTH, 1u, 0.055);
     ENSURE(synth_table_write(track, &s, &so, NULL) == 0);
     /* Each case: the arguments, and whether it gives an incline the video
      * refuses (the refusal must then name the video's, which holds the
@@ -311,7 +312,7 @@ static int test_bad_options(void)
                     r.err ? r.err : "", cli_file_exists(fig) ? "written" : "absent");
             bad = 1;
         }
-        if (cases[i].wrong_incline && !names_true_incline(r.err, s.incline_rad * 180 / CLI_TRACK_PI)) {
+        if (cases[i].wrong_incline && !names_true_incline(r.err, s.incline_rad * 180 / SYNTH_PI)) {
             fprintf(stderr, "case %zu: the refusal does not name the video's incline: '%s'\n", i, r.err ? r.err : "");
             bad = 1;
         }
@@ -339,7 +340,7 @@ static int test_noise_free_compare_tool(void)
     char dir[] = "/tmp/jc_fit_cli_XXXXXX", track[256];
     ENSURE(cli_scratch(dir, track, sizeof track, "track.txt") == 0);
     const jc_Setup s = truth();
-    const cli_SynthOptions so = synth_camera(60.0, 0.0, CLI_SYNTH_BOTH, 1u, 0.055);
+    const jc_TrackSynthOptions so = synth_camera(60.0, 0.0, JC_TRACK_SYNTH_BOTH, 1u, 0.055);
     ENSURE(synth_table_write(track, &s, &so, NULL) == 0);
     const char *args[] = {"compare", "--track", track, "--mu-k", "0.4", "--from-setup-start", NULL};
     cli_result r = cli_run(args);
@@ -409,6 +410,40 @@ static int test_examples(void)
     return 0;
 }
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The hoop on a floor with mu_s free takes 13 s (its profile of mu_s):
+ * SIGTERM after 1.5 s ends it at the fit's next iteration (the progress
+ * callback tells the library to stop), exit 143, no report. Before, the
+ * fit ran to its end and printed it. */
+static int test_stop_signal(void)
+{
+    ENSURE(examples_dir && *examples_dir);
+    char floor[512];
+    snprintf(floor, sizeof floor, "%s/floor.trk", examples_dir);
+    const char *args[] = {"fit", "--track", floor, "--preset", "hoop", "--free", "mu_s,mu_k,restitution", NULL};
+    char out_tmp[64], err_tmp[64];
+    const pid_t pid = cli_run_start(args, NULL, out_tmp, err_tmp);
+    ENSURE(pid > 0);
+    const struct timespec wait = {1, 500000000L};
+    nanosleep(&wait, NULL);
+    const double sent = now_s();
+    kill(pid, SIGTERM);
+    cli_result r = cli_run_wait(pid, out_tmp, err_tmp, 1);
+    const double took = now_s() - sent;
+    printf("SIGTERM during a fit: exit %d %.3f s after the signal, %zu bytes of report\n", r.status, took,
+           r.out ? strlen(r.out) : 0);
+    const int ok = r.status == 143 && took < 3.0 && r.out && r.out[0] == '\0';
+    cli_result_free(&r);
+    ENSURE(ok);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
@@ -422,5 +457,6 @@ int main(int argc, char **argv)
     RUN_TEST(test_wrong_body);
     RUN_TEST(test_bad_options);
     RUN_TEST(test_examples);
+    RUN_TEST(test_stop_signal);
     TEST_MAIN_END();
 }

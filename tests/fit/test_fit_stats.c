@@ -19,8 +19,8 @@
  *
  * Environment: JC_FIT_TRIALS (default 200; below 100 the figures are printed
  * and not judged), JC_TEST_SEED (default 16). */
-#include "track_fit.h"
 #include "batch.h"
+#include <jumpcyl/track.h>
 #include "../test.h"
 
 #include <gsl/gsl_errno.h>
@@ -51,9 +51,9 @@ static jc_Setup truth(void)
 
 /* Trial i's camera: noise log-uniform in [0.5, 3] mm, frame rate 30, 60,
  * 120 or 240 per second in turn. */
-static cli_SynthOptions synth(uint64_t seed, int i)
+static jc_TrackSynthOptions synth(uint64_t seed, int i)
 {
-    cli_SynthOptions o;
+    jc_TrackSynthOptions o;
     memset(&o, 0, sizeof o);
     static const double fps[4] = {30, 60, 120, 240};
     o.fps_hz = fps[i % 4];
@@ -62,7 +62,7 @@ static cli_SynthOptions synth(uint64_t seed, int i)
     o.mark_radius_m = 0.055;
     o.seed = seed;
     o.trial = (uint64_t)i;
-    o.tracks = CLI_SYNTH_BOTH;
+    o.tracks = JC_TRACK_SYNTH_BOTH;
     return o;
 }
 
@@ -74,7 +74,7 @@ static const char *const vname[NV] = {"mu_s", "mu_k", "restitution", "theta0", "
  * (the centre r above the contact point, released at rest with G straight
  * up) is seen from the video's frame: x0 turned by the tilt about the
  * contact point, theta0 in the model's own frame. */
-static double true_value(int v, const cli_Track *t)
+static double true_value(int v, const jc_Track *t)
 {
     const jc_Setup s = truth();
     const double d = s.incline_rad - t->incline_rad;
@@ -89,10 +89,10 @@ static double true_value(int v, const cli_Track *t)
     }
 }
 
-static int slot(const cli_FitResult *r, int v)
+static int slot(const jc_TrackFitResult *r, int v)
 {
-    static const cli_FitKind kind[NV] = {CLI_FIT_MU_S,   CLI_FIT_MU_K,   CLI_FIT_RESTITUTION, CLI_FIT_THETA0,
-                                         CLI_FIT_OMEGA0, CLI_FIT_X0,     CLI_FIT_TILT};
+    static const jc_TrackFitKind kind[NV] = {JC_FIT_MU_S,   JC_FIT_MU_K,   JC_FIT_RESTITUTION, JC_FIT_THETA0,
+                                         JC_FIT_OMEGA0, JC_FIT_X0,     JC_FIT_TILT};
     for (int k = 0; k < r->count; ++k)
         if (r->param[k].kind == kind[v]) return k;
     return -1;
@@ -100,7 +100,7 @@ static int slot(const cli_FitResult *r, int v)
 
 typedef struct {
     int rc;
-    cli_FitResult r;
+    jc_TrackFitResult r;
     double truth[NV];
     double fps, sigma, measured_sigma;
     long contact;
@@ -111,11 +111,11 @@ static int run_trials(int trials, uint64_t seed)
     printf("seed %llu, %d trials (JC_TEST_SEED, JC_FIT_TRIALS)\n", (unsigned long long)seed, trials);
     /* The user's guess: the paper preset's values (mu_k = mu_s = 0.5). */
     const jc_Setup guess = jc_paper_setup();
-    cli_FitOptions fo;
-    cli_fit_options_default(&fo);
-    fo.free[0] = (cli_FitParam){CLI_FIT_MU_S, -1};
-    fo.free[1] = (cli_FitParam){CLI_FIT_MU_K, -1};
-    fo.free[2] = (cli_FitParam){CLI_FIT_RESTITUTION, -1};
+    jc_TrackFitOptions fo;
+    jc_fit_options_default(&fo);
+    fo.free[0] = (jc_TrackFitParam){JC_FIT_MU_S, -1};
+    fo.free[1] = (jc_TrackFitParam){JC_FIT_MU_K, -1};
+    fo.free[2] = (jc_TrackFitParam){JC_FIT_RESTITUTION, -1};
     fo.free_count = 3;
     fo.profiles = 0;
     const jc_SimOptions so = jc_default_sim_options();
@@ -125,19 +125,19 @@ static int run_trials(int trials, uint64_t seed)
      * memory): on every core. */
 #pragma omp parallel for schedule(dynamic)
     for (int i = 0; i < trials; ++i) {
-        cli_Track t;
+        jc_Track t;
         char err[256];
-        const cli_SynthOptions o = synth(seed, i);
+        const jc_TrackSynthOptions o = synth(seed, i);
         const jc_Setup ts = truth();
         tr[i].fps = o.fps_hz;
         tr[i].sigma = o.sigma_m;
-        tr[i].rc = cli_track_synthesize(&ts, &o, &t, err, sizeof err) != 0 ? 1
-                   : cli_track_fit(&guess, &t, &fo, &so, &tr[i].r, err, sizeof err) != 0 ? 2 : 0;
+        tr[i].rc = jc_track_synthesize(&ts, &o, &t, err, sizeof err) != 0 ? 1
+                   : jc_track_fit(&guess, &t, &fo, &so, &tr[i].r, err, sizeof err) != 0 ? 2 : 0;
         if (tr[i].rc != 1) {
             for (int v = 0; v < NV; ++v) tr[i].truth[v] = true_value(v, &t);
             tr[i].measured_sigma = t.sigma_m;
             tr[i].contact = t.contact_frames;
-            cli_track_free(&t);
+            jc_track_free(&t);
         }
         if (tr[i].rc) fprintf(stderr, "trial %d (seed %llu): %s\n", i, (unsigned long long)seed, err);
     }
@@ -147,7 +147,7 @@ static int run_trials(int trials, uint64_t seed)
             free(tr);
             ENSURE_MSG(0, "trial %d failed (seed %llu)", i, (unsigned long long)seed);
         }
-        const cli_FitResult *r = &tr[i].r;
+        const jc_TrackFitResult *r = &tr[i].r;
         described += !r->misfit;
         if (getenv("JC_FIT_VERBOSE")) {
             printf("T %3d fps %3.0f sigma %.2f mm (measured %.2f, %ld frames) chi2/dof %.3f z %.1f misfit %d |", i,
@@ -156,8 +156,8 @@ static int run_trials(int trials, uint64_t seed)
             for (int v = 0; v < NV; ++v) {
                 const int k = slot(r, v);
                 if (k < 0) printf(" %s not fitted", vname[v]);
-                else if (r->flag[k] != CLI_FIT_DETERMINED)
-                    printf(" %s held (%s)", vname[v], cli_fit_flag_text(r->flag[k]));
+                else if (r->flag[k] != JC_FIT_DETERMINED)
+                    printf(" %s held (%s)", vname[v], jc_fit_flag_text(r->flag[k]));
                 else printf(" %+.2f", (r->value[k] - tr[i].truth[v]) / r->sigma[k]);
             }
             printf("\n");
@@ -165,7 +165,7 @@ static int run_trials(int trials, uint64_t seed)
         for (int v = 0; v < NV; ++v) {
             const int k = slot(r, v);
             if (k < 0) continue;
-            if (r->flag[k] != CLI_FIT_DETERMINED) {
+            if (r->flag[k] != JC_FIT_DETERMINED) {
                 flagged[v]++;
                 continue;
             }
@@ -191,7 +191,7 @@ static int run_trials(int trials, uint64_t seed)
     if (trials < 100) return 0; /* too few to judge a coverage by */
     /* mu_k, e and the start (theta0, omega0, x0) are always determined by these videos. */
     ENSURE_MSG(flagged[V_MU_K] == 0 && flagged[V_E] == 0 && flagged[V_THETA0] == 0 && flagged[V_OMEGA0] == 0 &&
-                   flagged[V_X0] == 0,
+               flagged[V_X0] == 0,
                "a value these videos determine was held (seed %llu)", (unsigned long long)seed);
     ENSURE_MSG(pooled >= COVERAGE_MIN && pooled <= COVERAGE_MAX, "pooled coverage %.3f (seed %llu)", pooled,
                (unsigned long long)seed);

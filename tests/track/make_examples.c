@@ -18,8 +18,7 @@
  *   make_examples DIR    writes the five files into DIR */
 #define _POSIX_C_SOURCE 200809L
 #include "synth.h"
-#include "track_fit.h"
-#include "raw.h"
+#include <jumpcyl/track.h>
 #include "synth_table.h"
 
 #include <gsl/gsl_errno.h>
@@ -78,7 +77,7 @@ int main(int argc, char **argv)
     if (film(argv[1], "floor", &hoop, &on_floor, "axle", "mass") != 0) return 1;
 
     const jc_Setup ring = synth_loaded_ring();
-    const cli_SynthOptions o = synth_camera(FPS, NOISE_M, CLI_SYNTH_MARK_ONLY, 2603, 0.10);
+    const jc_TrackSynthOptions o = synth_camera(FPS, NOISE_M, JC_TRACK_SYNTH_MARK_ONLY, 2603, 0.10);
     char led[512];
     snprintf(led, sizeof led, "%s/floor-led.txt", argv[1]);
     if (synth_table_write(led, &ring, &o, NULL) != 0) {

@@ -13,8 +13,7 @@
  *
  *   test_derive PATH_TO_JUMPCYL; JC_TEST_SEED=N for other seeds. */
 #define _POSIX_C_SOURCE 200809L
-#include "track_fit.h"
-#include "raw.h"
+#include <jumpcyl/track.h>
 #include "synth_table.h"
 #include "../cli_run.h"
 #include "../test.h"
@@ -33,13 +32,13 @@ static int test_rim_mark_recovery(void)
     const double fps[] = {30, 30, 60, 120}, noise[] = {1.5e-3, 1.5e-3, 1.5e-3, 1e-3};
     for (int c = 0; c < 4; ++c) {
         const uint64_t seed = base_seed * 100 + (uint64_t)c;
-        cli_SynthOptions o = synth_camera(fps[c], noise[c], CLI_SYNTH_MARK_ONLY, seed, 0.1);
-        cli_Track t, truth;
+        jc_TrackSynthOptions o = synth_camera(fps[c], noise[c], JC_TRACK_SYNTH_MARK_ONLY, seed, 0.1);
+        jc_Track t, truth;
         char err[256];
-        ENSURE_MSG(cli_track_synthesize(&s, &o, &t, err, sizeof err) == 0, "%s", err);
+        ENSURE_MSG(jc_track_synthesize(&s, &o, &t, err, sizeof err) == 0, "%s", err);
         o.sigma_m = 0.0;
-        o.tracks = CLI_SYNTH_BOTH;
-        ENSURE_MSG(cli_track_synthesize(&s, &o, &truth, err, sizeof err) == 0, "%s", err);
+        o.tracks = JC_TRACK_SYNTH_BOTH;
+        ENSURE_MSG(jc_track_synthesize(&s, &o, &truth, err, sizeof err) == 0, "%s", err);
         /* Both frames are Tracker's level axes turned onto their measured
          * surface; the truth's (noise-free) is the floor exactly. */
         double ss = 0, worst = 0;
@@ -56,15 +55,15 @@ static int test_rim_mark_recovery(void)
         printf("mark only, %.0f fps, %.1f mm: centre %s, %ld of %ld frames rolling, error RMS %.2f mm (largest "
                "%.2f, %ld beyond 4 stated sigma), stated %.2f mm (median); a = %.2f +- %.2f cm; noise %.2f mm; %ld "
                "hops; incline %.3f +- %.3f deg\n",
-               fps[c], noise[c] * 1e3, t.centre_source == CLI_CENTRE_FROM_MARK ? "recovered" : "NOT recovered", m, t.n,
+               fps[c], noise[c] * 1e3, t.centre_source == JC_TRACK_CENTRE_FROM_MARK ? "recovered" : "NOT recovered", m, t.n,
                rms * 1e3, worst * 1e3, beyond, t.centre_sigma_median_m * 1e3, t.mark_radius_m * 100,
-               t.mark_radius_sigma_m * 100, t.sigma_m * 1e3, t.hops, t.incline_rad * 180 / CLI_TRACK_PI,
-               t.incline_sigma_rad * 180 / CLI_TRACK_PI);
-        const int ok = t.centre_source == CLI_CENTRE_FROM_MARK && m >= t.n * 9 / 10 && rms <= 2e-3 && beyond == 0 &&
+               t.mark_radius_sigma_m * 100, t.sigma_m * 1e3, t.hops, t.incline_rad * 180 / SYNTH_PI,
+               t.incline_sigma_rad * 180 / SYNTH_PI);
+        const int ok = t.centre_source == JC_TRACK_CENTRE_FROM_MARK && m >= t.n * 9 / 10 && rms <= 2e-3 && beyond == 0 &&
                        t.hops == 0 && fabs(t.mark_radius_m - 0.1) <= 3.0 * t.mark_radius_sigma_m + 2e-4 &&
                        fabs(t.incline_rad) <= 3.0 * t.incline_sigma_rad + 1e-4;
-        cli_track_free(&t);
-        cli_track_free(&truth);
+        jc_track_free(&t);
+        jc_track_free(&truth);
         ENSURE_MSG(ok, "seed %llu", (unsigned long long)seed);
     }
     return 0;
@@ -79,16 +78,16 @@ static int test_no_jump_no_hops(void)
     ENSURE(jc_preset_setup("disc", &s, err, sizeof err) == JC_OK);
     for (int c = 0; c < 4; ++c) {
         const uint64_t seed = base_seed * 100 + 10 + (uint64_t)c;
-        const cli_SynthOptions o = synth_camera(c % 2 ? 60 : 240, 2e-3, CLI_SYNTH_BOTH, seed, 0.05);
-        cli_Track t;
-        ENSURE_MSG(cli_track_synthesize(&s, &o, &t, err, sizeof err) == 0, "%s", err);
+        const jc_TrackSynthOptions o = synth_camera(c % 2 ? 60 : 240, 2e-3, JC_TRACK_SYNTH_BOTH, seed, 0.05);
+        jc_Track t;
+        ENSURE_MSG(jc_track_synthesize(&s, &o, &t, err, sizeof err) == 0, "%s", err);
         const double dev = (t.incline_rad - s.incline_rad) / t.incline_sigma_rad;
         printf("disc on 30 deg, %.0f fps: %ld hops, %ld of %ld frames in contact, incline %.3f +- %.3f deg (%.1f "
                "sigma off), noise %.2f mm (true 2)\n",
-               o.fps_hz, t.hops, t.contact_frames, t.n, t.incline_rad * 180 / CLI_TRACK_PI,
-               t.incline_sigma_rad * 180 / CLI_TRACK_PI, dev, t.sigma_m * 1e3);
+               o.fps_hz, t.hops, t.contact_frames, t.n, t.incline_rad * 180 / SYNTH_PI,
+               t.incline_sigma_rad * 180 / SYNTH_PI, dev, t.sigma_m * 1e3);
         const int ok = t.hops == 0 && fabs(dev) <= 3.0 && t.contact_frames >= t.n * 9 / 10;
-        cli_track_free(&t);
+        jc_track_free(&t);
         ENSURE_MSG(ok, "seed %llu", (unsigned long long)seed);
     }
     return 0;
@@ -137,7 +136,7 @@ static int test_incline(void)
     path_of(along, sizeof along, "along.txt");
     jc_Setup s = jc_paper_setup();
     s.mu_kinetic = 0.4;
-    const cli_SynthOptions o = synth_camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 20, 0.055);
+    const jc_TrackSynthOptions o = synth_camera(60, 1e-3, JC_TRACK_SYNTH_BOTH, base_seed * 100 + 20, 0.055);
     ENSURE(synth_table_write(level, &s, &o, NULL) == 0);
     int bad = 0;
     const char *measured[] = {"track", level, NULL};
@@ -155,7 +154,7 @@ static int test_incline(void)
      * The table of a ring rolled along a floor is such a video of a ring on
      * a ramp whose angle the axes hide: read with --axes incline. */
     const jc_Setup run = synth_loaded_ring();
-    const cli_SynthOptions oa = synth_camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 21, 0.055);
+    const jc_TrackSynthOptions oa = synth_camera(60, 1e-3, JC_TRACK_SYNTH_BOTH, base_seed * 100 + 21, 0.055);
     ENSURE(synth_table_write(along, &run, &oa, NULL) == 0);
     const char *unknown[] = {"track", along, "--axes", "incline", NULL};
     bad += expect(unknown, 0, "the incline's angle is not known", NULL);
@@ -175,7 +174,7 @@ static int test_incline(void)
 static int write_mark_named(const char *path, const char *name)
 {
     const jc_Setup s = synth_loaded_ring();
-    const cli_SynthOptions o = synth_camera(30, 1.5e-3, CLI_SYNTH_MARK_ONLY, base_seed * 100 + 31, 0.1);
+    const jc_TrackSynthOptions o = synth_camera(30, 1.5e-3, JC_TRACK_SYNTH_MARK_ONLY, base_seed * 100 + 31, 0.1);
     return synth_table_write(path, &s, &o, name);
 }
 
@@ -251,12 +250,12 @@ static int test_every_file_reports(void)
     jc_Setup hoop;
     char err[128];
     ENSURE(jc_preset_setup("hoop", &hoop, err, sizeof err) == JC_OK);
-    const cli_SynthOptions o = synth_camera(30, 1.5e-3, CLI_SYNTH_MARK_ONLY, base_seed * 100 + 30, 0.1);
+    const jc_TrackSynthOptions o = synth_camera(30, 1.5e-3, JC_TRACK_SYNTH_MARK_ONLY, base_seed * 100 + 30, 0.1);
     ENSURE(synth_table_write(slide, &hoop, &o, NULL) == 0);
     int bad = 0;
     const char *a[] = {"track", three, NULL};
     bad += expect(a, 0, "which track is the centre? none is named like the axle (centre, center, axle, axis, hub); "
-                        "give --centre NAME", NULL);
+                  "give --centre NAME", NULL);
     bad += expect(a, 0, "theta: not known: a mark's angle is seen from the centre, which is not known", NULL);
     const char *a_csv[] = {"track", three, "--csv", csv, NULL};
     bad += expect(a_csv, 2, "--csv needs the centre's path", csv);
@@ -280,21 +279,21 @@ static int test_tracks_told_by_motion(void)
     char path[256];
     path_of(path, sizeof path, "ab.txt");
     jc_Setup s = jc_paper_setup();
-    const cli_SynthOptions o = synth_camera(60, 1e-3, CLI_SYNTH_BOTH, base_seed * 100 + 40, 0.055);
-    cli_RawData raw;
+    const jc_TrackSynthOptions o = synth_camera(60, 1e-3, JC_TRACK_SYNTH_BOTH, base_seed * 100 + 40, 0.055);
+    jc_TrackRaw raw;
     char err[256];
-    ENSURE(cli_track_synth_raw(&s, &o, &raw, err, sizeof err) == 0);
+    ENSURE(jc_track_synth_raw(&s, &o, &raw, err, sizeof err) == 0);
     /* The mark first, then the centre, both named as Tracker names them. */
-    cli_RawTrack tmp = raw.tracks[0];
+    jc_TrackPoints tmp = raw.tracks[0];
     raw.tracks[0] = raw.tracks[1];
     raw.tracks[1] = tmp;
-    snprintf(raw.tracks[0].name, CLI_TRACK_NAME_LEN, "mass A");
-    snprintf(raw.tracks[1].name, CLI_TRACK_NAME_LEN, "mass B");
+    snprintf(raw.tracks[0].name, JC_TRACK_NAME_LEN, "mass A");
+    snprintf(raw.tracks[1].name, JC_TRACK_NAME_LEN, "mass B");
     FILE *f = fopen(path, "w");
     ENSURE(f);
-    cli_track_write_table(f, &raw);
+    jc_track_write_table(f, &raw);
     fclose(f);
-    cli_raw_free(&raw);
+    jc_track_raw_free(&raw);
     const char *args[] = {"track", path, NULL};
     const int bad = expect(args, 0, "tracked ('mass B'", NULL);
     unlink(path);

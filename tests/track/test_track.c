@@ -1,7 +1,7 @@
 /*
  * jumpcyl track (issue 16, import): synthetic experiments written as
  * Tracker writes them (.trk, exported tables with tab, semicolon or comma
- * delimiters and a decimal point or comma) are read back by cli_track_load
+ * delimiters and a decimal point or comma) are read back by jc_track_read_file
  * to the pixel noise; θ and the hops match the simulation; hostile and
  * malformed files get one line on standard error, exit 2 and no output.
  *
@@ -12,7 +12,7 @@
 #include "../test.h"
 #include "../cli_run.h"
 #include "synth.h"
-#include "track.h"
+#include <jumpcyl/track.h>
 
 #include <cjson/cJSON.h>
 #include <sys/stat.h>
@@ -59,7 +59,7 @@ static int cmp_d(const void *a, const void *b)
 }
 
 /* Matches kept frames to the truth by time. */
-static int measure(const syn_Experiment *e, const cli_Track *t, double sigma, recovery *r)
+static int measure(const syn_Experiment *e, const jc_Track *t, double sigma, recovery *r)
 {
     memset(r, 0, sizeof *r);
     double sx = 0, sh = 0, sth = 0;
@@ -106,9 +106,9 @@ static int measure(const syn_Experiment *e, const cli_Track *t, double sigma, re
     return 0;
 }
 
-static void default_options(cli_TrackOptions *o, const jc_Setup *s)
+static void default_options(jc_TrackOptions *o, const jc_Setup *s)
 {
-    cli_track_options_default(o);
+    jc_track_options_default(o);
     o->incline_rad = s->incline_rad;
     o->radius_m = s->body.radius_m;
     o->centre = "axle";
@@ -136,12 +136,12 @@ static int round_trip(const char *kind, syn_Camera c, const char *what)
     else if (strcmp(kind, "tab-comma") == 0) st = syn_write_table(path, &c, &e, "axle", "rod", '\t', 1);
     else st = syn_write_table(path, &c, &e, "axle", "rod", ',', 0);
     ENSURE(st == 0);
-    cli_TrackOptions o;
+    jc_TrackOptions o;
     default_options(&o, &s);
-    o.axes = c.axes_incline ? CLI_TRACK_AXES_INCLINE : CLI_TRACK_AXES_LEVEL;
-    cli_Track t;
+    o.axes = c.axes_incline ? JC_TRACK_AXES_INCLINE : JC_TRACK_AXES_LEVEL;
+    jc_Track t;
     char err[512];
-    if (cli_track_load(path, &o, &t, err, sizeof err) != 0) {
+    if (jc_track_read_file(path, &o, &t, err, sizeof err) != 0) {
         syn_free(&e);
         ENSURE_MSG(0, "%s (%s, seed %llu): %s", what, kind, (unsigned long long)c.seed, err);
     }
@@ -151,8 +151,8 @@ static int round_trip(const char *kind, syn_Camera c, const char *what)
     const double sigma_theta = sqrt(2.0) * sigma / c.mark_offset_m;
     const long n = e.n;
     syn_free(&e);
-    const cli_Track tc = t;
-    cli_track_free(&t);
+    const jc_Track tc = t;
+    jc_track_free(&t);
     ENSURE_MSG(mst == 0, "%s (%s, seed %llu): frames do not match the truth", what, kind, (unsigned long long)c.seed);
     const double rx = r.rms_x_m / sigma, rh = r.rms_h_m / sigma, rt = r.rms_theta_rad / sigma_theta;
     if (rx > worst_ratio_x) worst_ratio_x = rx;
@@ -396,20 +396,20 @@ static int test_table_forms(void)
         {"t x y\n0 0 0.1\n0.1 -0.01 0.1\n0.2 -0.02 0.1\n0.3 -0.04 0.1\n", 0.04, "mass A"}, /* rolls to the left */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
-        cli_TrackOptions o;
-        cli_track_options_default(&o);
+        jc_TrackOptions o;
+        jc_track_options_default(&o);
         o.incline_rad = 0;
         o.radius_m = 0.1;
-        cli_Track t;
+        jc_Track t;
         char err[256];
-        const int st = cli_track_parse("table", cases[i].text, strlen(cases[i].text), &o, &t, err, sizeof err);
+        const int st = jc_track_parse("table", cases[i].text, strlen(cases[i].text), &o, &t, err, sizeof err);
         ENSURE_MSG(st == 0, "case %zu: %s", i, err);
         const int ok = t.n == 4 && fabs(t.x_m[3] - cases[i].last_x_m) < 1e-12 && fabs(t.t_s[3] - 0.3) < 1e-12 &&
                        fabs(t.y_m[2] - 0.1) < 1e-9 && strcmp(t.centre_name, cases[i].name) == 0 && !t.has_mark;
         if (!ok)
             fprintf(stderr, "case %zu: n %ld, x %g, t %g, y %g, centre '%s'\n", i, t.n, t.n ? t.x_m[t.n - 1] : NAN,
                     t.n ? t.t_s[t.n - 1] : NAN, t.n > 2 ? t.y_m[2] : NAN, t.centre_name);
-        cli_track_free(&t);
+        jc_track_free(&t);
         ENSURE(ok);
     }
     return 0;

@@ -1,7 +1,7 @@
 /* The surface under a tracked centre: the line through the frames in
  * contact, its tilt with a standard error, and the noise of the tracked
  * points measured as their scatter about it. */
-#include "raw.h"
+#include "track_internal.h"
 
 #include <gsl/gsl_sort_double.h>
 #include <gsl/gsl_statistics_double.h>
@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A run of frames in contact is at least min_run long (cli_surface_fit's:
+/* A run of frames in contact is at least min_run long (jc_track_surface_fit's:
  * 4 frames and 0.1 s at the frame rate): a flight's low first and last frames and a low bounce
  * between two flights make shorter runs, left out as they would tilt the
  * line where the body is mostly in the air. */
@@ -25,17 +25,17 @@
 static double truncated_variance(double c)
 {
     if (!(c > 0.5)) c = 0.5;
-    const double phi = exp(-0.5 * c * c) / sqrt(2.0 * CLI_TRACK_PI), mass = erf(c / sqrt(2.0));
+    const double phi = exp(-0.5 * c * c) / sqrt(2.0 * JC_TRACK_PI), mass = erf(c / sqrt(2.0));
     return 1.0 - 2.0 * c * phi / mass;
 }
 
-double cli_track_median(double *v, long n)
+double jc_track_median(double *v, long n)
 {
     return n > 0 ? gsl_stats_median(v, 1, (size_t)n) : NAN;
 }
 
 /* The q-quantile of v[0..n) (reordered): the element of nearest rank, not
- * a mean of two (cli_track_median's); NaN for n = 0. */
+ * a mean of two (jc_track_median's); NaN for n = 0. */
 static double quantile(double *v, long n, double q)
 {
     if (n <= 0) return NAN;
@@ -45,7 +45,7 @@ static double quantile(double *v, long n, double q)
 }
 
 /* Least squares y = a + b (x - xm) over the kept frames; -1 with fewer than 3. */
-static int line_fit(const double *x, const double *y, const unsigned char *keep, long n, cli_SurfaceLine *L)
+static int line_fit(const double *x, const double *y, const unsigned char *keep, long n, jc_TrackSurfaceLine *L)
 {
     double sw = 0, sx = 0;
     for (long i = 0; i < n; ++i)
@@ -67,7 +67,7 @@ static int line_fit(const double *x, const double *y, const unsigned char *keep,
 }
 
 /* Robust scale of the kept frames' residuals: MAD x 1.4826, at least floor. */
-static double scale_of(const double *x, const double *y, const unsigned char *keep, long n, const cli_SurfaceLine *L,
+static double scale_of(const double *x, const double *y, const unsigned char *keep, long n, const jc_TrackSurfaceLine *L,
                        double floor_m, double *work)
 {
     long m = 0;
@@ -87,7 +87,7 @@ static double scale_of(const double *x, const double *y, const unsigned char *ke
 #define CHUNKS 60
 #define COUNT_FRAMES 2000 /* frames a candidate is counted on, evenly spaced */
 
-static void median_slope_line(const double *x, const double *y, long n, cli_SurfaceLine *L, double *work)
+static void median_slope_line(const double *x, const double *y, long n, jc_TrackSurfaceLine *L, double *work)
 {
     const long h = n / 2 > 0 ? n / 2 : 1;
     long m = 0;
@@ -100,7 +100,7 @@ static void median_slope_line(const double *x, const double *y, long n, cli_Surf
     L->a = quantile(work, n, 0.25);
 }
 
-static void first_line(const double *x, const double *y, long n, double scale, cli_SurfaceLine *L, double *work)
+static void first_line(const double *x, const double *y, long n, double scale, jc_TrackSurfaceLine *L, double *work)
 {
     double xm = 0;
     for (long i = 0; i < n; ++i) xm += x[i];
@@ -140,12 +140,12 @@ static void first_line(const double *x, const double *y, long n, double scale, c
  * frames: a flight rises from contact by less than the noise for a while
  * (by t^3 from a slide), and those frames, last before the hop and so far
  * along the ramp, would tilt the line. */
-static int near_line(const double *x, const double *y, const cli_SurfaceLine *L, double cut, long i)
+static int near_line(const double *x, const double *y, const jc_TrackSurfaceLine *L, double cut, long i)
 {
     return fabs(y[i] - (L->a + L->b * (x[i] - L->x_mid))) <= cut;
 }
 
-static long mark_contact(const double *x, const double *y, long n, const cli_SurfaceLine *L, double cut,
+static long mark_contact(const double *x, const double *y, long n, const jc_TrackSurfaceLine *L, double cut,
                          long min_run, long erode, unsigned char *keep)
 {
     const long need = n < min_run ? 1 : min_run;
@@ -224,7 +224,7 @@ static long drop_runs_above(const double *x, const double *y, long n, double noi
     return dropped;
 }
 
-double cli_track_frame_noise(const double *x, const double *y, long n, double *work)
+double jc_track_frame_noise(const double *x, const double *y, long n, double *work)
 {
     long m = 0;
     for (long i = 0; i + 3 < n; ++i) {
@@ -234,8 +234,8 @@ double cli_track_frame_noise(const double *x, const double *y, long n, double *w
     return m > 0 ? MAD_TO_SIGMA * quantile(work, m, 0.5) / sqrt(20.0) : 0.0;
 }
 
-int cli_surface_fit(const double *x, const double *y, long n, double fps, double floor_m, double start_m,
-                    unsigned char *contact, cli_SurfaceLine *out)
+int jc_track_surface_fit(const double *x, const double *y, long n, double fps, double floor_m, double start_m,
+                         unsigned char *contact, jc_TrackSurfaceLine *out)
 {
     /* A run of contact: CONTACT_RUN_FRAMES and CONTACT_RUN_S at least; its
      * ends next to a hop lose CONTACT_ERODE_S (a frame at least). */

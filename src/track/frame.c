@@ -2,7 +2,7 @@
  * axes: which track is the centre and which the mark, the direction of
  * "downhill", the frame times and their gaps and jitter. derive.c then
  * finds the surface and turns the frame onto it. */
-#include "raw.h"
+#include "track_internal.h"
 
 #include <ctype.h>
 #include <gsl/gsl_sort_double.h>
@@ -23,7 +23,7 @@ static int has_word(const char *name, const char *word)
     return 0;
 }
 
-static int find_named(const cli_RawData *raw, const char *name)
+static int find_named(const jc_TrackRaw *raw, const char *name)
 {
     for (int i = 0; i < raw->track_count; ++i)
         if (strcmp(raw->tracks[i].name, name) == 0) return i;
@@ -42,13 +42,13 @@ static int named_like(const char *name, const char *const *words, int nwords)
     return 0;
 }
 
-int cli_track_named_centre(const char *name)
+int jc_track_named_centre(const char *name)
 {
     return named_like(name, centre_words, N_CENTRE_WORDS);
 }
 
 /* The one track whose name holds one of words, other than skip; -1 if none or several. */
-static int find_by_words(const cli_RawData *raw, const char *const *words, int nwords, int skip)
+static int find_by_words(const jc_TrackRaw *raw, const char *const *words, int nwords, int skip)
 {
     int found = -1;
     for (int i = 0; i < raw->track_count; ++i) {
@@ -59,7 +59,7 @@ static int find_by_words(const cli_RawData *raw, const char *const *words, int n
     return found;
 }
 
-void cli_track_list_names(const cli_RawData *raw, char *buf, size_t len)
+void jc_track_list_names(const jc_TrackRaw *raw, char *buf, size_t len)
 {
     buf[0] = '\0';
     size_t used = 0;
@@ -76,7 +76,7 @@ void cli_track_list_names(const cli_RawData *raw, char *buf, size_t len)
  * swings across any line by its distance from the centre. The one with at
  * least three times the other's frames in contact is the centre; -1: not
  * told. */
-static long contact_frames_of(const cli_RawTrack *k, const cli_RawData *raw, double dt)
+static long contact_frames_of(const jc_TrackPoints *k, const jc_TrackRaw *raw, double dt)
 {
     const long n = raw->frames;
     double *x = malloc((size_t)n * sizeof *x), *y = malloc((size_t)n * sizeof *y), *w = malloc((size_t)(2 * n) * sizeof *w);
@@ -85,16 +85,16 @@ static long contact_frames_of(const cli_RawTrack *k, const cli_RawData *raw, dou
     if (x && y && w && keep) {
         for (long f = 0; f < n; ++f)
             if (!isnan(k->x_m[f])) x[m] = k->x_m[f], y[m] = k->y_m[f], m++;
-        cli_SurfaceLine L;
-        if (cli_surface_fit(x, y, m, dt > 0 ? 1.0 / dt : NAN, CLI_TRACK_NOISE_FLOOR_M,
-                            cli_track_frame_noise(x, y, m, w), keep, &L) == 0)
+        jc_TrackSurfaceLine L;
+        if (jc_track_surface_fit(x, y, m, dt > 0 ? 1.0 / dt : NAN, JC_TRACK_NOISE_FLOOR_M,
+                                 jc_track_frame_noise(x, y, m, w), keep, &L) == 0)
             contact = L.contact;
     }
     free(x), free(y), free(w), free(keep);
     return contact;
 }
 
-static int centre_by_motion(const cli_RawData *raw, double dt)
+static int centre_by_motion(const jc_TrackRaw *raw, double dt)
 {
     const long c0 = contact_frames_of(&raw->tracks[0], raw, dt), c1 = contact_frames_of(&raw->tracks[1], raw, dt);
     if (c0 >= 3 && c0 >= 3 * c1) return 0;
@@ -106,11 +106,11 @@ static int centre_by_motion(const cli_RawData *raw, double dt)
  * single track named as one, told by derive.c's rolling fit otherwise) or
  * when it cannot be told (t->centre_ambiguous). -1 with a message only for
  * a name the caller gave that is not in the file. */
-static int pick_tracks(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, double dt, int *centre,
+static int pick_tracks(const char *name, const jc_TrackRaw *raw, const jc_TrackOptions *opt, double dt, int *centre,
                        int *mark, int *ambiguous, char *err, size_t err_len)
 {
     char tracks[512];
-    cli_track_list_names(raw, tracks, sizeof tracks);
+    jc_track_list_names(raw, tracks, sizeof tracks);
     *centre = *mark = -1;
     *ambiguous = 0;
     if (opt->centre) {
@@ -146,7 +146,7 @@ static int pick_tracks(const char *name, const cli_RawData *raw, const cli_Track
         *centre = centre_by_motion(raw, dt);
         if (*centre >= 0) *mark = 1 - *centre;
     }
-    if (*centre < 0 && *mark >= 0 && raw->track_count == 1) return 0; /* --mass NAME alone: mark only */
+    if (*centre < 0 && *mark >= 0 && raw->track_count == 1) return 0; /* a mark named alone: mark only */
     if (*centre < 0) {
         *ambiguous = 1;
         return 0;
@@ -161,7 +161,7 @@ static int pick_tracks(const char *name, const cli_RawData *raw, const cli_Track
 /* The frame duration: the clip's, or the median step of the table's times
  * refined over the whole span (each step a whole number of frames, so that
  * jitter averages out). NaN when the rows have no time step. */
-static double frame_step(const cli_RawData *raw)
+static double frame_step(const jc_TrackRaw *raw)
 {
     if (!isnan(raw->nominal_dt_s)) return raw->nominal_dt_s;
     if (raw->frames < 2) return NAN;
@@ -180,7 +180,7 @@ static double frame_step(const cli_RawData *raw)
     return (raw->t_s[raw->frames - 1] - raw->t_s[0]) / frames_spanned;
 }
 
-static int alloc_frames(cli_Track *t, long n)
+static int alloc_frames(jc_Track *t, long n)
 {
     const size_t bytes = (size_t)(n > 0 ? n : 1) * sizeof(double);
     double **arrays[] = {&t->t_s, &t->x_m, &t->y_m, &t->centre_sigma_m, &t->mark_x_m, &t->mark_y_m, &t->theta_rad,
@@ -192,12 +192,12 @@ static int alloc_frames(cli_Track *t, long n)
     return ok && t->contact && t->airborne ? 0 : -1;
 }
 
-static void copy_report(const cli_RawData *raw, const cli_TrackOptions *opt, cli_Track *out)
+static void copy_report(const jc_TrackRaw *raw, const jc_TrackOptions *opt, jc_Track *out)
 {
     snprintf(out->format, sizeof out->format, "%s", raw->format);
     out->track_count = raw->track_count;
     for (int i = 0; i < raw->track_count; ++i) {
-        memcpy(out->track_names[i], raw->tracks[i].name, CLI_TRACK_NAME_LEN);
+        memcpy(out->track_names[i], raw->tracks[i].name, JC_TRACK_NAME_LEN);
         long k = 0;
         for (long f = 0; f < raw->frames; ++f) k += !isnan(raw->tracks[i].x_m[f]);
         out->track_frames[i] = k;
@@ -221,20 +221,20 @@ static void copy_report(const cli_RawData *raw, const cli_TrackOptions *opt, cli
  * in the frame turned by angle_rad from Tracker's axes (level axes) or in
  * Tracker's own (incline axes), x pointing where the primary track went.
  * -1 when the time jumps by more frames than a clip may hold, -2 for a
- * position beyond CLI_TRACK_MAX_COORD_M. */
-static int convert(const cli_RawData *raw, const cli_RawTrack *P, const cli_RawTrack *K, long first, long last,
-                    double dt, double angle_rad, cli_Track *out)
+ * position beyond JC_TRACK_MAX_COORD_M. */
+static int convert(const jc_TrackRaw *raw, const jc_TrackPoints *P, const jc_TrackPoints *K, long first, long last,
+                   double dt, double angle_rad, jc_Track *out)
 {
     const double s = P->x_m[last] >= P->x_m[first] ? 1.0 : -1.0;
     double xh[2], nh[2];
-    if (out->axes == CLI_TRACK_AXES_INCLINE) {
+    if (out->axes == JC_TRACK_AXES_INCLINE) {
         xh[0] = s, xh[1] = 0, nh[0] = 0, nh[1] = 1;
     } else {
         const double ca = cos(angle_rad), sa = sin(angle_rad);
         xh[0] = s * ca, xh[1] = -sa, nh[0] = s * sa, nh[1] = ca;
     }
     const double t0 = raw->t_s[0];
-    const int primary_is_centre = out->centre_source == CLI_CENTRE_TRACKED;
+    const int primary_is_centre = out->centre_source == JC_TRACK_CENTRE_TRACKED;
     long n = 0, prev = -1;
     for (long f = first; f <= last; ++f) {
         if (isnan(P->x_m[f])) {
@@ -244,7 +244,7 @@ static int convert(const cli_RawData *raw, const cli_RawTrack *P, const cli_RawT
         out->t_s[n] = raw->t_s[f] - t0;
         out->x_m[n] = out->y_m[n] = out->mark_x_m[n] = out->mark_y_m[n] = NAN;
         out->theta_rad[n] = out->omega_radps[n] = out->centre_sigma_m[n] = NAN;
-        const cli_RawTrack *C = primary_is_centre ? P : NULL, *M = primary_is_centre ? K : P;
+        const jc_TrackPoints *C = primary_is_centre ? P : NULL, *M = primary_is_centre ? K : P;
         if (C) {
             out->x_m[n] = C->x_m[f] * xh[0] + C->y_m[f] * xh[1];
             out->y_m[n] = C->x_m[f] * nh[0] + C->y_m[f] * nh[1];
@@ -255,13 +255,13 @@ static int convert(const cli_RawData *raw, const cli_RawTrack *P, const cli_RawT
         }
         /* Positions a ramp could have: far ones would lose every digit in
          * the sums that follow (NaN, no position, passes). */
-        if (fabs(out->x_m[n]) > CLI_TRACK_MAX_COORD_M || fabs(out->y_m[n]) > CLI_TRACK_MAX_COORD_M ||
-            fabs(out->mark_x_m[n]) > CLI_TRACK_MAX_COORD_M || fabs(out->mark_y_m[n]) > CLI_TRACK_MAX_COORD_M)
+        if (fabs(out->x_m[n]) > JC_TRACK_MAX_COORD_M || fabs(out->y_m[n]) > JC_TRACK_MAX_COORD_M ||
+            fabs(out->mark_x_m[n]) > JC_TRACK_MAX_COORD_M || fabs(out->mark_y_m[n]) > JC_TRACK_MAX_COORD_M)
             return -2;
         if (prev >= 0) {
             const double step = out->t_s[n] - out->t_s[n - 1];
             const double k = fmax(1.0, floor(step / dt + 0.5));
-            if (!(k <= (double)CLI_TRACK_MAX_FRAMES)) return -1;
+            if (!(k <= (double)JC_TRACK_MAX_FRAMES)) return -1;
             const long missing_rows = (long)k - 1 - (f - prev - 1); /* rows a table left out */
             if (missing_rows > 0) out->gaps += missing_rows;
             const double j = fabs(step - k * dt);
@@ -274,25 +274,25 @@ static int convert(const cli_RawData *raw, const cli_RawTrack *P, const cli_RawT
     return 0;
 }
 
-int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_TrackOptions *opt, double angle_rad,
-                       cli_Track *out, char *err, size_t err_len)
+int jc_track_frame_raw(const char *name, const jc_TrackRaw *raw, const jc_TrackOptions *opt, double angle_rad,
+                       jc_Track *out, char *err, size_t err_len)
 {
     memset(out, 0, sizeof *out);
-    if (!(opt->radius_m > 0) || !(isnan(opt->incline_rad) || (opt->incline_rad >= 0 && opt->incline_rad < CLI_TRACK_PI / 2))) {
+    if (!(opt->radius_m > 0) || !(isnan(opt->incline_rad) || (opt->incline_rad >= 0 && opt->incline_rad < JC_TRACK_PI / 2))) {
         snprintf(err, err_len, "%s: the radius must be > 0 and the incline angle in [0, 90) deg", name);
-        return -1;
+        return JC_EINVAL;
     }
     copy_report(raw, opt, out);
     int ci, mi, ambiguous;
     const double dt = frame_step(raw);
-    if (pick_tracks(name, raw, opt, dt, &ci, &mi, &ambiguous, err, err_len) != 0) return -1;
+    if (pick_tracks(name, raw, opt, dt, &ci, &mi, &ambiguous, err, err_len) != 0) return JC_EINVAL;
     out->centre_ambiguous = ambiguous;
-    out->centre_source = ci >= 0 ? CLI_CENTRE_TRACKED : mi >= 0 ? CLI_CENTRE_FROM_MARK : CLI_CENTRE_NONE;
-    if (ci >= 0) memcpy(out->centre_name, raw->tracks[ci].name, CLI_TRACK_NAME_LEN);
-    if (mi >= 0) memcpy(out->mark_name, raw->tracks[mi].name, CLI_TRACK_NAME_LEN);
+    out->centre_source = ci >= 0 ? JC_TRACK_CENTRE_TRACKED : mi >= 0 ? JC_TRACK_CENTRE_FROM_MARK : JC_TRACK_CENTRE_NONE;
+    if (ci >= 0) memcpy(out->centre_name, raw->tracks[ci].name, JC_TRACK_NAME_LEN);
+    if (mi >= 0) memcpy(out->mark_name, raw->tracks[mi].name, JC_TRACK_NAME_LEN);
     out->has_mark = mi >= 0;
     out->frame_rate_hz = dt > 0 && isfinite(1.0 / dt) ? 1.0 / dt : NAN;
-    const cli_RawTrack *P = ci >= 0 ? &raw->tracks[ci] : mi >= 0 ? &raw->tracks[mi] : NULL;
+    const jc_TrackPoints *P = ci >= 0 ? &raw->tracks[ci] : mi >= 0 ? &raw->tracks[mi] : NULL;
     long first = -1, last = -1, kept = 0;
     for (long f = 0; P && f < raw->frames; ++f)
         if (!isnan(P->x_m[f])) {
@@ -301,23 +301,23 @@ int cli_track_from_raw(const char *name, const cli_RawData *raw, const cli_Track
             kept++;
         }
     if (alloc_frames(out, kept) != 0) {
-        cli_track_free(out);
+        jc_track_free(out);
         snprintf(err, err_len, "%s: out of memory", name);
-        return -1;
+        return JC_ENOMEM;
     }
     if (kept == 0 || !(dt > 0)) {
-        out->centre_source = ambiguous ? CLI_CENTRE_NONE : out->centre_source;
-        return 0;
+        out->centre_source = ambiguous ? JC_TRACK_CENTRE_NONE : out->centre_source;
+        return JC_OK;
     }
     const int conv = convert(raw, P, mi >= 0 && ci >= 0 ? &raw->tracks[mi] : NULL, first, last, dt, angle_rad, out);
     if (conv != 0) {
         if (conv == -2)
             snprintf(err, err_len, "%s: a position %g m or more from the origin (allowed: within %g m)", name,
-                     CLI_TRACK_MAX_COORD_M, CLI_TRACK_MAX_COORD_M);
+                     JC_TRACK_MAX_COORD_M, JC_TRACK_MAX_COORD_M);
         else
-            snprintf(err, err_len, "%s: the time jumps by more than %ld frames of %g s", name, CLI_TRACK_MAX_FRAMES, dt);
-        cli_track_free(out);
-        return -1;
+            snprintf(err, err_len, "%s: the time jumps by more than %ld frames of %g s", name, JC_TRACK_MAX_FRAMES, dt);
+        jc_track_free(out);
+        return JC_EINVAL;
     }
-    return 0;
+    return JC_OK;
 }

@@ -8,9 +8,9 @@
  * Frames the rolling fit cannot explain for two frames or more are
  * departures from rolling (a hop or a slip); a flight (a parabola under
  * gravity with a constant spin) is fitted to each once the caller has
- * decided the incline (cli_rim_flights), and its height is a hop's when it
+ * decided the incline (jc_track_rim_flights), and its height is a hop's when it
  * fits. */
-#include "raw.h"
+#include "track_internal.h"
 
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_bspline.h>
@@ -162,12 +162,12 @@ static int viterbi(const double *u, const double *v, long n, double h, double a,
 {
     double umin = INFINITY, umax = -INFINITY;
     for (long i = 0; i < n; ++i) umin = fmin(umin, u[i]), umax = fmax(umax, u[i]);
-    const double reach = (umax - umin + 2.0 * a) / r + CLI_TRACK_PI;
+    const double reach = (umax - umin + 2.0 * a) / r + JC_TRACK_PI;
     /* The grid at GRID_STEP, coarser where the frames and the reach would
      * make the back-pointers too many (a first guess only). */
     const double step = fmax(GRID_STEP, 2.0 * reach * (double)n / VITERBI_CELLS);
     const long g = (long)ceil(2.0 * reach / step) + 1;
-    const long jump = (long)ceil(0.5 * CLI_TRACK_PI / step); /* steps of up to a quarter turn per frame */
+    const long jump = (long)ceil(0.5 * JC_TRACK_PI / step); /* steps of up to a quarter turn per frame */
     if (g < 8 || (double)g * (double)n > 2.0 * VITERBI_CELLS) return -1;
     double *cost = malloc((size_t)g * sizeof *cost), *next = malloc((size_t)g * sizeof *next);
     double *sn = malloc((size_t)g * sizeof *sn), *cs = malloc((size_t)g * sizeof *cs);
@@ -182,7 +182,7 @@ static int viterbi(const double *u, const double *v, long n, double h, double a,
     for (long k = 0; k < g; ++k) {
         const double e = (v[0] - h - a * cs[k]) / sv;
         /* The first frame's angle within a turn of 0: the path's turns count from it. */
-        cost[k] = fabs(ANGLE(k)) <= CLI_TRACK_PI ? 0.5 * e * e : INFINITY;
+        cost[k] = fabs(ANGLE(k)) <= JC_TRACK_PI ? 0.5 * e * e : INFINITY;
     }
     for (long i = 1; i < n; ++i) {
         const double du = u[i] - u[i - 1];
@@ -233,7 +233,7 @@ static void first_guess(const rim_ctx *c, double *tilt, double *h, double *a, do
         const double cf = cos(*tilt), sf = sin(*tilt);
         double umin = INFINITY, umax = -INFINITY;
         for (long i = 0; i < c->n; ++i) {
-            cli_track_turn(c->xd[i], c->yd[i], cf, sf, &u[i], &v[i]);
+            jc_track_turn(c->xd[i], c->yd[i], cf, sf, &u[i], &v[i]);
             umin = fmin(umin, u[i]), umax = fmax(umax, u[i]);
             w[i] = v[i];
         }
@@ -324,7 +324,7 @@ static void init_params(const rim_ctx *c, const double *theta, double a, double 
                 const double u = c->xd[i] * cfi + c->yd[i] * sfi;
                 x0s[i - S->first] = u - c->r * theta[i] - a * sin(theta[i]);
             }
-            p[S->x0] = cli_track_median(x0s, m);
+            p[S->x0] = jc_track_median(x0s, m);
         }
         gsl_matrix_free(X);
         gsl_vector_free(y);
@@ -374,8 +374,8 @@ static void normalize(const rim_ctx *c, double *p)
     if (p[2] >= 0) return;
     p[2] = -p[2];
     for (int s = 0; s < c->nst; ++s) {
-        p[c->st[s].x0] -= c->r * CLI_TRACK_PI;
-        for (int j = 0; j < c->st[s].ncoef; ++j) p[c->st[s].coef0 + j] += CLI_TRACK_PI;
+        p[c->st[s].x0] -= c->r * JC_TRACK_PI;
+        for (int j = 0; j < c->st[s].ncoef; ++j) p[c->st[s].coef0 + j] += JC_TRACK_PI;
     }
 }
 
@@ -566,7 +566,7 @@ static void free_ctx(rim_ctx *c)
 
 /* The per-frame results of a fitted rolling path. */
 static void fill_rolling(const rim_ctx *c, const double *p, const gsl_matrix *cov, const unsigned char *bad,
-                         cli_RimResult *out)
+                         jc_TrackRimResult *out)
 {
     const double cf = cos(p[0]), sf = sin(p[0]);
     const double var_h = gsl_matrix_get(cov, 1, 1);
@@ -574,7 +574,7 @@ static void fill_rolling(const rim_ctx *c, const double *p, const gsl_matrix *co
     for (long i = 0; i < c->n; ++i) {
         /* Every frame in the surface frame: turned by the tilt, the surface at y = 0. */
         double across;
-        cli_track_turn(c->xd[i], c->yd[i], cf, sf, &out->mark_x[i], &across);
+        jc_track_turn(c->xd[i], c->yd[i], cf, sf, &out->mark_x[i], &across);
         out->mark_y[i] = across - p[1] + c->r;
         out->cx[i] = out->cy[i] = out->c_sigma[i] = out->theta[i] = out->omega[i] = NAN;
         out->rolling[i] = 0;
@@ -600,8 +600,8 @@ static void fill_rolling(const rim_ctx *c, const double *p, const gsl_matrix *co
 
 /* Departures: runs of frames outside the rolling stretches or flagged as
  * departures, each with what the mark alone allows of its height (the
- * flights are fitted after, by cli_rim_flights). */
-static void departures(const rim_ctx *c, const double *p, const unsigned char *bad, cli_RimResult *out)
+ * flights are fitted after, by jc_track_rim_flights). */
+static void departures(const rim_ctx *c, const double *p, const unsigned char *bad, jc_TrackRimResult *out)
 {
     out->departures = 0;
     const double a = p[2];
@@ -615,7 +615,7 @@ static void departures(const rim_ctx *c, const double *p, const unsigned char *b
         long j = i;
         while (j + 1 < c->n && (c->st_of[j + 1] < 0 || bad[j + 1] == 2)) j++;
         if (j > i || c->st_of[i] < 0) {
-            cli_TrackHop *h = &out->dep[out->departures++];
+            jc_TrackHop *h = &out->dep[out->departures++];
             memset(h, 0, sizeof *h);
             h->first = i, h->last = j, h->peak = i;
             h->height_m = h->height_sigma_m = NAN;
@@ -633,7 +633,7 @@ static void departures(const rim_ctx *c, const double *p, const unsigned char *b
 
 /* A flight under gravity (gx, gy) fitted to the departure h; when it fits,
  * its height is h's and its centre, θ and ω the frames'. */
-static void fit_departure(const cli_RimInput *in, double gx, double gy, cli_TrackHop *h, cli_RimResult *out)
+static void fit_departure(const jc_TrackRimInput *in, double gx, double gy, jc_TrackHop *h, jc_TrackRimResult *out)
 {
     const double *t = in->t_s, r = in->radius_m;
     const long n = in->n, i = h->first, j = h->last;
@@ -659,18 +659,18 @@ static void fit_departure(const cli_RimInput *in, double gx, double gy, cli_Trac
     }
 }
 
-void cli_rim_flights(const cli_RimInput *in, double incline_rad, cli_RimResult *out)
+void jc_track_rim_flights(const jc_TrackRimInput *in, double incline_rad, jc_TrackRimResult *out)
 {
     const double gx = in->gravity_mps2 * sin(incline_rad), gy = -in->gravity_mps2 * cos(incline_rad);
     if (!isfinite(gx)) return;
     for (long k = 0; k < out->departures; ++k) fit_departure(in, gx, gy, &out->dep[k], out);
 }
 
-int cli_rim_recover(const cli_RimInput *in, cli_RimResult *out)
+int jc_track_rim_recover(const jc_TrackRimInput *in, jc_TrackRimResult *out)
 {
     const long n = in->n;
     out->departures = 0;
-    if (n < 2 * MIN_STRETCH || n > CLI_RIM_MAX_FRAMES || !(in->radius_m > 0)) return -1;
+    if (n < 2 * MIN_STRETCH || n > JC_TRACK_RIM_MAX_FRAMES || !(in->radius_m > 0)) return -1;
     rim_ctx c;
     memset(&c, 0, sizeof c);
     c.t = in->t_s, c.xd = in->x_m, c.yd = in->y_m, c.n = n, c.r = in->radius_m;

@@ -21,7 +21,7 @@
  * Hostile files: no DTD is accepted (so no entity can be declared, let alone
  * expanded), the network is off, the file size is bounded by the caller and
  * the number of elements here, before libxml2 builds anything. */
-#include "raw.h"
+#include "track_internal.h"
 
 #include <stdio.h>
 #include <errno.h>
@@ -126,7 +126,7 @@ static int prop_long(const trk_ctx *c, const xmlNode *obj, const char *what, con
     double v = 0;
     const int st = prop_double(c, obj, what, name, &v);
     if (st <= 0) return st;
-    if (v != floor(v) || fabs(v) > (double)CLI_TRACK_MAX_FRAMES * 16) {
+    if (v != floor(v) || fabs(v) > (double)JC_TRACK_MAX_FRAMES * 16) {
         snprintf(c->err, c->err_len, "%s: %s: %s is not a whole number in range", c->file, what, name);
         return -1;
     }
@@ -185,12 +185,12 @@ static int read_clip(const trk_ctx *c, const xmlNode *panel, const xmlNode *firs
     }
     if (clip->count < 0) /* no clip: every frame a track has */
         clip->count = first_track_data ? max_item_index(first_track_data) + 1 : 0;
-    if (clip->start < 0 || clip->step < 1 || clip->count < 1 || clip->count > CLI_TRACK_MAX_FRAMES ||
-        clip->step > CLI_TRACK_MAX_FRAMES || clip->start + (clip->count - 1) * clip->step >= 16 * CLI_TRACK_MAX_FRAMES) {
+    if (clip->start < 0 || clip->step < 1 || clip->count < 1 || clip->count > JC_TRACK_MAX_FRAMES ||
+        clip->step > JC_TRACK_MAX_FRAMES || clip->start + (clip->count - 1) * clip->step >= 16 * JC_TRACK_MAX_FRAMES) {
         snprintf(c->err, c->err_len,
                  "%s: videoclip: startframe %ld, stepsize %ld, stepcount %ld (need startframe >= 0, stepsize >= 1, "
                  "1 to %ld steps)",
-                 c->file, clip->start, clip->step, clip->count, CLI_TRACK_MAX_FRAMES);
+                 c->file, clip->start, clip->step, clip->count, JC_TRACK_MAX_FRAMES);
         return -1;
     }
     double dt_ms = NAN;
@@ -238,7 +238,7 @@ static int read_coords(const trk_ctx *c, const xmlNode *panel, long frames, trk_
         *arrays[i] = malloc((size_t)frames * sizeof(double));
         if (!*arrays[i]) {
             snprintf(c->err, c->err_len, "%s: out of memory", c->file);
-            return -1;
+            return JC_ENOMEM;
         }
         for (long f = 0; f < frames; ++f) (*arrays[i])[f] = NAN;
     }
@@ -263,7 +263,7 @@ static int read_coords(const trk_ctx *c, const xmlNode *panel, long frames, trk_
                      f, v[3], v[4]);
             return -1;
         }
-        const double a = v[2] * CLI_TRACK_PI / 180.0;
+        const double a = v[2] * JC_TRACK_PI / 180.0;
         k->ox[f] = v[0];
         k->oy[f] = v[1];
         k->cos_a[f] = cos(a);
@@ -299,13 +299,13 @@ static int count_point_masses(const xmlNode *tracks)
 }
 
 static int read_track(const trk_ctx *c, const xmlNode *o, const trk_clip *clip, const trk_coords *k,
-                      double m_per_unit, cli_RawData *raw, int ti)
+                      double m_per_unit, jc_TrackRaw *raw, int ti)
 {
-    cli_RawTrack *t = &raw->tracks[ti];
-    char name[CLI_TRACK_NAME_LEN];
+    jc_TrackPoints *t = &raw->tracks[ti];
+    char name[JC_TRACK_NAME_LEN];
     const int st = prop_text(o, "name", name, sizeof name);
     if (st < 0) {
-        snprintf(c->err, c->err_len, "%s: a track's name is longer than %d bytes", c->file, CLI_TRACK_NAME_LEN - 1);
+        snprintf(c->err, c->err_len, "%s: a track's name is longer than %d bytes", c->file, JC_TRACK_NAME_LEN - 1);
         return -1;
     }
     if (st == 0 || !name[0]) snprintf(name, sizeof name, "mass %c", 'A' + ti);
@@ -321,7 +321,7 @@ static int read_track(const trk_ctx *c, const xmlNode *o, const trk_clip *clip, 
         const xmlNode *p = prop_object(it);
         if (f < 0 || !p || f < clip->start || f > last || (f - clip->start) % clip->step != 0) continue;
         double ix = NAN, iy = NAN;
-        char what[CLI_TRACK_NAME_LEN + 96];
+        char what[JC_TRACK_NAME_LEN + 96];
         snprintf(what, sizeof what, "track '%s' frame %ld", t->name, f);
         const int sx = prop_double(c, p, what, "x", &ix), sy = prop_double(c, p, what, "y", &iy);
         if (sx < 0 || sy < 0) return -1;
@@ -353,7 +353,7 @@ static long count_tags(const char *data, size_t len)
     return n;
 }
 
-static int parse_doc(const trk_ctx *c, xmlDoc *doc, cli_RawData *raw)
+static int parse_doc(const trk_ctx *c, xmlDoc *doc, jc_TrackRaw *raw)
 {
     const xmlNode *panel = xmlDocGetRootElement(doc);
     if (!is_element(panel, "object") || !class_is(panel, "TrackerPanel")) {
@@ -374,8 +374,8 @@ static int parse_doc(const trk_ctx *c, xmlDoc *doc, cli_RawData *raw)
         snprintf(c->err, c->err_len, "%s: no point-mass track", c->file);
         return -1;
     }
-    if (n_pm > CLI_TRACK_MAX_TRACKS) {
-        snprintf(c->err, c->err_len, "%s: %d point-mass tracks (at most %d)", c->file, n_pm, CLI_TRACK_MAX_TRACKS);
+    if (n_pm > JC_TRACK_MAX_TRACKS) {
+        snprintf(c->err, c->err_len, "%s: %d point-mass tracks (at most %d)", c->file, n_pm, JC_TRACK_MAX_TRACKS);
         return -1;
     }
     const xmlNode *first_data = NULL;
@@ -387,14 +387,15 @@ static int parse_doc(const trk_ctx *c, xmlDoc *doc, cli_RawData *raw)
     if (read_clip(c, panel, first_data, &clip) != 0) return -1;
     const long frames_total = clip.start + (clip.count - 1) * clip.step + 1;
     trk_coords k = {0};
-    if (read_coords(c, panel, frames_total, &k, &raw->scale_varies) != 0) {
+    const int coords = read_coords(c, panel, frames_total, &k, &raw->scale_varies);
+    if (coords != 0) {
         coords_free(&k);
-        return -1;
+        return coords;
     }
-    if (cli_raw_alloc(raw, clip.count, n_pm) != 0) {
+    if (jc_track_raw_alloc(raw, clip.count, n_pm) != JC_OK) {
         snprintf(c->err, c->err_len, "%s: out of memory", c->file);
         coords_free(&k);
-        return -1;
+        return JC_ENOMEM;
     }
     raw->px_per_m = k.sx[clip.start] / m_per_unit;
     raw->nominal_dt_s = clip.dt_s * (double)clip.step; /* between steps */
@@ -422,31 +423,31 @@ static int parse_doc(const trk_ctx *c, xmlDoc *doc, cli_RawData *raw)
     return st;
 }
 
-int cli_trk_parse(const char *name, const char *data, size_t len, cli_RawData *raw, char *err, size_t err_len)
+int jc_track_trk_parse(const char *name, const char *data, size_t len, jc_TrackRaw *raw, char *err, size_t err_len)
 {
     memset(raw, 0, sizeof *raw);
     raw->px_per_m = raw->tape_length_m = raw->nominal_dt_s = NAN;
     strcpy(raw->format, "trk");
-    err[0] = '\0';
+    if (err_len > 0) err[0] = '\0';
     const trk_ctx c = {name, err, err_len};
     /* libxml2 takes an int length; the caller's bound is far below. */
-    if (len > (size_t)CLI_TRACK_MAX_BYTES) {
+    if (len > (size_t)JC_TRACK_MAX_BYTES) {
         snprintf(err, err_len, "%s: too large", name);
-        return -1;
+        return JC_EINVAL;
     }
     if (count_tags(data, len) > TRK_MAX_ELEMENTS) {
         snprintf(err, err_len, "%s: more than %ld XML elements", name, TRK_MAX_ELEMENTS);
-        return -1;
+        return JC_EINVAL;
     }
     /* A DTD is where entities are declared: refused before libxml2 reads it. */
     if (contains(data, len, "<!DOCTYPE") || contains(data, len, "<!ENTITY")) {
         snprintf(err, err_len, "%s: has a DTD or entity declaration (refused)", name);
-        return -1;
+        return JC_EINVAL;
     }
     xmlParserCtxt *ctxt = xmlNewParserCtxt();
     if (!ctxt) {
         snprintf(err, err_len, "%s: out of memory", name);
-        return -1;
+        return JC_ENOMEM;
     }
     /* No network, no entity substitution, no DTD loading, no huge text nodes. */
     xmlDoc *doc = xmlCtxtReadMemory(ctxt, data, (int)len, NULL, NULL,
@@ -468,6 +469,7 @@ int cli_trk_parse(const char *name, const char *data, size_t len, cli_RawData *r
     }
     if (doc) xmlFreeDoc(doc);
     xmlFreeParserCtxt(ctxt);
-    if (st != 0) cli_raw_free(raw);
-    return st;
+    if (st == 0) return JC_OK;
+    jc_track_raw_free(raw);
+    return st == JC_ENOMEM ? JC_ENOMEM : JC_EINVAL;
 }

@@ -7,9 +7,9 @@
  * locale, so a decimal comma appears with tab or semicolon delimiters.
  * Hand-made tables are read too: no name row, units in the header
  * ("t (s)", "x (cm)"), blank fields or spaces as the delimiter. Tables
- * are written as Tracker exports them too (cli_track_write_table: the
+ * are written as Tracker exports them too (jc_track_write_table: the
  * synthetic experiments of the tests and examples). */
-#include "raw.h"
+#include "track_internal.h"
 
 #include <stdio.h>
 #include <ctype.h>
@@ -153,7 +153,7 @@ static int is_time_header(const char *field)
 typedef struct {
     int x_col, y_col;
     double x_si, y_si;
-    char name[CLI_TRACK_NAME_LEN];
+    char name[JC_TRACK_NAME_LEN];
 } table_group;
 
 static int fail(const table_ctx *c, long line, const char *msg, const char *detail)
@@ -185,7 +185,7 @@ static int read_header(table_ctx *c, const table_row *names, const table_row *he
         if ((is_x || is_y) && bad) return fail(c, head_line, "a length unit other than m, cm or mm: ", head->f[j]);
         const int start = nm[0] || (is_x && (ng == 0 || g[ng - 1].x_col >= 0)) || (is_y && ng == 0);
         if (start) {
-            if (ng == CLI_TRACK_MAX_TRACKS) return fail(c, head_line, "more than 16 tracks", "");
+            if (ng == JC_TRACK_MAX_TRACKS) return fail(c, head_line, "more than 16 tracks", "");
             g[ng].x_col = g[ng].y_col = -1;
             snprintf(g[ng].name, sizeof g[ng].name, "%s", nm);
             ng++;
@@ -201,7 +201,7 @@ static int read_header(table_ctx *c, const table_row *names, const table_row *he
     for (int i = 0; i < ng; ++i) {
         if (g[i].x_col < 0 && g[i].y_col < 0) continue; /* a track exported without positions */
         if (g[i].x_col < 0 || g[i].y_col < 0) {
-            char what[CLI_TRACK_NAME_LEN + 96];
+            char what[JC_TRACK_NAME_LEN + 96];
             snprintf(what, sizeof what, "track '%s' has %s but no %s", g[i].name[0] ? g[i].name : "?",
                      g[i].x_col < 0 ? "y" : "x", g[i].x_col < 0 ? "x" : "y");
             return fail(c, head_line, what, "");
@@ -214,7 +214,8 @@ static int read_header(table_ctx *c, const table_row *names, const table_row *he
     return kept;
 }
 
-int cli_table_parse(const char *name, const char *data, size_t len, cli_RawData *raw, char *err, size_t err_len)
+/* 0, -1 with a message, or JC_ENOMEM. */
+static int parse(const char *name, const char *data, size_t len, jc_TrackRaw *raw, char *err, size_t err_len)
 {
     memset(raw, 0, sizeof *raw);
     raw->px_per_m = raw->tape_length_m = raw->nominal_dt_s = NAN;
@@ -233,10 +234,11 @@ int cli_table_parse(const char *name, const char *data, size_t len, cli_RawData 
     }
     if (!have) return fail(&c, 0, "empty: no header row (t, x, y)", "");
     table_row *names = malloc(sizeof *names), *head = malloc(sizeof *head), *row = malloc(sizeof *row);
-    table_group *g = malloc(CLI_TRACK_MAX_TRACKS * sizeof *g);
+    table_group *g = malloc(JC_TRACK_MAX_TRACKS * sizeof *g);
     int st = -1;
     if (!names || !head || !row || !g) {
         fail(&c, 0, "out of memory", "");
+        st = JC_ENOMEM;
         goto done;
     }
     c.delim = pick_delim(line, ll);
@@ -275,13 +277,14 @@ int cli_table_parse(const char *name, const char *data, size_t len, cli_RawData 
     for (size_t q = pos; q < len; ++q)
         if (data[q] == '\n') rows++;
     if (len > 0 && data[len - 1] != '\n') rows++;
-    if (rows > CLI_TRACK_MAX_FRAMES) {
+    if (rows > JC_TRACK_MAX_FRAMES) {
         fail(&c, 0, "too many rows", "");
         goto done;
     }
     if (rows < 1) rows = 1;
-    if (cli_raw_alloc(raw, rows, ng) != 0) {
+    if (jc_track_raw_alloc(raw, rows, ng) != JC_OK) {
         fail(&c, 0, "out of memory", "");
+        st = JC_ENOMEM;
         goto done;
     }
     for (int i = 0; i < ng; ++i) snprintf(raw->tracks[i].name, sizeof raw->tracks[i].name, "%s", g[i].name);
@@ -336,8 +339,14 @@ done:
     free(head);
     free(row);
     free(g);
-    if (st != 0) cli_raw_free(raw);
+    if (st != 0) jc_track_raw_free(raw);
     return st;
+}
+
+int jc_track_table_parse(const char *name, const char *data, size_t len, jc_TrackRaw *raw, char *err, size_t err_len)
+{
+    const int st = parse(name, data, len, raw, err, err_len);
+    return st == 0 ? JC_OK : st == JC_ENOMEM ? JC_ENOMEM : JC_EINVAL;
 }
 
 /* A number as Tracker exports it "as formatted" at full precision, or an
@@ -348,7 +357,7 @@ static void field(FILE *f, double v)
     else fputc('\t', f);
 }
 
-int cli_track_write_table(FILE *f, const cli_RawData *raw)
+void jc_track_write_table(FILE *f, const jc_TrackRaw *raw)
 {
     /* Tracker's export of point masses: the names above their first column. */
     fputs("#multi:\n", f);
@@ -364,5 +373,4 @@ int cli_track_write_table(FILE *f, const cli_RawData *raw)
         }
         fputc('\n', f);
     }
-    return ferror(f) ? -1 : 0;
 }

@@ -1,6 +1,6 @@
 /* What a track says about the body at one frame (its state, from the frames
  * that follow), where its hops are, and which frames a window holds. */
-#include "track_fit.h"
+#include "track_internal.h"
 
 #include <math.h>
 #include <string.h>
@@ -34,8 +34,8 @@ static int quad_fit(const double *t, const double *v, long n, double t0, double 
     return 0;
 }
 
-int cli_track_start_estimate(const cli_Track *t, long first, long span, double radius_m, double theta_fallback_rad,
-                             double hop_threshold_m, jc_State *out)
+int jc_track_start_estimate(const jc_Track *t, long first, long span, double radius_m, double theta_fallback_rad,
+                            double hop_threshold_m, jc_State *out)
 {
     if (first < 0 || span < 3 || t->n - first < 3) return -1;
     const long n = t->n - first < span ? t->n - first : span;
@@ -69,12 +69,12 @@ int cli_track_start_estimate(const cli_Track *t, long first, long span, double r
     return 0;
 }
 
-double cli_track_mark_offset_rad(const jc_Model *m, double mark_angle_rad)
+double jc_track_mark_offset_rad(const jc_Model *m, double mark_angle_rad)
 {
     return m->body.cm_angle_rad - mark_angle_rad;
 }
 
-double cli_track_mark_radius(const cli_Track *t, const jc_Model *m)
+double jc_track_mark_radius(const jc_Track *t, const jc_Model *m)
 {
     if (t->has_mark && isfinite(t->mark_radius_m) && t->mark_radius_m > 0.0) return t->mark_radius_m;
     double a = 0.0;
@@ -82,8 +82,8 @@ double cli_track_mark_radius(const cli_Track *t, const jc_Model *m)
     return a > 0.0 ? a : m->body.radius_m;
 }
 
-void cli_track_find_hops(const double *t_s, const double *x_m, const double *y_m, long n, double radius_m,
-                         double threshold_m, cli_TrackHops *out)
+void jc_track_find_hops(const double *t_s, const double *x_m, const double *y_m, long n, double radius_m,
+                        double threshold_m, jc_TrackHops *out)
 {
     memset(out, 0, sizeof *out);
     out->first_liftoff_t_s = out->first_liftoff_x_m = NAN;
@@ -102,7 +102,7 @@ void cli_track_find_hops(const double *t_s, const double *x_m, const double *y_m
                 out->first_liftoff_t_s = t_s[c];
                 out->first_liftoff_x_m = x_m[c];
             }
-            if (out->hops < CLI_TRACK_MAX_HOPS) {
+            if (out->hops < JC_TRACK_MAX_HOPS) {
                 out->first[out->hops] = i;
                 out->last[out->hops] = j;
                 out->height_m[out->hops] = top;
@@ -113,7 +113,7 @@ void cli_track_find_hops(const double *t_s, const double *x_m, const double *y_m
     }
 }
 
-void cli_track_window(const cli_Track *t, double from_s, double to_s, long *first, long *count)
+void jc_track_window(const jc_Track *t, double from_s, double to_s, long *first, long *count)
 {
     long a = 0, b = t->n;
     while (a < t->n && !isnan(from_s) && t->t_s[a] < from_s) ++a;
@@ -122,8 +122,8 @@ void cli_track_window(const cli_Track *t, double from_s, double to_s, long *firs
     *count = b - a;
 }
 
-void cli_track_start_setup(const cli_Track *t, long first, long end, double radius_m, const jc_Setup *setup,
-                           jc_State *out)
+void jc_track_start_setup(const jc_Track *t, long first, long end, double radius_m, const jc_Setup *setup,
+                          jc_State *out)
 {
     while (first + 1 < end && !isfinite(t->x_m[first])) first++;
     memset(out, 0, sizeof *out);

@@ -4,7 +4,7 @@
  * misses everything after. The free motion's first frame is the first from
  * which the model, started with the state the frames show (x0, ω0 and θ0
  * fitted to the next LAUNCH_WINDOW_S), follows them at the noise. */
-#include "track_fit.h"
+#include "track_internal.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -17,16 +17,24 @@
 #define LAUNCH_BETTER 0.85    /* ... and a frame later it would not follow them better */
 #define LAUNCH_CANDIDATES 45  /* start frames tried at most */
 
+/* The window fits' progress: each takes half of what is left of the
+ * launch's part (their count is not known in advance). */
+typedef struct {
+    const jc_TrackFitSpan *span; /* NULL: none */
+    int fits;                    /* window fits begun */
+    int stopped;                 /* the callback asked to stop */
+} launch_progress;
+
 /* The start fitted to the frames from k on (up to frame end, exclusive);
  * its chi2/dof (NaN on failure). */
-static double window_fit(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long k, long end,
-                         double mark_angle_rad, jc_State *start)
+static double window_fit(const jc_Setup *setup, const jc_Track *t, const jc_SimOptions *o, long k, long end,
+                         double mark_angle_rad, launch_progress *lp, jc_State *start)
 {
     long last = k;
     while (last + 1 < end && (t->t_s[last + 1] - t->t_s[k] <= LAUNCH_WINDOW_S || last + 1 - k < LAUNCH_MIN_FRAMES))
         last++;
-    cli_FitOptions fo;
-    cli_fit_options_default(&fo);
+    jc_TrackFitOptions fo;
+    jc_fit_options_default(&fo);
     fo.from_s = t->t_s[k];
     fo.to_s = t->t_s[last];
     fo.max_iter = 50;
@@ -35,34 +43,47 @@ static double window_fit(const jc_Setup *setup, const cli_Track *t, const jc_Sim
     fo.hold_frame = 1; /* 0.4 s does not tell the frame's tilt; the start is what is asked */
     fo.start_window = 1;
     fo.mark_angle_rad = mark_angle_rad;
-    cli_FitResult r;
+    jc_TrackFitSpan part = {NULL, NULL, 0.0, 0.0};
+    if (lp->span) {
+        const double lo = lp->span->lo, w = lp->span->hi - lo;
+        part = *lp->span;
+        part.lo = lo + w * (1.0 - ldexp(1.0, -lp->fits));
+        part.hi = lo + w * (1.0 - ldexp(1.0, -(lp->fits + 1)));
+    }
+    lp->fits++;
+    jc_TrackFitResult r;
     char err[256];
-    if (cli_track_fit(setup, t, &fo, o, &r, err, sizeof err) != 0) return NAN;
+    const int st = jc_track_fit_solve(setup, t, &fo, o, NULL, &part, &r, err, sizeof err);
+    if (st == JC_ESTOPPED) lp->stopped = 1;
+    if (st != JC_OK) return NAN;
     *start = r.start;
     return r.chi2_dof;
 }
 
 /* The next frame with a centre after k (end if none). */
-static long next_frame(const cli_Track *t, long k, long stride, long end)
+static long next_frame(const jc_Track *t, long k, long stride, long end)
 {
     long j = k + stride;
     while (j < end && !isfinite(t->x_m[j])) j++;
     return j < end ? j : end;
 }
 
-int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOptions *o, long from, double to_s,
-                     int scan, double mark_angle_rad, cli_Launch *out, char *err, size_t err_len)
+int jc_track_launch(const jc_Setup *setup, const jc_Track *t, const jc_SimOptions *o, long from, double to_s,
+                    int scan, double mark_angle_rad, const jc_TrackFitSpan *span, jc_TrackLaunch *out, char *err,
+                    size_t err_len)
 {
     memset(out, 0, sizeof *out);
     out->chi2_dof_with = NAN;
-    if (cli_track_require("the track", t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, err_len) != 0) return -1;
+    const int st = jc_track_require("the track", t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, err_len);
+    if (st != JC_OK) return st;
+    launch_progress lp = {span && span->fn ? span : NULL, 0, 0};
     long end = t->n;
     while (end > 0 && !isnan(to_s) && t->t_s[end - 1] > to_s) end--;
     long left = 0;
     for (long i = from > 0 ? from : 0; i < end; ++i) left += isfinite(t->x_m[i]);
     if (left < 3) {
         snprintf(err, err_len, "fewer than 3 frames with a centre to start the model from");
-        return -1;
+        return JC_EINVAL;
     }
     /* The first frame with a centre. */
     while (!isfinite(t->x_m[from])) from++;
@@ -76,7 +97,8 @@ int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOpti
     double best = INFINITY, q = NAN;
     jc_State s, s_best, s_from;
     for (long k = from; k + 3 <= end && t->t_s[k] - t->t_s[from] <= (scan ? LAUNCH_MAX_S : 0.0);) {
-        if (isnan(q)) q = window_fit(setup, t, o, k, end, mark_angle_rad, &s);
+        if (isnan(q)) q = window_fit(setup, t, o, k, end, mark_angle_rad, &lp, &s);
+        if (lp.stopped) break;
         if (k == from) out->chi2_dof_with = q, s_from = s;
         if (q < best) best = q, out->frame = k, out->chi2_dof = q, s_best = s;
         const long next = next_frame(t, k, stride, end);
@@ -86,16 +108,21 @@ int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOpti
             continue;
         }
         jc_State s_next;
-        const double q_next = window_fit(setup, t, o, next, end, mark_angle_rad, &s_next);
+        const double q_next = window_fit(setup, t, o, next, end, mark_angle_rad, &lp, &s_next);
+        if (lp.stopped) break;
         if (!(q_next < LAUNCH_BETTER * q)) {
             best = q, out->frame = k, out->chi2_dof = q, s_best = s;
             break;
         }
         q = q_next, s = s_next, k = next;
     }
+    if (lp.stopped) {
+        snprintf(err, err_len, "stopped (the progress callback asked)");
+        return JC_ESTOPPED;
+    }
     if (!isfinite(best)) {
         snprintf(err, err_len, "the model could not be started from the first frames");
-        return -1;
+        return JC_EINVAL;
     }
     out->start = s_best;
     /* No frame fits: the clip is taken from its first frame (the fit's
@@ -104,5 +131,5 @@ int cli_track_launch(const jc_Setup *setup, const cli_Track *t, const jc_SimOpti
         out->frame = from, out->chi2_dof = out->chi2_dof_with, out->start = s_from;
     out->pushed = out->frame - from;
     if (out->pushed == 0) out->chi2_dof_with = NAN;
-    return 0;
+    return JC_OK;
 }

@@ -17,9 +17,14 @@
  * bound, or at its starting value) and the others are fitted again, and a
  * chi2 profile along its range shows why. The verdict judges the best fit:
  * chi2/dof against the noise, the runs of same-sign residuals, and the hops
- * of the video against the model's. */
-#include "track_fit.h"
-#include "batch.h"
+ * of the video against the model's.
+ *
+ * The caller's progress callback hears of each descent as it begins and of
+ * each of its iterations, with the stage's part of the whole, and may stop
+ * the fit: every loop then ends at once and the fit returns JC_ESTOPPED.
+ * jc_track_fit_solve starts from a start given or estimated; jc_track_fit
+ * (fit_video.c) first finds where the free motion starts (launch.c). */
+#include "track_internal.h"
 
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_cdf.h>
@@ -54,42 +59,68 @@
 #define SNAP_NEAR 0.02           /* a value this near a bound is tried on it */
 #define MIN_SCREEN 16
 #define MAX_SCREEN 64
+/* The stages' parts of a fit's progress, from 0 to 1: the search, values
+ * near a bound, the fit without the values not determined, the profiles
+ * (a fit of a start window has none); rough shares of the time. */
+static const double FIT_PARTS[5] = {0.0, 0.6, 0.67, 0.73, 1.0};
+static const double START_WINDOW_PARTS[5] = {0.0, 0.8, 0.9, 1.0, 1.0};
 
 typedef struct {
-    const cli_Track *t;
+    const jc_Track *t;
     const jc_SimOptions *sim;
-    jc_Setup base;             /* the runs' setup (cli_track_setup): held values set in it */
+    jc_Setup base;             /* the runs' setup (jc_track_setup): held values set in it */
     jc_State start0;           /* the start before the fit: held start values set in it */
-    cli_FitFrame frame0;       /* the mark angle and frame before the fit: held ones set in it */
+    jc_TrackFitFrame frame0;       /* the mark angle and frame before the fit: held ones set in it */
     int mu_s_tied;             /* mu_s held at its bound mu_k: it follows mu_k */
     int np;
-    cli_FitParam param[CLI_FIT_MAX_PARAMS];
-    cli_Residuals res;
+    jc_TrackFitParam param[JC_FIT_MAX_PARAMS];
+    jc_TrackResiduals res;
     long nres;
     double *x, *y, *th, *sw, *f;
     unsigned char *series;
-    cli_TrackSim ts;           /* its sum: the last run's events */
-    const char *stage;         /* for the progress callback */
+    jc_TrackSim ts;            /* its sum: the last run's events */
+    /* Progress: the caller's callback and the part of its whole this fit
+     * covers; the stage, its part of this fit's [0, 1] and the descents it
+     * plans; the last fraction reported (it never decreases). */
+    jc_TrackFitSpan span;
+    const char *stage;
     char stage_text[96];
     int begun;                 /* descents begun in this stage */
+    int planned;
+    double stage_lo, stage_hi;
+    double reported;
+    int stopped;               /* the callback asked to stop */
 } fit_ctx;
 
-static void stage_begin(fit_ctx *c, const char *stage)
+static void stage_begin(fit_ctx *c, const char *stage, double lo, double hi, int planned)
 {
     c->stage = stage;
     c->begun = 0;
+    c->stage_lo = lo;
+    c->stage_hi = hi;
+    c->planned = planned > 0 ? planned : 1;
+}
+
+/* Tells the callback how far the stage is (within: its part done, [0, 1]). */
+static void report(fit_ctx *c, double within)
+{
+    if (!c->span.fn || c->stopped) return;
+    const double stage = c->stage_lo + (c->stage_hi - c->stage_lo) * fmin(fmax(within, 0.0), 1.0);
+    c->reported = fmax(c->reported, c->span.lo + (c->span.hi - c->span.lo) * stage);
+    const jc_TrackFitProgress p = {c->stage, c->begun, c->reported};
+    if (c->span.fn(c->span.ctx, &p) != 0) c->stopped = 1;
 }
 
 static double sigmoid(double u) { return 1.0 / (1.0 + exp(-u)); }
 static double logit(double p) { return log(p / (1.0 - p)); }
 
-static int bounded(cli_FitParam p)
+static int bounded(jc_TrackFitParam p)
 {
-    return p.kind == CLI_FIT_MU_S || p.kind == CLI_FIT_MU_K || p.kind == CLI_FIT_RESTITUTION ||
-           p.kind == CLI_FIT_PART_OFFSET || p.kind == CLI_FIT_PART_MASS;
+    return p.kind == JC_FIT_MU_S || p.kind == JC_FIT_MU_K || p.kind == JC_FIT_RESTITUTION ||
+           p.kind == JC_FIT_PART_OFFSET || p.kind == JC_FIT_PART_MASS;
 }
 
-static int index_of(const fit_ctx *c, cli_FitKind k)
+static int index_of(const fit_ctx *c, jc_TrackFitKind k)
 {
     for (int i = 0; i < c->np; ++i)
         if (c->param[i].kind == k) return i;
@@ -101,16 +132,16 @@ static int index_of(const fit_ctx *c, cli_FitKind k)
  * when mu_s is free too (mu_s = mu_k + the margin to slip). */
 static void range_of(const fit_ctx *c, int i, double mu_k, double *lo, double *hi)
 {
-    cli_fit_range(&c->base, c->param[i], lo, hi);
-    if (c->param[i].kind == CLI_FIT_MU_S) *lo = mu_k;
-    if (c->param[i].kind == CLI_FIT_MU_K && (index_of(c, CLI_FIT_MU_S) >= 0 || c->mu_s_tied))
-        cli_fit_range(&c->base, (cli_FitParam){CLI_FIT_MU_S, -1}, lo, hi);
+    jc_fit_range(&c->base, c->param[i], lo, hi);
+    if (c->param[i].kind == JC_FIT_MU_S) *lo = mu_k;
+    if (c->param[i].kind == JC_FIT_MU_K && (index_of(c, JC_FIT_MU_S) >= 0 || c->mu_s_tied))
+        jc_fit_range(&c->base, (jc_TrackFitParam){JC_FIT_MU_S, -1}, lo, hi);
 }
 
 /* u -> the free values (SI); mu_k first, as mu_s's range is above it. */
 static void values_of(const fit_ctx *c, const double *u, double *v)
 {
-    const int kk = index_of(c, CLI_FIT_MU_K);
+    const int kk = index_of(c, JC_FIT_MU_K);
     double mu_k = c->base.mu_kinetic, lo, hi;
     if (kk >= 0) {
         range_of(c, kk, mu_k, &lo, &hi);
@@ -130,7 +161,7 @@ static void values_of(const fit_ctx *c, const double *u, double *v)
 /* The free values -> u (values at a bound moved inside it by edge of the range). */
 static void u_of(const fit_ctx *c, const double *v, double *u, double edge)
 {
-    const int kk = index_of(c, CLI_FIT_MU_K);
+    const int kk = index_of(c, JC_FIT_MU_K);
     const double mu_k = kk >= 0 ? v[kk] : c->base.mu_kinetic;
     for (int i = 0; i < c->np; ++i) {
         if (!bounded(c->param[i])) {
@@ -145,17 +176,17 @@ static void u_of(const fit_ctx *c, const double *v, double *u, double edge)
 }
 
 /* The incline was measured: the frame's tilt turns the model's gravity too. */
-static int tilt_tilts_gravity(const fit_ctx *c) { return c->t->incline_source == CLI_INCLINE_MEASURED; }
+static int tilt_tilts_gravity(const fit_ctx *c) { return c->t->incline_source == JC_TRACK_INCLINE_MEASURED; }
 
 /* The setup, start and frame (mark angle, tilt, surface) that u describes. */
-static void apply(const fit_ctx *c, const double *u, jc_Setup *s, jc_State *start, cli_FitFrame *frame)
+static void apply(const fit_ctx *c, const double *u, jc_Setup *s, jc_State *start, jc_TrackFitFrame *frame)
 {
-    double v[CLI_FIT_MAX_PARAMS];
+    double v[JC_FIT_MAX_PARAMS];
     values_of(c, u, v);
     *s = c->base;
     *start = c->start0;
     *frame = c->frame0;
-    for (int i = 0; i < c->np; ++i) cli_fit_set(s, start, frame, c->param[i], v[i]);
+    for (int i = 0; i < c->np; ++i) jc_fit_set(s, start, frame, c->param[i], v[i]);
     /* A measured incline is the video's plus the tilt (a floor stays a
      * floor: the model takes no incline below 0). */
     if (tilt_tilts_gravity(c)) s->incline_rad = fmax(0.0, c->t->incline_rad + frame->tilt_rad);
@@ -165,35 +196,23 @@ static void apply(const fit_ctx *c, const double *u, jc_Setup *s, jc_State *star
     s->omega0_radps = start->omega_radps;
 }
 
-void cli_fit_to_video(const cli_FitFrame *fr, const jc_State *start, double *x, double *y, double *th, long n)
-{
-    if (fr->tilt_rad == 0.0 && fr->surface_m == 0.0) return;
-    const double c = cos(fr->tilt_rad), s = sin(fr->tilt_rad);
-    for (long i = 0; i < n; ++i) {
-        const double dx = x[i] - start->x_m, dy = y[i] - start->y_m;
-        x[i] = start->x_m + dx * c + dy * s;
-        y[i] = start->y_m - dx * s + dy * c + fr->surface_m;
-        if (th) th[i] += fr->tilt_rad;
-    }
-}
-
 /* Runs the model for u; the raw residuals (unweighted) into c->f. 0, or -1
  * when the model refuses the values. */
 static int run_u(fit_ctx *c, const double *u)
 {
     jc_Setup s;
     jc_State start;
-    cli_FitFrame fr;
+    jc_TrackFitFrame fr;
     apply(c, u, &s, &start, &fr);
     jc_Model m;
     char err[256];
     if (jc_model_init(&m, &s, err, sizeof err) != JC_OK) return -1;
-    if (cli_track_sim_run(&c->ts, &m, &start, c->sim, c->t->t_s + c->res.first, c->res.count, c->x, c->y, c->th, err,
-                          sizeof err) != 0)
+    if (jc_track_sim_run(&c->ts, &m, &start, c->sim, c->t->t_s + c->res.first, c->res.count, c->x, c->y, c->th, err,
+                         sizeof err) != 0)
         return -1;
-    cli_fit_to_video(&fr, &start, c->x, c->y, c->th, c->res.count);
-    c->res.mark_offset = cli_track_mark_offset_rad(&m, fr.mark_angle_rad);
-    cli_residuals_eval(&c->res, c->x, c->y, c->th, c->f, c->series);
+    jc_fit_to_video(&fr, &start, c->x, c->y, c->th, c->res.count);
+    c->res.mark_offset = jc_track_mark_offset_rad(&m, fr.mark_angle_rad);
+    jc_track_residuals_eval(&c->res, c->x, c->y, c->th, c->f, c->series);
     return 0;
 }
 
@@ -248,7 +267,7 @@ static double cost(fit_ctx *c, const double *u)
 
 /* Robust weights from the residuals at u, on a scale from their median
  * absolute value. Returns the largest change of a weight. */
-static double reweight(fit_ctx *c, const double *u, cli_FitLoss loss, double *scratch)
+static double reweight(fit_ctx *c, const double *u, jc_TrackFitLoss loss, double *scratch)
 {
     if (run_u(c, u) != 0) return 0.0;
     for (long i = 0; i < c->nres; ++i) scratch[i] = fabs(c->f[i]);
@@ -256,7 +275,7 @@ static double reweight(fit_ctx *c, const double *u, cli_FitLoss loss, double *sc
     double change = 0.0;
     for (long i = 0; i < c->nres; ++i) {
         const double r = fabs(c->f[i]) / s;
-        const double w = loss == CLI_LOSS_HUBER ? (r <= HUBER_K ? 1.0 : HUBER_K / r) : 1.0 / (1.0 + pow(r / CAUCHY_C, 2));
+        const double w = loss == JC_FIT_LOSS_HUBER ? (r <= HUBER_K ? 1.0 : HUBER_K / r) : 1.0 / (1.0 + pow(r / CAUCHY_C, 2));
         change = fmax(change, fabs(w - c->sw[i] * c->sw[i]));
         c->sw[i] = sqrt(w);
     }
@@ -275,6 +294,11 @@ static int lm_pass(fit_ctx *c, gsl_multifit_nlinear_workspace *w, gsl_vector *uv
     for (; it < max_iter; ++it) {
         const int st = gsl_multifit_nlinear_iterate(w);
         if (st != GSL_SUCCESS) break; /* no step lowers chi2 (GSL_ENOPROG): as far as it goes */
+        report(c, ((double)c->begun - 1.0 + (double)(it + 1) / max_iter) / c->planned);
+        if (c->stopped) {
+            ++it;
+            break;
+        }
         if (gsl_multifit_nlinear_test(XTOL, GTOL, FTOL, &info, w) == GSL_SUCCESS && info != 0) {
             ++it;
             break;
@@ -293,10 +317,12 @@ static int lm_pass(fit_ctx *c, gsl_multifit_nlinear_workspace *w, gsl_vector *uv
 }
 
 /* One descent from u (in place), robust passes included. The iterations. */
-static int descend(fit_ctx *c, double *u, const cli_FitOptions *o, double *scratch, double give_up)
+static int descend(fit_ctx *c, double *u, const jc_TrackFitOptions *o, double *scratch, double give_up)
 {
     if (c->np == 0) return 0;
-    if (o->progress) o->progress(o->progress_ctx, c->stage, ++c->begun);
+    ++c->begun;
+    report(c, ((double)c->begun - 1.0) / c->planned);
+    if (c->stopped) return 0;
     const size_t n = (size_t)c->nres, p = (size_t)c->np;
     gsl_multifit_nlinear_parameters fp = gsl_multifit_nlinear_default_parameters();
     fp.trs = gsl_multifit_nlinear_trs_lm; /* no geodesic acceleration: its second derivative
@@ -305,12 +331,12 @@ static int descend(fit_ctx *c, double *u, const cli_FitOptions *o, double *scrat
     if (!w) return 0;
     gsl_vector_view uv = gsl_vector_view_array(u, p);
     int iters = 0;
-    const int passes = o->loss == CLI_LOSS_LINEAR ? 1 : MAX_PASSES;
+    const int passes = o->loss == JC_FIT_LOSS_LINEAR ? 1 : MAX_PASSES;
     /* Each descent from unit weights: its minimum's weights are its own. */
     for (long i = 0; i < c->nres; ++i) c->sw[i] = 1.0;
-    for (int pass = 0; pass < passes; ++pass) {
+    for (int pass = 0; pass < passes && !c->stopped; ++pass) {
         iters += lm_pass(c, w, &uv.vector, o->max_iter, pass == 0 ? give_up : INFINITY);
-        if (pass + 1 < passes && reweight(c, u, o->loss, scratch) < 1e-3) break;
+        if (pass + 1 < passes && !c->stopped && reweight(c, u, o->loss, scratch) < 1e-3) break;
     }
     gsl_multifit_nlinear_free(w);
     return iters;
@@ -337,11 +363,11 @@ static int covariance_u(fit_ctx *c, const double *u, double s2, gsl_matrix *cu)
 /* The values' covariance C_v = T C_u Tᵀ, T = dv/du (differences of the
  * transform: cheap and smooth); sigmas and correlations. */
 static void values_covariance(const fit_ctx *c, const double *u, const gsl_matrix *cu,
-                              double *sigma, double corr[][CLI_FIT_MAX_PARAMS])
+                              double *sigma, double corr[][JC_FIT_MAX_PARAMS])
 {
     const int p = c->np;
-    double T[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS];
-    double up[CLI_FIT_MAX_PARAMS], um[CLI_FIT_MAX_PARAMS], vp[CLI_FIT_MAX_PARAMS], vm[CLI_FIT_MAX_PARAMS];
+    double T[JC_FIT_MAX_PARAMS][JC_FIT_MAX_PARAMS];
+    double up[JC_FIT_MAX_PARAMS], um[JC_FIT_MAX_PARAMS], vp[JC_FIT_MAX_PARAMS], vm[JC_FIT_MAX_PARAMS];
     for (int j = 0; j < p; ++j) {
         const double h = 1e-6 * fmax(1.0, fabs(u[j]));
         memcpy(up, u, (size_t)p * sizeof *u);
@@ -352,7 +378,7 @@ static void values_covariance(const fit_ctx *c, const double *u, const gsl_matri
         values_of(c, um, vm);
         for (int i = 0; i < p; ++i) T[i][j] = (vp[i] - vm[i]) / (2 * h);
     }
-    double cov[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS];
+    double cov[JC_FIT_MAX_PARAMS][JC_FIT_MAX_PARAMS];
     for (int i = 0; i < p; ++i)
         for (int j = 0; j < p; ++j) {
             double s = 0.0;
@@ -371,12 +397,12 @@ static void values_covariance(const fit_ctx *c, const double *u, const gsl_matri
  * angle when nothing in the video tells them. */
 static int screened(const fit_ctx *c, int i)
 {
-    const cli_FitKind k = c->param[i].kind;
-    return bounded(c->param[i]) || k == CLI_FIT_MARK_ANGLE || (k == CLI_FIT_THETA0 && !c->t->has_mark);
+    const jc_TrackFitKind k = c->param[i].kind;
+    return bounded(c->param[i]) || k == JC_FIT_MARK_ANGLE || (k == JC_FIT_THETA0 && !c->t->has_mark);
 }
 
 typedef struct {
-    double u[CLI_FIT_MAX_PARAMS];
+    double u[JC_FIT_MAX_PARAMS];
     double chi2;
 } point;
 
@@ -397,17 +423,17 @@ static void hypercube(const fit_ctx *c, const double *u0, int npts, uint64_t see
         if (!screened(c, i)) continue;
         for (int k = 0; k < npts; ++k) perm[k] = k;
         for (int k = npts - 1; k > 0; --k) { /* Fisher-Yates */
-            const int j = (int)(cli_random_uniform(seed, (uint64_t)i, (uint32_t)k) * (k + 1));
+            const int j = (int)(jc_random_uniform(seed, (uint64_t)i, (uint32_t)k) * (k + 1));
             const int tmp = perm[k];
             perm[k] = perm[j < k ? j : k];
             perm[j < k ? j : k] = tmp;
         }
         for (int k = 0; k < npts; ++k) {
-            const double q = (perm[k] + cli_random_uniform(seed, 1000u + (uint64_t)i, (uint32_t)k)) / npts;
+            const double q = (perm[k] + jc_random_uniform(seed, 1000u + (uint64_t)i, (uint32_t)k)) / npts;
             if (bounded(c->param[i])) {
                 pts[k].u[i] = logit(fmin(fmax(q, START_EDGE), 1.0 - START_EDGE));
             } else {
-                pts[k].u[i] = -CLI_TRACK_PI + 2.0 * CLI_TRACK_PI * q;
+                pts[k].u[i] = -JC_TRACK_PI + 2.0 * JC_TRACK_PI * q;
             }
         }
     }
@@ -416,7 +442,7 @@ static void hypercube(const fit_ctx *c, const double *u0, int npts, uint64_t see
 
 /* Searches from u0 (the user's values): screens, descends, keeps the
  * minima sorted by chi2 into mins (at most cap). Returns how many. */
-static int search(fit_ctx *c, const double *u0, const cli_FitOptions *o, point *mins, int cap, cli_FitResult *out,
+static int search(fit_ctx *c, const double *u0, const jc_TrackFitOptions *o, point *mins, int cap, jc_TrackFitResult *out,
                   double *scratch)
 {
     int dims = 0;
@@ -433,8 +459,10 @@ static int search(fit_ctx *c, const double *u0, const cli_FitOptions *o, point *
     /* The user's point and the best screened ones. */
     const int want = o->descents > 0 ? o->descents : DEFAULT_DESCENTS;
     qsort(pts + 1, (size_t)npts, sizeof *pts, cmp_point);
+    c->planned = want < npts + 1 ? want : npts + 1;
+    if (c->planned > cap) c->planned = cap;
     int m = 0;
-    for (int k = 0; k <= npts && m < want && m < cap; ++k) {
+    for (int k = 0; k <= npts && m < want && m < cap && !c->stopped; ++k) {
         point q = pts[k];
         out->iterations += descend(c, q.u, o, scratch, m > 0 ? mins[0].chi2 : INFINITY);
         q.chi2 = cost(c, q.u);
@@ -462,21 +490,21 @@ static double liftoff_x(fit_ctx *c, const double *u, double *t_s)
     /* In the video's frame, as the frames are. */
     jc_Setup s;
     jc_State start;
-    cli_FitFrame fr;
+    jc_TrackFitFrame fr;
     apply(c, u, &s, &start, &fr);
     double x = c->ts.sum.first_liftoff_state.x_m - c->ts.shift_m, y = c->ts.sum.first_liftoff_state.y_m;
-    cli_fit_to_video(&fr, &start, &x, &y, NULL, 1);
+    jc_fit_to_video(&fr, &start, &x, &y, NULL, 1);
     return x;
 }
 
 /* The predicted first lift-off and its standard error by the delta method. */
-static void predict_liftoff(fit_ctx *c, const double *u, const gsl_matrix *cu, cli_FitResult *out)
+static void predict_liftoff(fit_ctx *c, const double *u, const gsl_matrix *cu, jc_TrackFitResult *out)
 {
     out->liftoff_x_m = liftoff_x(c, u, &out->liftoff_t_s);
     out->has_liftoff = isfinite(out->liftoff_x_m);
     out->liftoff_sigma_m = NAN;
     if (!out->has_liftoff) return;
-    double g[CLI_FIT_MAX_PARAMS], w[CLI_FIT_MAX_PARAMS];
+    double g[JC_FIT_MAX_PARAMS], w[JC_FIT_MAX_PARAMS];
     for (int j = 0; j < c->np; ++j) {
         const double h = step_of(u[j]);
         memcpy(w, u, (size_t)c->np * sizeof *u);
@@ -492,78 +520,78 @@ static void predict_liftoff(fit_ctx *c, const double *u, const gsl_matrix *cu, c
 }
 
 /* The index of a free value in the result's list. */
-static int slot_of(const cli_FitResult *r, cli_FitParam p)
+static int slot_of(const jc_TrackFitResult *r, jc_TrackFitParam p)
 {
     for (int k = 0; k < r->count; ++k)
-        if (cli_fit_param_same(r->param[k], p)) return k;
+        if (jc_fit_param_same(r->param[k], p)) return k;
     return -1;
 }
 
 /* Flags the values the video does not determine; the one to hold for a
  * correlated pair is the less determined (sigma over range). Returns how many. */
-static int flag_values(const fit_ctx *c, const double *v, const double *sigma, double corr[][CLI_FIT_MAX_PARAMS],
-                       cli_FitFlag *flag, int *other, double *rho)
+static int flag_values(const fit_ctx *c, const double *v, const double *sigma, double corr[][JC_FIT_MAX_PARAMS],
+                       jc_TrackFitFlag *flag, int *other, double *rho)
 {
-    const int kk = index_of(c, CLI_FIT_MU_K);
+    const int kk = index_of(c, JC_FIT_MU_K);
     const double mu_k = kk >= 0 ? v[kk] : c->base.mu_kinetic;
     int flagged = 0;
-    double rel[CLI_FIT_MAX_PARAMS];
+    double rel[JC_FIT_MAX_PARAMS];
     for (int i = 0; i < c->np; ++i) {
         double lo, hi;
         range_of(c, i, mu_k, &lo, &hi);
-        const double span = isfinite(hi - lo) && c->param[i].kind != CLI_FIT_OMEGA0 ? hi - lo : INFINITY;
+        const double span = isfinite(hi - lo) && c->param[i].kind != JC_FIT_OMEGA0 ? hi - lo : INFINITY;
         rel[i] = isfinite(span) ? sigma[i] / span : 0.0;
-        flag[i] = CLI_FIT_DETERMINED;
+        flag[i] = JC_FIT_DETERMINED;
         other[i] = -1;
         rho[i] = NAN;
         if (bounded(c->param[i]) && (v[i] - lo < EDGE * 1.01 * (hi - lo) || hi - v[i] < EDGE * 1.01 * (hi - lo)))
-            flag[i] = CLI_FIT_ON_BOUND;
+            flag[i] = JC_FIT_ON_BOUND;
         else if (!(sigma[i] > 0.0) || !isfinite(sigma[i]))
-            flag[i] = CLI_FIT_NO_EFFECT;
+            flag[i] = JC_FIT_NO_EFFECT;
         else if (sigma[i] > span)
-            flag[i] = CLI_FIT_WIDER_THAN_RANGE;
+            flag[i] = JC_FIT_WIDER_THAN_RANGE;
     }
     for (int i = 0; i < c->np; ++i) {
-        if (flag[i] != CLI_FIT_DETERMINED) continue;
+        if (flag[i] != JC_FIT_DETERMINED) continue;
         for (int j = 0; j < c->np; ++j) {
-            if (j == i || flag[j] != CLI_FIT_DETERMINED) continue;
+            if (j == i || flag[j] != JC_FIT_DETERMINED) continue;
             const double r = corr[i][j];
             if (!(fabs(r) > CORRELATED)) continue;
             const int later = i > j; /* of two as little determined, the later one goes */
             const int drop = rel[i] > rel[j] || (rel[i] == rel[j] && later);
             if (drop) {
-                flag[i] = CLI_FIT_CORRELATED;
+                flag[i] = JC_FIT_CORRELATED;
                 other[i] = j;
                 rho[i] = corr[i][j];
                 break;
             }
         }
     }
-    for (int i = 0; i < c->np; ++i) flagged += flag[i] != CLI_FIT_DETERMINED;
+    for (int i = 0; i < c->np; ++i) flagged += flag[i] != JC_FIT_DETERMINED;
     return flagged;
 }
 
 /* Holds the flagged values: at the bound a value sits on, else at its
  * starting value; the free list shrinks and u follows it. */
-static void hold(fit_ctx *c, double *u, const double *v, const double *v0, const cli_FitFlag *flag)
+static void hold(fit_ctx *c, double *u, const double *v, const double *v0, const jc_TrackFitFlag *flag)
 {
     double lo, hi;
-    const int kk = index_of(c, CLI_FIT_MU_K);
+    const int kk = index_of(c, JC_FIT_MU_K);
     const double mu_k = kk >= 0 ? v[kk] : c->base.mu_kinetic;
     int m = 0;
-    double keep_v[CLI_FIT_MAX_PARAMS];
+    double keep_v[JC_FIT_MAX_PARAMS];
     for (int i = 0; i < c->np; ++i) {
-        if (flag[i] == CLI_FIT_DETERMINED) {
+        if (flag[i] == JC_FIT_DETERMINED) {
             keep_v[m] = v[i];
             c->param[m++] = c->param[i];
             continue;
         }
         range_of(c, i, mu_k, &lo, &hi);
         double at = v0[i];
-        if (flag[i] == CLI_FIT_ON_BOUND) at = v[i] - lo < hi - v[i] ? lo : hi;
+        if (flag[i] == JC_FIT_ON_BOUND) at = v[i] - lo < hi - v[i] ? lo : hi;
         /* mu_s on mu_k: no margin to slip, whatever mu_k becomes. */
-        if (flag[i] == CLI_FIT_ON_BOUND && c->param[i].kind == CLI_FIT_MU_S && at == lo) c->mu_s_tied = 1;
-        cli_fit_set(&c->base, &c->start0, &c->frame0, c->param[i], at);
+        if (flag[i] == JC_FIT_ON_BOUND && c->param[i].kind == JC_FIT_MU_S && at == lo) c->mu_s_tied = 1;
+        jc_fit_set(&c->base, &c->start0, &c->frame0, c->param[i], at);
     }
     /* A mu_s held below a free mu_k would break mu_k <= mu_s: apply() lifts it. */
     c->np = m;
@@ -571,34 +599,34 @@ static void hold(fit_ctx *c, double *u, const double *v, const double *v0, const
 }
 
 /* chi2 along a held value's range, the others fitted at each point. */
-static void profile(fit_ctx *c, cli_FitParam p, const double *u_best, const cli_FitOptions *o, double *xs, double *chi2,
+static void profile(fit_ctx *c, jc_TrackFitParam p, const double *u_best, const jc_TrackFitOptions *o, double *xs, double *chi2,
                     double *scratch)
 {
-    double lo, hi, v[CLI_FIT_MAX_PARAMS];
-    cli_fit_range(&c->base, p, &lo, &hi);
+    double lo, hi, v[JC_FIT_MAX_PARAMS];
+    jc_fit_range(&c->base, p, &lo, &hi);
     values_of(c, u_best, v);
-    const int kk = index_of(c, CLI_FIT_MU_K);
-    if (p.kind == CLI_FIT_MU_S) lo = kk >= 0 ? v[kk] : c->base.mu_kinetic; /* mu_s above mu_k */
-    if (!isfinite(lo) || !isfinite(hi) || p.kind == CLI_FIT_OMEGA0) {
-        for (int k = 0; k < CLI_FIT_PROFILE_POINTS; ++k) xs[k] = chi2[k] = NAN;
+    const int kk = index_of(c, JC_FIT_MU_K);
+    if (p.kind == JC_FIT_MU_S) lo = kk >= 0 ? v[kk] : c->base.mu_kinetic; /* mu_s above mu_k */
+    if (!isfinite(lo) || !isfinite(hi) || p.kind == JC_FIT_OMEGA0) {
+        for (int k = 0; k < JC_FIT_PROFILE_POINTS; ++k) xs[k] = chi2[k] = NAN;
         return;
     }
     const jc_Setup base = c->base;
     const jc_State s0 = c->start0;
-    const cli_FitFrame fr0 = c->frame0;
+    const jc_TrackFitFrame fr0 = c->frame0;
     const int tied = c->mu_s_tied;
     c->mu_s_tied = 0; /* mu_s goes along its range, not with mu_k */
-    cli_FitOptions q = *o;
-    q.loss = CLI_LOSS_LINEAR;
+    jc_TrackFitOptions q = *o;
+    q.loss = JC_FIT_LOSS_LINEAR;
     q.max_iter = o->max_iter < PROFILE_MAX_ITER ? o->max_iter : PROFILE_MAX_ITER;
-    double v_prev[CLI_FIT_MAX_PARAMS];
-    for (int k = 0; k < CLI_FIT_PROFILE_POINTS; ++k) {
-        xs[k] = lo + (hi - lo) * (k + 0.5) / CLI_FIT_PROFILE_POINTS;
-        cli_fit_set(&c->base, &c->start0, &c->frame0, p, xs[k]);
+    double v_prev[JC_FIT_MAX_PARAMS];
+    for (int k = 0; k < JC_FIT_PROFILE_POINTS && !c->stopped; ++k) {
+        xs[k] = lo + (hi - lo) * (k + 0.5) / JC_FIT_PROFILE_POINTS;
+        jc_fit_set(&c->base, &c->start0, &c->frame0, p, xs[k]);
         /* From the best values, and from the previous point's (the
          * profile followed along its branch); the lower of the two, in u
          * as the ranges now are (mu_k's top is the held mu_s). */
-        double u[CLI_FIT_MAX_PARAMS], w[CLI_FIT_MAX_PARAMS];
+        double u[JC_FIT_MAX_PARAMS], w[JC_FIT_MAX_PARAMS];
         u_of(c, v, u, EDGE);
         descend(c, u, &q, scratch, INFINITY);
         chi2[k] = cost(c, u);
@@ -618,20 +646,20 @@ static void profile(fit_ctx *c, cli_FitParam p, const double *u_best, const cli_
  * the model in the window; a clear one with no hop of the other over its
  * frames is a disagreement. 1 when they agree; 0 with the first
  * disagreement's text in why. */
-static int hops_agree(const fit_ctx *c, const cli_FitResult *r, char *why, size_t len, int *n_video, int *n_model)
+static int hops_agree(const fit_ctx *c, const jc_TrackFitResult *r, char *why, size_t len, int *n_video, int *n_model)
 {
-    const cli_Track *t = c->t;
-    cli_TrackHops model;
-    cli_track_find_hops(t->t_s + r->first, c->x, c->y, r->frames, t->radius_m, t->hop_threshold_m, &model);
+    const jc_Track *t = c->t;
+    jc_TrackHops model;
+    jc_track_find_hops(t->t_s + r->first, c->x, c->y, r->frames, t->radius_m, t->hop_threshold_m, &model);
     *n_video = *n_model = 0;
     int ok = 1;
     for (long k = 0; k < t->hops; ++k) {
-        const cli_TrackHop *h = &t->hop[k];
+        const jc_TrackHop *h = &t->hop[k];
         if (h->last < r->first || h->first >= r->first + r->frames || isnan(h->height_m)) continue;
         if (!(h->height_m - t->hop_threshold_m > CLEAR_HOP_SIGMAS * h->height_sigma_m)) continue;
         (*n_video)++;
         int seen = 0;
-        for (int m = 0; m < model.hops && m < CLI_TRACK_MAX_HOPS; ++m)
+        for (int m = 0; m < model.hops && m < JC_TRACK_MAX_HOPS; ++m)
             seen |= model.first[m] + r->first <= h->last + 1 && model.last[m] + r->first + 1 >= h->first;
         if (!seen && ok) {
             snprintf(why, len, "the video shows a hop at t = %.3f s (%.1f +- %.1f mm) where the model does not",
@@ -639,7 +667,7 @@ static int hops_agree(const fit_ctx *c, const cli_FitResult *r, char *why, size_
             ok = 0;
         }
     }
-    for (int m = 0; m < model.hops && m < CLI_TRACK_MAX_HOPS; ++m) {
+    for (int m = 0; m < model.hops && m < JC_TRACK_MAX_HOPS; ++m) {
         if (!(model.height_m[m] - t->hop_threshold_m > CLEAR_HOP_SIGMAS * t->sigma_m)) continue;
         (*n_model)++;
         int seen = 0;
@@ -647,7 +675,7 @@ static int hops_agree(const fit_ctx *c, const cli_FitResult *r, char *why, size_
         for (long k = 0; k < t->hops; ++k)
             seen |= t->hop[k].first <= b + 1 && t->hop[k].last + 1 >= a;
         /* A mark-only video cannot show a hop below its detection bound. */
-        if (!seen && t->centre_source == CLI_CENTRE_FROM_MARK && model.height_m[m] < t->hop_threshold_m) seen = 1;
+        if (!seen && t->centre_source == JC_TRACK_CENTRE_FROM_MARK && model.height_m[m] < t->hop_threshold_m) seen = 1;
         if (!seen && ok) {
             snprintf(why, len, "the model hops at t = %.3f s (%.1f mm) where the video shows none",
                      t->t_s[a], model.height_m[m] * 1e3);
@@ -657,11 +685,11 @@ static int hops_agree(const fit_ctx *c, const cli_FitResult *r, char *why, size_
     return ok;
 }
 
-static void judge(fit_ctx *c, const double *u, cli_FitResult *r)
+static void judge(fit_ctx *c, const double *u, jc_TrackFitResult *r)
 {
     run_u(c, u);
     const char *which = "";
-    r->runs_z = cli_residuals_runs_z(c->f, c->series, c->nres, &which);
+    r->runs_z = jc_track_residuals_runs_z(c->f, c->series, c->nres, &which);
     char hop_why[200] = "";
     int hops_measured, hops_model;
     const int hops_ok = hops_agree(c, r, hop_why, sizeof hop_why, &hops_measured, &hops_model);
@@ -688,72 +716,73 @@ static void judge(fit_ctx *c, const double *u, cli_FitResult *r)
 
 /* ---- setting up ---- */
 
-void cli_fit_options_default(cli_FitOptions *o)
+void jc_fit_options_default(jc_TrackFitOptions *o)
 {
     memset(o, 0, sizeof *o);
-    o->loss = CLI_LOSS_LINEAR;
+    o->loss = JC_FIT_LOSS_LINEAR;
     o->from_s = o->to_s = NAN;
     o->max_iter = 100;
-    o->start = CLI_START_TRACKED;
+    o->start = JC_TRACK_START_TRACKED;
     o->seed = 1;
     o->profiles = 1;
 }
 
-static int add_param(cli_FitParam *list, int *n, cli_FitParam p)
+static int add_param(jc_TrackFitParam *list, int *n, jc_TrackFitParam p)
 {
     for (int i = 0; i < *n; ++i)
-        if (cli_fit_param_same(list[i], p)) return 0;
-    if (*n == CLI_FIT_MAX_PARAMS) return -1;
+        if (jc_fit_param_same(list[i], p)) return 0;
+    if (*n == JC_FIT_MAX_PARAMS) return -1;
     list[(*n)++] = p;
     return 1;
 }
 
-static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o,
-                   const jc_State *refined, cli_FitResult *out, char *err, size_t err_len)
+static int prepare(fit_ctx *c, const jc_Setup *setup, const jc_Track *t, const jc_TrackFitOptions *o,
+                   const jc_State *refined, jc_TrackFitResult *out, char *err, size_t err_len)
 {
     c->t = t;
-    if (cli_track_require("the track", t, CLI_NEED_CENTRE | CLI_NEED_INCLINE, err, err_len) != 0) return -1;
-    c->base = cli_track_setup(setup, t);
+    int st = jc_track_require("the track", t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, err_len);
+    if (st != JC_OK) return st;
+    c->base = jc_track_setup(setup, t);
     c->base.incline_rad = t->incline_rad; /* the frames' incline frame */
     c->frame0.mark_angle_rad = o->mark_angle_rad;
-    cli_track_window(t, o->from_s, o->to_s, &c->res.first, &c->res.count);
+    jc_track_window(t, o->from_s, o->to_s, &c->res.first, &c->res.count);
     if (c->res.count < 3) {
         snprintf(err, err_len, "the fit window holds %ld frame(s); at least 3 are needed", c->res.count);
-        return -1;
+        return JC_EINVAL;
     }
     jc_Model m;
-    if (jc_model_init(&m, &c->base, err, err_len) != JC_OK) return -1;
+    if ((st = jc_model_init(&m, &c->base, err, err_len)) != JC_OK) return st;
     const double sigma = o->sigma_m > 0.0 ? o->sigma_m : t->sigma_m;
     if (!(sigma > 0.0)) {
         snprintf(err, err_len, "the track gives no position noise; give it with --sigma");
-        return -1;
+        return JC_EINVAL;
     }
     c->res.t = t;
     c->res.sigma = sigma;
     const double r = m.body.radius_m;
     const long first = c->res.first;
-    if (o->start == CLI_START_SETUP) {
-        cli_track_start_setup(t, first, first + c->res.count, r, setup, &c->start0);
+    if (o->start == JC_TRACK_START_SETUP) {
+        jc_track_start_setup(t, first, first + c->res.count, r, setup, &c->start0);
     } else if (refined) {
         c->start0 = *refined;
     } else {
-        if (cli_track_start_estimate(t, first, START_SPAN, r, setup->theta0_rad, t->hop_threshold_m, &c->start0) != 0) {
+        if (jc_track_start_estimate(t, first, START_SPAN, r, setup->theta0_rad, t->hop_threshold_m, &c->start0) != 0) {
             snprintf(err, err_len, "fewer than 3 frames to estimate the first tracked state from");
-            return -1;
+            return JC_EINVAL;
         }
-        if (t->has_mark) c->start0.theta_rad += cli_track_mark_offset_rad(&m, o->mark_angle_rad);
+        if (t->has_mark) c->start0.theta_rad += jc_track_mark_offset_rad(&m, o->mark_angle_rad);
     }
     /* The free list: the values asked for, then the start's. */
     int n = 0;
     for (int k = 0; k < o->free_count; ++k) add_param(c->param, &n, o->free[k]);
-    const cli_FitKind extra[5] = {CLI_FIT_THETA0, CLI_FIT_OMEGA0, CLI_FIT_X0, CLI_FIT_TILT, CLI_FIT_SURFACE};
+    const jc_TrackFitKind extra[5] = {JC_FIT_THETA0, JC_FIT_OMEGA0, JC_FIT_X0, JC_FIT_TILT, JC_FIT_SURFACE};
     for (int k = 0; k < 5; ++k) {
         if (k < 3 ? o->hold_start : o->hold_frame) continue;
-        const cli_FitParam p = {extra[k], -1};
+        const jc_TrackFitParam p = {extra[k], -1};
         const int added = add_param(c->param, &n, p);
         if (added < 0) {
-            snprintf(err, err_len, "more than %d values to fit", CLI_FIT_MAX_PARAMS);
-            return -1;
+            snprintf(err, err_len, "more than %d values to fit", JC_FIT_MAX_PARAMS);
+            return JC_EINVAL;
         }
         if (added > 0) out->start_value[n - 1] = 1;
     }
@@ -761,17 +790,17 @@ static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const 
     out->count = n;
     memcpy(out->param, c->param, sizeof c->param);
     for (int k = 0; k < n; ++k) {
-        out->initial[k] = cli_fit_get(&c->base, &c->start0, &c->frame0, c->param[k]);
-        cli_fit_range(&c->base, c->param[k], &out->lo[k], &out->hi[k]);
+        out->initial[k] = jc_fit_get(&c->base, &c->start0, &c->frame0, c->param[k]);
+        jc_fit_range(&c->base, c->param[k], &out->lo[k], &out->hi[k]);
     }
-    const double a = t->centre_source == CLI_CENTRE_FROM_MARK ? t->mark_radius_m : cli_track_mark_radius(t, &m);
+    const double a = t->centre_source == JC_TRACK_CENTRE_FROM_MARK ? t->mark_radius_m : jc_track_mark_radius(t, &m);
     long marks = 0;
     for (long i = 0; i < c->res.count; ++i) marks += t->has_mark && isfinite(t->theta_rad[first + i]);
-    c->res.mark_radius = marks > 0 || t->centre_source == CLI_CENTRE_FROM_MARK ? a : 0.0;
-    c->nres = cli_residual_count(&c->res);
+    c->res.mark_radius = marks > 0 || t->centre_source == JC_TRACK_CENTRE_FROM_MARK ? a : 0.0;
+    c->nres = jc_track_residual_count(&c->res);
     if (c->nres <= c->np) {
         snprintf(err, err_len, "%ld residuals cannot fix %d free values", c->nres, c->np);
-        return -1;
+        return JC_EINVAL;
     }
     const size_t fr = (size_t)c->res.count, nr = (size_t)c->nres;
     c->x = malloc(fr * sizeof *c->x);
@@ -780,18 +809,18 @@ static int prepare(fit_ctx *c, const jc_Setup *setup, const cli_Track *t, const 
     c->sw = malloc(nr * sizeof *c->sw);
     c->f = malloc(nr * sizeof *c->f);
     c->series = malloc(nr);
-    if (!c->x || !c->y || !c->th || !c->sw || !c->f || !c->series || cli_track_sim_init(&c->ts) != 0) {
+    if (!c->x || !c->y || !c->th || !c->sw || !c->f || !c->series || jc_track_sim_init(&c->ts) != 0) {
         snprintf(err, err_len, "out of memory");
-        return -1;
+        return JC_ENOMEM;
     }
     for (long i = 0; i < c->nres; ++i) c->sw[i] = 1.0;
-    c->ts.shift_m = cli_track_sim_shift(t);
+    c->ts.shift_m = jc_track_sim_shift(t);
     out->first = first;
     out->frames = c->res.count;
     out->sigma_m = sigma;
     out->noise_measured = !(o->sigma_m > 0.0);
     out->mark_radius_m = c->res.mark_radius;
-    return 0;
+    return JC_OK;
 }
 
 static void release(fit_ctx *c)
@@ -802,23 +831,23 @@ static void release(fit_ctx *c)
     free(c->sw);
     free(c->f);
     free(c->series);
-    cli_track_sim_free(&c->ts);
+    jc_track_sim_free(&c->ts);
 }
 
 /* The path's and the mark angle's RMS at u. */
-static void rms(fit_ctx *c, const double *u, cli_FitResult *out)
+static void rms(fit_ctx *c, const double *u, jc_TrackFitResult *out)
 {
     run_u(c, u);
     for (long i = 0; i < c->res.count; ++i) c->th[i] -= c->res.mark_offset; /* G's angle to the mark's */
-    cli_track_misfit(c->t, c->res.first, c->res.count, c->x, c->y, c->th, &out->rms_path_m, NULL,
-                     &out->rms_theta_rad);
+    jc_track_misfit(c->t, c->res.first, c->res.count, c->x, c->y, c->th, &out->rms_path_m, NULL,
+                    &out->rms_theta_rad);
 }
 
 /* The estimate at u, whose chi2 is given: the covariance of u in *cv (a
  * view of cu, np x np), scaled by chi2/dof when the noise was measured;
  * the values, their sigmas and correlations. Returns the scale. */
 static double estimate(fit_ctx *c, const double *u, double chi2, int noise_measured, gsl_matrix *cu,
-                       gsl_matrix_view *cv, double *v, double *sigma, double corr[][CLI_FIT_MAX_PARAMS])
+                       gsl_matrix_view *cv, double *v, double *sigma, double corr[][JC_FIT_MAX_PARAMS])
 {
     const double s2 = noise_measured ? chi2 / (double)(c->nres - c->np) : 1.0;
     const size_t p = (size_t)(c->np > 0 ? c->np : 1);
@@ -831,7 +860,7 @@ static double estimate(fit_ctx *c, const double *u, double chi2, int noise_measu
     return s2;
 }
 
-static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *err, size_t err_len)
+static int solve(fit_ctx *c, const jc_TrackFitOptions *o, jc_TrackFitResult *out, char *err, size_t err_len)
 {
     const size_t p_all = (size_t)c->np;
     double *scratch = malloc((size_t)c->nres * sizeof *scratch);
@@ -841,14 +870,17 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
         free(scratch);
         gsl_matrix_free(cu);
         snprintf(err, err_len, "out of memory");
-        return -1;
+        return JC_ENOMEM;
     }
-    double v0[CLI_FIT_MAX_PARAMS], u[CLI_FIT_MAX_PARAMS], v[CLI_FIT_MAX_PARAMS], sigma[CLI_FIT_MAX_PARAMS];
-    double corr[CLI_FIT_MAX_PARAMS][CLI_FIT_MAX_PARAMS];
-    for (int i = 0; i < c->np; ++i) v0[i] = cli_fit_get(&c->base, &c->start0, &c->frame0, c->param[i]);
+    /* The stages' parts of the fit's progress: the search most of it. */
+    const double *part = o->start_window ? START_WINDOW_PARTS : FIT_PARTS;
+    double v0[JC_FIT_MAX_PARAMS], u[JC_FIT_MAX_PARAMS], v[JC_FIT_MAX_PARAMS], sigma[JC_FIT_MAX_PARAMS];
+    double corr[JC_FIT_MAX_PARAMS][JC_FIT_MAX_PARAMS];
+    for (int i = 0; i < c->np; ++i) v0[i] = jc_fit_get(&c->base, &c->start0, &c->frame0, c->param[i]);
     u_of(c, v0, u, START_EDGE);
     const int cap = (int)(sizeof mins / sizeof mins[0]);
-    stage_begin(c, o->start_window ? "the start alone" : "descents from the best start points");
+    stage_begin(c, o->start_window ? "the start alone" : "descents from the best start points", part[0], part[1],
+                DEFAULT_DESCENTS);
     int nm = search(c, u, o, mins, cap, out, scratch);
     if (nm == 0) {
         mins[0].chi2 = cost(c, u);
@@ -857,7 +889,8 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
     }
     memcpy(u, mins[0].u, sizeof u);
     /* The best minimum's own robust weights (the last descent left its own). */
-    if (o->loss != CLI_LOSS_LINEAR) out->iterations += descend(c, u, o, scratch, INFINITY);
+    if (o->loss != JC_FIT_LOSS_LINEAR) out->iterations += descend(c, u, o, scratch, INFINITY);
+    if (c->stopped) goto stopped;
     /* Scale: chi2/dof when the noise was measured. */
     double chi2 = cost(c, u);
     gsl_matrix_view cv;
@@ -866,9 +899,9 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
      * the free values' count, and apart from it by more than 2 sigma. */
     out->delta_chi2 = gsl_cdf_chisq_Qinv(0.05, (double)c->np) * fmax(1.0, s2);
     out->minima = 0;
-    for (int k = 0; k < nm && out->minima < CLI_FIT_MAX_MINIMA; ++k) {
+    for (int k = 0; k < nm && out->minima < JC_FIT_MAX_MINIMA; ++k) {
         if (mins[k].chi2 - mins[0].chi2 > out->delta_chi2) break;
-        double vk[CLI_FIT_MAX_PARAMS];
+        double vk[JC_FIT_MAX_PARAMS];
         values_of(c, mins[k].u, vk);
         /* Apart: by more than 2 sigma in a value whose sigma is known (one
          * the residuals do not see tells no minima apart). */
@@ -883,7 +916,7 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
             if (same) apart = 0;
         }
         if (!apart) continue;
-        cli_FitMinimum *mm = &out->minimum[out->minima++];
+        jc_TrackFitMinimum *mm = &out->minimum[out->minima++];
         for (int i = 0; i < out->count; ++i) mm->value[i] = out->initial[i];
         for (int i = 0; i < c->np; ++i) mm->value[slot_of(out, c->param[i])] = vk[i];
         mm->chi2 = mins[k].chi2;
@@ -891,13 +924,14 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
     /* A bounded value the descents left near a bound (its transform makes
      * the bound a limit they only approach) is put on it, the others fitted
      * again, when chi2 is lower there: the flags then hold it there. */
-    int snapped = 0;
-    stage_begin(c, "values near a bound tried on it");
-    for (int i = 0; i < c->np; ++i) {
+    int snapped = 0, near_bound = 0;
+    for (int i = 0; i < c->np; ++i) near_bound += bounded(c->param[i]);
+    stage_begin(c, "values near a bound tried on it", part[1], part[2], near_bound);
+    for (int i = 0; i < c->np && !c->stopped; ++i) {
         if (!bounded(c->param[i])) continue;
         const double q = sigmoid(u[i]);
         if (q > SNAP_NEAR && q < 1.0 - SNAP_NEAR) continue;
-        double us[CLI_FIT_MAX_PARAMS];
+        double us[JC_FIT_MAX_PARAMS];
         memcpy(us, u, sizeof us);
         us[i] = logit(q < 0.5 ? 0.5 * EDGE : 1.0 - 0.5 * EDGE);
         out->iterations += descend(c, us, o, scratch, INFINITY);
@@ -908,36 +942,38 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
             snapped = 1;
         }
     }
+    if (c->stopped) goto stopped;
     if (snapped) estimate(c, u, chi2, out->noise_measured, cu, &cv, v, sigma, corr);
     /* What the video does not determine: held, and the rest fitted again. */
-    stage_begin(c, "fitted again without the values not determined");
-    for (int round = 0; round < FLAG_ROUNDS && c->np > 0; ++round) {
-        cli_FitFlag flag[CLI_FIT_MAX_PARAMS];
-        int other[CLI_FIT_MAX_PARAMS];
-        double rho[CLI_FIT_MAX_PARAMS];
+    stage_begin(c, "fitted again without the values not determined", part[2], part[3], FLAG_ROUNDS);
+    for (int round = 0; round < FLAG_ROUNDS && c->np > 0 && !c->stopped; ++round) {
+        jc_TrackFitFlag flag[JC_FIT_MAX_PARAMS];
+        int other[JC_FIT_MAX_PARAMS];
+        double rho[JC_FIT_MAX_PARAMS];
         if (flag_values(c, v, sigma, corr, flag, other, rho) == 0) break;
-        double v_init[CLI_FIT_MAX_PARAMS];
+        double v_init[JC_FIT_MAX_PARAMS];
         for (int i = 0; i < c->np; ++i) {
             const int s = slot_of(out, c->param[i]);
             v_init[i] = out->initial[s];
-            if (flag[i] == CLI_FIT_DETERMINED) continue;
+            if (flag[i] == JC_FIT_DETERMINED) continue;
             out->flag[s] = flag[i];
             out->value[s] = v[i];
             out->sigma[s] = sigma[i];
             out->other[s] = other[i] >= 0 ? slot_of(out, c->param[other[i]]) : -1;
             out->rho[s] = rho[i];
         }
-        cli_FitParam held[CLI_FIT_MAX_PARAMS];
+        jc_TrackFitParam held[JC_FIT_MAX_PARAMS];
         int nheld = 0;
         for (int i = 0; i < c->np; ++i)
-            if (flag[i] != CLI_FIT_DETERMINED) held[nheld++] = c->param[i];
+            if (flag[i] != JC_FIT_DETERMINED) held[nheld++] = c->param[i];
         hold(c, u, v, v_init, flag);
         for (int h = 0; h < nheld; ++h) out->value[slot_of(out, held[h])] =
-            cli_fit_get(&c->base, &c->start0, &c->frame0, held[h]);
+            jc_fit_get(&c->base, &c->start0, &c->frame0, held[h]);
         out->iterations += descend(c, u, o, scratch, INFINITY);
         chi2 = cost(c, u);
         estimate(c, u, chi2, out->noise_measured, cu, &cv, v, sigma, corr);
     }
+    if (c->stopped) goto stopped;
     /* The values fitted at the end, and the correlations between them. */
     for (int i = 0; i < out->count; ++i)
         for (int j = 0; j < out->count; ++j) out->corr[i][j] = i == j ? 1.0 : NAN;
@@ -952,9 +988,9 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
     out->dof = c->nres - c->np;
     out->chi2_dof = chi2 / (double)out->dof;
     apply(c, u, &out->setup, &out->start, &out->frame);
-    const int kt = index_of(c, CLI_FIT_TILT);
+    const int kt = index_of(c, JC_FIT_TILT);
     out->incline_sigma_rad = tilt_tilts_gravity(c) && kt >= 0 ? sigma[kt] : 0.0;
-    out->setup.ramp_length_m -= CLI_TRACK_RAMP_MARGIN_M;
+    out->setup.ramp_length_m -= JC_TRACK_RAMP_MARGIN_M;
     if (!o->start_window) {
         if (c->np > 0) predict_liftoff(c, u, &cv.matrix, out);
         else {
@@ -966,87 +1002,103 @@ static int solve(fit_ctx *c, const cli_FitOptions *o, cli_FitResult *out, char *
         judge(c, u, out);
     }
     /* Profiles of the held values' chi2 along their ranges. */
-    for (int k = 0; o->profiles && !o->start_window && k < out->count; ++k) {
-        if (out->flag[k] == CLI_FIT_DETERMINED) continue;
+    int held = 0, profiles = 0;
+    for (int k = 0; k < out->count; ++k) held += out->flag[k] != JC_FIT_DETERMINED;
+    for (int k = 0; o->profiles && !o->start_window && k < out->count && !c->stopped; ++k) {
+        if (out->flag[k] == JC_FIT_DETERMINED) continue;
         char name[48];
-        cli_fit_param_name(&c->base, out->param[k], name, sizeof name);
+        jc_fit_param_name(&c->base, out->param[k], name, sizeof name);
         snprintf(c->stage_text, sizeof c->stage_text, "chi2 profile of %s (%d descents)", name,
-                 2 * CLI_FIT_PROFILE_POINTS - 1);
-        stage_begin(c, c->stage_text);
+                 2 * JC_FIT_PROFILE_POINTS - 1);
+        const double span = (part[4] - part[3]) / held;
+        stage_begin(c, c->stage_text, part[3] + span * profiles, part[3] + span * (profiles + 1),
+                    2 * JC_FIT_PROFILE_POINTS - 1);
+        profiles++;
         profile(c, out->param[k], u, o, out->profile_x[k], out->profile_chi2[k], scratch);
         out->profiled[k] = isfinite(out->profile_x[k][0]);
     }
+    if (c->stopped) goto stopped;
     free(scratch);
     gsl_matrix_free(cu);
-    return 0;
+    return JC_OK;
+stopped:
+    free(scratch);
+    gsl_matrix_free(cu);
+    snprintf(err, err_len, "stopped (the progress callback asked)");
+    return JC_ESTOPPED;
 }
 
-const char *cli_fit_flag_text(cli_FitFlag f)
+const char *jc_fit_flag_text(jc_TrackFitFlag f)
 {
     switch (f) {
-    case CLI_FIT_DETERMINED: return "determined";
-    case CLI_FIT_ON_BOUND: return "it sits on a bound of its range (the best fit is there or beyond)";
-    case CLI_FIT_WIDER_THAN_RANGE: return "its standard error exceeds its range";
-    case CLI_FIT_CORRELATED: return "it moves with another value";
-    case CLI_FIT_NO_EFFECT: return "the residuals do not change with it";
+    case JC_FIT_DETERMINED: return "determined";
+    case JC_FIT_ON_BOUND: return "it sits on a bound of its range (the best fit is there or beyond)";
+    case JC_FIT_WIDER_THAN_RANGE: return "its standard error exceeds its range";
+    case JC_FIT_CORRELATED: return "it moves with another value";
+    case JC_FIT_NO_EFFECT: return "the residuals do not change with it";
     }
     return "?";
 }
 
-int cli_fit_parse_loss(const char *text, cli_FitLoss *out)
+const char *jc_fit_loss_name(jc_TrackFitLoss loss)
 {
-    if (strcmp(text, "linear") == 0) *out = CLI_LOSS_LINEAR;
-    else if (strcmp(text, "huber") == 0) *out = CLI_LOSS_HUBER;
-    else if (strcmp(text, "cauchy") == 0) *out = CLI_LOSS_CAUCHY;
-    else return -1;
-    return 0;
+    switch (loss) {
+    case JC_FIT_LOSS_LINEAR: return "linear";
+    case JC_FIT_LOSS_HUBER: return "huber";
+    case JC_FIT_LOSS_CAUCHY: return "cauchy";
+    }
+    return "?";
 }
 
-/* The free motion's first frame and the start fitted there (launch.c),
- * for a start taken from the video: searched for when the window's start
- * was not given (a hand may push the body first), fitted at the window's
- * first frame when it was. *refined: 1 when launch->start holds that fit
- * (0 for the setup's start, a fit of a start window itself, or a given
- * window whose first frames the model cannot start from: the start is
- * then estimated from them). 0, or -1 with a message. */
-static int find_launch(const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
-                       cli_Launch *launch, int *refined, char *err, size_t err_len)
+int jc_fit_loss_parse(const char *name, jc_TrackFitLoss *out)
 {
-    long first, count;
-    cli_track_window(t, o->from_s, o->to_s, &first, &count);
-    memset(launch, 0, sizeof *launch);
-    launch->frame = first;
-    launch->chi2_dof = launch->chi2_dof_with = NAN;
-    *refined = 0;
-    if (o->start_window || o->start != CLI_START_TRACKED || count <= 0) return 0;
-    const int scan = isnan(o->from_s);
-    cli_Launch found;
-    if (cli_track_launch(setup, t, sim, first, o->to_s, scan, o->mark_angle_rad, &found, err, err_len) != 0)
-        return scan ? -1 : 0;
-    *launch = found;
-    *refined = 1;
-    return 0;
+    if (strcmp(name, "linear") == 0) *out = JC_FIT_LOSS_LINEAR;
+    else if (strcmp(name, "huber") == 0) *out = JC_FIT_LOSS_HUBER;
+    else if (strcmp(name, "cauchy") == 0) *out = JC_FIT_LOSS_CAUCHY;
+    else return JC_EINVAL;
+    return JC_OK;
 }
 
-int cli_track_fit(const jc_Setup *setup, const cli_Track *t, const cli_FitOptions *o, const jc_SimOptions *sim,
-                  cli_FitResult *out, char *err, size_t err_len)
+int jc_fit_options_check(const jc_Setup *setup, const jc_TrackFitOptions *o, char *err, size_t err_len)
 {
-    memset(out, 0, sizeof *out);
     if (!(o->max_iter > 0)) {
         snprintf(err, err_len, "the iteration limit must be positive");
-        return -1;
+        return JC_EINVAL;
     }
-    cli_Launch launch;
-    int refined;
-    if (find_launch(setup, t, o, sim, &launch, &refined, err, err_len) != 0) return -1;
-    cli_FitOptions q = *o;
-    if (refined) q.from_s = t->t_s[launch.frame];
+    if (o->free_count < 0 || o->free_count > JC_FIT_MAX_PARAMS) {
+        snprintf(err, err_len, "%d values to free (allowed: 0 to %d)", o->free_count, JC_FIT_MAX_PARAMS);
+        return JC_EINVAL;
+    }
+    for (int k = 0; k < o->free_count; ++k)
+        if (jc_fit_param_check(setup, o->free[k]) != JC_OK) {
+            snprintf(err, err_len, "value %d to free (kind %d, part %d) is not one the setup's body has", k,
+                     (int)o->free[k].kind, o->free[k].part);
+            return JC_EINVAL;
+        }
+    if (o->loss != JC_FIT_LOSS_LINEAR && o->loss != JC_FIT_LOSS_HUBER && o->loss != JC_FIT_LOSS_CAUCHY) {
+        snprintf(err, err_len, "loss %d (allowed: linear, huber, cauchy)", (int)o->loss);
+        return JC_EINVAL;
+    }
+    if (o->start != JC_TRACK_START_TRACKED && o->start != JC_TRACK_START_SETUP) {
+        snprintf(err, err_len, "start kind %d (allowed: tracked, setup)", (int)o->start);
+        return JC_EINVAL;
+    }
+    return JC_OK;
+}
+
+int jc_track_fit_solve(const jc_Setup *setup, const jc_Track *t, const jc_TrackFitOptions *o,
+                       const jc_SimOptions *sim, const jc_State *refined, const jc_TrackFitSpan *span,
+                       jc_TrackFitResult *out, char *err, size_t err_len)
+{
+    memset(out, 0, sizeof *out);
+    int rc = jc_fit_options_check(setup, o, err, err_len);
+    if (rc != JC_OK) return rc;
     fit_ctx c;
     memset(&c, 0, sizeof c);
     c.sim = sim;
-    int rc = prepare(&c, setup, t, &q, refined ? &launch.start : NULL, out, err, err_len);
-    if (rc == 0) rc = solve(&c, &q, out, err, err_len);
-    out->launch = launch;
+    if (span) c.span = *span;
+    rc = prepare(&c, setup, t, o, refined, out, err, err_len);
+    if (rc == JC_OK) rc = solve(&c, o, out, err, err_len);
     release(&c);
     return rc;
 }

@@ -8,16 +8,16 @@
  * displacement across the radius is the mark's own position error,
  * independent of the centre's. With a centre recovered from the mark, the
  * mark's own x and y (the recovered centre's errors are the mark's). */
-#include "track_fit.h"
+#include "track_internal.h"
 
 #include <math.h>
 #include <string.h>
 
-static int from_mark(const cli_Residuals *r) { return r->t->centre_source == CLI_CENTRE_FROM_MARK; }
+static int from_mark(const jc_TrackResiduals *r) { return r->t->centre_source == JC_TRACK_CENTRE_FROM_MARK; }
 
-long cli_residual_count(const cli_Residuals *r)
+long jc_track_residual_count(const jc_TrackResiduals *r)
 {
-    const cli_Track *t = r->t;
+    const jc_Track *t = r->t;
     long k = 0;
     for (long i = r->first; i < r->first + r->count; ++i) {
         if (from_mark(r)) {
@@ -31,8 +31,8 @@ long cli_residual_count(const cli_Residuals *r)
     return k;
 }
 
-void cli_track_misfit(const cli_Track *t, long first, long count, const double *x, const double *y,
-                      const double *th_mark, double *rms_path_m, double *max_path_m, double *rms_theta_rad)
+void jc_track_misfit(const jc_Track *t, long first, long count, const double *x, const double *y,
+                     const double *th_mark, double *rms_path_m, double *max_path_m, double *rms_theta_rad)
 {
     double path = 0.0, th = 0.0, largest = 0.0;
     long n_path = 0, n_th = 0;
@@ -45,7 +45,7 @@ void cli_track_misfit(const cli_Track *t, long first, long count, const double *
             n_path++;
         }
         if (t->has_mark && isfinite(t->theta_rad[j])) {
-            th += pow(remainder(t->theta_rad[j] - th_mark[i], 2.0 * CLI_TRACK_PI), 2);
+            th += pow(remainder(t->theta_rad[j] - th_mark[i], 2.0 * JC_TRACK_PI), 2);
             n_th++;
         }
     }
@@ -54,10 +54,10 @@ void cli_track_misfit(const cli_Track *t, long first, long count, const double *
     *rms_theta_rad = n_th ? sqrt(th / (double)n_th) : NAN;
 }
 
-int cli_residuals_frame(const cli_Track *t, long j, double sigma, double a, double x, double y, double thm,
-                        double f[3])
+int jc_track_residuals_frame(const jc_Track *t, long j, double sigma, double a, double x, double y, double thm,
+                             double f[3])
 {
-    if (t->centre_source == CLI_CENTRE_FROM_MARK) {
+    if (t->centre_source == JC_TRACK_CENTRE_FROM_MARK) {
         if (!isfinite(t->mark_x_m[j])) return 0;
         f[0] = (t->mark_x_m[j] - (x + a * sin(thm))) / sigma;
         f[1] = (t->mark_y_m[j] - (y + a * cos(thm))) / sigma;
@@ -70,19 +70,19 @@ int cli_residuals_frame(const cli_Track *t, long j, double sigma, double a, doub
     if (!(a > 0.0 && isfinite(tht))) return 2;
     /* The angles' difference within half a turn: an unwrapping across
      * dropped frames may have counted a turn more or less. */
-    f[2] = (a * remainder(tht - thm, 2.0 * CLI_TRACK_PI) + dx * cos(tht) - dy * sin(tht)) / sigma;
+    f[2] = (a * remainder(tht - thm, 2.0 * JC_TRACK_PI) + dx * cos(tht) - dy * sin(tht)) / sigma;
     return 3;
 }
 
-void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y, const double *th, double *f,
-                        unsigned char *series)
+void jc_track_residuals_eval(const jc_TrackResiduals *r, const double *x, const double *y, const double *th, double *f,
+                             unsigned char *series)
 {
     long k = 0;
     for (long i = 0; i < r->count; ++i) {
         double v[3];
         /* the model's mark angle: G's less the offset */
-        const int n = cli_residuals_frame(r->t, r->first + i, r->sigma, r->mark_radius, x[i], y[i],
-                                          th[i] - r->mark_offset, v);
+        const int n = jc_track_residuals_frame(r->t, r->first + i, r->sigma, r->mark_radius, x[i], y[i],
+                                               th[i] - r->mark_offset, v);
         for (int m = 0; m < n; ++m) {
             if (series) series[k] = (unsigned char)m;
             f[k++] = v[m];
@@ -90,7 +90,7 @@ void cli_residuals_eval(const cli_Residuals *r, const double *x, const double *y
     }
 }
 
-double cli_residuals_runs_z(const double *f, const unsigned char *series, long n, const char **which)
+double jc_track_residuals_runs_z(const double *f, const unsigned char *series, long n, const char **which)
 {
     static const char *const names[3] = {"along the incline", "across the incline", "of the mark across its radius"};
     double worst = INFINITY;

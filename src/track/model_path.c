@@ -3,7 +3,7 @@
  * k * dt; the run is sampled a fraction of a frame apart and interpolated
  * with the velocities it carries (cubic Hermite: exact in flight, where the
  * path is a parabola, and O(dt^4) while rolling or sliding). */
-#include "track_fit.h"
+#include "track_internal.h"
 
 #include <stdio.h>
 
@@ -21,20 +21,20 @@
 /* Uphill swings shorter than this are taken in closed form (below). */
 #define TINY_SWING_M 1e-6
 
-int cli_track_sim_init(cli_TrackSim *s)
+int jc_track_sim_init(jc_TrackSim *s)
 {
     memset(s, 0, sizeof *s);
     s->ws = jc_workspace_new();
-    s->shift_m = CLI_TRACK_RAMP_MARGIN_M;
-    return s->ws ? 0 : -1;
+    s->shift_m = JC_TRACK_RAMP_MARGIN_M;
+    return s->ws ? JC_OK : JC_ENOMEM;
 }
 
-double cli_track_sim_shift(const cli_Track *t)
+double jc_track_sim_shift(const jc_Track *t)
 {
-    return CLI_TRACK_RAMP_MARGIN_M - (isfinite(t->x0_m) ? t->x0_m : 0.0);
+    return JC_TRACK_RAMP_MARGIN_M - (isfinite(t->x0_m) ? t->x0_m : 0.0);
 }
 
-void cli_track_sim_free(cli_TrackSim *s)
+void jc_track_sim_free(jc_TrackSim *s)
 {
     free(s->samples);
     free(s->impact_t_s);
@@ -45,7 +45,7 @@ void cli_track_sim_free(cli_TrackSim *s)
 /* Beyond the last frame the ramp goes on this far at least. */
 #define RAMP_BEYOND_M 0.5
 
-jc_Setup cli_track_setup(const jc_Setup *setup, const cli_Track *t)
+jc_Setup jc_track_setup(const jc_Setup *setup, const jc_Track *t)
 {
     jc_Setup s = *setup;
     /* A video that goes on past the setup's ramp shows a longer one (a
@@ -54,14 +54,14 @@ jc_Setup cli_track_setup(const jc_Setup *setup, const cli_Track *t)
     for (long i = 0; t && i < t->n; ++i)
         if (isfinite(t->x_m[i])) far = fmax(far, t->x_m[i] - t->x0_m);
     if (far > s.ramp_length_m) s.ramp_length_m = far + RAMP_BEYOND_M;
-    s.ramp_length_m += CLI_TRACK_RAMP_MARGIN_M;
+    s.ramp_length_m += JC_TRACK_RAMP_MARGIN_M;
     return s;
 }
 
-int cli_track_model(const jc_Setup *setup, const cli_Track *t, jc_Model *model, char *err, size_t err_len)
+int jc_track_model(const jc_Setup *setup, const jc_Track *t, jc_Model *model, char *err, size_t err_len)
 {
-    const jc_Setup s = cli_track_setup(setup, t);
-    return jc_model_init(model, &s, err, err_len) == JC_OK ? 0 : -1;
+    const jc_Setup s = jc_track_setup(setup, t);
+    return jc_model_init(model, &s, err, err_len);
 }
 
 static int grow(void **p, int *cap, int count, size_t size)
@@ -77,7 +77,7 @@ static int grow(void **p, int *cap, int count, size_t size)
 
 static int on_sample(void *ctx, const jc_Sample *p)
 {
-    cli_TrackSim *s = ctx;
+    jc_TrackSim *s = ctx;
     if (grow((void **)&s->samples, &s->cap, s->count, sizeof *p) != 0) {
         s->failed = 1;
         return JC_ENOMEM;
@@ -88,7 +88,7 @@ static int on_sample(void *ctx, const jc_Sample *p)
 
 static int on_event(void *ctx, const jc_Event *e)
 {
-    cli_TrackSim *s = ctx;
+    jc_TrackSim *s = ctx;
     jc_summary_add(&s->sum, e, s->run.event_count);
     s->run.event_count++;
     if (e->kind != JC_EVENT_TOUCHDOWN && e->kind != JC_EVENT_BOUNCE) return JC_OK;
@@ -100,7 +100,7 @@ static int on_event(void *ctx, const jc_Event *e)
     return JC_OK;
 }
 
-static int is_impact(const cli_TrackSim *s, double t)
+static int is_impact(const jc_TrackSim *s, double t)
 {
     for (int i = 0; i < s->impacts; ++i)
         if (fabs(s->impact_t_s[i] - t) <= 1e-12) return 1;
@@ -137,7 +137,7 @@ static double frame_grid(const double *t, long n, double dt_min)
     return dt;
 }
 
-static void at_time(const cli_TrackSim *s, const jc_Model *m, int *k, double t, double *x, double *y, double *th)
+static void at_time(const jc_TrackSim *s, const jc_Model *m, int *k, double t, double *x, double *y, double *th)
 {
     const jc_Sample *p = s->samples;
     if (s->count == 0 || t >= p[s->count - 1].state.t_s) {
@@ -203,13 +203,13 @@ static void past_tiny_swing(const jc_Model *model, jc_State *s)
     s->vx_mps = 0.0;
 }
 
-int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *start, const jc_SimOptions *o,
-                      const double *t_s, long n, double *x_m, double *y_m, double *theta_rad, char *err,
+int jc_track_sim_run(jc_TrackSim *s, const jc_Model *model, const jc_State *start, const jc_SimOptions *o,
+                     const double *t_s, long n, double *x_m, double *y_m, double *theta_rad, char *err,
                       size_t err_len)
 {
     if (n <= 0) {
         snprintf(err, err_len, "no frames to compare with");
-        return -1;
+        return JC_EINVAL;
     }
     double dt_min = INFINITY;
     for (long i = 1; i < n; ++i) dt_min = fmin(dt_min, t_s[i] - t_s[i - 1]);
@@ -242,8 +242,9 @@ int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *st
     const int st = jc_simulate_from(model, &st0, &opt, &rec, s->ws, &run, err, err_len);
     event_count = s->run.event_count;
     if (st != JC_OK) {
-        if (s->failed) snprintf(err, err_len, "out of memory for the run's samples");
-        return -1;
+        if (!s->failed) return st;
+        snprintf(err, err_len, "out of memory for the run's samples");
+        return JC_ENOMEM;
     }
     s->run = run;
     s->run.event_count = event_count;
@@ -254,5 +255,48 @@ int cli_track_sim_run(cli_TrackSim *s, const jc_Model *model, const jc_State *st
         x_m[i] -= s->shift_m;
         if (theta_rad) theta_rad[i] = th;
     }
-    return 0;
+    return JC_OK;
+}
+
+void jc_fit_to_video(const jc_TrackFitFrame *fr, const jc_State *start, double *x, double *y, double *th, long n)
+{
+    if (fr->tilt_rad == 0.0 && fr->surface_m == 0.0) return;
+    const double c = cos(fr->tilt_rad), s = sin(fr->tilt_rad);
+    for (long i = 0; i < n; ++i) {
+        const double dx = x[i] - start->x_m, dy = y[i] - start->y_m;
+        x[i] = start->x_m + dx * c + dy * s;
+        y[i] = start->y_m - dx * s + dy * c + fr->surface_m;
+        if (th) th[i] += fr->tilt_rad;
+    }
+}
+
+int jc_track_model_path(const jc_Setup *setup, const jc_Track *t, const jc_State *start,
+                        const jc_TrackFitFrame *frame, const jc_SimOptions *o, const double *t_s, long n, double *x_m,
+                        double *y_m, double *mark_theta_rad, char *err, size_t err_len)
+{
+    /* The model starts where the run does (its energies and the closed
+     * form of a tiny first swing refer to its own start). */
+    jc_Setup at_start = *setup;
+    at_start.theta0_rad = start->theta_rad;
+    at_start.omega0_radps = start->omega_radps;
+    jc_Model model;
+    int st = jc_track_model(&at_start, t, &model, err, err_len);
+    if (st != JC_OK) return st;
+    jc_TrackSim sim;
+    if ((st = jc_track_sim_init(&sim)) != JC_OK) {
+        snprintf(err, err_len, "out of memory");
+        return st;
+    }
+    sim.shift_m = jc_track_sim_shift(t);
+    st = jc_track_sim_run(&sim, &model, start, o, t_s, n, x_m, y_m, mark_theta_rad, err, err_len);
+    jc_track_sim_free(&sim);
+    if (st != JC_OK) return st;
+    const jc_TrackFitFrame none = {0.0, 0.0, 0.0};
+    if (!frame) frame = &none;
+    jc_fit_to_video(frame, start, x_m, y_m, mark_theta_rad, n);
+    if (mark_theta_rad) {
+        const double off = jc_track_mark_offset_rad(&model, frame->mark_angle_rad);
+        for (long i = 0; i < n; ++i) mark_theta_rad[i] -= off; /* G's angle to the mark's */
+    }
+    return JC_OK;
 }

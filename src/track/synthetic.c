@@ -3,10 +3,8 @@
  * contact point at the origin, downhill to the right). They test the
  * import and the fit against known values (tests/track, tests/fit) and make
  * the sample experiments of examples/tracker. Random numbers are Philox
- * draws (cli/batch/random.c), so a track is a pure function of (seed, trial). */
-#include "track_fit.h"
-#include "raw.h"
-#include "batch.h"
+ * draws (random.c), so a track is a pure function of (seed, trial). */
+#include "track_internal.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -17,19 +15,19 @@
 #define DRAWS_PER_FRAME 5u
 #define SYNTH_MAX_FRAMES 1000000.0
 
-static int check(const cli_SynthOptions *o, char *err, size_t err_len)
+static int check(const jc_TrackSynthOptions *o, char *err, size_t err_len)
 {
     if (!(o->fps_hz > 0.0 && o->fps_hz <= 1e5)) {
         snprintf(err, err_len, "frame rate %g Hz is out of range (allowed: (0, 1e5])", o->fps_hz);
-        return -1;
+        return JC_EINVAL;
     }
     if (!(o->sigma_m >= 0.0 && o->sigma_m < 1.0) || !(o->t_end_s > 0.0 && o->t_end_s <= 3600.0) ||
         !(o->mark_radius_m >= 0.0) || !(o->drop_fraction >= 0.0 && o->drop_fraction <= 0.5) ||
         !(o->hand_s >= 0.0 && o->hand_s <= 10.0) || !isfinite(o->mark_angle_rad)) {
         snprintf(err, err_len, "synthetic track: noise, duration, mark, drop fraction or push out of range");
-        return -1;
+        return JC_EINVAL;
     }
-    return 0;
+    return JC_OK;
 }
 
 /* Whether a sample is on the frame grid k / fps (not one at an event). */
@@ -42,7 +40,7 @@ static int on_grid(double t, double dt)
 /* The incline frame into Tracker's level axes: downhill to the right. */
 static void world(double alpha, double x, double y, double *X, double *Y)
 {
-    cli_track_turn(x, y, cos(alpha), sin(alpha), X, Y);
+    jc_track_turn(x, y, cos(alpha), sin(alpha), X, Y);
 }
 
 /* The state at time u before the free start (u < 0): a hand pushing the
@@ -59,13 +57,14 @@ static void pushed(const jc_State *s0, double r, double hand_s, double u, jc_Sta
     out->vx_mps = r * out->omega_radps;
 }
 
-int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_RawData *raw, char *err,
-                        size_t err_len)
+int jc_track_synth_raw(const jc_Setup *setup, const jc_TrackSynthOptions *o, jc_TrackRaw *raw, char *err,
+                       size_t err_len)
 {
     memset(raw, 0, sizeof *raw);
-    if (check(o, err, err_len) != 0) return -1;
+    int rc = check(o, err, err_len);
+    if (rc != JC_OK) return rc;
     jc_Model m;
-    if (jc_model_init(&m, setup, err, err_len) != JC_OK) return -1;
+    if ((rc = jc_model_init(&m, setup, err, err_len)) != JC_OK) return rc;
     jc_SimOptions so = jc_default_sim_options();
     so.sample_dt_s = 1.0 / o->fps_hz;
     so.t_max_s = o->t_end_s;
@@ -73,28 +72,28 @@ int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_Ra
     const double frames = floor(o->t_end_s * o->fps_hz) + 1.0 + hand_frames;
     if (frames > SYNTH_MAX_FRAMES) {
         snprintf(err, err_len, "synthetic track: %.0f frames, more than %.0f", frames, SYNTH_MAX_FRAMES);
-        return -1;
+        return JC_EINVAL;
     }
     so.max_samples = (int)frames + 100000;
     jc_Run run;
-    if (jc_simulate(&m, &so, &run, err, err_len) != JC_OK) {
+    if ((rc = jc_simulate(&m, &so, &run, err, err_len)) != JC_OK) {
         jc_run_free(&run);
-        return -1;
+        return rc;
     }
-    const int centre = o->tracks != CLI_SYNTH_MARK_ONLY;
-    const int mark = o->tracks != CLI_SYNTH_CENTRE_ONLY && o->mark_radius_m > 0.0;
-    if (cli_raw_alloc(raw, run.sample_count + (long)hand_frames + 1, (centre ? 1 : 0) + (mark ? 1 : 0)) != 0) {
+    const int centre = o->tracks != JC_TRACK_SYNTH_MARK_ONLY;
+    const int mark = o->tracks != JC_TRACK_SYNTH_CENTRE_ONLY && o->mark_radius_m > 0.0;
+    if (jc_track_raw_alloc(raw, run.sample_count + (long)hand_frames + 1, (centre ? 1 : 0) + (mark ? 1 : 0)) != 0) {
         jc_run_free(&run);
         snprintf(err, err_len, "out of memory for a synthetic track");
-        return -1;
+        return JC_ENOMEM;
     }
     snprintf(raw->format, sizeof raw->format, "model");
     raw->px_per_m = raw->tape_length_m = NAN;
     raw->nominal_dt_s = 1.0 / o->fps_hz;
     int ci = centre ? 0 : -1, mi = mark ? (centre ? 1 : 0) : -1;
-    if (ci >= 0) snprintf(raw->tracks[ci].name, CLI_TRACK_NAME_LEN, "centre");
-    if (mi >= 0) snprintf(raw->tracks[mi].name, CLI_TRACK_NAME_LEN, "%s", centre ? "mark" : "LED");
-    const double mark_offset = cli_track_mark_offset_rad(&m, o->mark_angle_rad), s = o->sigma_m, r = m.body.radius_m;
+    if (ci >= 0) snprintf(raw->tracks[ci].name, JC_TRACK_NAME_LEN, "centre");
+    if (mi >= 0) snprintf(raw->tracks[mi].name, JC_TRACK_NAME_LEN, "%s", centre ? "mark" : "LED");
+    const double mark_offset = jc_track_mark_offset_rad(&m, o->mark_angle_rad), s = o->sigma_m, r = m.body.radius_m;
     const double alpha = setup->incline_rad, t0 = -hand_frames / o->fps_hz;
     long n = 0;
     for (int i = -(int)hand_frames; i < run.sample_count; ++i) {
@@ -106,18 +105,18 @@ int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_Ra
         const long frame = (long)nearbyint((p->t_s - t0) * o->fps_hz);
         const uint32_t d = (uint32_t)frame * DRAWS_PER_FRAME;
         raw->t_s[n] = p->t_s - t0;
-        if (n > 0 && cli_random_uniform(o->seed, o->trial, d + 4) < o->drop_fraction) {
+        if (n > 0 && jc_random_uniform(o->seed, o->trial, d + 4) < o->drop_fraction) {
             ++n;
             continue;
         }
         if (ci >= 0)
-            world(alpha, p->x_m + s * cli_random_normal(o->seed, o->trial, d),
-                  p->y_m + s * cli_random_normal(o->seed, o->trial, d + 1), &raw->tracks[ci].x_m[n],
+            world(alpha, p->x_m + s * jc_random_normal(o->seed, o->trial, d),
+                  p->y_m + s * jc_random_normal(o->seed, o->trial, d + 1), &raw->tracks[ci].x_m[n],
                   &raw->tracks[ci].y_m[n]);
         if (mi >= 0) {
             const double a = o->mark_radius_m, th = p->theta_rad - mark_offset;
-            world(alpha, p->x_m + a * sin(th) + s * cli_random_normal(o->seed, o->trial, d + 2),
-                  p->y_m + a * cos(th) + s * cli_random_normal(o->seed, o->trial, d + 3), &raw->tracks[mi].x_m[n],
+            world(alpha, p->x_m + a * sin(th) + s * jc_random_normal(o->seed, o->trial, d + 2),
+                  p->y_m + a * cos(th) + s * jc_random_normal(o->seed, o->trial, d + 3), &raw->tracks[mi].x_m[n],
                   &raw->tracks[mi].y_m[n]);
         }
         ++n;
@@ -125,24 +124,25 @@ int cli_track_synth_raw(const jc_Setup *setup, const cli_SynthOptions *o, cli_Ra
     raw->frames = n;
     jc_run_free(&run);
     if (n < 3) {
-        cli_raw_free(raw);
+        jc_track_raw_free(raw);
         snprintf(err, err_len, "synthetic track: only %ld frames", n);
-        return -1;
+        return JC_EINVAL;
     }
-    return 0;
+    return JC_OK;
 }
 
-int cli_track_synthesize(const jc_Setup *setup, const cli_SynthOptions *o, cli_Track *out, char *err,
-                         size_t err_len)
+int jc_track_synthesize(const jc_Setup *setup, const jc_TrackSynthOptions *o, jc_Track *out, char *err,
+                        size_t err_len)
 {
     memset(out, 0, sizeof *out);
-    cli_RawData raw;
-    if (cli_track_synth_raw(setup, o, &raw, err, err_len) != 0) return -1;
-    cli_TrackOptions opt;
-    cli_track_options_default(&opt);
+    jc_TrackRaw raw;
+    const int st = jc_track_synth_raw(setup, o, &raw, err, err_len);
+    if (st != JC_OK) return st;
+    jc_TrackOptions opt;
+    jc_track_options_default(&opt);
     opt.radius_m = setup->body.radius_m;
     opt.gravity_mps2 = setup->gravity_mps2;
-    const int rc = cli_track_from_raw_data("synthetic", &raw, &opt, out, err, err_len);
-    cli_raw_free(&raw);
+    const int rc = jc_track_from_raw("synthetic", &raw, &opt, out, err, err_len);
+    jc_track_raw_free(&raw);
     return rc;
 }
