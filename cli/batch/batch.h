@@ -64,6 +64,13 @@ void cli_param_columns(const cli_Param *params, int n, const double *values, cha
 int cli_case_setup(const jc_Setup *base, const cli_SetupValues *job, const cli_Param *params, int n,
                    const double *values, jc_Setup *out, char *err, size_t err_len);
 
+/* ---- number.c: numbers in rows ---- */
+
+#define CLI_NUMBER_MAX 32
+/* printf("%.*g", precision, v), the same bytes, without printf (exact
+ * digits in integers); out holds CLI_NUMBER_MAX chars. Returns the length. */
+int cli_format_g(double v, int precision, char *out);
+
 /* ---- random.c: counter-based random numbers (Random123's Philox) ---- */
 
 /* The d-th draw of sample i under seed, the same wherever and whenever it

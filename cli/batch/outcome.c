@@ -47,11 +47,27 @@ static void row_add(cli_CaseResult *r, const char *fmt, ...)
     if (n > 0) r->row_len += (size_t)n < room ? n : (int)room - 1;
 }
 
+/* ",v" with v as %.*g writes it (cli_format_g: no printf per number). */
+static void add_number(cli_CaseResult *r, double v, int precision)
+{
+    if (sizeof r->row - (size_t)r->row_len < CLI_NUMBER_MAX + 2) {
+        row_add(r, ",%.*g", precision, v);
+        return;
+    }
+    r->row[r->row_len++] = ',';
+    r->row_len += cli_format_g(v, precision, r->row + r->row_len);
+}
+
 /* ",theta,x,t" of an event's state, or three empty fields. */
 static void add_event_state(cli_CaseResult *r, int index, const jc_State *s)
 {
-    if (index < 0) row_add(r, ",,,");
-    else row_add(r, ",%.12g,%.12g,%.12g", s->theta_rad, s->x_m, s->t_s);
+    if (index < 0) {
+        row_add(r, ",,,");
+        return;
+    }
+    add_number(r, s->theta_rad, 12);
+    add_number(r, s->x_m, 12);
+    add_number(r, s->t_s, 12);
 }
 
 /* The reason is not a field (it would need CSV quoting in every reader):
@@ -98,9 +114,13 @@ void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const j
     row_add(r, ",%s", s->first_event >= 0 ? jc_event_name(s->first_event_kind) : "none");
     add_event_state(r, s->first_slip, &s->first_slip_state);
     add_event_state(r, s->first_liftoff, &s->first_liftoff_state);
-    row_add(r, ",%d,%d,%.12g,%s,%.12g,%.12g,%.3g\n", s->liftoffs, s->bounces, r->largest_hop_m,
-            jc_termination_name(run.termination), run.final_state.x_m, run.final_state.t_s,
-            run.energy.balance_error_J);
+    row_add(r, ",%d,%d", s->liftoffs, s->bounces);
+    add_number(r, r->largest_hop_m, 12);
+    row_add(r, ",%s", jc_termination_name(run.termination));
+    add_number(r, run.final_state.x_m, 12);
+    add_number(r, run.final_state.t_s, 12);
+    add_number(r, run.energy.balance_error_J, 3);
+    row_add(r, "\n");
 }
 
 /* The n-th comma-separated field of a line (0-based), as a pointer and length. */

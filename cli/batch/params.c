@@ -80,8 +80,16 @@ static int param_begin(const char *text, size_t name_len, const char *flag, cli_
 
 void cli_param_column_value(const cli_Param *p, double v, char *out, size_t len)
 {
-    if (p->is_name) jc_param_format(p->id, v, out, len);
-    else snprintf(out, len, "%.12g", v * p->column_scale);
+    if (p->is_name) {
+        jc_param_format(p->id, v, out, len);
+        return;
+    }
+    char number[CLI_NUMBER_MAX];
+    size_t n = (size_t)cli_format_g(v * p->column_scale, 12, number); /* "%.12g", without printf */
+    if (len == 0) return;
+    if (n >= len) n = len - 1;
+    memcpy(out, number, n);
+    out[n] = '\0';
 }
 
 void cli_param_columns(const cli_Param *params, int n, const double *values, char *out, size_t len)
@@ -91,8 +99,11 @@ void cli_param_columns(const cli_Param *params, int n, const double *values, cha
     for (int j = 0; j < n; ++j) {
         char v[CLI_TOKEN_MAX];
         cli_param_column_value(&params[j], values[j], v, sizeof v);
-        const int w = snprintf(out + used, len - used, "%s%s", j ? "," : "", v);
-        if (w > 0) used += (size_t)w < len - used ? (size_t)w : len - used - 1;
+        const size_t w = strlen(v) + (j > 0);
+        if (used + w + 1 > len) break; /* no room: the row is cut (CLI_ROW_MAX is far above) */
+        if (j) out[used] = ',';
+        memcpy(out + used + (j > 0), v, w - (j > 0) + 1);
+        used += w;
     }
 }
 

@@ -292,30 +292,44 @@ int cli_setup_values(const cli_SetupArgs *a, cli_SetupValues *v, char *err, size
     return 0;
 }
 
+/* The ids of the rows a shortcut sets (its 'sets' names); how many. */
+static int set_ids(const jc_ParamInfo *in, int *ids, int cap)
+{
+    int n = 0;
+    for (const char *s = in->sets; s && *s && n < cap; s += strspn(s, " ")) {
+        char name[40];
+        const size_t len = strcspn(s, " ");
+        if (len < sizeof name) {
+            memcpy(name, s, len);
+            name[len] = '\0';
+            const int id = jc_param_find(name);
+            if (id >= 0) ids[n++] = id;
+        }
+        s += len;
+    }
+    return n;
+}
+
 /* A shortcut given with a row it sets (--mu with --mu-s): 0, or -1 with a message. */
 static int check_shortcuts(const cli_SetupValues *v, char *err, size_t err_len)
 {
     for (int id = 0; id < jc_param_count(); ++id) {
         const jc_ParamInfo *in = jc_param_info(id);
         if (!v->given[id] || !in->sets) continue;
+        int ids[8], clash = 0;
+        const int n = set_ids(in, ids, 8);
+        for (int k = 0; k < n; ++k) clash |= v->given[ids[k]];
+        if (!clash) continue;
         char both[128] = "", either[128] = "";
-        int clash = 0;
-        for (const char *s = in->sets; *s; s += strspn(s, " ")) {
-            char name[40];
-            const size_t n = strcspn(s, " ");
-            snprintf(name, sizeof name, "%.*s", (int)(n < sizeof name ? n : sizeof name - 1), s);
-            s += n;
-            const int other = jc_param_find(name);
-            clash |= other >= 0 && v->given[other];
+        for (int k = 0; k < n; ++k) {
+            const char *name = jc_param_info(ids[k])->name;
             size_t used = strlen(both);
-            snprintf(both + used, sizeof both - used, "%s--%s", used ? " and " : "", name);
+            snprintf(both + used, sizeof both - used, "%s--%s", k ? " and " : "", name);
             used = strlen(either);
-            snprintf(either + used, sizeof either - used, "%s--%s", used ? "/" : "", name);
+            snprintf(either + used, sizeof either - used, "%s--%s", k ? "/" : "", name);
         }
-        if (clash) {
-            snprintf(err, err_len, "--%s sets %s; give either --%s or %s", in->name, both, in->name, either);
-            return -1;
-        }
+        snprintf(err, err_len, "--%s sets %s; give either --%s or %s", in->name, both, in->name, either);
+        return -1;
     }
     return 0;
 }
