@@ -217,14 +217,20 @@ static int test_parse_with_units(void)
         }
         for (size_t m = 0; m < sizeof mantissas / sizeof mantissas[0]; ++m) {
             /* in the row's unit, and in every unit of its quantity */
-            for (int u = -1; u < 0 || jc_quantity_unit(in->quantity, u, NULL); ++u) {
-                const char *unit = u < 0 ? in->unit : jc_quantity_unit(in->quantity, u, NULL);
+            const char *units[16] = {in->unit};
+            int n_units = 1;
+            while (n_units < 16 && jc_quantity_unit(in->quantity, n_units - 1, NULL)) {
+                units[n_units] = jc_quantity_unit(in->quantity, n_units - 1, NULL);
+                ++n_units;
+            }
+            for (int u = 0; u < n_units; ++u) {
+                const char *unit = units[u];
                 double per;
                 ENSURE_MSG(si_per(unit, &per), "unit '%s' unknown here", unit);
                 snprintf(text, sizeof text, "%s%s", mantissas[m], unit);
                 ENSURE_MSG(jc_param_parse(id, text, &v, err, sizeof err) == JC_OK, "%s '%s': %s", in->name, text, err);
                 ENSURE_REL(v, strtod(mantissas[m], NULL) * per, 4 * DBL_EPSILON);
-                if (m == 0 && u < 0) { /* one blank between number and unit too */
+                if (m == 0 && u == 0) { /* one blank between number and unit too */
                     double spaced = NAN;
                     snprintf(text, sizeof text, "%s %s", mantissas[m], unit);
                     ENSURE(!*unit || (jc_param_parse(id, text, &spaced, err, sizeof err) == JC_OK && spaced == v));

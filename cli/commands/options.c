@@ -344,7 +344,11 @@ static int set_param(const cli_SetupValues *v, int id, jc_Setup *s, char *err, s
     jc_Part parts[JC_MAX_PARTS];
     if (keep_parts) memcpy(parts, s->body.parts, sizeof parts);
     if (jc_param_set(s, id, v->value[id], msg, sizeof msg) != JC_OK) {
-        snprintf(err, err_len, "invalid setup: %s", msg);
+        double now;
+        if (jc_param_get(s, id, &now, NULL, 0) != JC_OK) /* a body without the part it sets */
+            snprintf(err, err_len, "--%s; with --part, give it in the part", msg);
+        else
+            snprintf(err, err_len, "invalid setup: %s", msg);
         return -1;
     }
     if (keep_parts) memcpy(s->body.parts, parts, sizeof parts);
