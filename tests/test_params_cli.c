@@ -294,6 +294,14 @@ static int test_text_listing(void)
     res = cli_run(bad);
     ENSURE(res.status == 2 && cli_one_line(res.err));
     cli_result_free(&res);
+    /* an unambiguous prefix, as getopt takes it everywhere */
+    const char *prefix[] = {"params", "--js", NULL};
+    res = cli_run(prefix);
+    cJSON *doc = res.status == 0 ? cJSON_Parse(res.out) : NULL;
+    const int parsed = cJSON_IsArray(cJSON_GetObjectItem(doc, "params"));
+    cJSON_Delete(doc);
+    cli_result_free(&res);
+    ENSURE(parsed);
     return 0;
 }
 

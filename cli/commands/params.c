@@ -76,7 +76,7 @@ static int take(int opt, const char *arg, void *ctx)
 
 int cmd_params(int argc, char **argv)
 {
-    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
+    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
     int json = 0;
     /* Its own options only: the setup options mean nothing here. */
     opterr = 0;
