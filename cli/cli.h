@@ -11,21 +11,21 @@
 #include <stdint.h>
 #include <stdio.h>
 
-/* ---- units.c ---- */
-typedef enum {
-    Q_LENGTH,        /* m; plain number = m */
-    Q_MASS,          /* kg; plain number = kg */
-    Q_ANGLE,         /* rad; plain number = DEGREES */
-    Q_ANGULAR_SPEED, /* rad/s; plain number = rad/s */
-    Q_ACCELERATION,  /* m/s2 */
-    Q_NUMBER,        /* dimensionless, no unit */
-    Q_TIME,          /* s; plain number = s */
-    Q_DENSITY,       /* kg/m3; plain number = kg/m3 */
-    Q_SPIN_DRAG      /* N m s2 (= kg m2); plain number = N m s2 */
-} cli_Quantity;
+/* ---- units.c: the library's numbers with units (jc_quantity_parse) ---- */
+typedef jc_Quantity cli_Quantity;
+#define Q_LENGTH JC_Q_LENGTH               /* m; plain number = m */
+#define Q_MASS JC_Q_MASS                   /* kg; plain number = kg */
+#define Q_ANGLE JC_Q_ANGLE                 /* rad; plain number = DEGREES */
+#define Q_ANGULAR_SPEED JC_Q_ANGULAR_SPEED /* rad/s; plain number = rad/s */
+#define Q_ACCELERATION JC_Q_ACCELERATION   /* m/s2 */
+#define Q_NUMBER JC_Q_NUMBER               /* dimensionless, no unit */
+#define Q_TIME JC_Q_TIME                   /* s; plain number = s */
+#define Q_DENSITY JC_Q_DENSITY             /* kg/m3; plain number = kg/m3 */
+#define Q_SPIN_DRAG JC_Q_SPIN_DRAG         /* N m s2 (= kg m2); plain number = N m s2 */
 
-/* Parses a whole token "number[unit]" into SI. 0 on success; otherwise a
- * one-line message naming the token and what is allowed. */
+/* Parses a whole token "number[unit]" into SI (jc_quantity_parse). 0 on
+ * success; otherwise -1 and a one-line message naming the token and what is
+ * allowed. */
 int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err, size_t err_len);
 const char *cli_units_allowed(cli_Quantity q);
 
@@ -43,18 +43,34 @@ int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *s
 int cli_config_write(FILE *out, const jc_Setup *setup);
 
 /* ---- options.c ---- */
-#define CLI_SETUP_OPTION_COUNT 26
+/* The setup options: their own (--preset, --part, --config, --dump-config),
+ * then --NAME for every parameter of the library's table (jc_param_info),
+ * getopt values CLI_SETUP_OPT_BASE + CLI_OPT_PARAMS + id. */
 #define CLI_SETUP_OPT_BASE 1000
-extern const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT];
+enum { CLI_OPT_PRESET, CLI_OPT_PART, CLI_OPT_CONFIG, CLI_OPT_DUMP_CONFIG, CLI_OPT_PARAMS };
+#define CLI_SETUP_OPTION_MAX (CLI_OPT_PARAMS + JC_PARAM_MAX)
+/* The setup options' getopt table into dst (room for cap entries, at least
+ * CLI_SETUP_OPTION_MAX); returns how many. */
+int cli_setup_option_table(struct option *dst, int cap);
 
 /* Setup options, collected first and applied in a fixed order (preset,
  * parts, then single values) so that their order on the line does not matter. */
 typedef struct {
     const char *preset;
+    const char *config;
+    int dump_config;
     int part_count;
     const char *part_text[JC_MAX_PARTS];
-    const char *value[CLI_SETUP_OPTION_COUNT]; /* by option index, NULL if absent */
+    const char *value[JC_PARAM_MAX]; /* by parameter id (jc_param_find), NULL if absent */
 } cli_SetupArgs;
+
+/* The single-valued options as values, each read once from its text: what
+ * the cases of a batch job set over (cli_case_setup), no text read per case. */
+typedef struct {
+    unsigned char given[JC_PARAM_MAX];
+    double value[JC_PARAM_MAX]; /* SI; a name's index */
+    int parts_given;            /* --part bodies: --radius leaves their radii as given */
+} cli_SetupValues;
 
 /* If opt is a setup option's val, records it and returns 1; 0 otherwise;
  * -1 with a message on a repeated option or too many parts. */
@@ -64,20 +80,19 @@ int cli_setup_build(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t 
 /* The preset, the experiment file and the parts: where the single-valued
  * options start from (made once for the many cases of a sweep). */
 int cli_setup_base(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
-/* The single-valued options over a base setup, then the setup's check. */
+/* The single-valued options over a base setup, then the setup's check:
+ * cli_setup_values, then cli_setup_apply_values. */
 int cli_setup_apply(const cli_SetupArgs *args, jc_Setup *s, char *err, size_t err_len);
-/* The index of a setup option by long name ("rod-offset"), -1 if none. */
-int cli_setup_option_index(const char *long_name);
-/* How the option's value reads: 0 and *q for a number, 1 for a name
- * (impact-law), -1 for an option that is not a single value (preset,
- * part, config, dump-config). */
-int cli_setup_option_quantity(int index, cli_Quantity *q);
-/* The SI value a numeric option has in a setup (mu: mu_s); 0, or -1 when
- * the setup has none (--rod-mass of a body without a rod). */
-int cli_setup_option_value(const jc_Setup *s, int index, double *out);
-/* Index of a setup option by long name, for commands that forbid one. */
+/* The single-valued options' texts read into values (jc_param_parse). 0, or
+ * -1 with "--NAME: message". */
+int cli_setup_values(const cli_SetupArgs *args, cli_SetupValues *out, char *err, size_t err_len);
+/* The values over a base setup in the table's order (the body's first, the
+ * printed paper d dropped when the body changes), then the setup's check
+ * (jc_setup_validate). 0, or -1 with a one-line message. */
+int cli_setup_apply_values(const cli_SetupValues *v, jc_Setup *s, char *err, size_t err_len);
+/* Whether a setup option was given, by long name ("incline", "config", "part"). */
 int cli_setup_given(const cli_SetupArgs *args, const char *long_name);
-/* Help text for the setup options. */
+/* Help text for the setup options, from the parameter table. */
 void cli_setup_help(FILE *out);
 
 /* Builds an option table: command options followed by the setup options. */
@@ -166,5 +181,6 @@ int cmd_animate(int argc, char **argv); /* commands/animate.c: films with cairo 
 int cmd_track(int argc, char **argv);   /* commands/track.c: a video's tracked points (Tracker) */
 int cmd_compare(int argc, char **argv); /* commands/compare.c: a tracked video against the model */
 int cmd_fit(int argc, char **argv);     /* commands/fit.c: setup values fitted to a tracked video */
+int cmd_params(int argc, char **argv);  /* commands/params.c: the parameter table */
 
 #endif

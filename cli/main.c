@@ -47,6 +47,7 @@ static void usage(FILE *out)
           "  compare    a tracked video against the model run from the state its frames show\n"
           "  fit        setup values fitted to a tracked video, what it determines, and a verdict\n"
           "  presets    list the built-in setups\n"
+          "  params     list the setup parameters: options, units, ranges, presets' values, file keys\n"
           "\n"
           "  jumpcyl COMMAND --help   options of a command\n"
           "  jumpcyl --version        version\n",
@@ -81,6 +82,7 @@ static int dispatch(int argc, char **argv)
     if (strcmp(cmd, "predict") == 0) return cmd_predict(argc - 1, argv + 1);
     if (strcmp(cmd, "simulate") == 0) return cmd_simulate(argc - 1, argv + 1);
     if (strcmp(cmd, "presets") == 0) return cmd_presets(argc - 1, argv + 1);
+    if (strcmp(cmd, "params") == 0) return cmd_params(argc - 1, argv + 1);
     if (strcmp(cmd, "plot") == 0) return cmd_plot(argc - 1, argv + 1);
     if (strcmp(cmd, "animate") == 0) return cmd_animate(argc - 1, argv + 1);
     if (strcmp(cmd, "sweep") == 0) return batch_command(cmd_sweep, argc, argv);
@@ -95,7 +97,7 @@ static int dispatch(int argc, char **argv)
         argv[0] = paper_name;
         return cmd_paper(argc, argv);
     }
-    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, plot, animate, sweep, mc, map, design, track, compare, fit; see 'jumpcyl --help')", cmd);
+    cli_error("unknown command '%s' (allowed: paper, predict, simulate, presets, params, plot, animate, sweep, mc, map, design, track, compare, fit; see 'jumpcyl --help')", cmd);
     return EXIT_USAGE;
 }
 

@@ -7,7 +7,7 @@ set(JC_LIB_SOURCES
   src/status.c src/trigpoly.c src/scan.c src/body.c src/setup.c src/model.c
   src/paper_model.c src/rolling.c src/rolling_phase.c src/sliding.c src/flight.c src/flight_air.c src/impact.c src/mode.c
   src/simulate.c src/run.c src/record.c src/workspace.c src/ode.c src/dop853.c src/dop853_control.c
-  src/sample_columns.c)
+  src/units.c src/param.c src/sample_columns.c)
 list(TRANSFORM JC_LIB_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 
 # Tracked videos (include/jumpcyl/track.h, docs/tracker.md): Tracker's files

@@ -1,13 +1,16 @@
 # bash completion for jumpcyl. Commands, and each command's options as its
 # own --help lists them (so completion never disagrees with the tool), with
-# the values that have names: presets, figure kinds, impact laws, files.
+# the values that have names: presets, figure kinds, files, and from the
+# parameter table ('jumpcyl params'): the choices of a name-valued parameter
+# (--impact-law) and the parameter names of sweep --vary, mc --sigma/--range,
+# map --x/--y and design --free.
 _jumpcyl()
 {
     local cur prev cmd words
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     if [ "$COMP_CWORD" -eq 1 ]; then
-        COMPREPLY=($(compgen -W "paper predict simulate plot animate sweep mc map design track compare fit presets --help --version" -- "$cur"))
+        COMPREPLY=($(compgen -W "paper predict simulate plot animate sweep mc map design track compare fit presets params --help --version" -- "$cur"))
         return
     fi
     cmd=${COMP_WORDS[1]}
@@ -19,13 +22,28 @@ _jumpcyl()
             COMPREPLY=($(compgen -W "$("${COMP_WORDS[0]}" plot --help 2>/dev/null |
                 awk '/--what KIND/ {on = 1; next} on && /^    [a-z]/ {print $1} on && /^  --output/ {exit}')" -- "$cur"))
             return ;;
-        --impact-law)
-            COMPREPLY=($(compgen -W "stronge poisson newton" -- "$cur"))
+        --vary|--sigma|--range|--x|--y)
+            # NAME= for the parameters of 'jumpcyl params' (sweep --vary, mc --sigma/--range,
+            # map --x/--y; fit's --sigma and design's --range take values); after the '=', nothing
+            case "$cmd:$prev" in
+                sweep:--vary|mc:--sigma|mc:--range|map:--x|map:--y) ;;
+                *) return ;;
+            esac
+            if [[ $cur != *=* ]]; then
+                COMPREPLY=($(compgen -S = -W "$("${COMP_WORDS[0]}" params 2>/dev/null | awk '/^[a-z][a-z0-9-]*  / {print $1}')" -- "$cur"))
+                compopt -o nospace 2>/dev/null
+            fi
             return ;;
         --loss)
             COMPREPLY=($(compgen -W "linear huber cauchy" -- "$cur"))
             return ;;
         --free)
+            if [ "$cmd" = design ]; then
+                # the parameters design --help lists after "the option to choose:"
+                COMPREPLY=($(compgen -W "$("${COMP_WORDS[0]}" design --help 2>/dev/null |
+                    awk '/the option to choose:/ {sub(/.*choose: /, ""); gsub(/,/, " "); print; exit}')" -- "$cur"))
+                return
+            fi
             # the names fit --help lists under --free, from "): " to "(those its parts have)";
             # the list's earlier names kept before the one completed
             COMPREPLY=($(compgen -P "${cur%"${cur##*,}"}" -W "$("${COMP_WORDS[0]}" fit --help 2>/dev/null |
@@ -46,6 +64,16 @@ _jumpcyl()
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
     esac
+    # a parameter whose value is one of its names (--impact-law): the names 'jumpcyl params' lists
+    if [[ $prev == --?* ]]; then
+        local choices
+        choices=$("${COMP_WORDS[0]}" params 2>/dev/null |
+            awk -v n="${prev#--}" '$1 == n && $2 == "name:" {sub(/^[^:]*: /, ""); gsub(/,/, ""); print; exit}')
+        if [ -n "$choices" ]; then
+            COMPREPLY=($(compgen -W "$choices" -- "$cur"))
+            return
+        fi
+    fi
     if [[ $cur == -* ]]; then
         words=$("${COMP_WORDS[0]}" "$cmd" --help 2>/dev/null | grep -oE -- '--[a-z0-9][a-z0-9-]*' | sort -u)
         COMPREPLY=($(compgen -W "$words" -- "$cur"))

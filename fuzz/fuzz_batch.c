@@ -4,7 +4,7 @@
  *
  * Invariants: a parser that refuses leaves a message; an accepted --vary
  * has 1 .. CLI_PARAM_VALUES_MAX finite values, each of which makes a valid
- * setup, and its option text reads back to the same value; an accepted
+ * setup, and its text in its unit (jc_param_format) reads back to the same value; an accepted
  * spread has a finite, ordered range (sigma >= 0, LO <= HI); an accepted
  * shard is 1 <= K <= N, and its ranges tile the cases. */
 #include "fuzz.h"
@@ -35,17 +35,18 @@ static void check_vary(const char *text)
     }
     FUZZ_CHECK(p.count >= 1 && p.count <= CLI_PARAM_VALUES_MAX);
     jc_Setup base, s;
+    cli_SetupValues values;
     FUZZ_CHECK(cli_setup_base(&args, &base, err, sizeof err) == 0);
+    FUZZ_CHECK(cli_setup_values(&args, &values, err, sizeof err) == 0);
     const long step = p.count > 64 ? p.count / 64 : 1; /* a sample of long lists: each is a whole setup build */
     for (long k = 0; k < p.count; k += step) {
         FUZZ_CHECK(isfinite(p.values[k]));
-        FUZZ_CHECK(cli_case_setup(&base, &args, &p, 1, &p.values[k], &s, err, sizeof err) == 0);
-        if (!p.is_name) {
-            char token[CLI_TOKEN_MAX];
-            double back = NAN;
-            cli_param_token(&p, p.values[k], token, sizeof token);
-            FUZZ_CHECK(cli_parse_quantity(token, p.q, &back, err, sizeof err) == 0 && back == p.values[k]);
-        }
+        FUZZ_CHECK(cli_case_setup(&base, &values, &p, 1, &p.values[k], &s, err, sizeof err) == 0);
+        /* the value as text, in the parameter's unit, reads back to itself */
+        char written[80];
+        double back = NAN;
+        FUZZ_CHECK(jc_param_format(p.id, p.values[k], written, sizeof written) == JC_OK);
+        FUZZ_CHECK(jc_param_parse(p.id, written, &back, err, sizeof err) == JC_OK && back == p.values[k]);
     }
     cli_param_free(&p);
 }

@@ -118,19 +118,54 @@ static double random_double(uint64_t *state)
     return (*state >> 63) ? -v : v;
 }
 
+/* A random double inside [lo, hi] (drawn as above until one falls there):
+ * the reader takes each parameter only in its range (jc_param_set). */
+static double random_in(uint64_t *state, double lo, double hi)
+{
+    for (;;) {
+        const double v = random_double(state);
+        if (v >= lo && v <= hi) return v;
+        if (-v >= lo && -v <= hi) return -v;
+    }
+}
+
+/* The range of a parameter by name (the table's). */
+static void range_of(const char *name, double *lo, double *hi)
+{
+    const jc_ParamInfo *in = jc_param_info(jc_param_find(name));
+    *lo = in->min;
+    *hi = isinf(in->max) ? 1e300 : in->max_open ? nextafter(in->max, 0.0) : in->max;
+}
+
 static int test_round_trip_random(void)
 {
     uint64_t state = 20240601;
     for (int n = 0; n < 2000; ++n) {
         jc_Setup s = jc_paper_setup();
-        double *fields[] = {&s.body.radius_m, &s.body.parts[0].mass_kg, &s.body.parts[1].offset_m,
-                            &s.body.parts[1].angle_rad, &s.incline_rad, &s.gravity_mps2, &s.mu_static,
-                            &s.mu_kinetic, &s.restitution, &s.theta0_rad, &s.omega0_radps, &s.ramp_length_m,
-                            &s.paper_cm_offset_m, &s.length_m, &s.air_density_kgpm3, &s.drag_coefficient,
-                            &s.lift_coefficient, &s.spin_drag_Nms2, &s.rolling_resistance_m};
-        for (size_t i = 0; i < sizeof fields / sizeof fields[0]; ++i) *fields[i] = random_double(&state);
+        /* parts' fields are any double (the file does not check them); every parameter in its range */
+        s.body.parts[0].mass_kg = random_double(&state);
+        s.body.parts[1].offset_m = random_double(&state);
+        s.body.parts[1].angle_rad = random_double(&state);
+        const struct { double *field; const char *name; } fields[] = {
+            {&s.body.radius_m, "radius"}, {&s.incline_rad, "incline"}, {&s.gravity_mps2, "g"},
+            {&s.mu_static, "mu-s"}, {&s.mu_kinetic, "mu-k"}, {&s.restitution, "restitution"},
+            {&s.theta0_rad, "theta0"}, {&s.omega0_radps, "omega0"}, {&s.ramp_length_m, "ramp-length"},
+            {&s.paper_cm_offset_m, "paper-d"}, {&s.length_m, "length"}, {&s.air_density_kgpm3, "air-density"},
+            {&s.drag_coefficient, "drag-coefficient"}, {&s.lift_coefficient, "lift-coefficient"},
+            {&s.spin_drag_Nms2, "spin-drag"}, {&s.rolling_resistance_m, "rolling-resistance"}};
+        for (size_t i = 0; i < sizeof fields / sizeof fields[0]; ++i) {
+            double lo, hi;
+            range_of(fields[i].name, &lo, &hi);
+            *fields[i].field = random_in(&state, lo, hi);
+        }
         if (round_trip(&s, "random setup")) return 1;
     }
+    /* a value out of its range is refused at its line */
+    const char *bad = "[contact]\nmu_s = 0.5\n\n[incline]\ngravity = -3.9e21\n";
+    jc_Setup s = jc_paper_setup();
+    char err[512] = "";
+    ENSURE(cli_config_parse("bad.ini", bad, strlen(bad), &s, err, sizeof err) != 0);
+    ENSURE_MSG(strstr(err, "bad.ini:5: gravity: gravity -3.9e+21 m/s2 is out of range"), "%s", err);
     return 0;
 }
 
@@ -251,7 +286,7 @@ static int test_option_names_in_files(void)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         cli_SetupArgs a;
         memset(&a, 0, sizeof a);
-        const int idx = cli_setup_option_index(cases[i].option);
+        const int idx = jc_param_find(cases[i].option);
         ENSURE_MSG(idx >= 0, "%s", cases[i].option);
         a.value[idx] = cases[i].value;
         jc_Setup from_option;
@@ -273,12 +308,8 @@ static int test_option_names_in_files(void)
             ++checked;
         }
     }
-    /* every single-valued option of the command line is in the list */
-    int options = 0;
-    for (int i = 0; i < CLI_SETUP_OPTION_COUNT; ++i) {
-        cli_Quantity q;
-        options += cli_setup_option_quantity(i, &q) >= 0;
-    }
+    /* every single-valued option of the command line (every parameter) is in the list */
+    const int options = jc_param_count();
     ENSURE_MSG(options == (int)(sizeof cases / sizeof cases[0]), "%d options, %zu cases", options,
                sizeof cases / sizeof cases[0]);
     const char *both = "[contact]\nmu = 0.4\nmu_s = 0.5\n";

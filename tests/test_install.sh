@@ -15,11 +15,12 @@ echo "passed: the installed tool runs without LD_LIBRARY_PATH"
 man=$root/share/man/man1/jumpcyl.1
 [ -f "$man" ] || fail "no man page"
 page=$(MANWIDTH=100 man -l "$man" 2> /dev/null) || fail "man -l failed"
-for cmd in paper predict simulate plot animate sweep mc map presets; do
+for cmd in paper predict simulate plot animate sweep mc map presets params; do
   printf '%s\n' "$page" | grep -q "jumpcyl $cmd" || printf '%s\n' "$page" | grep -qx "   $cmd" ||
     fail "the man page lacks the command $cmd"
 done
 printf '%s\n' "$page" | grep -q -- "--vary NAME=START:STOP:STEP" || fail "the man page lacks sweep's options"
+printf '%s\n' "$page" | grep -q "^PARAMETERS" || fail "the man page lacks the parameter table"
 echo "passed: man -l renders the page with every command's options"
 
 comp=$root/share/bash-completion/completions/jumpcyl
@@ -36,5 +37,7 @@ complete_words "$tool" plot --what paper-u | grep -qx paper-uncertainty || fail 
 complete_words "$tool" simulate --impact-law n | grep -qx newton || fail "completion: --impact-law n"
 complete_words "$tool" fit --free su | grep -qx surface || fail "completion: fit --free su -> surface"
 complete_words "$tool" fit --free mu_k,ti | grep -qx mu_k,tilt || fail "completion: fit --free mu_k,ti -> mu_k,tilt"
-echo "passed: bash completion of commands, options, presets, figure kinds, impact laws and fit's values"
+complete_words "$tool" sweep --vary rod-o | grep -qx rod-offset= || fail "completion: sweep --vary rod-o -> rod-offset="
+complete_words "$tool" design --free rod-o | grep -qx rod-offset || fail "completion: design --free rod-o -> rod-offset"
+echo "passed: bash completion of commands, options, presets, figure kinds, impact laws, fit's values and parameter names"
 echo "3 passed, 0 failed"

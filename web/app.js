@@ -7,48 +7,57 @@ const $ = (sel) => document.querySelector(sel);
 const tid = (id) => document.querySelector(`[data-testid="${id}"]`);
 const DEG = Math.PI / 180;
 const PRESETS = ['paper', 'hoop', 'rocking-hoop', 'disc'];
-const IMPACT_LAWS = ['stronge', 'poisson', 'newton'];
 // Samples per run for the animation and graphs: sample-dt = t_end / this
 // (at least 1 ms); events are always sampled too.
 const TARGET_SAMPLES = 1200;
 const GRAPH_WINDOW_S = 4; // graphs of longer runs show this much around the current time
 
-// The sliders. key: the tool's option name (request and URL key); value in
-// the unit shown; suffix: the unit appended for the request ("10cm"), so
-// that the request is exactly the command line's text.
+// The controls: one per row of the library's parameter table (jc_web_params:
+// what `jumpcyl params --json` prints), made at start (makeControls). key:
+// the tool's option name (request and URL key); a number's value is in the
+// unit shown, and the request gives it with that unit ("10cm"), so that it
+// is exactly the command line's text; a name-valued parameter is a select.
+// The page shows lengths the table gives in metres in centimetres (a
+// table-top ramp), every other value in the table's unit.
+const PAGE_UNIT = { m: 'cm' };
+let CONTROLS = [];
+let BY_KEY = {};
 const rodPart = (s) => s.body.parts.find((p) => p.kind === 'rod') || s.body.parts.find((p) => p.kind === 'point');
-const CONTROLS = [
-  { key: 'incline', label: 'Incline', unit: 'deg', suffix: 'deg', min: 0, max: 60, step: 0.5,
-    get: (s) => s.incline_deg },
-  { key: 'rod-mass', label: 'Rod mass', unit: 'g', suffix: 'g', min: 0, max: 200, step: 0.1,
-    get: (s) => { const p = rodPart(s); return p ? p.mass * 1000 : 0; } },
-  { key: 'rod-offset', label: 'Rod offset', unit: 'cm', suffix: 'cm', min: 0, max: 15, step: 0.05,
-    get: (s) => { const p = rodPart(s); return p ? p.offset * 100 : 0; } },
-  { key: 'radius', label: 'Radius', unit: 'cm', suffix: 'cm', min: 2, max: 30, step: 0.1,
-    get: (s) => s.body.radius * 100 },
-  { key: 'mu-s', label: 'μs (static)', unit: '', suffix: '', min: 0, max: 1.5, step: 0.01, get: (s) => s.mu_s },
-  { key: 'mu-k', label: 'μk (kinetic)', unit: '', suffix: '', min: 0, max: 1.5, step: 0.01, get: (s) => s.mu_k },
-  { key: 'restitution', label: 'Restitution', unit: '', suffix: '', min: 0, max: 1, step: 0.01,
-    get: (s) => s.restitution },
-  { key: 'theta0', label: 'θ0 (start)', unit: 'deg', suffix: 'deg', min: -180, max: 180, step: 1,
-    get: (s) => s.theta0 / DEG },
-  { key: 'omega0', label: 'ω0 (start)', unit: 'rad/s', suffix: 'rad/s', min: -30, max: 30, step: 0.1,
-    get: (s) => s.omega0 },
-  { key: 'ramp-length', label: 'Ramp length', unit: 'cm', suffix: 'cm', min: 20, max: 1000, step: 1,
-    get: (s) => s.ramp_length * 100 },
-  { key: 'drag-coefficient', label: 'Air drag Cd', unit: '', suffix: '', min: 0, max: 3, step: 0.05,
-    get: (s) => s.drag_coefficient },
-];
-const BY_KEY = Object.fromEntries(CONTROLS.map((c) => [c.key, c]));
+// A slider's step: a round number, about a hundredth of its span.
+const niceStep = (span) => 10 ** Math.floor(Math.log10(span / 100));
+function makeControls(table) {
+  CONTROLS = table.params.map((p) => {
+    const label = p.label.charAt(0).toUpperCase() + p.label.slice(1);
+    if (p.choices) {
+      return { key: p.name, name: p.name, label, help: p.help, choices: p.choices,
+        defaults: p.defaults, sets: [] };
+    }
+    const unit = PAGE_UNIT[p.unit] || p.unit;
+    const u = p.units.find((x) => x.name === unit);
+    const perSi = p.quantity === 'angle' ? 180 / Math.PI : 1 / (u ? u.si : 1); // display value = SI * perSi
+    const lo = +(p.typical_min * perSi).toPrecision(12), hi = +(p.typical_max * perSi).toPrecision(12);
+    return { key: p.name, name: p.name, label, help: p.help, unit, suffix: unit, perSi, min: lo, max: hi,
+      step: niceStep(hi - lo), defaults: p.defaults, body: p.body, sets: p.sets ? p.sets.split(' ') : [] };
+  });
+  BY_KEY = Object.fromEntries(CONTROLS.map((c) => [c.key, c]));
+}
 
 const state = {
-  jc: null, preset: 'paper', overrides: {}, impactLaw: null, presetSetups: {}, presetLaws: {},
+  jc: null, preset: 'paper', overrides: {}, presetSetups: {},
   run: null, request: null, t: 0, playing: false, speed: 4, lastFrame: 0, view: null,
 };
 
 // ---- the engine ----
 function call(fn, request) {
   const ptr = state.jc.ccall(fn, 'number', ['string'], [JSON.stringify(request)]);
+  if (!ptr) throw new Error('out of memory');
+  const text = state.jc.UTF8ToString(ptr);
+  state.jc.ccall('jc_web_free', null, ['number'], [ptr]);
+  return text;
+}
+// A call without arguments that answers a string (jc_web_params).
+function call0(fn) {
+  const ptr = state.jc.ccall(fn, 'number', [], []);
   if (!ptr) throw new Error('out of memory');
   const text = state.jc.UTF8ToString(ptr);
   state.jc.ccall('jc_web_free', null, ['number'], [ptr]);
@@ -86,7 +95,7 @@ function buildRequest() {
   for (const [key, v] of Object.entries(state.overrides)) {
     const c = BY_KEY[key];
     if (!hasRod && (key === 'rod-mass' || key === 'rod-offset')) { partsChanged = true; continue; }
-    req[key] = num(v) + c.suffix;
+    req[key] = c.choices ? v : num(v) + c.suffix;
   }
   if (partsChanged && base) {
     req.part = base.body.parts.map((p) => {
@@ -102,7 +111,6 @@ function buildRequest() {
       return text;
     });
   }
-  if (state.impactLaw) req['impact-law'] = state.impactLaw;
   return req;
 }
 
@@ -651,10 +659,22 @@ function highlightEvent() {
 }
 
 // ---- controls ----
+// The preset's value in the control's unit (the table's defaults), null when
+// the preset has none (rod-mass of the hoop: its "rod" is the point mass).
+function presetValue(c) {
+  const v = c.defaults[state.preset];
+  if (c.choices) return v === null ? c.choices[0] : c.choices[v];
+  if (v !== null) return v * c.perSi;
+  const s = state.presetSetups[state.preset], p = s && rodPart(s);
+  if (p && c.key === 'rod-mass') return p.mass * c.perSi;
+  if (p && c.key === 'rod-offset') return p.offset * c.perSi;
+  return null;
+}
 function controlValue(c) {
   if (c.key in state.overrides) return state.overrides[c.key];
-  const s = state.presetSetups[state.preset];
-  return s ? c.get(s) : 0;
+  // a shortcut (mu) shows what the rows it sets were given
+  for (const k of c.sets) if (k in state.overrides) return state.overrides[k];
+  return presetValue(c);
 }
 const fmt = (v, step) => {
   const dec = Math.max(0, Math.min(6, -Math.floor(Math.log10(step)) + 1));
@@ -665,8 +685,17 @@ function buildControls() {
   const box = $('#sliders');
   for (const c of CONTROLS) {
     const row = document.createElement('div');
-    row.className = 'row';
+    row.className = c.choices ? 'row row-select' : 'row';
     row.dataset.key = c.key;
+    row.title = `--${c.name}: ${c.help}`;
+    if (c.choices) {
+      row.innerHTML = `<label for="c-${c.key}">${c.label}</label><select id="c-${c.key}" name="${c.key}">`
+        + c.choices.map((v) => `<option value="${v}">${v.charAt(0).toUpperCase()}${v.slice(1)}</option>`).join('')
+        + '</select>';
+      box.appendChild(row);
+      row.querySelector('select').addEventListener('change', (e) => setOverride(c.key, e.target.value));
+      continue;
+    }
     row.innerHTML = `<label for="c-${c.key}">${c.label}</label>`
       + `<input type="range" id="c-${c.key}-range" aria-label="${c.label} (slider)" min="${c.min}" max="${c.max}" step="${c.step}">`
       + `<input type="number" id="c-${c.key}" name="${c.key}" step="any" inputmode="decimal">`
@@ -686,26 +715,44 @@ function buildControls() {
 }
 
 function syncControls() {
+  const base = state.presetSetups[state.preset];
+  const hasRod = base && base.body.parts.some((p) => p.kind === 'rod');
   for (const c of CONTROLS) {
     const v = controlValue(c);
+    const row = $(`.row[data-key="${c.key}"]`);
+    row.classList.toggle('changed', c.key in state.overrides);
+    if (c.choices) {
+      document.getElementById(`c-${c.key}`).value = v;
+      continue;
+    }
     const range = document.getElementById(`c-${c.key}-range`), number = document.getElementById(`c-${c.key}`);
+    // a body parameter the preset's body has no part for (the hoop's disc mass) cannot be set
+    const none = v === null;
+    range.disabled = none;
+    number.disabled = none;
+    row.classList.toggle('none', none);
+    if (none) {
+      number.value = '';
+      continue;
+    }
     if (v < +range.min) range.min = String(v);
     if (v > +range.max) range.max = String(v);
     if (document.activeElement !== number) number.value = fmt(v, c.step);
     range.value = String(v);
-    range.closest('.row').classList.toggle('changed', c.key in state.overrides);
-    const label = range.closest('.row').querySelector('label');
-    const base = state.presetSetups[state.preset];
-    const hasRod = base && base.body.parts.some((p) => p.kind === 'rod');
+    const label = row.querySelector('label');
     if (c.key === 'rod-mass') label.textContent = hasRod ? 'Rod mass' : 'Point mass';
     if (c.key === 'rod-offset') label.textContent = hasRod ? 'Rod offset' : 'Point offset';
   }
   $('#c-preset').value = state.preset;
-  $('#c-impact-law').value = state.impactLaw || state.presetLaws[state.preset] || 'stronge';
 }
 
 function setOverride(key, v) {
   state.overrides[key] = v;
+  // a shortcut (mu: mu-s and mu-k) and the rows it sets exclude each other
+  for (const c of CONTROLS) {
+    if (c.key === key) for (const k of c.sets) delete state.overrides[k];
+    else if (c.sets.includes(key)) delete state.overrides[c.key];
+  }
   $(`.row[data-key="${key}"]`).classList.add('changed');
   recompute();
 }
@@ -723,8 +770,9 @@ function updateUrl() {
 function writeUrl() {
   const p = new URLSearchParams();
   p.set('preset', state.preset);
-  for (const c of CONTROLS) if (c.key in state.overrides) p.set(c.key, num(state.overrides[c.key]));
-  if (state.impactLaw) p.set('impact-law', state.impactLaw);
+  for (const c of CONTROLS) {
+    if (c.key in state.overrides) p.set(c.key, c.choices ? state.overrides[c.key] : num(state.overrides[c.key]));
+  }
   history.replaceState(null, '', `${location.pathname}?${p.toString()}`);
 }
 function readUrl() {
@@ -733,14 +781,12 @@ function readUrl() {
   if (preset && PRESETS.includes(preset)) state.preset = preset;
   for (const c of CONTROLS) {
     const v = p.get(c.key);
-    if (v !== null && v !== '' && Number.isFinite(+v)) state.overrides[c.key] = +v;
+    if (v === null || v === '') continue;
+    if (c.choices ? c.choices.includes(v) : Number.isFinite(+v)) state.overrides[c.key] = c.choices ? v : +v;
   }
-  if (p.has('mu') && Number.isFinite(+p.get('mu'))) { // --mu: both coefficients
-    if (!('mu-s' in state.overrides)) state.overrides['mu-s'] = +p.get('mu');
-    if (!('mu-k' in state.overrides)) state.overrides['mu-k'] = +p.get('mu');
+  for (const c of CONTROLS) { // a shortcut with a row it sets (mu and mu-s): the rows win
+    if (c.key in state.overrides && c.sets.some((k) => k in state.overrides)) delete state.overrides[c.key];
   }
-  const law = p.get('impact-law');
-  if (law && IMPACT_LAWS.includes(law)) state.impactLaw = law;
 }
 
 // ---- downloads ----
@@ -785,11 +831,10 @@ function stepFrame(dir) {
 
 function wire() {
   $('#c-preset').addEventListener('change', (e) => {
-    state.preset = e.target.value; state.overrides = {}; state.impactLaw = null; state.t = 0; state.dtMs = 0;
+    state.preset = e.target.value; state.overrides = {}; state.t = 0; state.dtMs = 0;
     syncControls(); recompute();
   });
-  $('#c-impact-law').addEventListener('change', (e) => { state.impactLaw = e.target.value; recompute(); });
-  $('#reset').addEventListener('click', () => { state.overrides = {}; state.impactLaw = null; syncControls(); recompute(); });
+  $('#reset').addEventListener('click', () => { state.overrides = {}; syncControls(); recompute(); });
   $('#play').addEventListener('click', () => setPlaying(!state.playing));
   $('#step-fwd').addEventListener('click', () => stepFrame(1));
   $('#step-back').addEventListener('click', () => stepFrame(-1));
@@ -871,11 +916,11 @@ async function start() {
       });
     }
     state.jc = await createJumpcyl();
-    for (const p of PRESETS) { // each preset's setup, for the controls' starting values
+    makeControls(JSON.parse(call0('jc_web_params')));
+    for (const p of PRESETS) { // each preset's body, for the hoop's "rod" (its point mass)
       const r = simulate({ preset: p, 't-max': '1ms' });
       if (!r.ok) throw new Error(r.error);
       state.presetSetups[p] = r.setup;
-      state.presetLaws[p] = r.impact_law;
     }
     buildControls();
     readUrl();
@@ -895,7 +940,7 @@ async function start() {
     tid('first-liftoff-cm').textContent = '—';
   }
 }
-window.jumpcylPage = { state, recompute, simulate: (r) => simulate(r),
+window.jumpcylPage = { state, recompute, simulate: (r) => simulate(r), controls: () => CONTROLS,
   seek: (t) => { setPlaying(false); state.t = t; draw(); } };
 start();
 })();

@@ -10,6 +10,9 @@
  * document is cli_sim_json_doc's (cli/outputs/sim_json.c, report.c). The
  * page and the tool cannot disagree on a setup or on a field.
  *
+ * jc_web_params gives the library's parameter table (what `jumpcyl params
+ * --json` prints), from which the page makes its controls.
+ *
  * Every returned string is malloc'd and owned by the caller: free it with
  * jc_web_free. A bad request gives {"ok": false, "error": "..."} (one
  * line), never an abort. NULL only when memory ran out.
@@ -44,6 +47,7 @@ JC_WEB_EXPORT const char *jc_web_version(void);
 JC_WEB_EXPORT void jc_web_free(char *text);
 JC_WEB_EXPORT char *jc_web_config(const char *request_json);
 JC_WEB_EXPORT char *jc_web_csv(const char *request_json);
+JC_WEB_EXPORT char *jc_web_params(void);
 
 #define WEB_DEFAULT_MAX_SAMPLES 100000 /* the library's default is 10^6: too much JSON for a page */
 #define ERR_LEN 512
@@ -118,13 +122,16 @@ static int take_member(request_args *a, const cJSON *it, char *slot, char *err, 
         a->max_samples = value_text(it, key, slot, err, err_len);
         return a->max_samples ? 0 : -1;
     }
-    const int idx = cli_setup_option_index(key);
-    if (idx < 0) {
+    struct option table[CLI_SETUP_OPTION_MAX];
+    const int n = cli_setup_option_table(table, CLI_SETUP_OPTION_MAX);
+    int idx = 0;
+    while (idx < n && strcmp(table[idx].name, key) != 0) ++idx;
+    if (idx == n) {
         snprintf(err, err_len, "unknown option '%.60s' (the keys are the command line's option names, docs/web.md)",
                  key);
         return -1;
     }
-    const int val = cli_setup_options[idx].val;
+    const int val = table[idx].val;
     if (strcmp(key, "part") == 0 && cJSON_IsArray(it)) { /* --part, once per string */
         for (const cJSON *p = it->child; p; p = p->next) {
             if (!cJSON_IsString(p)) {
@@ -489,6 +496,15 @@ JC_WEB_EXPORT char *jc_web_presets(void)
         cJSON_AddItemToArray(arr, o);
     }
     return print_or_fail(arr);
+}
+
+/* The parameter table (the library's, jc_param_info), as `jumpcyl params
+ * --json` prints it: every setup option the page can set, with its
+ * quantity, units, range, typical span and each preset's value. The page
+ * builds its controls from it. */
+JC_WEB_EXPORT char *jc_web_params(void)
+{
+    return print_or_fail(cli_json_params());
 }
 
 JC_WEB_EXPORT const char *jc_web_version(void)

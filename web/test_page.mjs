@@ -32,6 +32,8 @@ function nativeFirstLiftoff(args) {
   const m = out.match(/First lift-off at x = ([-0-9.]+) cm/);
   return m ? m[1] : 'none';
 }
+// The parameter table, as the tool lists it (`jumpcyl params --json`).
+const nativeParams = JSON.parse(execFileSync(native, ['params', '--json'], { encoding: 'utf8' })).params;
 
 const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.css': 'text/css',
   '.png': 'image/png' };
@@ -253,7 +255,7 @@ test('recompute on every control change, timed (paper cylinder)', async () => {
   const { page, problems } = await open(`${base}/index.html?preset=paper&incline=30`);
   await page.waitForSelector('body[data-warm=true]', { timeout: 30000 });
   const keys = await page.$$eval('#sliders input[type=range]', (rs) => rs.map((r) => r.id));
-  assert.equal(keys.length, 11);
+  assert.equal(keys.length, nativeParams.filter((p) => !p.choices).length); // a slider per number of the table
   const rows = [];
   // Whether a new run is shown (compared inside the page: the run itself is
   // too big to bring out at every key).
@@ -354,6 +356,37 @@ test('every option the page shows round-trips through the URL', async () => {
   await page.waitForSelector('body[data-ready=true]');
   assert.equal(await text(page, 'first-liftoff-cm'), expected);
   assert.deepEqual(problems, []);
+  await page.close();
+});
+
+// Every row of the parameter table is a control, and a value given there
+// makes the run the option makes: `jumpcyl simulate --NAME VALUE` (or its
+// refusal, the page's error shown).
+test('every parameter of `jumpcyl params --json` is a control that sets what its option sets', async () => {
+  const { page, problems } = await open(`${base}/index.html?preset=paper&incline=30`);
+  const controls = await page.evaluate(() => window.jumpcylPage.controls().map((c) => (
+    { key: c.key, unit: c.unit, min: c.min, max: c.max, choices: c.choices })));
+  assert.deepEqual(controls.map((c) => c.key), nativeParams.map((p) => p.name));
+  const outcome = async () => ((await page.isVisible('[data-testid="error"]')) ? 'refused' : text(page, 'first-liftoff-cm'));
+  for (const c of controls) {
+    let value, option;
+    if (c.choices) {
+      value = c.choices[c.choices.length - 1];
+      await page.selectOption(`#c-${c.key}`, value);
+      option = value;
+    } else {
+      value = String(+((c.min + c.max) / 2).toPrecision(3));
+      await page.fill(`#c-${c.key}`, value);
+      option = `${value}${c.unit}`;
+    }
+    let expected;
+    const base30 = c.key === 'incline' ? [] : ['--incline', '30']; // the paper's own incline, as the URL gives it
+    try { expected = nativeFirstLiftoff([...base30, `--${c.key}`, option]); } catch { expected = 'refused'; }
+    assert.equal(await outcome(), expected, `--${c.key} ${option}`);
+    assert.equal(new URL(await urlNow(page)).searchParams.get(c.key), value, `URL ${c.key}`);
+    await page.click('#reset');
+  }
+  assert.deepEqual(problems.filter((p) => !p.includes('refused')), []);
   await page.close();
 });
 

@@ -20,12 +20,12 @@
 typedef enum { PARAM_LIST, PARAM_NORMAL, PARAM_UNIFORM, PARAM_FIXED } cli_ParamKind;
 
 typedef struct {
-    int option;                 /* index in cli_setup_options */
+    int id;                     /* the parameter (jc_param_info) */
     int is_name;                /* impact-law: values are names, not numbers */
     cli_Quantity q;
     char column[48];            /* CSV column: "rod_offset_m", "incline_deg", "impact_law" */
     double column_scale;        /* SI value times this is the column's value (1, or 180/pi for degrees) */
-    const char *unit;           /* the column's unit ("m", "deg"; "" for numbers and names) */
+    char unit[16];              /* the column's unit as in its name ("m", "deg", "radps"; "" for numbers and names) */
     cli_ParamKind kind;
     /* PARAM_LIST: the values, SI (numbers) or indices into names (impact-law) */
     long count;
@@ -35,6 +35,8 @@ typedef struct {
     double a, b;
 } cli_Param;
 
+/* The column, unit and scale of parameter id (SI, angles in degrees). */
+void cli_param_describe(int id, cli_Param *p);
 /* Parses "NAME=START:STOP:STEP" or "NAME=V1,V2,..." (values with units as
  * on the command line). Every value is checked alone on the base setup
  * (base_args: the job's other setup options), so that a bad one is refused
@@ -46,10 +48,9 @@ int cli_param_parse_spread(const char *text, cli_ParamKind kind, const jc_Setup 
                            size_t err_len);
 /* Frees a parameter's list of values. */
 void cli_param_free(cli_Param *p);
-/* The SI value of an option in a setup (the mean of a normal). */
-double cli_param_nominal(int option, const jc_Setup *s);
-/* The value as the option's text: "0.52359877559829893rad", "stronge". */
-void cli_param_token(const cli_Param *p, double si_or_index, char *out, size_t len);
+/* The SI value of a parameter in a setup (the mean of a normal); NaN when
+ * the setup has none (rod-mass of a body without a rod). */
+double cli_param_nominal(int id, const jc_Setup *s);
 /* The value as its CSV column: "%.12g" of the value in the column's unit, or the name. */
 void cli_param_column_value(const cli_Param *p, double si_or_index, char *out, size_t len);
 /* The rows' header: "case,<the parameters' columns>,<outcome>\n"; NULL when
@@ -58,9 +59,17 @@ char *cli_batch_header(const cli_Param *params, int n);
 /* The values' CSV columns, comma-separated. */
 void cli_param_columns(const cli_Param *params, int n, const double *values, char *out, size_t len);
 /* The setup of one case: base (the job's setup before its single-valued
- * options) with the job's options, and the case's values over them. */
-int cli_case_setup(const jc_Setup *base, const cli_SetupArgs *args, const cli_Param *params, int n,
+ * options) with the job's options (read once: cli_setup_values) and the
+ * case's values over them, set as values (cli_setup_apply_values). */
+int cli_case_setup(const jc_Setup *base, const cli_SetupValues *job, const cli_Param *params, int n,
                    const double *values, jc_Setup *out, char *err, size_t err_len);
+
+/* ---- number.c: numbers in rows ---- */
+
+#define CLI_NUMBER_MAX 32
+/* printf("%.*g", precision, v), the same bytes, without printf (exact
+ * digits in integers); out holds CLI_NUMBER_MAX chars. Returns the length. */
+int cli_format_g(double v, int precision, char *out);
 
 /* ---- random.c: counter-based random numbers (Random123's Philox) ---- */
 
@@ -211,6 +220,7 @@ double cli_quantile(const double *sorted, long n, double p);
 typedef struct {
     jc_Setup base;              /* the setup before its single-valued options */
     const cli_SetupArgs *args;  /* the job's options */
+    cli_SetupValues values;     /* their single values, read once */
     cli_Param params[CLI_PARAM_MAX];
     const char *why[CLI_PARAM_MAX]; /* where each spread comes from */
     int n;

@@ -43,15 +43,15 @@ static int add_param(cli_McJob *job, const char *cmd, const char *text, cli_Para
         return EXIT_USAGE;
     }
     for (int i = 0; i < job->n; ++i)
-        if (job->params[i].option == p->option) {
+        if (job->params[i].id == p->id) {
             cli_error("%s: %s: %s already has a spread (give one --sigma or --range per input)", cmd, text,
-                      cli_setup_options[p->option].name);
+                      jc_param_info(p->id)->name);
             return EXIT_USAGE;
         }
-    const char *name = cli_setup_options[p->option].name;
-    const int mu_clash = (strcmp(name, "mu") == 0 && (job->args->value[cli_setup_option_index("mu-s")] ||
-                                                      job->args->value[cli_setup_option_index("mu-k")])) ||
-                         (strncmp(name, "mu-", 3) == 0 && job->args->value[cli_setup_option_index("mu")]);
+    const char *name = jc_param_info(p->id)->name;
+    const int mu_clash = (strcmp(name, "mu") == 0 && (cli_setup_given(job->args, "mu-s") ||
+                                                      cli_setup_given(job->args, "mu-k"))) ||
+                         (strncmp(name, "mu-", 3) == 0 && cli_setup_given(job->args, "mu"));
     if (mu_clash) {
         cli_error("%s: %s: --mu sets both coefficients; spread either mu or mu-s/mu-k, as given on the line", cmd,
                   text);
@@ -63,15 +63,13 @@ static int add_param(cli_McJob *job, const char *cmd, const char *text, cli_Para
 
 /* Whether the option is already spread or set by the user (then a default
  * spread would override what the user asked for). */
-static int user_owns(const cli_McJob *job, int option)
+static int user_owns(const cli_McJob *job, int id)
 {
     for (int i = 0; i < job->n; ++i)
-        if (job->params[i].option == option) return 1;
-    const char *name = cli_setup_options[option].name;
-    if (strcmp(name, "mu") == 0)
-        return job->args->value[cli_setup_option_index("mu-s")] || job->args->value[cli_setup_option_index("mu-k")] ||
-               job->args->value[option];
-    return job->args->value[option] != NULL;
+        if (job->params[i].id == id) return 1;
+    if (strcmp(jc_param_info(id)->name, "mu") == 0)
+        return cli_setup_given(job->args, "mu-s") || cli_setup_given(job->args, "mu-k") || job->args->value[id];
+    return job->args->value[id] != NULL;
 }
 
 int cli_mc_job_init(cli_McJob *job, const char *cmd, const cli_SetupArgs *sa, const char *const *sigma, int n_sigma,
@@ -82,7 +80,8 @@ int cli_mc_job_init(cli_McJob *job, const char *cmd, const cli_SetupArgs *sa, co
     job->args = sa;
     job->seed = seed;
     jc_Setup nominal;
-    if (cli_setup_base(sa, &job->base, err, sizeof err) != 0 || cli_setup_build(sa, &nominal, err, sizeof err) != 0) {
+    if (cli_setup_base(sa, &job->base, err, sizeof err) != 0 || cli_setup_build(sa, &nominal, err, sizeof err) != 0 ||
+        cli_setup_values(sa, &job->values, err, sizeof err) != 0) {
         cli_error("%s: %s", cmd, err);
         return EXIT_USAGE;
     }
@@ -94,9 +93,9 @@ int cli_mc_job_init(cli_McJob *job, const char *cmd, const cli_SetupArgs *sa, co
     for (size_t k = 0; st == EXIT_OK && !no_defaults && k < sizeof defaults / sizeof defaults[0]; ++k) {
         char name[32];
         snprintf(name, sizeof name, "%.*s", (int)strcspn(defaults[k].spread, "="), defaults[k].spread);
-        const int option = cli_setup_option_index(name);
+        const int id = jc_param_find(name);
         /* A body without the part (a hoop) has no such input. */
-        if (user_owns(job, option) || isnan(cli_param_nominal(option, &nominal))) continue;
+        if (user_owns(job, id) || isnan(cli_param_nominal(id, &nominal))) continue;
         st = add_param(job, cmd, defaults[k].spread, defaults[k].kind, &nominal, defaults[k].why);
     }
     return st;
@@ -123,7 +122,7 @@ int cli_mc_make_case(const void *ctx, long index, char *inputs, size_t len, jc_S
     int st = -1;
     for (int a = 0; a < CLI_MC_ATTEMPTS && st != 0; ++a) {
         draw(job, index, a, values);
-        st = cli_case_setup(&job->base, job->args, job->params, job->n, values, setup, why, why_len);
+        st = cli_case_setup(&job->base, &job->values, job->params, job->n, values, setup, why, why_len);
     }
     cli_param_columns(job->params, job->n, values, inputs, len);
     return st;
@@ -180,7 +179,7 @@ int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double inclin
     cli_SetupArgs args = *sa;
     char incline[32];
     snprintf(incline, sizeof incline, "%.17gdeg", incline_deg);
-    args.value[cli_setup_option_index("incline")] = incline;
+    args.value[jc_param_find("incline")] = incline;
     cli_McJob job;
     int st = cli_mc_job_init(&job, cmd, &args, NULL, 0, NULL, 0, 0, seed);
     if (st != EXIT_OK) return st;

@@ -47,11 +47,54 @@ static void row_add(cli_CaseResult *r, const char *fmt, ...)
     if (n > 0) r->row_len += (size_t)n < room ? n : (int)room - 1;
 }
 
+/* ",v" with v as %.*g writes it (cli_format_g: no printf per number). */
+static void add_number(cli_CaseResult *r, double v, int precision)
+{
+    if (sizeof r->row - (size_t)r->row_len < CLI_NUMBER_MAX + 2) {
+        row_add(r, ",%.*g", precision, v);
+        return;
+    }
+    r->row[r->row_len++] = ',';
+    r->row_len += cli_format_g(v, precision, r->row + r->row_len);
+}
+
+/* Text as it is (a name, a separator), kept in bounds: no printf. */
+static void add_text(cli_CaseResult *r, const char *text)
+{
+    const size_t room = sizeof r->row - (size_t)r->row_len, n = strlen(text);
+    const size_t k = n < room ? n : room - 1;
+    memcpy(r->row + r->row_len, text, k);
+    r->row_len += (int)k;
+    r->row[r->row_len] = '\0';
+}
+
+/* A whole number in decimal, as %ld writes it. */
+static void add_long(cli_CaseResult *r, long v)
+{
+    char digits[24];
+    int n = 0;
+    unsigned long u = v < 0 ? 0UL - (unsigned long)v : (unsigned long)v;
+    do {
+        digits[sizeof digits - 1 - (size_t)n++] = (char)('0' + (int)(u % 10));
+        u /= 10;
+    } while (u);
+    if (v < 0) digits[sizeof digits - 1 - (size_t)n++] = '-';
+    char text[24];
+    memcpy(text, digits + sizeof digits - (size_t)n, (size_t)n);
+    text[n] = '\0';
+    add_text(r, text);
+}
+
 /* ",theta,x,t" of an event's state, or three empty fields. */
 static void add_event_state(cli_CaseResult *r, int index, const jc_State *s)
 {
-    if (index < 0) row_add(r, ",,,");
-    else row_add(r, ",%.12g,%.12g,%.12g", s->theta_rad, s->x_m, s->t_s);
+    if (index < 0) {
+        add_text(r, ",,,");
+        return;
+    }
+    add_number(r, s->theta_rad, 12);
+    add_number(r, s->x_m, 12);
+    add_number(r, s->t_s, 12);
 }
 
 /* The reason is not a field (it would need CSV quoting in every reader):
@@ -67,7 +110,9 @@ void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const j
     r->row_len = 0;
     r->liftoff_x_m = NAN;
     r->largest_hop_m = 0.0;
-    row_add(r, "%ld%s%s", index, *inputs ? "," : "", inputs);
+    add_long(r, index);
+    if (*inputs) add_text(r, ",");
+    add_text(r, inputs);
     jc_Model model;
     char err[256];
     if (!setup || jc_model_init(&model, setup, err, sizeof err) != JC_OK) {
@@ -95,12 +140,21 @@ void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const j
     }
     if (s->first_slip == 0 && s->first_slip_state.x_m <= SLIDES_AT_START_M) r->kind = CASE_SLIDES_AT_START;
     r->largest_hop_m = s->largest_hop >= 0 ? s->largest_hop_m : 0.0;
-    row_add(r, ",%s", s->first_event >= 0 ? jc_event_name(s->first_event_kind) : "none");
+    add_text(r, ",");
+    add_text(r, s->first_event >= 0 ? jc_event_name(s->first_event_kind) : "none");
     add_event_state(r, s->first_slip, &s->first_slip_state);
     add_event_state(r, s->first_liftoff, &s->first_liftoff_state);
-    row_add(r, ",%d,%d,%.12g,%s,%.12g,%.12g,%.3g\n", s->liftoffs, s->bounces, r->largest_hop_m,
-            jc_termination_name(run.termination), run.final_state.x_m, run.final_state.t_s,
-            run.energy.balance_error_J);
+    add_text(r, ",");
+    add_long(r, s->liftoffs);
+    add_text(r, ",");
+    add_long(r, s->bounces);
+    add_number(r, r->largest_hop_m, 12);
+    add_text(r, ",");
+    add_text(r, jc_termination_name(run.termination));
+    add_number(r, run.final_state.x_m, 12);
+    add_number(r, run.final_state.t_s, 12);
+    add_number(r, run.energy.balance_error_J, 3);
+    add_text(r, "\n");
 }
 
 /* The n-th comma-separated field of a line (0-based), as a pointer and length. */

@@ -1,7 +1,9 @@
-/* The setup options a job varies (--vary) or samples (--sigma, --range).
- * A case's values reach the setup as option text ("0.5235987755982989rad"),
- * through the very code that reads the command line, so a case of a sweep
- * is exactly the run that `jumpcyl simulate` with those options makes. */
+/* The setup parameters a job varies (--vary) or samples (--sigma, --range),
+ * by the names of the library's table (jc_param_find). A case's values are
+ * set as values (jc_param_set) over the job's own options, read once, in the
+ * order the command line's are (cli_setup_apply_values): a case of a sweep is
+ * exactly the run that `jumpcyl simulate` with those options makes, and no
+ * text is read per case. */
 #include "batch.h"
 
 #include <errno.h>
@@ -9,83 +11,85 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* SI unit of the option text, column suffix and column scale per quantity. */
-static const char *si_unit(cli_Quantity q)
+/* A parameter's column holds SI values, angles in degrees ("incline_deg"). */
+static const char *column_unit(const jc_ParamInfo *in)
 {
-    switch (q) {
-    case Q_LENGTH: return "m";
-    case Q_MASS: return "kg";
-    case Q_ANGLE: return "rad";
-    case Q_ANGULAR_SPEED: return "rad/s";
-    case Q_ACCELERATION: return "m/s2";
-    case Q_TIME: return "s";
-    case Q_DENSITY: return "kg/m3";
-    case Q_NUMBER:
-    case Q_SPIN_DRAG: break; /* a plain number is already SI */
-    }
-    return "";
+    return in->quantity == JC_Q_ANGLE ? "deg" : in->si_unit;
 }
 
-static const char *column_suffix(cli_Quantity q)
+/* The unit as a name's suffix: "m/s2" -> "mps2", "N m s2" -> "Nms2". */
+static void unit_suffix(const char *unit, char *out, size_t len)
 {
-    switch (q) {
-    case Q_LENGTH: return "_m";
-    case Q_MASS: return "_kg";
-    case Q_ANGLE: return "_deg";
-    case Q_ANGULAR_SPEED: return "_radps";
-    case Q_ACCELERATION: return "_mps2";
-    case Q_TIME: return "_s";
-    case Q_DENSITY: return "_kgpm3";
-    case Q_SPIN_DRAG: return "_Nms2";
-    case Q_NUMBER: break;
+    size_t n = 0;
+    for (; *unit && n + 1 < len; ++unit) {
+        if (*unit == ' ' || *unit == '^') continue;
+        out[n++] = *unit == '/' ? 'p' : *unit;
     }
-    return "";
+    out[n] = '\0';
 }
 
-/* Which option NAME names, and how its values read. */
+void cli_param_describe(int id, cli_Param *p)
+{
+    const jc_ParamInfo *in = jc_param_info(id);
+    p->id = id;
+    p->q = in->quantity;
+    p->is_name = in->quantity == JC_Q_NAME;
+    unit_suffix(p->is_name ? "" : column_unit(in), p->unit, sizeof p->unit);
+    snprintf(p->column, sizeof p->column, "%s%s%s", in->name, *p->unit ? "_" : "", p->unit);
+    for (char *c = p->column; *c; ++c)
+        if (*c == '-') *c = '_';
+    p->column_scale = in->quantity == JC_Q_ANGLE ? 180.0 / CLI_PI : 1.0;
+}
+
+/* "radius, disc-mass, ...": the names of the table's parameters. */
+static void param_names(char *buf, size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int id = 0; id < jc_param_count() && used < len; ++id) {
+        const int w = snprintf(buf + used, len - used, "%s%s", id ? ", " : "", jc_param_info(id)->name);
+        if (w < 0) break;
+        used += (size_t)w;
+    }
+}
+
+/* Which parameter NAME names, and how its values read. */
 static int param_begin(const char *text, size_t name_len, const char *flag, cli_Param *p, char *err, size_t err_len)
 {
     char name[40];
     memset(p, 0, sizeof *p);
     p->text = text;
     if (name_len == 0 || name_len >= sizeof name) {
-        snprintf(err, err_len, "%s '%s': expected NAME=VALUES with NAME a setup option (e.g. incline=15:45:5)", flag,
-                 text);
+        snprintf(err, err_len, "%s '%s': expected NAME=VALUES with NAME a setup parameter (e.g. incline=15:45:5)",
+                 flag, text);
         return -1;
     }
     memcpy(name, text, name_len);
     name[name_len] = '\0';
-    p->option = cli_setup_option_index(name);
-    const int how = p->option >= 0 ? cli_setup_option_quantity(p->option, &p->q) : -1;
-    if (how < 0) {
-        snprintf(err, err_len,
-                 "%s '%s': '%s' is not a single-valued setup option (allowed: radius, disc-mass, rod-mass, "
-                 "rod-offset, rod-radius, incline, g, mu, mu-s, mu-k, restitution, impact-law, theta0, omega0, "
-                 "ramp-length, paper-d, length, air-density, drag-coefficient, lift-coefficient, spin-drag, "
-                 "rolling-resistance)",
-                 flag, text, name);
+    const int id = jc_param_find(name);
+    if (id < 0) {
+        char names[512];
+        param_names(names, sizeof names);
+        snprintf(err, err_len, "%s '%s': '%s' is not a single-valued setup option (allowed: %s; see 'jumpcyl params')",
+                 flag, text, name, names);
         return -1;
     }
-    p->is_name = how == 1;
-    const char *suffix = p->is_name ? "" : column_suffix(p->q);
-    p->unit = *suffix ? suffix + 1 : "";
-    snprintf(p->column, sizeof p->column, "%s%s", name, suffix);
-    for (char *c = p->column; *c; ++c)
-        if (*c == '-') *c = '_';
-    p->column_scale = !p->is_name && p->q == Q_ANGLE ? 180.0 / CLI_PI : 1.0;
+    cli_param_describe(id, p);
     return 0;
-}
-
-void cli_param_token(const cli_Param *p, double v, char *out, size_t len)
-{
-    if (p->is_name) snprintf(out, len, "%s", jc_impact_law_name((jc_ImpactLaw)(int)v));
-    else snprintf(out, len, "%.17g%s", v, si_unit(p->q));
 }
 
 void cli_param_column_value(const cli_Param *p, double v, char *out, size_t len)
 {
-    if (p->is_name) snprintf(out, len, "%s", jc_impact_law_name((jc_ImpactLaw)(int)v));
-    else snprintf(out, len, "%.12g", v * p->column_scale);
+    if (p->is_name) {
+        jc_param_format(p->id, v, out, len);
+        return;
+    }
+    char number[CLI_NUMBER_MAX];
+    size_t n = (size_t)cli_format_g(v * p->column_scale, 12, number); /* "%.12g", without printf */
+    if (len == 0) return;
+    if (n >= len) n = len - 1;
+    memcpy(out, number, n);
+    out[n] = '\0';
 }
 
 void cli_param_columns(const cli_Param *params, int n, const double *values, char *out, size_t len)
@@ -95,8 +99,11 @@ void cli_param_columns(const cli_Param *params, int n, const double *values, cha
     for (int j = 0; j < n; ++j) {
         char v[CLI_TOKEN_MAX];
         cli_param_column_value(&params[j], values[j], v, sizeof v);
-        const int w = snprintf(out + used, len - used, "%s%s", j ? "," : "", v);
-        if (w > 0) used += (size_t)w < len - used ? (size_t)w : len - used - 1;
+        const size_t w = strlen(v) + (j > 0);
+        if (used + w + 1 > len) break; /* no room: the row is cut (CLI_ROW_MAX is far above) */
+        if (j) out[used] = ',';
+        memcpy(out + used + (j > 0), v, w - (j > 0) + 1);
+        used += w;
     }
 }
 
@@ -106,40 +113,29 @@ void cli_param_free(cli_Param *p)
     p->values = NULL;
 }
 
-double cli_param_nominal(int option, const jc_Setup *s)
+double cli_param_nominal(int id, const jc_Setup *s)
 {
     double v = NAN;
-    return cli_setup_option_value(s, option, &v) == 0 ? v : NAN;
+    return jc_param_get(s, id, &v, NULL, 0) == JC_OK ? v : NAN;
 }
 
-int cli_case_setup(const jc_Setup *base, const cli_SetupArgs *args, const cli_Param *params, int n,
+int cli_case_setup(const jc_Setup *base, const cli_SetupValues *job, const cli_Param *params, int n,
                    const double *values, jc_Setup *out, char *err, size_t err_len)
 {
-    cli_SetupArgs a = *args;
-    char tokens[CLI_PARAM_MAX][CLI_TOKEN_MAX];
+    cli_SetupValues v = *job;
     for (int i = 0; i < n && i < CLI_PARAM_MAX; ++i) {
-        cli_param_token(&params[i], values[i], tokens[i], sizeof tokens[i]);
-        a.value[params[i].option] = tokens[i];
+        v.given[params[i].id] = 1;
+        v.value[params[i].id] = values[i];
     }
     *out = *base;
-    return cli_setup_apply(&a, out, err, err_len);
+    return cli_setup_apply_values(&v, out, err, err_len);
 }
 
-/* One value of a list: a number with units, or an impact law's name. */
+/* One value of a list: a number with units, or one of the parameter's names. */
 static int parse_value(const cli_Param *p, const char *flag, const char *tok, double *v, char *err, size_t err_len)
 {
-    if (p->is_name) {
-        jc_ImpactLaw law;
-        if (jc_impact_law_parse(tok, &law) != JC_OK) {
-            snprintf(err, err_len, "%s '%s': unknown law '%s' (allowed: stronge, poisson, newton)", flag, p->text,
-                     tok);
-            return -1;
-        }
-        *v = (double)law;
-        return 0;
-    }
     char msg[256];
-    if (cli_parse_quantity(tok, p->q, v, msg, sizeof msg) != 0) {
+    if (jc_param_parse(p->id, tok, v, msg, sizeof msg) != JC_OK) {
         snprintf(err, err_len, "%s '%s': %s", flag, p->text, msg);
         return -1;
     }
@@ -235,7 +231,8 @@ int cli_param_parse_vary(const char *text, const cli_SetupArgs *base_args, cli_P
     }
     const int is_range = strchr(eq + 1, ':') != NULL;
     if (is_range && p->is_name) {
-        snprintf(err, err_len, "--vary '%s': impact laws are listed by name (e.g. impact-law=stronge,newton)", text);
+        snprintf(err, err_len, "--vary '%s': %s is listed by name (e.g. %s=%s,%s)", text, jc_param_info(p->id)->name,
+                 jc_param_info(p->id)->name, jc_param_info(p->id)->choices[0], jc_param_info(p->id)->choices[1]);
         return -1;
     }
     if ((is_range ? parse_range(p, eq + 1, err, err_len) : parse_list(p, eq + 1, err, err_len)) != 0) {
@@ -245,14 +242,15 @@ int cli_param_parse_vary(const char *text, const cli_SetupArgs *base_args, cli_P
     /* Each value alone on the job's setup: a value no setup allows (a
      * negative mass, a 95 degree incline) is refused before any work. */
     jc_Setup base, s;
+    cli_SetupValues values;
     char msg[400];
-    if (cli_setup_base(base_args, &base, msg, sizeof msg) != 0) {
+    if (cli_setup_base(base_args, &base, msg, sizeof msg) != 0 || cli_setup_values(base_args, &values, msg, sizeof msg) != 0) {
         snprintf(err, err_len, "%s", msg);
         cli_param_free(p);
         return -1;
     }
     for (long k = 0; k < p->count; ++k) {
-        if (cli_case_setup(&base, base_args, p, 1, &p->values[k], &s, msg, sizeof msg) != 0) {
+        if (cli_case_setup(&base, &values, p, 1, &p->values[k], &s, msg, sizeof msg) != 0) {
             char shown[64];
             cli_param_column_value(p, p->values[k], shown, sizeof shown);
             snprintf(err, err_len, "--vary '%s': the value %s%s is not allowed: %s", text, shown,
@@ -272,10 +270,11 @@ int cli_param_parse_spread(const char *text, cli_ParamKind kind, const jc_Setup 
     if (param_begin(text, eq ? (size_t)(eq - text) : 0, flag, p, err, err_len)) return -1;
     p->kind = kind;
     if (p->is_name) {
-        snprintf(err, err_len, "%s '%s': impact-law is a name, not a number (vary it with a sweep)", flag, text);
+        snprintf(err, err_len, "%s '%s': %s is a name, not a number (vary it with a sweep)", flag, text,
+                 jc_param_info(p->id)->name);
         return -1;
     }
-    const double nominal_value = cli_param_nominal(p->option, nominal);
+    const double nominal_value = cli_param_nominal(p->id, nominal);
     if (isnan(nominal_value)) {
         snprintf(err, err_len, "%s '%s': the setup's body has no such part (use a disc+rod body)", flag, text);
         return -1;

@@ -1,5 +1,8 @@
 /* Experiment files: a whole setup in a small INI file (docs/config.md), read
- * with inih (config_write.c writes them, config_keys.h is the format).
+ * with inih (config_write.c writes them, config_keys.h is the format): every
+ * key is a parameter of the library's table (jc_ParamInfo section and key,
+ * or the parameter's name), read with jc_param_parse and set with
+ * jc_param_set, and [part.N] sections.
  *
  * inih splits "key = value" lines and strips blanks and inline comments. It
  * reports neither line numbers nor section headers to the handler (Debian's
@@ -30,57 +33,31 @@
 /* Largest file: an experiment file is a few hundred bytes. */
 #define FILE_MAX_BYTES 65536
 
-/* The table entry of a field, for the keys that act on others. */
-static int scalar_index(size_t offset)
-{
-    for (int i = 0; i < CLI_CONFIG_SCALAR_COUNT; ++i)
-        if (cli_config_scalars[i].offset == offset) return i;
-    return -1;
-}
-
 /* The keys of a [part.N] section. */
 enum { PK_KIND, PK_MASS, PK_OFFSET, PK_RADIUS, PK_ANGLE, PART_KEY_COUNT };
 static const char *const part_keys[PART_KEY_COUNT] = {"kind", "mass", "offset", "radius", "angle"};
 static const cli_Quantity part_quantities[PART_KEY_COUNT] = {Q_NUMBER, Q_MASS, Q_LENGTH, Q_LENGTH, Q_ANGLE};
 
+#define SEC_NONE (-1)
+#define SECTION_SLOTS (CLI_CONFIG_SECTION_MAX + JC_MAX_PARTS)
+
 /* What the file says, before it is applied; a line number 0 means "not given". */
 typedef struct {
-    double value[CLI_CONFIG_SCALAR_COUNT];
-    int value_line[CLI_CONFIG_SCALAR_COUNT];
+    double value[JC_PARAM_MAX]; /* by parameter id: SI, a name's index */
+    int value_line[JC_PARAM_MAX];
     jc_Part part[JC_MAX_PARTS];
     int part_line[JC_MAX_PARTS][PART_KEY_COUNT];
-    int section_line[SECTION_COUNT];
-    jc_ImpactLaw impact_law; /* [contact] impact_law, a name */
-    int impact_law_line;
-    double mu;               /* [contact] mu: both coefficients, as --mu */
-    int mu_line;
-    double shortcut[4];      /* [body] disc_mass, rod_mass, rod_offset, rod_radius, as the options */
-    int shortcut_line[4];
+    int section_line[SECTION_SLOTS];
 } staged;
-
-/* The command line's option names, each accepted in its section as well:
- * a file and the options speak one vocabulary (docs/config.md). */
-static const struct {
-    int section;
-    const char *key, *same_as;
-} option_names[] = {
-    {SEC_INCLINE, "incline", "angle"}, {SEC_INCLINE, "g", "gravity"}, {SEC_AIR, "air_density", "density"},
-    {SEC_PAPER, "paper_d", "cm_offset"},
-};
-/* [body] keys that set a part, as --disc-mass, --rod-mass, --rod-offset, --rod-radius do. */
-static const struct {
-    const char *key;
-    jc_PartKind kind;
-    int field; /* 0 mass, 1 offset, 2 radius */
-} body_shortcuts[4] = {{"disc_mass", JC_PART_DISC, 0}, {"rod_mass", JC_PART_ROD, 0}, {"rod_offset", JC_PART_ROD, 1},
-                       {"rod_radius", JC_PART_ROD, 2}};
 
 typedef struct {
     const char *name; /* the file, for messages */
     const char *text;
     size_t len, pos;
     int line;         /* of the line handed to inih last */
-    int section;      /* the section that line belongs to */
+    int section;      /* the section that line belongs to: a named one, then part.N at part_first + N - 1 */
+    const char *sections[CLI_CONFIG_SECTION_MAX]; /* the named sections (cli_config_sections) */
+    int part_first;   /* their count: the slot of [part.1] */
     int error_line;   /* of the first error, 0 if none */
     char *err;
     size_t err_len;
@@ -109,7 +86,7 @@ static void fail(parser *p, int line, const char *fmt, ...)
 /* ---- sections ---- */
 
 /* "part.N" with N from 1 to JC_MAX_PARTS written without leading zeros. */
-static int part_section(const char *name, size_t len)
+static int part_section(const parser *p, const char *name, size_t len)
 {
     if (len < 6 || len > 7 || strncmp(name, "part.", 5) != 0 || name[5] == '0') return SEC_NONE;
     int n = 0;
@@ -117,21 +94,30 @@ static int part_section(const char *name, size_t len)
         if (!isdigit((unsigned char)name[i])) return SEC_NONE;
         n = 10 * n + (name[i] - '0');
     }
-    return n >= 1 && n <= JC_MAX_PARTS ? SEC_PART_FIRST + n - 1 : SEC_NONE;
+    return n >= 1 && n <= JC_MAX_PARTS ? p->part_first + n - 1 : SEC_NONE;
 }
 
-static int find_section(const char *name, size_t len)
+static int find_section(const parser *p, const char *name, size_t len)
 {
-    for (int i = 0; i < SEC_PART_FIRST; ++i)
-        if (strlen(cli_config_section_names[i]) == len && strncmp(name, cli_config_section_names[i], len) == 0)
-            return i;
-    return part_section(name, len);
+    for (int i = 0; i < p->part_first; ++i)
+        if (strlen(p->sections[i]) == len && strncmp(name, p->sections[i], len) == 0) return i;
+    return part_section(p, name, len);
 }
 
-static void section_label(int sec, char *buf, size_t n)
+static void section_label(const parser *p, int sec, char *buf, size_t n)
 {
-    if (sec >= SEC_PART_FIRST) snprintf(buf, n, "[part.%d]", sec - SEC_PART_FIRST + 1);
-    else snprintf(buf, n, "[%s]", cli_config_section_names[sec]);
+    if (sec >= p->part_first) snprintf(buf, n, "[part.%d]", sec - p->part_first + 1);
+    else snprintf(buf, n, "[%s]", p->sections[sec]);
+}
+
+/* "body, part.1 to part.16, incline, ..." */
+static void allowed_sections(const parser *p, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s, part.1 to part.%d", p->sections[0], JC_MAX_PARTS);
+    for (int i = 1; i < p->part_first; ++i) {
+        const size_t used = strlen(buf);
+        snprintf(buf + used, n - used, ", %s", p->sections[i]);
+    }
 }
 
 /* A "[name]" line (leading blanks already gone): only blanks or a comment
@@ -150,15 +136,17 @@ static void begin_section(parser *p, const char *line, size_t len)
         return;
     }
     const size_t name_len = (size_t)(close - line - 1);
-    const int sec = find_section(line + 1, name_len);
+    const int sec = find_section(p, line + 1, name_len);
     if (sec == SEC_NONE) {
-        fail(p, p->line, "unknown section [%.*s] (allowed: body, part.1 to part.%d, incline, contact, start, air, paper)",
-             (int)(name_len > 40 ? 40 : name_len), line + 1, JC_MAX_PARTS);
+        char allowed[256];
+        allowed_sections(p, allowed, sizeof allowed);
+        fail(p, p->line, "unknown section [%.*s] (allowed: %s)", (int)(name_len > 40 ? 40 : name_len), line + 1,
+             allowed);
         return;
     }
     if (p->st.section_line[sec]) {
         char label[24];
-        section_label(sec, label, sizeof label);
+        section_label(p, sec, label, sizeof label);
         fail(p, p->line, "section %s given twice (first on line %d)", label, p->st.section_line[sec]);
         return;
     }
@@ -254,32 +242,50 @@ static int parse_kind(parser *p, const char *value, jc_PartKind *kind)
     return -1;
 }
 
-/* "radius, gravity, ..." for a section's messages. */
-static void allowed_keys(int sec, char *buf, size_t n)
+/* The parameter a key of a named section names: the table's key, or the
+ * parameter's own name (the command line's, '-' written '_') in its
+ * section; -1 if none. */
+static int param_of_key(const char *section, const char *key)
+{
+    const int by_name = jc_param_find(key);
+    if (by_name >= 0 && strcmp(jc_param_info(by_name)->section, section) == 0) return by_name;
+    for (int id = 0; id < jc_param_count(); ++id)
+        if (strcmp(jc_param_info(id)->section, section) == 0 && strcmp(jc_param_info(id)->key, key) == 0) return id;
+    return -1;
+}
+
+/* The option name of a parameter as a key ("air_density"), when it is not the key itself. */
+static int alias_key(const jc_ParamInfo *in, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s", in->name);
+    for (char *c = buf; *c; ++c)
+        if (*c == '-') *c = '_';
+    return strcmp(buf, in->key) != 0;
+}
+
+/* "radius, gravity, ..." for a section's messages: the keys written
+ * (numbers, then names), the shortcuts, then the option names. */
+static void allowed_keys(const parser *p, int sec, char *buf, size_t n)
 {
     buf[0] = '\0';
-    for (int i = 0; i < CLI_CONFIG_SCALAR_COUNT; ++i) {
-        if (cli_config_scalars[i].section != sec) continue;
-        const size_t used = strlen(buf);
-        snprintf(buf + used, n - used, "%s%s", used ? ", " : "", cli_config_scalars[i].key);
+    if (sec >= p->part_first) {
+        for (int k = 0; k < PART_KEY_COUNT; ++k) {
+            const size_t used = strlen(buf);
+            snprintf(buf + used, n - used, "%s%s", used ? ", " : "", part_keys[k]);
+        }
+        return;
     }
-    if (sec == SEC_CONTACT) {
-        const size_t used = strlen(buf);
-        snprintf(buf + used, n - used, "%simpact_law, mu", used ? ", " : "");
-    }
-    for (size_t k = 0; k < sizeof option_names / sizeof option_names[0]; ++k) {
-        if (option_names[k].section != sec) continue;
-        const size_t used = strlen(buf);
-        snprintf(buf + used, n - used, ", %s", option_names[k].key);
-    }
-    for (int k = 0; sec == SEC_BODY && k < 4; ++k) {
-        const size_t used = strlen(buf);
-        snprintf(buf + used, n - used, ", %s", body_shortcuts[k].key);
-    }
-    for (int k = 0; sec >= SEC_PART_FIRST && k < PART_KEY_COUNT; ++k) {
-        const size_t used = strlen(buf);
-        snprintf(buf + used, n - used, "%s%s", used ? ", " : "", part_keys[k]);
-    }
+    for (int pass = 0; pass < 4; ++pass)
+        for (int id = 0; id < jc_param_count(); ++id) {
+            const jc_ParamInfo *in = jc_param_info(id);
+            char alias[64];
+            const int written = cli_config_written(in), name = in->quantity == JC_Q_NAME;
+            const int take = pass == 0 ? written && !name : pass == 1 ? written && name : pass == 2 ? !written : 1;
+            if (strcmp(in->section, p->sections[sec]) != 0 || !take || (pass == 3 && !alias_key(in, alias, sizeof alias)))
+                continue;
+            const size_t used = strlen(buf);
+            snprintf(buf + used, n - used, "%s%s", used ? ", " : "", pass == 3 ? alias : in->key);
+        }
 }
 
 /* 0 if the key was not given before in this section. */
@@ -287,7 +293,7 @@ static int first_time(parser *p, int *line_slot, const char *key)
 {
     if (*line_slot) {
         char label[24];
-        section_label(p->section, label, sizeof label);
+        section_label(p, p->section, label, sizeof label);
         fail(p, p->line, "key '%s' given twice in %s (first on line %d)", key, label, *line_slot);
         return -1;
     }
@@ -297,7 +303,7 @@ static int first_time(parser *p, int *line_slot, const char *key)
 
 static void part_key(parser *p, const char *key, const char *value)
 {
-    const int i = p->section - SEC_PART_FIRST;
+    const int i = p->section - p->part_first;
     int k = 0;
     while (k < PART_KEY_COUNT && strcmp(key, part_keys[k]) != 0) ++k;
     if (k == PART_KEY_COUNT) {
@@ -322,43 +328,25 @@ static int on_pair(void *user, const char *section, const char *key_text, const 
     snprintf(key, sizeof key, "%s", key_text);
     for (char *c = key; *c; ++c)
         if (*c == '-') *c = '_';
-    if (p->section != SEC_NONE && p->section < SEC_PART_FIRST) {
-        for (size_t k = 0; k < sizeof option_names / sizeof option_names[0]; ++k)
-            if (option_names[k].section == p->section && strcmp(key, option_names[k].key) == 0)
-                snprintf(key, sizeof key, "%s", option_names[k].same_as);
-        if (p->section == SEC_CONTACT && strcmp(key, "mu") == 0) {
-            if (first_time(p, &p->st.mu_line, key) == 0) parse_value(p, key, value, Q_NUMBER, &p->st.mu);
-            return 1;
-        }
-        for (int k = 0; p->section == SEC_BODY && k < 4; ++k) {
-            if (strcmp(key, body_shortcuts[k].key) != 0) continue;
-            if (first_time(p, &p->st.shortcut_line[k], key) == 0)
-                parse_value(p, key, value, body_shortcuts[k].field == 0 ? Q_MASS : Q_LENGTH, &p->st.shortcut[k]);
-            return 1;
-        }
-    }
     if (p->section == SEC_NONE) {
         fail(p, p->line, "key '%s' before any section (start with [body], [incline], ...)", key);
         return 1;
     }
-    if (p->section >= SEC_PART_FIRST) {
+    if (p->section >= p->part_first) {
         part_key(p, key, value);
         return 1;
     }
-    if (p->section == SEC_CONTACT && strcmp(key, "impact_law") == 0) {
-        if (first_time(p, &p->st.impact_law_line, key) == 0 && jc_impact_law_parse(value, &p->st.impact_law) != JC_OK)
-            fail(p, p->line, "impact_law: unknown impact law '%s' (allowed: stronge, poisson, newton)", value);
-        return 1;
-    }
-    for (int i = 0; i < CLI_CONFIG_SCALAR_COUNT; ++i) {
-        if (cli_config_scalars[i].section != p->section || strcmp(cli_config_scalars[i].key, key) != 0) continue;
-        if (first_time(p, &p->st.value_line[i], key) == 0)
-            parse_value(p, key, value, cli_config_scalars[i].q, &p->st.value[i]);
+    const int id = param_of_key(p->sections[p->section], key);
+    if (id >= 0) {
+        char msg[256];
+        if (first_time(p, &p->st.value_line[id], key) == 0 &&
+            jc_param_parse(id, value, &p->st.value[id], msg, sizeof msg) != JC_OK)
+            fail(p, p->line, "%s: %s", key, msg);
         return 1;
     }
     char allowed[256];
-    allowed_keys(p->section, allowed, sizeof allowed);
-    fail(p, p->line, "unknown key '%s' in [%s] (allowed: %s)", key, cli_config_section_names[p->section], allowed);
+    allowed_keys(p, p->section, allowed, sizeof allowed);
+    fail(p, p->line, "unknown key '%s' in [%s] (allowed: %s)", key, p->sections[p->section], allowed);
     return 1;
 }
 
@@ -368,18 +356,18 @@ static int on_pair(void *user, const char *section, const char *key_text, const 
 static int check_parts(parser *p)
 {
     int n = 0;
-    while (n < JC_MAX_PARTS && p->st.section_line[SEC_PART_FIRST + n]) ++n;
+    const int *lines = p->st.section_line + p->part_first;
+    while (n < JC_MAX_PARTS && lines[n]) ++n;
     for (int i = n; i < JC_MAX_PARTS; ++i) {
-        if (!p->st.section_line[SEC_PART_FIRST + i]) continue;
-        fail(p, p->st.section_line[SEC_PART_FIRST + i], "[part.%d] without [part.%d] (allowed: parts numbered 1, 2, ... without gaps)",
-             i + 1, n + 1);
+        if (!lines[i]) continue;
+        fail(p, lines[i], "[part.%d] without [part.%d] (allowed: parts numbered 1, 2, ... without gaps)", i + 1, n + 1);
         return -1;
     }
     for (int i = 0; i < n; ++i) {
-        const int *lines = p->st.part_line[i];
-        if (!lines[PK_KIND] || !lines[PK_MASS]) {
-            fail(p, p->st.section_line[SEC_PART_FIRST + i], "[part.%d] needs '%s' (e.g. kind = rod, mass = 32.1 g)", i + 1,
-                 !lines[PK_KIND] ? "kind" : "mass");
+        const int *keys = p->st.part_line[i];
+        if (!keys[PK_KIND] || !keys[PK_MASS]) {
+            fail(p, lines[i], "[part.%d] needs '%s' (e.g. kind = rod, mass = 32.1 g)", i + 1,
+                 !keys[PK_KIND] ? "kind" : "mass");
             return -1;
         }
     }
@@ -388,12 +376,11 @@ static int check_parts(parser *p)
 
 /* The file's body: its parts replace the preset's; a disc or hoop without a
  * radius fills the rim. Without parts, a new rim radius takes the disc and
- * hoop parts that filled the old rim along (as --radius does). */
-static void apply_body(const staged *st, int parts, jc_Setup *s)
+ * hoop parts that filled the old rim along. */
+static void apply_body(const staged *st, int radius, int parts, jc_Setup *s)
 {
-    const int r = scalar_index(offsetof(jc_Setup, body.radius_m));
     const double old_rim = s->body.radius_m;
-    const double rim = st->value_line[r] ? st->value[r] : old_rim;
+    const double rim = st->value_line[radius] ? st->value[radius] : old_rim;
     if (parts > 0) {
         memset(s->body.parts, 0, sizeof s->body.parts);
         s->body.part_count = parts;
@@ -413,50 +400,72 @@ static void apply_body(const staged *st, int parts, jc_Setup *s)
     s->body.radius_m = rim;
 }
 
-static void apply(const staged *st, int parts, jc_Setup *s)
+/* The keys of one kind (body: the shortcuts that set a part, after the
+ * parts are in place; or all the others), each with jc_param_set; 0, or -1
+ * with the message at the key's line. */
+static int apply_keys(parser *p, int body, int radius, jc_Setup *s)
 {
-    apply_body(st, parts, s);
-    for (int i = 0; i < CLI_CONFIG_SCALAR_COUNT; ++i)
-        if (st->value_line[i]) memcpy((char *)s + cli_config_scalars[i].offset, &st->value[i], sizeof(double));
-    if (st->impact_law_line) s->impact_law = st->impact_law;
-    /* The printed d belongs to the paper's body: a file that changes the body
-     * without naming the paper model's d gets the body's exact d. */
-    const int radius_given = st->value_line[scalar_index(offsetof(jc_Setup, body.radius_m))];
-    const int paper_d_given = st->value_line[scalar_index(offsetof(jc_Setup, paper_cm_offset_m))];
-    if ((parts > 0 || radius_given) && !paper_d_given) s->paper_cm_offset_m = 0.0;
-}
-
-/* mu sets both coefficients: with mu_s or mu_k it would be ambiguous. */
-static void check_mu(parser *p)
-{
-    const int s = scalar_index(offsetof(jc_Setup, mu_static)), k = scalar_index(offsetof(jc_Setup, mu_kinetic));
-    if (p->st.mu_line && (p->st.value_line[s] || p->st.value_line[k]))
-        fail(p, p->st.mu_line, "mu sets both mu_s and mu_k; give either mu or mu_s/mu_k");
-}
-
-/* [contact] mu, and the [body] keys that set a part (after the parts are
- * in place); 0, or -1 with the message. */
-static int apply_shortcuts(parser *p, jc_Setup *s)
-{
-    if (p->st.mu_line) s->mu_static = s->mu_kinetic = p->st.mu;
-    int changed = 0;
-    for (int k = 0; k < 4; ++k) {
-        if (!p->st.shortcut_line[k]) continue;
-        jc_Part *part = NULL;
-        for (int i = s->body.part_count - 1; i >= 0; --i)
-            if (s->body.parts[i].kind == body_shortcuts[k].kind) part = &s->body.parts[i];
-        if (!part) {
-            fail(p, p->st.shortcut_line[k], "%s needs a body with a %s part", body_shortcuts[k].key,
-                 jc_part_kind_name(body_shortcuts[k].kind));
+    for (int id = 0; id < jc_param_count(); ++id) {
+        const int line = p->st.value_line[id];
+        if (!line || id == radius || ((jc_param_info(id)->flags & JC_PARAM_BODY) != 0) != body) continue;
+        char msg[256], key[64];
+        if (jc_param_set(s, id, p->st.value[id], msg, sizeof msg) != JC_OK) {
+            snprintf(key, sizeof key, "%s", jc_param_info(id)->key);
+            fail(p, line, "%s: %s", key, msg);
             return -1;
         }
-        const int f = body_shortcuts[k].field;
-        *(f == 0 ? &part->mass_kg : f == 1 ? &part->offset_m : &part->radius_m) = p->st.shortcut[k];
-        changed = 1;
     }
-    /* The printed d belongs to the paper's body, as with the options. */
-    if (changed && !p->st.value_line[scalar_index(offsetof(jc_Setup, paper_cm_offset_m))]) s->paper_cm_offset_m = 0.0;
     return 0;
+}
+
+/* The body (parts, rim), the values, then the [body] keys that set a part;
+ * the printed d belongs to the paper's body: a file that changes the body
+ * without naming the paper model's d gets the body's exact d. */
+static int apply(parser *p, int parts, jc_Setup *s)
+{
+    const int radius = jc_param_find("radius"), paper_d = jc_param_find("paper-d");
+    if (p->st.value_line[radius]) { /* the rim's range, checked as jc_param_set checks it */
+        jc_Setup probe = *s;
+        char msg[256];
+        if (jc_param_set(&probe, radius, p->st.value[radius], msg, sizeof msg) != JC_OK) {
+            fail(p, p->st.value_line[radius], "%s: %s", jc_param_info(radius)->key, msg);
+            return -1;
+        }
+    }
+    apply_body(&p->st, radius, parts, s);
+    if (apply_keys(p, 0, radius, s) != 0) return -1;
+    int changed = parts > 0 || p->st.value_line[radius];
+    if (changed && !p->st.value_line[paper_d]) s->paper_cm_offset_m = 0.0;
+    if (apply_keys(p, 1, radius, s) != 0) return -1;
+    for (int id = 0; id < jc_param_count(); ++id)
+        changed |= id != radius && p->st.value_line[id] && (jc_param_info(id)->flags & JC_PARAM_BODY);
+    if (changed && !p->st.value_line[paper_d]) s->paper_cm_offset_m = 0.0;
+    return 0;
+}
+
+/* A shortcut with a key it sets (mu with mu_s) would be ambiguous. */
+static void check_shortcuts(parser *p)
+{
+    for (int id = 0; id < jc_param_count(); ++id) {
+        const jc_ParamInfo *in = jc_param_info(id);
+        if (!p->st.value_line[id] || !in->sets) continue;
+        char both[128] = "", either[128] = "";
+        int clash = 0;
+        for (const char *c = in->sets; *c; c += strspn(c, " ")) {
+            char name[40];
+            const size_t n = strcspn(c, " ");
+            snprintf(name, sizeof name, "%.*s", (int)(n < sizeof name ? n : sizeof name - 1), c);
+            c += n;
+            const int other = jc_param_find(name);
+            if (other < 0) continue;
+            clash |= p->st.value_line[other] != 0;
+            size_t used = strlen(both);
+            snprintf(both + used, sizeof both - used, "%s%s", used ? " and " : "", jc_param_info(other)->key);
+            used = strlen(either);
+            snprintf(either + used, sizeof either - used, "%s%s", used ? "/" : "", jc_param_info(other)->key);
+        }
+        if (clash) fail(p, p->st.value_line[id], "%s sets %s; give either %s or %s", in->key, both, in->key, either);
+    }
 }
 
 int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *setup, char *err, size_t err_len)
@@ -467,6 +476,7 @@ int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *s
         return -1;
     }
     *p = (parser){.name = name, .text = text, .len = len, .section = SEC_NONE, .err = err, .err_len = err_len};
+    p->part_first = cli_config_sections(p->sections);
     for (int i = 0; i < JC_MAX_PARTS; ++i) p->st.part[i] = (jc_Part){JC_PART_DISC, 0.0, 0.0, 0.0, 0.0};
     const int ini_line = ini_parse_stream(read_line, p, on_pair, p);
     /* inih's own complaint, for a line our checks let through. */
@@ -478,13 +488,8 @@ int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *s
         p->error_line = -1;
     }
     const int parts = p->error_line ? 0 : check_parts(p);
-    if (!p->error_line) check_mu(p);
-    const int ok = !p->error_line;
-    if (ok) apply(&p->st, parts, setup);
-    if (ok && apply_shortcuts(p, setup) != 0) {
-        free(p);
-        return -1;
-    }
+    if (!p->error_line) check_shortcuts(p);
+    const int ok = !p->error_line && apply(p, parts, setup) == 0;
     free(p);
     return ok ? 0 : -1;
 }

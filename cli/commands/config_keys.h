@@ -1,7 +1,8 @@
-/* The experiment-file format (docs/config.md): its sections and the keys
- * that are one number of the setup, with the unit each is written in.
+/* The experiment-file format (docs/config.md): its sections and keys are
+ * the parameter table's (jc_ParamInfo section and key), sections in the
+ * order they first appear there, [part.1] .. [part.N] after [body].
  * Shared by the reader (config.c, with inih) and the writer
- * (config_write.c, which holds the tables); the WebAssembly build (web/)
+ * (config_write.c, which holds the list); the WebAssembly build (web/)
  * compiles only the writer, so the page needs no inih. Private to those
  * two files. */
 #ifndef JC_CLI_CONFIG_KEYS_H
@@ -11,21 +12,16 @@
 
 #include <stddef.h>
 
-enum { SEC_BODY, SEC_INCLINE, SEC_CONTACT, SEC_START, SEC_AIR, SEC_PAPER, SEC_PART_FIRST };
-#define SECTION_COUNT (SEC_PART_FIRST + JC_MAX_PARTS)
-#define SEC_NONE (-1)
-extern const char *const cli_config_section_names[SEC_PART_FIRST];
+/* Named sections at most (the table's, [part.N] aside). */
+#define CLI_CONFIG_SECTION_MAX 16
 
-/* The keys that are one number of the setup. */
-typedef struct {
-    int section;
-    const char *key;
-    cli_Quantity q;
-    const char *unit; /* written by cli_config_write; "" for a plain number */
-    size_t offset;    /* of the double in jc_Setup */
-} cli_ConfigScalar;
+/* The named sections in file order into names; returns how many. The
+ * first is [body], which the [part.N] sections follow. */
+int cli_config_sections(const char *names[CLI_CONFIG_SECTION_MAX]);
 
-#define CLI_CONFIG_SCALAR_COUNT 16
-extern const cli_ConfigScalar cli_config_scalars[CLI_CONFIG_SCALAR_COUNT];
+/* Whether the parameter is written by the writer, as a key of its own:
+ * not a shortcut for others (mu, disc-mass: the file holds mu_s and mu_k,
+ * the parts). */
+int cli_config_written(const jc_ParamInfo *in);
 
 #endif

@@ -79,15 +79,9 @@ static int free_param(const char *name, const cli_SetupArgs *sa, cli_Param *p)
         return EXIT_USAGE;
     }
     memset(p, 0, sizeof *p);
-    p->option = cli_setup_option_index(name);
-    cli_setup_option_quantity(p->option, &p->q);
+    cli_param_describe(jc_param_find(name), p); /* column and unit: SI, angles in degrees */
     p->kind = PARAM_FIXED;
-    p->column_scale = p->q == Q_ANGLE ? 180.0 / CLI_PI : 1.0;
-    p->unit = p->q == Q_ANGLE ? "deg" : p->q == Q_MASS ? "kg" : "m";
-    snprintf(p->column, sizeof p->column, "%s_%s", name, p->unit);
-    for (char *c = p->column; *c; ++c)
-        if (*c == '-') *c = '_';
-    if (sa->value[p->option]) {
+    if (sa->value[p->id]) {
         cli_error("design: --%s and --free %s both given; give one (--range LO:HI bounds the search)", name, name);
         return EXIT_USAGE;
     }
@@ -102,7 +96,7 @@ static int free_param(const char *name, const cli_SetupArgs *sa, cli_Param *p)
  * for the body (note says which); EXIT_OK or EXIT_USAGE after a message. */
 static int default_range(cli_DesignJob *job, char *note, size_t note_len)
 {
-    const char *name = cli_setup_options[job->param.option].name;
+    const char *name = jc_param_info(job->param.id)->name;
     const jc_BodyDef *b = &job->nominal.body;
     const jc_Part *rod = NULL;
     double rest_kg = 0.0, extent_m = 0.0;
@@ -175,11 +169,11 @@ static int check_range_ends(const cli_DesignJob *job, const char *range_text)
     for (int k = 0; k < 2; ++k) {
         jc_Setup s;
         char msg[400];
-        if (cli_case_setup(&job->base, job->args, &job->param, 1, &ends[k], &s, msg, sizeof msg) != 0) {
+        if (cli_case_setup(&job->base, &job->values, &job->param, 1, &ends[k], &s, msg, sizeof msg) != 0) {
             char shown[CLI_TOKEN_MAX];
             cli_param_column_value(&job->param, ends[k], shown, sizeof shown);
             cli_error("design: %s%s%s: --%s %s %s is not allowed: %s", range_text ? "--range '" : "the default range",
-                      range_text ? range_text : "", range_text ? "'" : "", cli_setup_options[job->param.option].name,
+                      range_text ? range_text : "", range_text ? "'" : "", jc_param_info(job->param.id)->name,
                       shown, job->param.unit, msg);
             return EXIT_USAGE;
         }
@@ -251,11 +245,11 @@ static int make_job(const design_opts *o, const cli_SetupArgs *sa, const cli_Sim
     if (st == EXIT_OK && (st = cli_batch_build_inputs("design", sa, sim_args, &job->nominal, &job->sim, NULL)) != 0)
         return st;
     char err[512];
-    if (st == EXIT_OK && cli_setup_base(sa, &job->base, err, sizeof err) != 0) {
+    if (st == EXIT_OK && (cli_setup_base(sa, &job->base, err, sizeof err) != 0 ||
+                          cli_setup_values(sa, &job->values, err, sizeof err) != 0)) {
         cli_error("design: %s", err);
         return EXIT_USAGE;
     }
-    job->args = sa;
     if (st == EXIT_OK) {
         st = default_range(job, note, note_len);
         if (st == EXIT_OK && o->range) {

@@ -78,7 +78,7 @@ static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take
 
 typedef struct {
     jc_Setup base;
-    const cli_SetupArgs *args;
+    cli_SetupValues values; /* the job's own single values */
     cli_Param params[2]; /* [0] y, [1] x: the sweep's order, so that case = iy * nx + ix */
     int n;
 } map_job;
@@ -90,7 +90,7 @@ static int make_case(const void *ctx, long index, char *inputs, size_t len, jc_S
     const long nx = job->params[1].count;
     const double values[2] = {job->params[0].values[index / nx], job->params[1].values[index % nx]};
     cli_param_columns(job->params, 2, values, inputs, len);
-    return cli_case_setup(&job->base, job->args, job->params, 2, values, setup, why, why_len);
+    return cli_case_setup(&job->base, &job->values, job->params, 2, values, setup, why, why_len);
 }
 
 /* What the cases gave, in case order; and their rows, for STEM.csv. */
@@ -112,8 +112,9 @@ static void consume(void *ctx, long index, const cli_CaseResult *r)
 
 /* ---- the axes ---- */
 
-/* The unit an axis shows its option in: degrees for angles, centimetres for
- * the body's lengths, grams for masses. */
+/* The unit an axis shows its parameter in: the table's (degrees for
+ * angles, centimetres or millimetres for the body's lengths, grams for
+ * masses), written as a figure writes it. */
 typedef struct {
     double per_si;
     const char *unit;
@@ -121,22 +122,17 @@ typedef struct {
 
 static axis_unit unit_of(const cli_Param *p)
 {
-    const char *name = cli_setup_options[p->option].name;
-    switch (p->q) {
-    case Q_LENGTH:
-        if (strcmp(name, "ramp-length") == 0) return (axis_unit){1.0, "m"};
-        if (strcmp(name, "rolling-resistance") == 0) return (axis_unit){1000.0, "mm"};
-        return (axis_unit){100.0, "cm"};
-    case Q_MASS: return (axis_unit){1000.0, "g"};
-    case Q_ANGLE: return (axis_unit){180.0 / CLI_PI, "°"};
-    case Q_ANGULAR_SPEED: return (axis_unit){1.0, "rad/s"};
-    case Q_ACCELERATION: return (axis_unit){1.0, "m/s²"};
-    case Q_TIME: return (axis_unit){1.0, "s"};
-    case Q_DENSITY: return (axis_unit){1.0, "kg/m³"};
-    case Q_SPIN_DRAG: return (axis_unit){1.0, "N m s²"};
-    case Q_NUMBER: break;
-    }
-    return (axis_unit){1.0, ""};
+    static const struct { const char *unit, *shown; } pretty[] = {
+        {"deg", "°"}, {"m/s2", "m/s²"}, {"kg/m3", "kg/m³"}, {"N m s2", "N m s²"}};
+    const jc_ParamInfo *in = jc_param_info(p->id);
+    double to_si = 1.0;
+    for (int k = 0; jc_quantity_unit(in->quantity, k, NULL); ++k)
+        if (strcmp(jc_quantity_unit(in->quantity, k, NULL), in->unit) == 0) jc_quantity_unit(in->quantity, k, &to_si);
+    const char *shown = in->unit;
+    for (size_t k = 0; k < sizeof pretty / sizeof pretty[0]; ++k)
+        if (strcmp(in->unit, pretty[k].unit) == 0) shown = pretty[k].shown;
+    /* degrees: 180 / pi, as the columns scale them */
+    return (axis_unit){in->quantity == JC_Q_ANGLE ? 180.0 / CLI_PI : 1.0 / to_si, shown};
 }
 
 /* The --x message from cli_param_parse_vary's, which names --vary (flag is
@@ -155,11 +151,13 @@ static void name_flag(char *err, const char *flag)
 static int parse_axis(const char *flag, const char *text, const cli_SetupArgs *sa, cli_Param *p)
 {
     char err[640];
-    const size_t name_len = strcspn(text, "=");
-    if (name_len == strlen("impact-law") && strncmp(text, "impact-law", name_len) == 0) {
-        cli_error("map: %s '%s': impact-law is a name, not a number (allowed on an axis: a numeric setup option; "
-                  "make one map per law with --impact-law, or compare the laws with sweep)",
-                  flag, text);
+    char given[40];
+    snprintf(given, sizeof given, "%.*s", (int)strcspn(text, "="), text);
+    const int named = jc_param_find(given);
+    if (named >= 0 && jc_param_info(named)->quantity == JC_Q_NAME) {
+        cli_error("map: %s '%s': %s is a name, not a number (allowed on an axis: a numeric setup option; "
+                  "make one map per value with --%s, or compare them with sweep)",
+                  flag, text, jc_param_info(named)->name, jc_param_info(named)->name);
         return EXIT_USAGE;
     }
     if (cli_param_parse_vary(text, sa, p, err, sizeof err) != 0) {
@@ -167,7 +165,7 @@ static int parse_axis(const char *flag, const char *text, const cli_SetupArgs *s
         cli_error("map: %s", err);
         return EXIT_USAGE;
     }
-    const char *name = cli_setup_options[p->option].name;
+    const char *name = jc_param_info(p->id)->name;
     if (p->count < MIN_AXIS_VALUES) {
         cli_error("map: %s '%s': %ld value (allowed: at least %d values on an axis)", flag, text, p->count,
                   MIN_AXIS_VALUES);
@@ -178,7 +176,7 @@ static int parse_axis(const char *flag, const char *text, const cli_SetupArgs *s
             cli_error("map: %s '%s': the values must increase (allowed: V1 < V2 < ...)", flag, text);
             return EXIT_USAGE;
         }
-    if (sa->value[p->option]) {
+    if (sa->value[p->id]) {
         cli_error("map: --%s and %s %s both given; give one", name, flag, name);
         return EXIT_USAGE;
     }
@@ -195,9 +193,9 @@ static int parse_axes(const map_opts *o, const cli_SetupArgs *sa, map_job *job)
     job->n = 2;
     int st = parse_axis("--y", o->y, sa, &job->params[0]);
     if (st != EXIT_OK || (st = parse_axis("--x", o->x, sa, &job->params[1])) != EXIT_OK) return st;
-    if (job->params[0].option == job->params[1].option) {
+    if (job->params[0].id == job->params[1].id) {
         cli_error("map: --x and --y both vary %s (allowed: two different setup options)",
-                  cli_setup_options[job->params[0].option].name);
+                  jc_param_info(job->params[0].id)->name);
         return EXIT_USAGE;
     }
     const double cells = (double)job->params[0].count * (double)job->params[1].count;
@@ -222,7 +220,7 @@ static int figure_axis(const cli_Param *p, fig_MapAxis *a, double **values)
     *values = malloc((size_t)p->count * sizeof **values);
     if (!*values) return -1;
     for (long k = 0; k < p->count; ++k) (*values)[k] = p->values[k] * u.per_si;
-    const char *name = cli_setup_options[p->option].name;
+    const char *name = jc_param_info(p->id)->name;
     if (*u.unit) snprintf(a->label, sizeof a->label, "%s (%s)", name, u.unit);
     else snprintf(a->label, sizeof a->label, "%s", name);
     a->count = p->count;
@@ -235,7 +233,7 @@ static int figure_axis(const cli_Param *p, fig_MapAxis *a, double **values)
 static int is_axis(const map_job *job, const char *name)
 {
     for (int j = 0; j < job->n; ++j)
-        if (strcmp(cli_setup_options[job->params[j].option].name, name) == 0) return 1;
+        if (strcmp(jc_param_info(job->params[j].id)->name, name) == 0) return 1;
     return 0;
 }
 
@@ -280,7 +278,7 @@ static void captions(const map_job *job, const jc_Setup *s, char *title, size_t 
     if (*fixed) add(title, tlen, ": ", "%s", fixed);
 
     /* The body part by part; a value an axis varies is left out. The
-     * options reach the first disc and the first rod (cli_setup_option_value). */
+     * options reach the first disc and the first rod (jc_param_get). */
     body[0] = '\0';
     if (!is_axis(job, "radius")) add(body, blen, "; ", "r = %.4g cm", s->body.radius_m * 100);
     int first_disc = -1, first_rod = -1;
@@ -335,8 +333,8 @@ static void paper_points(const map_job *job, const fig_MapAxis *ax, const fig_Ma
 {
     const jc_Setup paper = jc_paper_setup();
     const cli_Param *py = &job->params[0], *px = &job->params[1];
-    const int incline = cli_setup_option_index("incline");
-    const int incline_axis = px->option == incline ? 1 : py->option == incline ? 0 : -1;
+    const int incline = jc_param_find("incline");
+    const int incline_axis = px->id == incline ? 1 : py->id == incline ? 0 : -1;
     static const double inclines_deg[FIG_MAP_PAPER_MAX] = {15.0, 30.0, 45.0};
     const int n = incline_axis >= 0 ? FIG_MAP_PAPER_MAX : 1;
     const double xlo = ax->values[0] - 0.5 * (ax->values[1] - ax->values[0]);
@@ -349,14 +347,13 @@ static void paper_points(const map_job *job, const fig_MapAxis *ax, const fig_Ma
         jc_Setup want = paper;
         if (incline_axis >= 0) want.incline_rad = inclines_deg[k] * CLI_PI / 180.0;
         double si[2]; /* [0] y, [1] x, as the job's parameters */
-        if (cli_setup_option_value(&want, py->option, &si[0]) != 0 ||
-            cli_setup_option_value(&want, px->option, &si[1]) != 0)
+        if (jc_param_get(&want, py->id, &si[0], NULL, 0) != JC_OK || jc_param_get(&want, px->id, &si[1], NULL, 0) != JC_OK)
             return; /* the paper's body has no such part */
         const double x = si[1] * unit_of(px).per_si, y = si[0] * unit_of(py).per_si;
         if (!(x >= xlo && x <= xhi && y >= ylo && y <= yhi)) continue;
         jc_Setup s;
         char why[256];
-        if (cli_case_setup(&job->base, job->args, job->params, 2, si, &s, why, sizeof why) != 0) continue;
+        if (cli_case_setup(&job->base, &job->values, job->params, 2, si, &s, why, sizeof why) != 0) continue;
         if (incline_axis < 0) want.incline_rad = s.incline_rad; /* all three inclines */
         if (!same_run(&s, &want)) m->paper_differs = 1;
         const int i = m->paper_count++;
@@ -587,11 +584,10 @@ int cmd_map(int argc, char **argv)
     jc_SimOptions sim;
     if ((st = cli_batch_build_inputs("map", &sa, &sim_args, &fixed, &sim, NULL)) != 0) return st;
     char err[512];
-    if (cli_setup_base(&sa, &job.base, err, sizeof err) != 0) {
+    if (cli_setup_base(&sa, &job.base, err, sizeof err) != 0 || cli_setup_values(&sa, &job.values, err, sizeof err) != 0) {
         cli_error("map: %s", err);
         return EXIT_USAGE;
     }
-    job.args = &sa;
     if ((st = parse_axes(&o, &sa, &job)) == EXIT_OK && (st = check_targets(&files)) == EXIT_OK) {
         char gnuplot[CLI_PATH_MAX];
         if (cli_find_program("gnuplot", gnuplot, sizeof gnuplot) != 0) {

@@ -122,10 +122,10 @@ static void print_spreads(const cli_McJob *job)
         const double k = p->column_scale;
         const char *unit = p->unit;
         if (p->kind == PARAM_NORMAL)
-            printf("  %-14s normal  %.6g %s, sigma %.4g %s   (%s)\n", cli_setup_options[p->option].name, p->a * k, unit,
+            printf("  %-14s normal  %.6g %s, sigma %.4g %s   (%s)\n", jc_param_info(p->id)->name, p->a * k, unit,
                    p->b * k, unit, job->why[j]);
         else
-            printf("  %-14s uniform %.6g .. %.6g %s   (%s)\n", cli_setup_options[p->option].name, p->a * k, p->b * k,
+            printf("  %-14s uniform %.6g .. %.6g %s   (%s)\n", jc_param_info(p->id)->name, p->a * k, p->b * k,
                    unit, job->why[j]);
     }
 }

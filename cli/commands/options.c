@@ -1,4 +1,6 @@
-/* The setup options every command shares, and how they build a jc_Setup. */
+/* The setup options every command shares, and how they build a jc_Setup:
+ * --preset, --part, --config, --dump-config, and --NAME for every parameter
+ * of the library's table (jc_param_info). */
 #include "cli.h"
 
 #include <ctype.h>
@@ -8,92 +10,114 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum {
-    O_PRESET, O_RADIUS, O_DISC_MASS, O_ROD_MASS, O_ROD_OFFSET, O_ROD_RADIUS, O_PART,
-    O_INCLINE, O_G, O_MU, O_MU_S, O_MU_K, O_RESTITUTION, O_THETA0, O_OMEGA0,
-    O_RAMP_LENGTH, O_PAPER_D, O_LENGTH, O_AIR_DENSITY, O_DRAG, O_LIFT, O_SPIN_DRAG, O_ROLLING_RES,
-    O_CONFIG, O_DUMP_CONFIG, O_IMPACT_LAW
+#define B CLI_SETUP_OPT_BASE
+
+/* The options of the setup that are not parameters. */
+static const struct option own_setup_options[CLI_OPT_PARAMS] = {
+    {"preset", required_argument, 0, B + CLI_OPT_PRESET},
+    {"part", required_argument, 0, B + CLI_OPT_PART},
+    {"config", required_argument, 0, B + CLI_OPT_CONFIG},
+    {"dump-config", no_argument, 0, B + CLI_OPT_DUMP_CONFIG},
 };
 
-#define B CLI_SETUP_OPT_BASE
-const struct option cli_setup_options[CLI_SETUP_OPTION_COUNT] = {
-    {"preset", required_argument, 0, B + O_PRESET},
-    {"radius", required_argument, 0, B + O_RADIUS},
-    {"disc-mass", required_argument, 0, B + O_DISC_MASS},
-    {"rod-mass", required_argument, 0, B + O_ROD_MASS},
-    {"rod-offset", required_argument, 0, B + O_ROD_OFFSET},
-    {"rod-radius", required_argument, 0, B + O_ROD_RADIUS},
-    {"part", required_argument, 0, B + O_PART},
-    {"incline", required_argument, 0, B + O_INCLINE},
-    {"g", required_argument, 0, B + O_G},
-    {"mu", required_argument, 0, B + O_MU},
-    {"mu-s", required_argument, 0, B + O_MU_S},
-    {"mu-k", required_argument, 0, B + O_MU_K},
-    {"restitution", required_argument, 0, B + O_RESTITUTION},
-    {"theta0", required_argument, 0, B + O_THETA0},
-    {"omega0", required_argument, 0, B + O_OMEGA0},
-    {"ramp-length", required_argument, 0, B + O_RAMP_LENGTH},
-    {"paper-d", required_argument, 0, B + O_PAPER_D},
-    {"length", required_argument, 0, B + O_LENGTH},
-    {"air-density", required_argument, 0, B + O_AIR_DENSITY},
-    {"drag-coefficient", required_argument, 0, B + O_DRAG},
-    {"lift-coefficient", required_argument, 0, B + O_LIFT},
-    {"spin-drag", required_argument, 0, B + O_SPIN_DRAG},
-    {"rolling-resistance", required_argument, 0, B + O_ROLLING_RES},
-    {"config", required_argument, 0, B + O_CONFIG},
-    {"dump-config", no_argument, 0, B + O_DUMP_CONFIG},
-    {"impact-law", required_argument, 0, B + O_IMPACT_LAW},
-};
+int cli_setup_option_table(struct option *dst, int cap)
+{
+    int n = 0;
+    for (int i = 0; i < CLI_OPT_PARAMS && n < cap; ++i) dst[n++] = own_setup_options[i];
+    for (int id = 0; id < jc_param_count() && n < cap; ++id)
+        dst[n++] = (struct option){jc_param_info(id)->name, required_argument, 0, B + CLI_OPT_PARAMS + id};
+    return n;
+}
+
+/* The placeholder of a value in the help: --radius LEN. */
+static const char *metavar(const jc_ParamInfo *in)
+{
+    switch (in->quantity) {
+    case JC_Q_LENGTH: return "LEN";
+    case JC_Q_MASS: return "MASS";
+    case JC_Q_ANGLE: return "ANGLE";
+    case JC_Q_ANGULAR_SPEED: return "W";
+    case JC_Q_ACCELERATION: return "ACCEL";
+    case JC_Q_TIME: return "T";
+    case JC_Q_DENSITY: return "RHO";
+    case JC_Q_SPIN_DRAG: return "K";
+    case JC_Q_NAME: return "NAME";
+    case JC_Q_NUMBER: break;
+    }
+    return "X";
+}
+
+#define HELP_INDENT 23
+#define HELP_WIDTH 90
+
+/* "  --radius LEN         text", the text wrapped at HELP_WIDTH under itself. */
+static void help_item(FILE *out, const char *head, const char *text)
+{
+    int col = fprintf(out, "  %s", head);
+    if (col >= HELP_INDENT) {
+        fputc('\n', out);
+        col = 0;
+    }
+    fprintf(out, "%*s", HELP_INDENT - col, "");
+    col = HELP_INDENT;
+    while (*text) {
+        const size_t word = strcspn(text, " ");
+        if (col > HELP_INDENT && col + 1 + (int)word > HELP_WIDTH) {
+            fprintf(out, "\n%*s", HELP_INDENT, "");
+            col = HELP_INDENT;
+        } else if (col > HELP_INDENT) {
+            fputc(' ', out);
+            ++col;
+        }
+        fwrite(text, 1, word, out);
+        col += (int)word;
+        text += word;
+        text += strspn(text, " ");
+    }
+    fputc('\n', out);
+}
 
 void cli_setup_help(FILE *out)
 {
-    fputs(
-        "Setup options (a plain number is SI, angles are degrees; a number may carry a unit:\n"
-        "10cm, 34.2g, 15deg, 0.3rad, 9.78m/s2, 120rpm). Without --preset or --part the setup\n"
-        "is the 'paper' preset on a 30 deg incline.\n"
-        "  --preset NAME        built-in setup: paper, hoop, rocking-hoop, disc ('jumpcyl presets')\n"
-        "  --config FILE        experiment file (docs/config.md): its values replace the\n"
-        "                       preset's; the other options replace the file's\n"
-        "  --dump-config        print the setup these options give, in the file format\n"
-        "                       (exact: it reads back to the same setup), and exit\n"
-        "  --radius LEN         rim radius r (the disc of a disc+rod body fills the rim)\n"
-        "  --disc-mass MASS     mass of the disc                 (disc+rod bodies)\n"
-        "  --rod-mass MASS      mass of the rod                  (disc+rod bodies)\n"
-        "  --rod-offset LEN     distance of the rod's axis from the cylinder's axis\n"
-        "  --rod-radius LEN     the rod's own radius (0 = a line mass)\n"
-        "  --part KIND:KEY=VALUE,...\n"
-        "                       a body part; repeat for each; parts replace the preset's body.\n"
-        "                       KIND: disc, hoop, rod, point; KEY: mass (required), offset,\n"
-        "                       radius (disc, hoop default: the rim radius), angle.\n"
-        "                       e.g. --part disc:mass=34.2g --part rod:mass=32.1g,offset=5.5cm\n"
-        "  --incline ANGLE      incline angle, [0, 90) deg; 0 is a horizontal floor\n"
-        "  --g ACCEL            gravity (paper: 9.78 m/s2)\n"
-        "  --mu X               static and kinetic friction coefficient\n"
-        "  --mu-s X, --mu-k X   static, kinetic friction coefficient separately\n"
-        "  --restitution X      normal restitution at impacts, [0, 1]\n"
-        "  --impact-law LAW     stronge (default: never creates energy), poisson or newton\n"
-        "                       (these two can gain energy at sticking impacts; a warning says so)\n"
-        "  --theta0 ANGLE       initial angle of the CM from the outward normal\n"
-        "  --omega0 W           initial angular velocity (> 0 rolls downhill), rad/s\n"
-        "  --ramp-length LEN    from the start contact point to the ramp's lower end\n"
-        "  --paper-d LEN        CM offset the paper's model uses (default: the printed\n"
-        "                       2.65 cm for the paper preset, the exact d otherwise)\n"
-        "Air and rolling resistance (all off by default, as in the paper):\n"
-        "  --drag-coefficient X C_d: drag 1/2 rho C_d A |v| v on the centre, A = 2 r L\n"
-        "  --lift-coefficient X C_L: Magnus force 1/2 rho C_L A v^2 across the velocity;\n"
-        "                       C_L > 0 pushes a forward-rolling cylinder into the incline\n"
-        "  --spin-drag K        torque -K w|w| on the spin, N m s2\n"
-        "  --rolling-resistance LEN  lever arm b of N against the rolling direction, [0, r/2]\n"
-        "  --length LEN         cylinder length along its axis (paper: 5.55 cm)\n"
-        "  --air-density RHO    kg/m3 (default 1.204, dry air at 20 C and 101.325 kPa)\n",
-        out);
+    fputs("Setup options (a plain number is SI, angles are degrees; a number may carry a unit:\n"
+          "10cm, 34.2g, 15deg, 0.3rad, 9.78m/s2, 120rpm). Without --preset or --part the setup\n"
+          "is the 'paper' preset on a 30 deg incline. 'jumpcyl params' lists every parameter\n"
+          "with its unit, range, each preset's value and its experiment-file key.\n",
+          out);
+    help_item(out, "--preset NAME", "built-in setup: paper, hoop, rocking-hoop, disc ('jumpcyl presets')");
+    help_item(out, "--config FILE",
+              "experiment file (docs/config.md): its values replace the preset's; the other options replace the "
+              "file's");
+    help_item(out, "--dump-config",
+              "print the setup these options give, in the file format (exact: it reads back to the same setup), "
+              "and exit");
+    fputs("  --part KIND:KEY=VALUE,...\n"
+          "                       a body part; repeat for each; parts replace the preset's body.\n"
+          "                       KIND: disc, hoop, rod, point; KEY: mass (required), offset,\n"
+          "                       radius (disc, hoop default: the rim radius), angle.\n"
+          "                       e.g. --part disc:mass=34.2g --part rod:mass=32.1g,offset=5.5cm\n",
+          out);
+    for (int id = 0; id < jc_param_count(); ++id) {
+        const jc_ParamInfo *in = jc_param_info(id);
+        char head[64], text[400], range[80] = "";
+        snprintf(head, sizeof head, "--%s %s", in->name, metavar(in));
+        /* a short range is worth its words: [0, 90) deg, [0, 1] */
+        const int angle = in->quantity == JC_Q_ANGLE;
+        const double k = angle ? 180.0 / CLI_PI : 1.0;
+        const char *unit = angle ? "deg" : in->si_unit;
+        if (in->quantity != JC_Q_NAME && isfinite(in->max) && fabs(in->min * k) <= 100.0 && fabs(in->max * k) <= 100.0)
+            snprintf(range, sizeof range, ", %s%g, %g%s%s%s", in->min_open ? "(" : "[", in->min * k, in->max * k,
+                     in->max_open ? ")" : "]", *unit ? " " : "", unit);
+        snprintf(text, sizeof text, "%s%s%s%s", in->help, range, in->bound ? "; " : "", in->bound ? in->bound : "");
+        help_item(out, head, text);
+    }
 }
 
 void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd, int cmd_count)
 {
     int n = 0;
     for (int i = 0; i < cmd_count && n < dst_cap - 1; ++i) dst[n++] = cmd[i];
-    for (int i = 0; i < CLI_SETUP_OPTION_COUNT && n < dst_cap - 1; ++i) dst[n++] = cli_setup_options[i];
+    n += cli_setup_option_table(dst + n, dst_cap - 1 - n);
     dst[n] = (struct option){0, 0, 0, 0};
 }
 
@@ -111,8 +135,8 @@ static int take_value(const char **slot, const char *name, const char *text, cha
 int cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, size_t err_len)
 {
     const int i = opt - B;
-    if (i < 0 || i >= CLI_SETUP_OPTION_COUNT) return 0;
-    if (i == O_PART) {
+    if (i < 0 || i >= CLI_OPT_PARAMS + jc_param_count()) return 0;
+    if (i == CLI_OPT_PART) {
         if (args->part_count >= JC_MAX_PARTS) {
             snprintf(err, err_len, "--part: too many parts (allowed: at most %d)", JC_MAX_PARTS);
             return -1;
@@ -120,29 +144,28 @@ int cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, si
         args->part_text[args->part_count++] = text;
         return 1;
     }
-    if (!text) text = ""; /* a flag (--dump-config): present, no value */
-    if (take_value(&args->value[i], cli_setup_options[i].name, text, err, err_len) < 0) return -1;
-    if (i == O_PRESET) args->preset = text;
-    return 1;
+    if (i == CLI_OPT_DUMP_CONFIG) {
+        if (args->dump_config) {
+            snprintf(err, err_len, "--dump-config given twice");
+            return -1;
+        }
+        args->dump_config = 1;
+        return 1;
+    }
+    if (i == CLI_OPT_PRESET) return take_value(&args->preset, "preset", text, err, err_len);
+    if (i == CLI_OPT_CONFIG) return take_value(&args->config, "config", text, err, err_len);
+    const int id = i - CLI_OPT_PARAMS;
+    return take_value(&args->value[id], jc_param_info(id)->name, text, err, err_len);
 }
 
 int cli_setup_given(const cli_SetupArgs *args, const char *long_name)
 {
-    for (int i = 0; i < CLI_SETUP_OPTION_COUNT; ++i)
-        if (strcmp(cli_setup_options[i].name, long_name) == 0)
-            return i == O_PART ? args->part_count > 0 : args->value[i] != NULL;
-    return 0;
-}
-
-static int parse_option(const cli_SetupArgs *args, int i, cli_Quantity q, double *out, char *err,
-                        size_t err_len)
-{
-    char msg[256];
-    if (cli_parse_quantity(args->value[i], q, out, msg, sizeof msg) != 0) {
-        snprintf(err, err_len, "--%s: %s", cli_setup_options[i].name, msg);
-        return -1;
-    }
-    return 0;
+    if (strcmp(long_name, "preset") == 0) return args->preset != NULL;
+    if (strcmp(long_name, "part") == 0) return args->part_count > 0;
+    if (strcmp(long_name, "config") == 0) return args->config != NULL;
+    if (strcmp(long_name, "dump-config") == 0) return args->dump_config;
+    const int id = jc_param_find(long_name);
+    return id >= 0 && args->value[id] != NULL;
 }
 
 static int parse_kind(const char *s, size_t len, jc_PartKind *kind)
@@ -219,39 +242,13 @@ static int parse_part(const char *text, double rim_m, jc_Part *p, char *err, siz
     return 0;
 }
 
-/* The first part of a kind, for the disc+rod shortcuts. */
-static jc_Part *find_part(jc_BodyDef *b, jc_PartKind kind)
+/* One option's value read as its parameter reads it; 0, or -1 with "--NAME: ...". */
+static int parse_param(const cli_SetupArgs *a, int id, double *out, char *err, size_t err_len)
 {
-    for (int i = 0; i < b->part_count; ++i)
-        if (b->parts[i].kind == kind) return &b->parts[i];
-    return NULL;
-}
-
-static int apply_body_options(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
-{
-    double v;
-    if (a->value[O_RADIUS]) {
-        if (parse_option(a, O_RADIUS, Q_LENGTH, &v, err, err_len)) return -1;
-        /* A preset's rim-filling disc grows with the rim; a disc given with
-         * --part keeps the radius given there (its default was already r). */
-        jc_Part *disc = a->part_count == 0 ? find_part(&s->body, JC_PART_DISC) : NULL;
-        if (disc && disc->radius_m == s->body.radius_m) disc->radius_m = v;
-        s->body.radius_m = v;
-    }
-    static const struct { int opt; jc_PartKind kind; int field; } shortcut[] = {
-        {O_DISC_MASS, JC_PART_DISC, 0}, {O_ROD_MASS, JC_PART_ROD, 0},
-        {O_ROD_OFFSET, JC_PART_ROD, 1}, {O_ROD_RADIUS, JC_PART_ROD, 2}};
-    for (size_t k = 0; k < sizeof shortcut / sizeof shortcut[0]; ++k) {
-        const int o = shortcut[k].opt;
-        if (!a->value[o]) continue;
-        jc_Part *p = find_part(&s->body, shortcut[k].kind);
-        if (!p) {
-            snprintf(err, err_len, "--%s needs a body with a %s part (the paper or disc preset); with --part, set it in the part",
-                     cli_setup_options[o].name, jc_part_kind_name(shortcut[k].kind));
-            return -1;
-        }
-        if (parse_option(a, o, shortcut[k].field == 0 ? Q_MASS : Q_LENGTH, &v, err, err_len)) return -1;
-        *(shortcut[k].field == 0 ? &p->mass_kg : shortcut[k].field == 1 ? &p->offset_m : &p->radius_m) = v;
+    char msg[256];
+    if (jc_param_parse(id, a->value[id], out, msg, sizeof msg) != JC_OK) {
+        snprintf(err, err_len, "--%s: %s", jc_param_info(id)->name, msg);
+        return -1;
     }
     return 0;
 }
@@ -265,10 +262,12 @@ int cli_setup_base(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_le
         return -1;
     }
     /* The file's values replace the preset's; the options below replace the file's. */
-    if (a->value[O_CONFIG] && cli_config_load(a->value[O_CONFIG], s, err, err_len) != 0) return -1;
+    if (a->config && cli_config_load(a->config, s, err, err_len) != 0) return -1;
     if (a->part_count > 0) {
+        /* A disc or hoop given without a radius fills the rim the options give. */
+        const int radius = jc_param_find("radius");
         double r = s->body.radius_m;
-        if (a->value[O_RADIUS] && parse_option(a, O_RADIUS, Q_LENGTH, &r, err, err_len)) return -1;
+        if (a->value[radius] && parse_param(a, radius, &r, err, err_len)) return -1;
         s->body.part_count = a->part_count;
         for (int i = 0; i < a->part_count; ++i)
             if (parse_part(a->part_text[i], r, &s->body.parts[i], err, err_len)) return -1;
@@ -276,108 +275,112 @@ int cli_setup_base(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_le
     return 0;
 }
 
-/* How each single-valued setup option reads its number (the same table
- * builds the setup below). */
-static const struct { int opt; cli_Quantity q; size_t field; } scalars[] = {
-    {O_INCLINE, Q_ANGLE, offsetof(jc_Setup, incline_rad)},
-    {O_G, Q_ACCELERATION, offsetof(jc_Setup, gravity_mps2)},
-    {O_MU, Q_NUMBER, offsetof(jc_Setup, mu_static)},
-    {O_MU_S, Q_NUMBER, offsetof(jc_Setup, mu_static)},
-    {O_MU_K, Q_NUMBER, offsetof(jc_Setup, mu_kinetic)},
-    {O_RESTITUTION, Q_NUMBER, offsetof(jc_Setup, restitution)},
-    {O_THETA0, Q_ANGLE, offsetof(jc_Setup, theta0_rad)},
-    {O_OMEGA0, Q_ANGULAR_SPEED, offsetof(jc_Setup, omega0_radps)},
-    {O_RAMP_LENGTH, Q_LENGTH, offsetof(jc_Setup, ramp_length_m)},
-    {O_PAPER_D, Q_LENGTH, offsetof(jc_Setup, paper_cm_offset_m)},
-    {O_LENGTH, Q_LENGTH, offsetof(jc_Setup, length_m)},
-    {O_AIR_DENSITY, Q_DENSITY, offsetof(jc_Setup, air_density_kgpm3)},
-    {O_DRAG, Q_NUMBER, offsetof(jc_Setup, drag_coefficient)},
-    {O_LIFT, Q_NUMBER, offsetof(jc_Setup, lift_coefficient)},
-    {O_SPIN_DRAG, Q_SPIN_DRAG, offsetof(jc_Setup, spin_drag_Nms2)},
-    {O_ROLLING_RES, Q_LENGTH, offsetof(jc_Setup, rolling_resistance_m)},
-};
-
-int cli_setup_option_quantity(int index, cli_Quantity *q)
-{
-    if (index == O_RADIUS || index == O_ROD_OFFSET || index == O_ROD_RADIUS) *q = Q_LENGTH;
-    else if (index == O_DISC_MASS || index == O_ROD_MASS) *q = Q_MASS;
-    else if (index == O_IMPACT_LAW) return 1;
-    else {
-        size_t k = 0;
-        while (k < sizeof scalars / sizeof scalars[0] && scalars[k].opt != index) ++k;
-        if (k == sizeof scalars / sizeof scalars[0]) return -1;
-        *q = scalars[k].q;
-    }
-    return 0;
-}
-
-int cli_setup_option_index(const char *long_name)
-{
-    for (int i = 0; i < CLI_SETUP_OPTION_COUNT; ++i)
-        if (strcmp(cli_setup_options[i].name, long_name) == 0) return i;
-    return -1;
-}
-
-int cli_setup_option_value(const jc_Setup *s, int index, double *out)
-{
-    static const struct { int opt; jc_PartKind kind; int field; } parts[] = {
-        {O_DISC_MASS, JC_PART_DISC, 0}, {O_ROD_MASS, JC_PART_ROD, 0},
-        {O_ROD_OFFSET, JC_PART_ROD, 1}, {O_ROD_RADIUS, JC_PART_ROD, 2}};
-    if (index == O_RADIUS) {
-        *out = s->body.radius_m;
-        return 0;
-    }
-    for (size_t k = 0; k < sizeof parts / sizeof parts[0]; ++k) {
-        if (parts[k].opt != index) continue;
-        const jc_Part *p = NULL;
-        for (int i = s->body.part_count - 1; i >= 0; --i)
-            if (s->body.parts[i].kind == parts[k].kind) p = &s->body.parts[i]; /* the first of its kind */
-        if (!p) return -1;
-        *out = parts[k].field == 0 ? p->mass_kg : parts[k].field == 1 ? p->offset_m : p->radius_m;
-        return 0;
-    }
-    for (size_t k = 0; k < sizeof scalars / sizeof scalars[0]; ++k) {
-        if (scalars[k].opt != index) continue;
-        memcpy(out, (const char *)s + scalars[k].field, sizeof *out);
-        return 0;
-    }
-    return -1;
-}
-
 int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
 {
     return cli_setup_base(a, s, err, err_len) != 0 ? -1 : cli_setup_apply(a, s, err, err_len);
 }
 
-int cli_setup_apply(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
+int cli_setup_values(const cli_SetupArgs *a, cli_SetupValues *v, char *err, size_t err_len)
+{
+    memset(v, 0, sizeof *v);
+    v->parts_given = a->part_count > 0;
+    for (int id = 0; id < jc_param_count(); ++id) {
+        if (!a->value[id]) continue;
+        if (parse_param(a, id, &v->value[id], err, err_len)) return -1;
+        v->given[id] = 1;
+    }
+    return 0;
+}
+
+/* The ids of the rows a shortcut sets (its 'sets' names); how many. */
+static int set_ids(const jc_ParamInfo *in, int *ids, int cap)
+{
+    int n = 0;
+    for (const char *s = in->sets; s && *s && n < cap; s += strspn(s, " ")) {
+        char name[40];
+        const size_t len = strcspn(s, " ");
+        if (len < sizeof name) {
+            memcpy(name, s, len);
+            name[len] = '\0';
+            const int id = jc_param_find(name);
+            if (id >= 0) ids[n++] = id;
+        }
+        s += len;
+    }
+    return n;
+}
+
+/* A shortcut given with a row it sets (--mu with --mu-s): 0, or -1 with a message. */
+static int check_shortcuts(const cli_SetupValues *v, char *err, size_t err_len)
+{
+    for (int id = 0; id < jc_param_count(); ++id) {
+        const jc_ParamInfo *in = jc_param_info(id);
+        if (!v->given[id] || !in->sets) continue;
+        int ids[8], clash = 0;
+        const int n = set_ids(in, ids, 8);
+        for (int k = 0; k < n; ++k) clash |= v->given[ids[k]];
+        if (!clash) continue;
+        char both[128] = "", either[128] = "";
+        for (int k = 0; k < n; ++k) {
+            const char *name = jc_param_info(ids[k])->name;
+            size_t used = strlen(both);
+            snprintf(both + used, sizeof both - used, "%s--%s", k ? " and " : "", name);
+            used = strlen(either);
+            snprintf(either + used, sizeof either - used, "%s--%s", k ? "/" : "", name);
+        }
+        snprintf(err, err_len, "--%s sets %s; give either --%s or %s", in->name, both, in->name, either);
+        return -1;
+    }
+    return 0;
+}
+
+/* One value over the setup (jc_param_set); 0, or -1 with the message. Parts
+ * given with --part keep the radii given there: --radius moves only the rim
+ * (their default radius was already the rim the options give). */
+static int set_param(const cli_SetupValues *v, int id, jc_Setup *s, char *err, size_t err_len)
 {
     char msg[256];
-    if (apply_body_options(a, s, err, err_len)) return -1;
-    const int body_changed = a->part_count > 0 || a->value[O_RADIUS] || a->value[O_DISC_MASS] ||
-                             a->value[O_ROD_MASS] || a->value[O_ROD_OFFSET] || a->value[O_ROD_RADIUS];
-    if (body_changed) s->paper_cm_offset_m = 0.0; /* the printed d was for the paper's body */
+    const int keep_parts = v->parts_given && id == jc_param_find("radius");
+    jc_Part parts[JC_MAX_PARTS];
+    if (keep_parts) memcpy(parts, s->body.parts, sizeof parts);
+    if (jc_param_set(s, id, v->value[id], msg, sizeof msg) != JC_OK) {
+        double now;
+        if (jc_param_get(s, id, &now, NULL, 0) != JC_OK) /* a body without the part it sets */
+            snprintf(err, err_len, "--%s; with --part, give it in the part", msg);
+        else
+            snprintf(err, err_len, "invalid setup: %s", msg);
+        return -1;
+    }
+    if (keep_parts) memcpy(s->body.parts, parts, sizeof parts);
+    return 0;
+}
 
-    for (size_t k = 0; k < sizeof scalars / sizeof scalars[0]; ++k) {
-        double v;
-        if (!a->value[scalars[k].opt]) continue;
-        if (parse_option(a, scalars[k].opt, scalars[k].q, &v, err, err_len)) return -1;
-        memcpy((char *)s + scalars[k].field, &v, sizeof v); /* the double at that offset */
-        if (scalars[k].opt == O_MU) s->mu_kinetic = v;
+int cli_setup_apply_values(const cli_SetupValues *v, jc_Setup *s, char *err, size_t err_len)
+{
+    char msg[256];
+    if (check_shortcuts(v, err, err_len)) return -1;
+    /* The body first: a disc+rod body's shortcuts act on the rim the options give. */
+    int body_changed = v->parts_given;
+    for (int id = 0; id < jc_param_count(); ++id) {
+        if (!v->given[id] || !(jc_param_info(id)->flags & JC_PARAM_BODY)) continue;
+        if (set_param(v, id, s, err, err_len)) return -1;
+        body_changed = 1;
     }
-    if (a->value[O_IMPACT_LAW] && jc_impact_law_parse(a->value[O_IMPACT_LAW], &s->impact_law) != JC_OK) {
-        snprintf(err, err_len, "--impact-law: unknown law '%s' (allowed: stronge, poisson, newton)",
-                 a->value[O_IMPACT_LAW]);
-        return -1;
-    }
-    if (a->value[O_MU] && (a->value[O_MU_S] || a->value[O_MU_K])) {
-        snprintf(err, err_len, "--mu sets both coefficients; give either --mu or --mu-s/--mu-k");
-        return -1;
-    }
+    if (body_changed) s->paper_cm_offset_m = 0.0; /* the printed d was for the paper's body */
+    for (int id = 0; id < jc_param_count(); ++id)
+        if (v->given[id] && !(jc_param_info(id)->flags & JC_PARAM_BODY) && set_param(v, id, s, err, err_len))
+            return -1;
     if (jc_setup_validate(s, msg, sizeof msg) != JC_OK) {
         snprintf(err, err_len, "invalid setup: %s", msg);
         return -1;
     }
     return 0;
+}
+
+int cli_setup_apply(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)
+{
+    cli_SetupValues v;
+    return cli_setup_values(a, &v, err, err_len) != 0 ? -1 : cli_setup_apply_values(&v, s, err, err_len);
 }
 
 /* getopt's '?': an unknown option, or a value given to a flag ("--json=1"). */
@@ -392,27 +395,23 @@ static void unknown_option(char **argv, int next)
         cli_error("%s: unknown option '%s' (see 'jumpcyl %s --help')", argv[0], arg, argv[0]);
 }
 
-/* A plain number is SI: "--radius 15" is a 15 m wheel. A body length over
- * 1 m or a mass over 10 kg given without a unit is most likely meant in cm
- * or g: a one-line note says how it was read (the ramp's length is metres
- * by nature and gets none). */
+/* A plain number is SI: "--radius 15" is a 15 m wheel. A length over 1 m
+ * or a mass over 10 kg given without a unit, for a parameter people give in
+ * cm, mm or g, is most likely meant in that unit: a one-line note says how it
+ * was read (the ramp's length is metres by nature and gets none). */
 static void note_bare_units(const char *cmd, const cli_SetupArgs *a)
 {
-    static const struct { int opt; double above; const char *unit, *hint; } checks[] = {
-        {O_RADIUS, 1.0, "m", "cm"},      {O_ROD_OFFSET, 1.0, "m", "cm"}, {O_ROD_RADIUS, 1.0, "m", "mm"},
-        {O_LENGTH, 1.0, "m", "cm"},      {O_PAPER_D, 1.0, "m", "cm"},    {O_ROLLING_RES, 1.0, "m", "mm"},
-        {O_DISC_MASS, 10.0, "kg", "g"},  {O_ROD_MASS, 10.0, "kg", "g"},
-    };
-    for (size_t k = 0; k < sizeof checks / sizeof checks[0]; ++k) {
-        const char *text = a->value[checks[k].opt];
+    for (int id = 0; id < jc_param_count(); ++id) {
+        const jc_ParamInfo *in = jc_param_info(id);
+        const char *text = a->value[id];
+        const int length = in->quantity == JC_Q_LENGTH, mass = in->quantity == JC_Q_MASS;
+        if (!text || !(length || mass) || strcmp(in->unit, in->si_unit) == 0) continue;
         char *end;
-        if (!text) continue;
         const double v = strtod(text, &end);
-        if (end == text || *end || !(v > checks[k].above)) continue; /* has a unit, or is small */
+        if (end == text || *end || !(v > (mass ? 10.0 : 1.0))) continue; /* has a unit, or is small */
         fprintf(stderr, "jumpcyl: %s: note: --%s %s was read as %s %s (a plain number is SI); write %s%s for %s\n",
-                cmd, cli_setup_options[checks[k].opt].name, text, text, checks[k].unit, text, checks[k].hint,
-                strcmp(checks[k].hint, "g") == 0 ? "grams" : strcmp(checks[k].hint, "cm") == 0 ? "centimetres"
-                                                                                         : "millimetres");
+                cmd, in->name, text, text, in->si_unit, text, in->unit,
+                strcmp(in->unit, "g") == 0 ? "grams" : strcmp(in->unit, "cm") == 0 ? "centimetres" : "millimetres");
     }
 }
 
@@ -502,11 +501,11 @@ static int is_repeatable(const char *name)
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
                    cli_own_take_fn own_take, void *ctx, cli_SetupArgs *setup_args, cli_SimArgs *sim_args)
 {
-    struct option cmd[32], all[64];
+    struct option cmd[32], all[32 + CLI_SETUP_OPTION_MAX + 1];
     int n = 0;
     for (int i = 0; i < own_count && n < 32; ++i) cmd[n++] = own[i];
     for (int i = 0; sim_args && i < CLI_SIM_OPTION_COUNT && n < 32; ++i) cmd[n++] = cli_sim_options[i];
-    cli_merge_options(all, 64, cmd, n);
+    cli_merge_options(all, (int)(sizeof all / sizeof all[0]), cmd, n);
     *setup_args = (cli_SetupArgs){0};
     if (sim_args) *sim_args = (cli_SimArgs){0};
     optind = 0; /* glibc: a full restart, also of a scan left inside "-hh" (tests, fuzzing) */
@@ -550,7 +549,7 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
         cli_error("%s: unexpected argument '%s' (see 'jumpcyl %s --help')", argv[0], argv[optind], argv[0]);
         return EXIT_USAGE;
     }
-    if (setup_args->value[O_DUMP_CONFIG]) return dump_config(argv[0], setup_args, sim_args);
+    if (setup_args->dump_config) return dump_config(argv[0], setup_args, sim_args);
     return 0;
 }
 

@@ -59,7 +59,7 @@ static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take
 
 typedef struct {
     jc_Setup base;
-    const cli_SetupArgs *args;
+    cli_SetupValues values; /* the job's own single values */
     cli_Param params[CLI_PARAM_MAX];
     int n;
 } sweep_job;
@@ -76,7 +76,7 @@ static int make_case(const void *ctx, long index, char *inputs, size_t len, jc_S
         rest /= job->params[j].count;
     }
     cli_param_columns(job->params, job->n, values, inputs, len);
-    return cli_case_setup(&job->base, job->args, job->params, job->n, values, setup, why, why_len);
+    return cli_case_setup(&job->base, &job->values, job->params, job->n, values, setup, why, why_len);
 }
 
 /* The varied options, checked against the others. */
@@ -94,13 +94,13 @@ static int parse_params(const sweep_opts *o, const cli_SetupArgs *sa, sweep_job 
         }
         job->n = j + 1;
         const cli_Param *p = &job->params[j];
-        const char *name = cli_setup_options[p->option].name;
+        const char *name = jc_param_info(p->id)->name;
         for (int i = 0; i < j; ++i)
-            if (job->params[i].option == p->option) {
+            if (job->params[i].id == p->id) {
                 cli_error("sweep: --vary %s given twice; give all its values in one --vary", name);
                 return EXIT_USAGE;
             }
-        if (sa->value[p->option]) {
+        if (sa->value[p->id]) {
             cli_error("sweep: --%s and --vary %s both given; give one", name, name);
             return EXIT_USAGE;
         }
@@ -133,11 +133,11 @@ int cmd_sweep(int argc, char **argv)
     jc_SimOptions sim;
     if ((st = cli_batch_build_inputs("sweep", &in.args, &in.sim_args, &job.base, &sim, NULL)) != 0) return st;
     char err[512];
-    if (cli_setup_base(&in.args, &job.base, err, sizeof err) != 0) {
+    if (cli_setup_base(&in.args, &job.base, err, sizeof err) != 0 ||
+        cli_setup_values(&in.args, &job.values, err, sizeof err) != 0) {
         cli_error("sweep: %s", err);
         return EXIT_USAGE;
     }
-    job.args = &in.args;
     if ((st = parse_params(&o, &in.args, &job)) != EXIT_OK) {
         free_params(&job);
         return st;

@@ -55,30 +55,29 @@ static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take
 
 /* The option the long option written as text ("--inc", "--incline=30")
  * names, matched as getopt_long matches it: by an exact name or an
- * unambiguous prefix. NULL for none (or an ambiguous prefix). */
-static const struct option *long_match(const char *text)
+ * unambiguous prefix. Its has_arg, or -1 for none (or an ambiguous prefix). */
+static int long_match(const char *text)
 {
     const size_t n_own = sizeof own / sizeof own[0];
+    struct option all[sizeof own / sizeof own[0] + CLI_SETUP_OPTION_MAX + 1];
+    cli_merge_options(all, (int)(sizeof all / sizeof all[0]), own, (int)n_own);
     const char *name = text + 2, *eq = strchr(name, '=');
     const size_t len = eq ? (size_t)(eq - name) : strlen(name);
-    const struct option *found = NULL;
-    int matches = 0;
-    for (size_t i = 0; i < n_own + CLI_SETUP_OPTION_COUNT; ++i) {
-        const struct option *o = i < n_own ? &own[i] : &cli_setup_options[i - n_own];
-        if (strncmp(o->name, name, len) != 0) continue;
-        if (strlen(o->name) == len) return o;
+    int found = -1, matches = 0;
+    for (size_t i = 0; all[i].name; ++i) {
+        if (strncmp(all[i].name, name, len) != 0) continue;
+        if (strlen(all[i].name) == len) return all[i].has_arg;
         matches++;
-        found = o;
+        found = all[i].has_arg;
     }
-    return matches == 1 ? found : NULL;
+    return matches == 1 ? found : -1;
 }
 
 /* Whether the option written as text takes the next argument as its value. */
 static int takes_next(const char *text)
 {
     if (strncmp(text, "--", 2) != 0 || strchr(text, '=')) return 0;
-    const struct option *o = long_match(text);
-    return o && o->has_arg == required_argument;
+    return long_match(text) == required_argument;
 }
 
 /* Whether the option written as text is one the parser refuses (the only
@@ -86,7 +85,7 @@ static int takes_next(const char *text)
 static int is_unknown(const char *text)
 {
     if (strcmp(text, "--") == 0) return 0;
-    if (strncmp(text, "--", 2) == 0) return long_match(text) == NULL;
+    if (strncmp(text, "--", 2) == 0) return long_match(text) < 0;
     return text[strspn(text + 1, "h") + 1] != '\0';
 }
 

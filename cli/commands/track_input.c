@@ -141,13 +141,12 @@ int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
 static int incline_given(const cli_SetupArgs *sa)
 {
     if (cli_setup_given(sa, "incline")) return 1;
-    const int cfg = cli_setup_option_index("config");
-    if (cfg < 0 || !sa->value[cfg]) return 0;
+    if (!sa->config) return 0;
     jc_Setup probe;
     memset(&probe, 0, sizeof probe);
     probe.incline_rad = NAN;
     char err[256];
-    return cli_config_load(sa->value[cfg], &probe, err, sizeof err) == 0 && !isnan(probe.incline_rad);
+    return cli_config_load(sa->config, &probe, err, sizeof err) == 0 && !isnan(probe.incline_rad);
 }
 
 int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *a, const cli_SetupArgs *sa,

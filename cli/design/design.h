@@ -59,8 +59,8 @@ typedef struct {
 typedef struct {
     jc_Setup base;               /* before the single-valued options */
     jc_Setup nominal;            /* the whole setup, the free option at its preset's value (for the report) */
-    const cli_SetupArgs *args;   /* the command line's setup options (the free one absent) */
-    cli_Param param;             /* the free option (option, q: what cli_case_setup needs) */
+    cli_SetupValues values;      /* the command line's single setup values (the free one absent) */
+    cli_Param param;             /* the free parameter (id: what cli_case_setup needs) */
     jc_SimOptions sim;
     double target_m;             /* X */
     double lo, hi;               /* the range, SI, lo < hi */
@@ -88,7 +88,7 @@ typedef struct {
 /* ---- scan.c: the runs, the scan, the edges and branches ---- */
 
 /* x at p: one run of the full model on the job's setup with p as the free
- * option's value (through cli_case_setup, so exactly `jumpcyl simulate`). */
+ * parameter's value (through cli_case_setup, so exactly `jumpcyl simulate`). */
 void cli_design_eval(const cli_DesignJob *job, double p, jc_Workspace *ws, cli_DesignPoint *out);
 /* The calling thread's number in the parallel loops: the index of its workspace. */
 int cli_design_thread_index(void);

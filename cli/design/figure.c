@@ -37,7 +37,7 @@ static void write_script(FILE *gp, const cli_DesignJob *job, const cli_DesignRes
                          const char *base, const char *cmdline)
 {
     const cli_DesignUnits u = cli_design_units(job);
-    const char *name = cli_setup_options[job->param.option].name;
+    const char *name = jc_param_info(job->param.id)->name;
     fig_script_begin(gp, f, 1, 1, base, cmdline);
     fputs("\n# ---- Data ----\n", gp);
     write_branches(gp, r, u.per_si);

@@ -21,7 +21,7 @@ cli_DesignUnits cli_design_units(const cli_DesignJob *job)
     return (cli_DesignUnits){"cm", 100.0, "cm per mm", 100.0 / 1e3};
 }
 
-static const char *free_name(const cli_DesignJob *job) { return cli_setup_options[job->param.option].name; }
+static const char *free_name(const cli_DesignJob *job) { return jc_param_info(job->param.id)->name; }
 
 static const char *outcome_words(cli_CaseKind k)
 {

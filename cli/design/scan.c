@@ -29,7 +29,7 @@ void cli_design_eval(const cli_DesignJob *job, double p, jc_Workspace *ws, cli_D
 {
     jc_Setup s;
     char why[256];
-    const int ok = cli_case_setup(&job->base, job->args, &job->param, 1, &p, &s, why, sizeof why) == 0;
+    const int ok = cli_case_setup(&job->base, &job->values, &job->param, 1, &p, &s, why, sizeof why) == 0;
     cli_CaseResult r;
     cli_case_run(0, "", ok ? &s : NULL, &job->sim, ws, &r);
     out->p = p;

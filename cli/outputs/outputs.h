@@ -30,7 +30,12 @@ void cli_shell_word(FILE *out, const char *s);
 struct cJSON;
 /* {"theta": rad, "x": m, "omega": rad/s, "normal": N, "friction": N, "grazing": bool} or null */
 struct cJSON *cli_json_crossing(const jc_RollingCrossing *c);
+/* The setup: the body, then every parameter with a json_key (jc_ParamInfo). */
 struct cJSON *cli_json_setup(const jc_Model *m);
+/* The parameter table, as `jumpcyl params --json` prints it and the web
+ * page reads it: {"presets": [...], "params": [{"name", "quantity", "unit",
+ * "min", "max", ..., "defaults": {preset: SI or null}}, ...]}. */
+struct cJSON *cli_json_params(void);
 struct cJSON *cli_json_event(const jc_Event *e);
 struct cJSON *cli_json_energy(const jc_EnergyReport *e);
 /* Prints the document on stdout and frees it; EXIT_FAIL if that fails. */

@@ -87,21 +87,96 @@ cJSON *cli_json_setup(const jc_Model *m)
         cJSON_AddNumberToObject(q, "radius", p->radius_m);
         cJSON_AddItemToArray(parts, q);
     }
-    cJSON_AddNumberToObject(o, "incline_deg", cli_deg(s->incline_rad));
-    cJSON_AddNumberToObject(o, "g", s->gravity_mps2);
-    cJSON_AddNumberToObject(o, "mu_s", s->mu_static);
-    cJSON_AddNumberToObject(o, "mu_k", s->mu_kinetic);
-    cJSON_AddNumberToObject(o, "restitution", s->restitution);
-    cJSON_AddNumberToObject(o, "theta0", s->theta0_rad);
-    cJSON_AddNumberToObject(o, "omega0", s->omega0_radps);
-    cJSON_AddNumberToObject(o, "ramp_length", s->ramp_length_m);
-    cJSON_AddNumberToObject(o, "length", s->length_m);
-    cJSON_AddNumberToObject(o, "air_density", s->air_density_kgpm3);
-    cJSON_AddNumberToObject(o, "drag_coefficient", s->drag_coefficient);
-    cJSON_AddNumberToObject(o, "lift_coefficient", s->lift_coefficient);
-    cJSON_AddNumberToObject(o, "spin_drag", s->spin_drag_Nms2);
-    cJSON_AddNumberToObject(o, "rolling_resistance", s->rolling_resistance_m);
+    /* Then every parameter that has a member (jc_ParamInfo json_key), in the table's order. */
+    for (int id = 0; id < jc_param_count(); ++id) {
+        const jc_ParamInfo *in = jc_param_info(id);
+        double v;
+        if (!in->json_key || jc_param_get(s, id, &v, NULL, 0) != JC_OK) continue;
+        const size_t n = strlen(in->json_key);
+        const int degrees = n > 4 && strcmp(in->json_key + n - 4, "_deg") == 0;
+        cJSON_AddNumberToObject(o, in->json_key, degrees ? cli_deg(v) : v);
+    }
     return o;
+}
+
+/* A number, or null for an infinite one (JSON has none). */
+static void add_number_or_null(cJSON *o, const char *key, double v)
+{
+    if (isfinite(v)) cJSON_AddNumberToObject(o, key, v);
+    else cJSON_AddNullToObject(o, key);
+}
+
+static void add_string_or_null(cJSON *o, const char *key, const char *v)
+{
+    if (v) cJSON_AddStringToObject(o, key, v);
+    else cJSON_AddNullToObject(o, key);
+}
+
+/* One parameter: its description and every preset's value. */
+static cJSON *json_param(int id)
+{
+    const jc_ParamInfo *in = jc_param_info(id);
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", in->name);
+    cJSON_AddStringToObject(o, "label", in->label);
+    cJSON_AddStringToObject(o, "help", in->help);
+    cJSON_AddStringToObject(o, "quantity", jc_quantity_name(in->quantity));
+    cJSON_AddStringToObject(o, "si_unit", in->si_unit);
+    cJSON_AddStringToObject(o, "unit", in->unit);
+    cJSON *units = cJSON_AddArrayToObject(o, "units");
+    double to_si;
+    for (int k = 0; jc_quantity_unit(in->quantity, k, &to_si); ++k) {
+        cJSON *u = cJSON_CreateObject();
+        cJSON_AddStringToObject(u, "name", jc_quantity_unit(in->quantity, k, NULL));
+        cJSON_AddNumberToObject(u, "si", to_si);
+        cJSON_AddItemToArray(units, u);
+    }
+    add_number_or_null(o, "min", in->min);
+    add_number_or_null(o, "max", in->max);
+    cJSON_AddBoolToObject(o, "min_open", in->min_open);
+    cJSON_AddBoolToObject(o, "max_open", in->max_open);
+    add_string_or_null(o, "bound", in->bound);
+    if (in->choices) {
+        cJSON *c = cJSON_AddArrayToObject(o, "choices");
+        for (int k = 0; in->choices[k]; ++k) cJSON_AddItemToArray(c, cJSON_CreateString(in->choices[k]));
+    } else {
+        cJSON_AddNullToObject(o, "choices");
+    }
+    add_string_or_null(o, "sets", in->sets);
+    cJSON_AddBoolToObject(o, "body", (in->flags & JC_PARAM_BODY) != 0);
+    cJSON_AddBoolToObject(o, "shortcut", (in->flags & JC_PARAM_SHORTCUT) != 0);
+    cJSON_AddStringToObject(o, "section", in->section);
+    cJSON_AddStringToObject(o, "key", in->key);
+    add_string_or_null(o, "json_key", in->json_key);
+    cJSON_AddNumberToObject(o, "typical_min", in->typical_min);
+    cJSON_AddNumberToObject(o, "typical_max", in->typical_max);
+    cJSON *defaults = cJSON_AddObjectToObject(o, "defaults");
+    cJSON *texts = cJSON_AddObjectToObject(o, "defaults_text");
+    for (int k = 0; jc_preset_name(k); ++k) {
+        jc_Setup s;
+        double v;
+        char text[80];
+        const int has = jc_preset_setup(jc_preset_name(k), &s, NULL, 0) == JC_OK && jc_param_get(&s, id, &v, NULL, 0) == JC_OK &&
+                        jc_param_format(id, v, text, sizeof text) == JC_OK;
+        if (has) {
+            cJSON_AddNumberToObject(defaults, jc_preset_name(k), v);
+            cJSON_AddStringToObject(texts, jc_preset_name(k), text);
+        } else {
+            cJSON_AddNullToObject(defaults, jc_preset_name(k));
+            cJSON_AddNullToObject(texts, jc_preset_name(k));
+        }
+    }
+    return o;
+}
+
+cJSON *cli_json_params(void)
+{
+    cJSON *doc = cJSON_CreateObject();
+    cJSON *presets = cJSON_AddArrayToObject(doc, "presets");
+    for (int k = 0; jc_preset_name(k); ++k) cJSON_AddItemToArray(presets, cJSON_CreateString(jc_preset_name(k)));
+    cJSON *params = cJSON_AddArrayToObject(doc, "params");
+    for (int id = 0; id < jc_param_count(); ++id) cJSON_AddItemToArray(params, json_param(id));
+    return doc;
 }
 
 int cli_json_print(cJSON *doc)

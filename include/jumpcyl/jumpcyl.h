@@ -179,6 +179,118 @@ JC_API int jc_setup_has_resistance(const jc_Setup *setup);
 JC_API int jc_setup_validate(const jc_Setup *setup, char *err, size_t err_len);
 
 /* ------------------------------------------------------------------------ */
+/* Quantities with units (src/units.c)                                       */
+/* ------------------------------------------------------------------------ */
+
+/* What a number measures, and so which units it may carry. */
+typedef enum {
+    JC_Q_LENGTH,        /* m (a plain number is metres); cm, mm, km */
+    JC_Q_MASS,          /* kg; g, mg */
+    JC_Q_ANGLE,         /* rad, but a plain number is DEGREES; deg, rad */
+    JC_Q_ANGULAR_SPEED, /* rad/s; deg/s, rpm, rev/s */
+    JC_Q_ACCELERATION,  /* m/s2; m/s^2, cm/s2 */
+    JC_Q_NUMBER,        /* dimensionless: no unit */
+    JC_Q_TIME,          /* s; ms, us */
+    JC_Q_DENSITY,       /* kg/m3; kg/m^3, g/cm3 */
+    JC_Q_SPIN_DRAG,     /* N m s2 (= kg m2) */
+    JC_Q_NAME           /* not a number: a name from a parameter's choices */
+} jc_Quantity;
+
+/* "length", "mass", "angle", "angular speed", ..., "name". */
+JC_API const char *jc_quantity_name(jc_Quantity q);
+/* The SI unit values are held in: "m", "kg", "rad", "rad/s", ...; "" for
+ * numbers and names. */
+JC_API const char *jc_quantity_si_unit(jc_Quantity q);
+/* The i-th unit a value of q may carry ("cm"), with *to_si (may be NULL) the
+ * SI value of one of it (0.01); NULL past the last. */
+JC_API const char *jc_quantity_unit(jc_Quantity q, int i, double *to_si);
+/* The units of q for messages: "m (default), cm, mm, km". */
+JC_API const char *jc_quantity_units_text(jc_Quantity q);
+/* Reads a whole token "number[unit]" (or "number unit", one blank) into SI:
+ * "10cm", "34.2g", "15deg", "0.3rad", "120rpm"; a plain number is SI, but
+ * degrees for an angle. Decimal numbers only (no hexadecimal, inf or nan);
+ * a unit that is a power of ten moves the decimal point, so that "32.1g"
+ * is exactly the double of "0.0321". JC_OK, or JC_EINVAL with a one-line
+ * message naming the token and what is allowed (overflow and underflow to
+ * zero or a subnormal are errors). */
+JC_API int jc_quantity_parse(const char *text, jc_Quantity q, double *out_si, char *err, size_t err_len);
+/* v_si written in unit (one of q's units, or "" for a number) as the
+ * shortest text that jc_quantity_parse reads back to exactly v_si: "3.21
+ * cm", "30 deg", "9.78 m/s2", "0.3". A unit that is not a power of ten of
+ * the SI unit (deg, rpm) is used when some decimal in it reads back
+ * exactly, else the value is written in the SI unit ("0.5235987755982988
+ * rad"). JC_OK, or JC_EINVAL (no such unit for q, or buf too small; buf
+ * then holds ""). 64 bytes always suffice. */
+JC_API int jc_quantity_format(double v_si, jc_Quantity q, const char *unit, char *buf, size_t len);
+
+/* ------------------------------------------------------------------------ */
+/* The setup's parameters by name (src/param.c)                              */
+/* ------------------------------------------------------------------------ */
+
+/* Every single-valued setup parameter, described once: the command line's
+ * --NAME options, experiment files, batch parameter names, the JSON echo
+ * and the web page's controls are all made from this table. Parameters are
+ * numbered 0 .. jc_param_count() - 1; look them up by name. */
+#define JC_PARAM_MAX 64 /* jc_param_count() is at most this: arrays by parameter id */
+
+/* The parameter changes the body (the printed paper d no longer applies). */
+#define JC_PARAM_BODY 1u
+/* The parameter sets what other rows hold (mu: mu-s and mu-k): files and
+ * echoes show those instead. */
+#define JC_PARAM_SHORTCUT 2u
+
+typedef struct {
+    const char *name;        /* "rod-offset": the option --rod-offset, the name in sweeps and requests */
+    const char *label;       /* "rod offset": words for messages and controls */
+    const char *help;        /* one line, what it is and does */
+    jc_Quantity quantity;
+    const char *si_unit;     /* the unit of the value: "m", "rad"; "" for numbers and names */
+    const char *unit;        /* the unit people read and write: files, help, tables ("cm", "deg") */
+    double min, max;         /* the range, SI; max = HUGE_VAL: no upper end of its own */
+    int min_open, max_open;  /* 1: that end itself is outside the range */
+    const char *bound;       /* a bound that depends on other values (checked by jc_setup_validate), or NULL */
+    const char *const *choices; /* JC_Q_NAME: the names, NULL-terminated; the value is the name's index */
+    const char *sets;        /* JC_PARAM_SHORTCUT: the names of the rows it sets, blank-separated; else NULL */
+    unsigned flags;          /* JC_PARAM_BODY, JC_PARAM_SHORTCUT */
+    const char *section;     /* experiment file: [section] key */
+    const char *key;
+    const char *json_key;    /* member of the setup in JSON outputs, NULL if not there; a key
+                              * ending in "_deg" holds degrees, the others SI */
+    double typical_min, typical_max; /* SI: a span a slider or a first sweep covers */
+} jc_ParamInfo;
+
+/* How many parameters there are. */
+JC_API int jc_param_count(void);
+/* The i-th parameter's description; NULL out of range. */
+JC_API const jc_ParamInfo *jc_param_info(int id);
+/* A parameter's id by name, -1 if none; "mu-k" and "mu_k" are the same name. */
+JC_API int jc_param_find(const char *name);
+/* Sets a parameter in a setup: value_si in SI (a name's index for
+ * JC_Q_NAME). JC_EINVAL with a one-line message, the setup unchanged, for
+ * a value outside the row's range (NaN and infinities included) or a body
+ * without the part a body parameter acts on. Bounds that depend on other
+ * values are jc_setup_validate's. What each does:
+ *  - radius sets the rim radius; the body's first disc, when it fills the
+ *    rim (its radius is the rim's), grows with it;
+ *  - disc-mass, rod-mass, rod-offset, rod-radius act on the body's first
+ *    part of that kind;
+ *  - mu sets mu_s and mu_k;
+ *  - the others set the one field they name. */
+JC_API int jc_param_set(jc_Setup *setup, int id, double value_si, char *err, size_t err_len);
+/* A parameter's value in a setup (mu: mu_s; a name: its index). JC_OK, or
+ * JC_EINVAL with a message (no such parameter, a body without that part). */
+JC_API int jc_param_get(const jc_Setup *setup, int id, double *value_si, char *err, size_t err_len);
+/* Reads a value as the command line and files give it: a number with units
+ * (jc_quantity_parse of the row's quantity), or one of the row's choices
+ * ("newton"). The range is not checked here (jc_param_set does). JC_OK, or
+ * JC_EINVAL with a one-line message naming the text and what is allowed. */
+JC_API int jc_param_parse(int id, const char *text, double *value_si, char *err, size_t err_len);
+/* A value as text in the row's own unit (jc_quantity_format), or the
+ * choice's name: jc_param_parse reads it back to exactly value_si. JC_OK, or
+ * JC_EINVAL (no such parameter or choice, buf too small). */
+JC_API int jc_param_format(int id, double value_si, char *buf, size_t len);
+
+/* ------------------------------------------------------------------------ */
 /* Model: the immutable, validated, precomputed form of a setup (src/model.c) */
 /* ------------------------------------------------------------------------ */
 
