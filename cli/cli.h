@@ -42,7 +42,7 @@ int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *s
  * reported an error. */
 int cli_config_write(FILE *out, const jc_Setup *setup);
 
-/* ---- options.c ---- */
+/* ---- setup_args.c (the options as text, built without files) and options.c (argv, files) ---- */
 /* The setup options: their own (--preset, --part, --config, --dump-config),
  * then --NAME for every parameter of the library's table (jc_param_info),
  * getopt values CLI_SETUP_OPT_BASE + CLI_OPT_PARAMS + id. */
@@ -75,11 +75,20 @@ typedef struct {
 /* If opt is a setup option's val, records it and returns 1; 0 otherwise;
  * -1 with a message on a repeated option or too many parts. */
 int cli_setup_take(cli_SetupArgs *args, int opt, const char *optarg_text, char *err, size_t err_len);
-/* Builds and validates the setup: cli_setup_base, then cli_setup_apply. */
+/* Builds and validates the setup: cli_setup_base, then cli_setup_apply
+ * (options.c). */
 int cli_setup_build(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
 /* The preset, the experiment file and the parts: where the single-valued
- * options start from (made once for the many cases of a sweep). */
+ * options start from (made once for the many cases of a sweep; options.c). */
 int cli_setup_base(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
+/* The preset's setup (the paper's without --preset), and the --part bodies
+ * over a setup: cli_setup_base's steps before and after the file. */
+int cli_setup_preset(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
+int cli_setup_parts(const cli_SetupArgs *args, jc_Setup *s, char *err, size_t err_len);
+/* cli_setup_build without an experiment file, for a caller that reads none
+ * (the web page): the preset, the parts, the single values and the check;
+ * --config is refused. */
+int cli_setup_from_options(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
 /* The single-valued options over a base setup, then the setup's check:
  * cli_setup_values, then cli_setup_apply_values. */
 int cli_setup_apply(const cli_SetupArgs *args, jc_Setup *s, char *err, size_t err_len);

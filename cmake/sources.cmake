@@ -25,11 +25,14 @@ list(TRANSFORM JC_TRACK_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 
 # The tool's files that the web page compiles too, so that the page and the
 # tool read a setup and write a run the same way: the setup and simulation
-# options and units (options.c, units.c), the experiment-file writer (the
-# page's download), the JSON of a run (sim_json.c, report.c), Table 1's row
-# (paper_row.c) and the tool's one-line errors (error.c). The native tool
-# builds them into jc_cli_common with the rest.
+# options as text, built without files (setup_args.c; the command line's
+# parsing and --config are options.c's, which the page does not compile),
+# units (units.c), the experiment-file writer (the page's download), the
+# JSON of a run (sim_json.c, report.c), Table 1's row (paper_row.c) and the
+# tool's one-line errors (error.c). Nothing in them calls outside them and
+# the library: the page links them whole (tests: web_link). The native
+# tool builds them into jc_cli_common with the rest.
 set(JC_TOOL_SHARED_SOURCES
-  cli/commands/options.c cli/commands/units.c cli/commands/config_write.c
+  cli/commands/setup_args.c cli/commands/units.c cli/commands/config_write.c
   cli/outputs/report.c cli/outputs/sim_json.c cli/figures/paper_row.c cli/process/error.c)
 list(TRANSFORM JC_TOOL_SHARED_SOURCES PREPEND "${JC_SOURCE_ROOT}/")

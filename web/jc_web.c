@@ -6,9 +6,11 @@
  *
  * A thin client of the tool's own code, compiled into the wasm too: the
  * options are collected with cli_setup_take / cli_sim_take and built with
- * cli_setup_build / cli_sim_build (cli/commands/options.c, units.c), the
- * document is cli_sim_json_doc's (cli/outputs/sim_json.c, report.c). The
- * page and the tool cannot disagree on a setup or on a field.
+ * cli_setup_from_options / cli_sim_build (cli/commands/setup_args.c,
+ * units.c: the command line's options without its files), the document is
+ * cli_sim_json_doc's (cli/outputs/sim_json.c, report.c). The page and the
+ * tool cannot disagree on a setup or on a field. The page reads no file:
+ * 'config' is refused.
  *
  * jc_web_params gives the library's parameter table (what `jumpcyl params
  * --json` prints), from which the page makes its controls.
@@ -52,23 +54,6 @@ JC_WEB_EXPORT char *jc_web_params(void);
 #define WEB_DEFAULT_MAX_SAMPLES 100000 /* the library's default is 10^6: too much JSON for a page */
 #define ERR_LEN 512
 #define NUM_LEN 32
-
-/* ---- experiment files: none in the browser ---- */
-
-/* cli_setup_base (options.c) reads --config with cli_config_load, the
- * tool's reader (cli/commands/config.c, inih), which the wasm build does
- * not compile: the page never reads a file (a request naming 'config' is
- * refused in take_member, so this is never reached), and writing one
- * (cli_config_write) is config_write.c, which needs no inih. This answers
- * for the reader so that the link resolves, until the page builds its
- * setup from the library's parameter table instead of options.c (issue 27,
- * deliverables 1 and 5; docs/web.md). */
-int cli_config_load(const char *path, jc_Setup *setup, char *err, size_t err_len)
-{
-    (void)setup;
-    snprintf(err, err_len, "cannot read %.200s: no experiment files in the browser", path);
-    return -1;
-}
 
 /* ---- the request ---- */
 
@@ -160,7 +145,7 @@ static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, in
     int rc = 0, k = 0;
     for (const cJSON *it = req->child; !rc && it; it = it->next, ++k)
         rc = take_member(&a, it, a.numbers[k], err, err_len);
-    if (!rc) rc = cli_setup_build(&a.setup, setup, err, err_len) || cli_sim_build(&a.sim, o, err, err_len);
+    if (!rc) rc = cli_setup_from_options(&a.setup, setup, err, err_len) || cli_sim_build(&a.sim, o, err, err_len);
     if (!rc) {
         double v = WEB_DEFAULT_MAX_SAMPLES;
         char msg[256];
