@@ -91,6 +91,15 @@ static long share_long(long v)
     return v;
 }
 
+#ifdef JC_HAVE_MPI
+/* The largest of a value over the ranks (a failure on any rank is every rank's). */
+static long worst_long(long v)
+{
+    if (mpi_size() > 1) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD);
+    return v;
+}
+#endif
+
 /* ---- options ---- */
 
 int cli_shard_parse(const char *text, cli_Shard *s, char *err, size_t err_len)
@@ -503,7 +512,7 @@ static int run_ranks(taker *t, long hi, int writer)
 {
     const long block = (long)BLOCK_CASES_PER_THREAD * jc_study_threads(&t->j->def) * mpi_size();
     cli_CaseResult *r = malloc((size_t)block * sizeof *r);
-    int rc = (int)share_long(r ? EXIT_OK : EXIT_FAIL);
+    int rc = (int)worst_long(r ? EXIT_OK : EXIT_FAIL);
     if (rc != EXIT_OK) {
         cli_error("%s: out of memory", t->j->b->cmd);
         free(r);
@@ -512,7 +521,7 @@ static int run_ranks(taker *t, long hi, int writer)
     while (rc == EXIT_OK && t->next < hi) {
         if (share_long(cli_stop_requested()) != 0) break;
         const long first = t->next, n = hi - first < block ? hi - first : block;
-        if (compute_block(t->j, first, n, r) != 0) rc = EXIT_FAIL;
+        if (worst_long(compute_block(t->j, first, n, r) != 0)) rc = EXIT_FAIL; /* a slice missing: no row taken */
         if (writer && rc == EXIT_OK) {
             for (long i = 0; i < n; ++i) take_case(t, first + i, &r[i].outcome, r[i].row, r[i].row_len);
             if (block_done(t, hi) != 0) rc = EXIT_FAIL;
