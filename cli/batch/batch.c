@@ -208,11 +208,13 @@ void cli_batch_help(void)
 /* ---- the rows' file ---- */
 
 /* The job as it runs: the batch, its study with the job's threads, the
- * rows' header. */
+ * rows' header, and whether the rows' text is wanted (a file, or a
+ * consumer of rows: every rank knows it). */
 typedef struct {
     const cli_Batch *b;
     jc_StudyDef def;
     char header[HEADER_MAX];
+    int rows;
 } job;
 
 typedef struct {
@@ -412,7 +414,7 @@ static void take_case(taker *t, long index, const jc_CaseOutcome *o, const char 
     if (b->consume) b->consume(b->consume_ctx, index, o, row, row_len);
     if (o->kind == JC_CASE_INVALID && t->notes.invalid++ == 0) t->notes.first_invalid = index;
     t->notes.failed += o->kind == JC_CASE_FAILED;
-    if (t->w->f) fwrite(row, 1, (size_t)row_len, t->w->f);
+    if (t->w->f && row) fwrite(row, 1, (size_t)row_len, t->w->f);
     t->next = index + 1;
 }
 
@@ -457,7 +459,7 @@ static int run_here(taker *t, long hi)
 {
     if (cli_stop_requested()) return EXIT_OK;
     here_ctx h = {t, hi};
-    const jc_StudyCallbacks cb = {here_row, here_progress, &h, 1};
+    const jc_StudyCallbacks cb = {here_row, here_progress, &h, t->j->rows};
     char err[256];
     const int st = jc_study_run(&t->j->def, t->next, hi - t->next, &cb, err, sizeof err);
     if (t->write_failed) return EXIT_FAIL;
@@ -478,7 +480,7 @@ static int slice_row(void *ctx, const jc_StudyRow *row)
     cli_CaseResult *r = &c->r[row->index - c->first];
     r->outcome = *row->outcome;
     r->row_len = row->csv_len;
-    memcpy(r->row, row->csv, (size_t)row->csv_len + 1);
+    if (row->csv) memcpy(r->row, row->csv, (size_t)row->csv_len + 1);
     return 0;
 }
 
@@ -496,7 +498,7 @@ static int compute_block(const job *j, long first, long n, cli_CaseResult *r)
     }
     const long a = n * rank / size, z = n * (rank + 1) / size;
     slice_ctx c = {first + a, r + a};
-    const jc_StudyCallbacks cb = {slice_row, NULL, &c, 1};
+    const jc_StudyCallbacks cb = {slice_row, NULL, &c, j->rows};
     char err[256];
     const int st = jc_study_run(&j->def, first + a, z - a, &cb, err, sizeof err);
     if (st != JC_OK) cli_error("%s: %s", j->b->cmd, err);
@@ -523,7 +525,8 @@ static int run_ranks(taker *t, long hi, int writer)
         const long first = t->next, n = hi - first < block ? hi - first : block;
         if (worst_long(compute_block(t->j, first, n, r) != 0)) rc = EXIT_FAIL; /* a slice missing: no row taken */
         if (writer && rc == EXIT_OK) {
-            for (long i = 0; i < n; ++i) take_case(t, first + i, &r[i].outcome, r[i].row, r[i].row_len);
+            for (long i = 0; i < n; ++i)
+                take_case(t, first + i, &r[i].outcome, t->j->rows ? r[i].row : NULL, r[i].row_len);
             if (block_done(t, hi) != 0) rc = EXIT_FAIL;
         }
         t->next = first + n; /* the ranks that do not write keep count too */
@@ -536,7 +539,7 @@ static int run_ranks(taker *t, long hi, int writer)
 
 int cli_batch_run(const cli_Batch *b)
 {
-    job j = {b, *b->study, ""};
+    job j = {b, *b->study, "", b->output != NULL || b->consume_rows};
     j.def.threads = b->threads;
     char err[256];
     if (jc_study_check(&j.def, err, sizeof err) != JC_OK) {

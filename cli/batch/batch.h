@@ -99,9 +99,12 @@ struct cli_Batch_s {
     int resume;
     const char *output;         /* the rows' file, "-" for standard output; NULL: none */
     /* Every case in index order, on the process that writes (rank 0):
-     * summaries, maps. row: its CSV line, '\n' included. May be NULL. */
+     * summaries, maps. row: its CSV line, '\n' included, when there is an
+     * output or consume_rows; NULL otherwise (no row is written then). May
+     * be NULL. */
     void (*consume)(void *ctx, long index, const jc_CaseOutcome *o, const char *row, int row_len);
     void *consume_ctx;
+    int consume_rows;
 };
 
 /* The cases of this shard: [*lo, *hi). */

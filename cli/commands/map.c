@@ -97,7 +97,7 @@ static void consume(void *ctx, long index, const jc_CaseOutcome *o, const char *
     g->kind[index] = (unsigned char)o->kind;
     g->liftoff_cm[index] = o->kind == JC_CASE_LIFTOFF ? 100.0 * o->liftoff_x_m : NAN;
     g->done = index + 1;
-    if (g->rows) fwrite(row, 1, (size_t)row_len, g->rows);
+    if (g->rows && row) fwrite(row, 1, (size_t)row_len, g->rows);
 }
 
 /* ---- the axes ---- */
@@ -517,6 +517,7 @@ static int run(const cli_Batch *options, map_job *job, const jc_Setup *fixed, co
     if (st == EXIT_OK) {
         b.study = &study;
         b.consume = consume;
+        b.consume_rows = files->keep; /* STEM.csv */
         b.consume_ctx = &g;
         const double t0 = cli_now_s();
         st = cli_batch_run(&b);
