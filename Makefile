@@ -24,7 +24,8 @@ FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := options config simulate names batch track
 LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/test_signals.c tests/test_fuzz_findings.c tests/cli_run.h \
                 tests/test_safe_output.c tests/test_sim_json.c tests/sim/test_stream.c tests/batch/test_map.c tests/design/test_design.c tests/track \
-                tests/fit/test_fit_cli.c tests/fit/test_fit_stats.c tests/fit/make_track.c tests/fit/test_fit_api.c
+                tests/fit/test_fit_cli.c tests/fit/test_fit_stats.c tests/fit/make_track.c tests/fit/test_fit_api.c \
+                tests/test_study.c examples/mc_example.c
 
 .PHONY: all deps configure build run test asan test-asan bench install-check clean help
 .PHONY: test-valgrind fuzz lint lint-layers test-mpi install deps-fuzz deps-valgrind deps-lint deps-mpi deps-install
@@ -167,9 +168,9 @@ install: deps-install
 	@echo "Installed under $(DESTDIR)$(PREFIX): bin/jumpcyl, share/man/man1/jumpcyl.1,"
 	@echo "share/bash-completion/completions/jumpcyl, the library, headers, pkg-config and CMake files."
 
-# Installs into a scratch prefix, then builds examples/consumer (the roll and
-# the fit examples) against the installed CMake package and the pkg-config
-# file, and runs them.
+# Installs into a scratch prefix, then builds examples/consumer (the roll,
+# fit and Monte Carlo examples) against the installed CMake package and the
+# pkg-config file, and runs them.
 install-check: build
 	rm -rf $(BUILD)/install-check
 	cmake --install $(BUILD) --prefix $(CURDIR)/$(BUILD)/install-check/prefix
@@ -179,6 +180,7 @@ install-check: build
 	LD_LIBRARY_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib ./$(BUILD)/install-check/consumer/roll_example
 	LD_LIBRARY_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib ./$(BUILD)/install-check/consumer/fit_example \
 	  examples/tracker/incline.trk
+	LD_LIBRARY_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib ./$(BUILD)/install-check/consumer/mc_example
 	PKG_CONFIG_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib/pkgconfig \
 	  sh -c 'cc -std=c17 -Wall -Wextra -Wpedantic -Werror examples/roll_example.c $$(pkg-config --cflags --libs --static jumpcyl) -o $(BUILD)/install-check/roll_example_pc'
 	LD_LIBRARY_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib ./$(BUILD)/install-check/roll_example_pc
@@ -186,6 +188,9 @@ install-check: build
 	PKG_CONFIG_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib/pkgconfig \
 	  sh -c 'cc -std=c17 -Wall -Wextra -Wpedantic -Werror examples/fit_example.c $$(pkg-config --cflags --libs --static jumpcyl) -o $(BUILD)/install-check/fit_example_pc'
 	LD_LIBRARY_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib ./$(BUILD)/install-check/fit_example_pc examples/tracker/incline.trk
+	PKG_CONFIG_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib/pkgconfig \
+	  sh -c 'cc -std=c17 -Wall -Wextra -Wpedantic -Werror examples/mc_example.c $$(pkg-config --cflags --libs --static jumpcyl) -o $(BUILD)/install-check/mc_example_pc'
+	LD_LIBRARY_PATH=$(CURDIR)/$(BUILD)/install-check/prefix/lib ./$(BUILD)/install-check/mc_example_pc
 	@# make install itself, into a staging DESTDIR: the tool, its man page, bash completion.
 	$(MAKE) install DESTDIR=$(CURDIR)/$(BUILD)/install-check/destdir PREFIX=/usr/local
 	tests/test_install.sh $(CURDIR)/$(BUILD)/install-check/destdir /usr/local

@@ -65,12 +65,11 @@ typedef struct {
 } cli_SetupArgs;
 
 /* The single-valued options as values, each read once from its text: what
- * the cases of a batch job set over (cli_case_setup), no text read per case. */
-typedef struct {
-    unsigned char given[JC_PARAM_MAX];
-    double value[JC_PARAM_MAX]; /* SI; a name's index */
-    int parts_given;            /* --part bodies: --radius leaves their radii as given */
-} cli_SetupValues;
+ * the cases of a batch job set over (cli_case_setup), no text read per case.
+ * The library's jc_ParamValues (parts_given: --part bodies, whose radii
+ * --radius leaves as given). */
+#include <jumpcyl/study.h>
+typedef jc_ParamValues cli_SetupValues;
 
 /* If opt is a setup option's val, records it and returns 1; 0 otherwise;
  * -1 with a message on a repeated option or too many parts. */

@@ -7,8 +7,17 @@ set(JC_LIB_SOURCES
   src/status.c src/trigpoly.c src/scan.c src/body.c src/setup.c src/model.c
   src/paper_model.c src/rolling.c src/rolling_phase.c src/sliding.c src/flight.c src/flight_air.c src/impact.c src/mode.c
   src/simulate.c src/run.c src/record.c src/workspace.c src/ode.c src/dop853.c src/dop853_control.c
-  src/units.c src/param.c src/sample_columns.c)
+  src/units.c src/param.c src/param_values.c src/sample_columns.c)
 list(TRANSFORM JC_LIB_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
+
+# Studies (include/jumpcyl/study.h): grids, Monte Carlo samples (Random123's
+# Philox, src/random.c, which the tracks' fit and synthetic videos use too),
+# their statistics, the design search; on every core with OpenMP where the
+# compiler has it (the page's build has not: one thread).
+set(JC_STUDY_SOURCES
+  src/random.c src/study/number.c src/study/outcome.c src/study/case.c src/study/threads.c src/study/run.c
+  src/study/defaults.c src/study/stats.c src/study/design_scan.c src/study/design_solve.c src/study/design.c)
+list(TRANSFORM JC_STUDY_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 
 # Tracked videos (include/jumpcyl/track.h, docs/tracker.md): Tracker's files
 # read (.trk through libxml2, exported tables) or the caller's arrays, the
@@ -20,7 +29,7 @@ set(JC_TRACK_SOURCES
   src/track/data.c src/track/read.c src/track/trk.c src/track/table.c src/track/frame.c src/track/surface.c
   src/track/rim.c src/track/derive.c
   src/track/model_path.c src/track/start.c src/track/residuals.c src/track/fit_params.c src/track/fit.c
-  src/track/launch.c src/track/fit_video.c src/track/compare.c src/track/synthetic.c src/track/random.c)
+  src/track/launch.c src/track/fit_video.c src/track/compare.c src/track/synthetic.c)
 list(TRANSFORM JC_TRACK_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 
 # The tool's files that the web page compiles too, so that the page and the

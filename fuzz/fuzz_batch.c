@@ -51,7 +51,7 @@ static void check_vary(const char *text)
     cli_param_free(&p);
 }
 
-static void check_spread(const char *text, cli_ParamKind kind)
+static void check_spread(const char *text, jc_StudySpread kind)
 {
     const jc_Setup nominal = jc_paper_setup();
     cli_Param p;
@@ -61,7 +61,7 @@ static void check_spread(const char *text, cli_ParamKind kind)
         return;
     }
     FUZZ_CHECK(isfinite(p.a) && isfinite(p.b));
-    FUZZ_CHECK(kind == PARAM_NORMAL ? p.b >= 0 : p.a <= p.b);
+    FUZZ_CHECK(kind == JC_STUDY_NORMAL ? p.b >= 0 : p.a <= p.b);
 }
 
 static void check_shard(const char *text)
@@ -97,8 +97,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     text[size] = '\0';
     if (strlen(text) != size) return 0; /* an argument holds no NUL */
     check_vary(text);
-    check_spread(text, PARAM_NORMAL);
-    check_spread(text, PARAM_UNIFORM);
+    check_spread(text, JC_STUDY_NORMAL);
+    check_spread(text, JC_STUDY_UNIFORM);
     check_shard(text);
     int threads;
     char err[300] = "";

@@ -1,9 +1,9 @@
-/* The engine of batch jobs. Cases are computed in blocks: the threads of a
- * process share a block (OpenMP, dynamic schedule), the processes of an MPI
- * job each take a slice of it and rank 0 gathers the slices, and the block's
- * rows are then appended in case order. Each row is therefore written by
- * the same code at the same place whatever the number of threads,
- * processes or shards, and the file is byte for byte the same.
+/* The engine of batch jobs. The cases are the library's study
+ * (jc_study_run: blocks of cases on every thread, each block's rows in case
+ * order); in an MPI job the processes each take a slice of every block and
+ * rank 0 gathers the slices. The rows are appended in case order, each
+ * made by the same code whatever the number of threads, processes or
+ * shards, so the file is byte for byte the same.
  *
  * The rows go to FILE.part, flushed after every block and fsynced at least
  * every second, and FILE.part becomes FILE only when the job is complete:
@@ -21,17 +21,16 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 #ifdef JC_HAVE_MPI
 #include <mpi.h>
 #endif
 
-/* Cases per thread in a block: a block takes a few tens of milliseconds, so
- * a stop is honoured quickly and rows reach the file steadily. */
+/* Cases per thread in an MPI job's block (the library's blocks are as
+ * large): a block takes a few tens of milliseconds, so a stop is honoured
+ * quickly and rows reach the file steadily. */
 #define BLOCK_CASES_PER_THREAD 256
 #define FSYNC_PERIOD_S 1.0
+#define HEADER_MAX (2 * JC_STUDY_ROW_MAX)
 
 /* ---- processes (MPI) ---- */
 
@@ -91,6 +90,15 @@ static long share_long(long v)
 #endif
     return v;
 }
+
+#ifdef JC_HAVE_MPI
+/* The largest of a value over the ranks (a failure on any rank is every rank's). */
+static long worst_long(long v)
+{
+    if (mpi_size() > 1) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD);
+    return v;
+}
+#endif
 
 /* ---- options ---- */
 
@@ -199,6 +207,16 @@ void cli_batch_help(void)
 
 /* ---- the rows' file ---- */
 
+/* The job as it runs: the batch, its study with the job's threads, the
+ * rows' header, and whether the rows' text is wanted (a file, or a
+ * consumer of rows: every rank knows it). */
+typedef struct {
+    const cli_Batch *b;
+    jc_StudyDef def;
+    char header[HEADER_MAX];
+    int rows;
+} job;
+
 typedef struct {
     FILE *f;
     int to_stdout;   /* written in place: "-", or a device or FIFO (no FILE.part, no rename) */
@@ -209,21 +227,23 @@ typedef struct {
 
 /* Whether the row's inputs (the text between the index and the outcome)
  * are those the job gives that case. */
-static int row_matches(const cli_Batch *b, long index, const char *line, size_t len)
+static int row_matches(const job *j, long index, const char *line, size_t len)
 {
-    char inputs[CLI_ROW_MAX], why[256];
+    double values[JC_STUDY_PARAM_MAX];
+    char head[JC_STUDY_ROW_MAX], why[256];
     jc_Setup s;
-    b->make_case(b->ctx, index, inputs, sizeof inputs, &s, why, sizeof why);
-    char head[CLI_ROW_MAX + 32];
-    const int n = snprintf(head, sizeof head, "%ld%s%s,", index, *inputs ? "," : "", inputs);
-    return n > 0 && (size_t)n <= len && memcmp(head, line, (size_t)n) == 0;
+    jc_study_case(&j->def, index, values, &s, why, sizeof why);
+    const int n = jc_study_row_format(&j->def, index, values, NULL, head, sizeof head - 1);
+    head[n] = ',';
+    return (size_t)n + 1 <= len && memcmp(head, line, (size_t)n + 1) == 0;
 }
 
 /* Reads the rows FILE.part holds, checks that they are this job's, hands
  * them to the consumer and cuts off a last line left half written. The
  * number of complete rows, or -1 after a message. */
-static long resume_rows(const cli_Batch *b, FILE *f, const char *part, long lo, long hi)
+static long resume_rows(const job *j, FILE *f, const char *part, long lo, long hi)
 {
+    const cli_Batch *b = j->b;
     char *line = NULL;
     size_t cap = 0;
     long rows = 0, line_no = 0;
@@ -235,7 +255,7 @@ static long resume_rows(const cli_Batch *b, FILE *f, const char *part, long lo, 
         ++line_no;
         if (line[n - 1] != '\n') break; /* half written when the job stopped: rewritten below */
         if (want_header && line_no == 1) {
-            if (strcmp(line, b->header) != 0) {
+            if (strcmp(line, j->header) != 0) {
                 cli_error("%s: %s: its header is not this job's (other --vary, --sigma or --range options?); "
                           "remove it to start again",
                           b->cmd, part);
@@ -245,14 +265,14 @@ static long resume_rows(const cli_Batch *b, FILE *f, const char *part, long lo, 
         } else {
             cli_CaseResult r;
             const long index = lo + rows;
-            if (index >= hi || cli_case_from_row(line, (size_t)n - 1, b->input_columns, &r) != 0 ||
-                !row_matches(b, index, line, (size_t)n)) {
+            if (index >= hi || cli_case_from_row(line, (size_t)n - 1, j->def.param_count, &r) != 0 ||
+                !row_matches(j, index, line, (size_t)n)) {
                 cli_error("%s: %s: line %ld is not case %ld of this job; remove the file to start again", b->cmd,
                           part, line_no, index);
                 bad = 1;
                 break;
             }
-            if (b->consume) b->consume(b->consume_ctx, index, &r);
+            if (b->consume) b->consume(b->consume_ctx, index, &r.outcome, line, (int)n);
             ++rows;
         }
         good_end += (off_t)n;
@@ -269,8 +289,9 @@ static long resume_rows(const cli_Batch *b, FILE *f, const char *part, long lo, 
 
 /* Opens the rows' file; *done receives the rows already there (resume).
  * EXIT_OK or an exit status after a message. */
-static int rows_open(const cli_Batch *b, rows_file *w, long lo, long hi, long *done)
+static int rows_open(const job *j, rows_file *w, long lo, long hi, long *done)
 {
+    const cli_Batch *b = j->b;
     memset(w, 0, sizeof *w);
     *done = 0;
     struct stat target;
@@ -316,7 +337,7 @@ static int rows_open(const cli_Batch *b, rows_file *w, long lo, long hi, long *d
             return EXIT_FAIL;
         }
         if (exists) {
-            const long rows = resume_rows(b, w->f, w->part, lo, hi);
+            const long rows = resume_rows(j, w->f, w->part, lo, hi);
             if (rows < 0) {
                 fclose(w->f);
                 w->f = NULL;
@@ -327,17 +348,16 @@ static int rows_open(const cli_Batch *b, rows_file *w, long lo, long hi, long *d
                 fprintf(stderr, "%s: resuming after %ld finished cases in %s\n", b->cmd, rows, w->part);
         }
     }
-    if (b->shard.k == 1 && (w->to_stdout || ftello(w->f) == 0)) fputs(b->header, w->f);
+    if (b->shard.k == 1 && (w->to_stdout || ftello(w->f) == 0)) fputs(j->header, w->f);
     w->last_sync_s = cli_now_s();
     return EXIT_OK;
 }
 
-/* The block's rows, flushed; fsynced when the last sync is a second old
+/* The rows so far flushed; fsynced when the last sync is a second old
  * (always when final). 0, or -1 after a message. */
-static int rows_write(const cli_Batch *b, rows_file *w, const cli_CaseResult *r, long n, int final)
+static int rows_flush(const cli_Batch *b, rows_file *w, int final)
 {
     if (!w->f) return 0;
-    for (long i = 0; i < n; ++i) fwrite(r[i].row, 1, (size_t)r[i].row_len, w->f);
     int bad = fflush(w->f) != 0 || ferror(w->f);
     if (!bad && !w->to_stdout && (final || cli_now_s() - w->last_sync_s >= FSYNC_PERIOD_S)) {
         bad = fsync(fileno(w->f)) != 0;
@@ -371,33 +391,105 @@ static int rows_close(const cli_Batch *b, rows_file *w, int complete)
 
 /* ---- computing ---- */
 
-/* Cases [first, first + n) into r, on every thread of this process. */
-static void compute(const cli_Batch *b, long first, long n, cli_CaseResult *r, jc_Workspace **ws)
+/* The kinds of cases seen, for the closing note. */
+typedef struct {
+    long invalid, failed;
+    long first_invalid;
+} case_notes;
+
+/* What the writing process does with each case, in case order. */
+typedef struct {
+    const job *j;
+    rows_file *w;
+    case_notes notes;
+    cli_Progress progress;
+    long lo, done;  /* the shard's first case; rows there before (resume) */
+    long next;      /* the next case to take */
+    int write_failed;
+} taker;
+
+static void take_case(taker *t, long index, const jc_CaseOutcome *o, const char *row, int row_len)
 {
-#pragma omp parallel for schedule(dynamic, 4)
-    for (long i = 0; i < n; ++i) {
-        int t = 0;
-#ifdef _OPENMP
-        t = omp_get_thread_num();
-#endif
-        char inputs[CLI_ROW_MAX / 2], why[256] = "";
-        jc_Setup s;
-        const int ok = b->make_case(b->ctx, first + i, inputs, sizeof inputs, &s, why, sizeof why) == 0;
-        cli_case_run(first + i, inputs, ok ? &s : NULL, b->sim, ws[t], &r[i]);
-    }
+    const cli_Batch *b = t->j->b;
+    if (b->consume) b->consume(b->consume_ctx, index, o, row, row_len);
+    if (o->kind == JC_CASE_INVALID && t->notes.invalid++ == 0) t->notes.first_invalid = index;
+    t->notes.failed += o->kind == JC_CASE_FAILED;
+    if (t->w->f && row) fwrite(row, 1, (size_t)row_len, t->w->f);
+    t->next = index + 1;
 }
 
-/* Cases [first, first + n) of the block: this rank's slice computed here,
- * the others gathered from their ranks onto rank 0. */
-static void compute_block(const cli_Batch *b, long first, long n, cli_CaseResult *r, jc_Workspace **ws)
+/* After a block: its rows flushed, the progress line; 0, or -1 when the
+ * rows cannot be written. */
+static int block_done(taker *t, long hi)
 {
-    const int size = mpi_size();
-    if (size == 1) {
-        compute(b, first, n, r, ws);
-        return;
+    if (rows_flush(t->j->b, t->w, t->next == hi) != 0) {
+        t->write_failed = 1;
+        return -1;
     }
+    cli_progress_update(&t->progress, t->next - t->lo - t->done, hi - t->lo - t->done);
+    return 0;
+}
+
+typedef struct {
+    taker *t;
+    long hi;
+} here_ctx;
+
+static int here_row(void *ctx, const jc_StudyRow *row)
+{
+    const here_ctx *h = ctx;
+    take_case(h->t, row->index, row->outcome, row->csv, row->csv_len);
+    return 0;
+}
+
+/* The library's cancellation: a stop signal, or rows that cannot be written. */
+static int here_progress(void *ctx, long done, long count)
+{
+    (void)done;
+    (void)count;
+    const here_ctx *h = ctx;
+    if (block_done(h->t, h->hi) != 0) return 1;
+    return cli_stop_requested() != 0;
+}
+
+/* One process: the cases [t->next, hi) by one call of the library, the rows
+ * taken as each block ends. EXIT_OK (complete or stopped by a signal), or
+ * EXIT_FAIL after a message. */
+static int run_here(taker *t, long hi)
+{
+    if (cli_stop_requested()) return EXIT_OK;
+    here_ctx h = {t, hi};
+    const jc_StudyCallbacks cb = {here_row, here_progress, &h, t->j->rows};
+    char err[256];
+    const int st = jc_study_run(&t->j->def, t->next, hi - t->next, &cb, err, sizeof err);
+    if (t->write_failed) return EXIT_FAIL;
+    if (st == JC_OK || (st == JC_ESTOPPED && cli_stop_requested())) return EXIT_OK;
+    cli_error("%s: %s", t->j->b->cmd, err);
+    return EXIT_FAIL;
+}
+
 #ifdef JC_HAVE_MPI
-    const int rank = mpi_rank();
+typedef struct {
+    long first;
+    cli_CaseResult *r;
+} slice_ctx;
+
+static int slice_row(void *ctx, const jc_StudyRow *row)
+{
+    const slice_ctx *c = ctx;
+    cli_CaseResult *r = &c->r[row->index - c->first];
+    r->outcome = *row->outcome;
+    r->row_len = row->csv_len;
+    if (row->csv) memcpy(r->row, row->csv, (size_t)row->csv_len + 1);
+    return 0;
+}
+
+/* Cases [first, first + n) of the block: this rank's slice computed here
+ * (the library, every thread), the others gathered from their ranks onto
+ * rank 0. 0, or -1 after a message. */
+static int compute_block(const job *j, long first, long n, cli_CaseResult *r)
+{
+    const int size = mpi_size(), rank = mpi_rank();
     int counts[256], displs[256];
     for (int p = 0; p < size && p < 256; ++p) {
         const long a = n * p / size, z = n * (p + 1) / size;
@@ -405,105 +497,101 @@ static void compute_block(const cli_Batch *b, long first, long n, cli_CaseResult
         displs[p] = (int)(a * (long)sizeof *r);
     }
     const long a = n * rank / size, z = n * (rank + 1) / size;
-    compute(b, first + a, z - a, r + a, ws);
+    slice_ctx c = {first + a, r + a};
+    const jc_StudyCallbacks cb = {slice_row, NULL, &c, j->rows};
+    char err[256];
+    const int st = jc_study_run(&j->def, first + a, z - a, &cb, err, sizeof err);
+    if (st != JC_OK) cli_error("%s: %s", j->b->cmd, err);
     MPI_Gatherv(rank == 0 ? MPI_IN_PLACE : (void *)(r + a), counts[rank], MPI_BYTE, r, counts, displs, MPI_BYTE, 0,
                 MPI_COMM_WORLD);
-#endif
+    return st == JC_OK ? 0 : -1;
 }
 
-static int thread_count(const cli_Batch *b)
+/* Several processes: the cases [t->next, hi) block by block, each shared
+ * by the ranks; rank 0 decides whether to go on (a stop signal reaches it
+ * first) and takes the rows. EXIT_OK (complete or stopped), or EXIT_FAIL. */
+static int run_ranks(taker *t, long hi, int writer)
 {
-#ifdef _OPENMP
-    if (b->threads > 0) omp_set_num_threads(b->threads);
-    return omp_get_max_threads();
-#else
-    (void)b;
-    return 1;
-#endif
-}
-
-/* The kinds of cases seen, for the closing note. */
-typedef struct {
-    long invalid, failed;
-    long first_invalid;
-} case_notes;
-
-static void note_cases(case_notes *c, long first, const cli_CaseResult *r, long n)
-{
-    for (long i = 0; i < n; ++i) {
-        if (r[i].kind == CASE_INVALID && c->invalid++ == 0) c->first_invalid = first + i;
-        c->failed += r[i].kind == CASE_FAILED;
+    const long block = (long)BLOCK_CASES_PER_THREAD * jc_study_threads(&t->j->def) * mpi_size();
+    cli_CaseResult *r = malloc((size_t)block * sizeof *r);
+    int rc = (int)worst_long(r ? EXIT_OK : EXIT_FAIL);
+    if (rc != EXIT_OK) {
+        cli_error("%s: out of memory", t->j->b->cmd);
+        free(r);
+        return EXIT_FAIL;
     }
+    while (rc == EXIT_OK && t->next < hi) {
+        if (share_long(cli_stop_requested()) != 0) break;
+        const long first = t->next, n = hi - first < block ? hi - first : block;
+        if (worst_long(compute_block(t->j, first, n, r) != 0)) rc = EXIT_FAIL; /* a slice missing: no row taken */
+        if (writer && rc == EXIT_OK) {
+            for (long i = 0; i < n; ++i)
+                take_case(t, first + i, &r[i].outcome, t->j->rows ? r[i].row : NULL, r[i].row_len);
+            if (block_done(t, hi) != 0) rc = EXIT_FAIL;
+        }
+        t->next = first + n; /* the ranks that do not write keep count too */
+        rc = (int)share_long(rc);
+    }
+    free(r);
+    return rc;
 }
+#endif
 
 int cli_batch_run(const cli_Batch *b)
 {
+    job j = {b, *b->study, "", b->output != NULL || b->consume_rows};
+    j.def.threads = b->threads;
+    char err[256];
+    if (jc_study_check(&j.def, err, sizeof err) != JC_OK) {
+        cli_error("%s: %s", b->cmd, err);
+        return EXIT_FAIL;
+    }
+    jc_study_header(&j.def, j.header, sizeof j.header);
     long lo, hi, done = 0;
-    cli_shard_range(&b->shard, b->total, &lo, &hi);
+    cli_shard_range(&b->shard, jc_study_case_count(&j.def), &lo, &hi);
     const int writer = cli_batch_is_writer(), size = mpi_size();
     if (size > 256) {
         if (writer) cli_error("%s: at most 256 MPI processes (got %d)", b->cmd, size);
         return EXIT_USAGE;
     }
     rows_file w;
-    int rc = writer ? rows_open(b, &w, lo, hi, &done) : EXIT_OK;
+    int rc = writer ? rows_open(&j, &w, lo, hi, &done) : EXIT_OK;
     if (!writer) memset(&w, 0, sizeof w);
     rc = (int)share_long(rc);
     if (rc != EXIT_OK) return rc;
     done = share_long(done);
 
-    const int threads = thread_count(b);
-    const long block = (long)BLOCK_CASES_PER_THREAD * threads * size;
-    cli_CaseResult *r = malloc((size_t)block * sizeof *r);
-    jc_Workspace **ws = calloc((size_t)threads, sizeof *ws);
-    int ok = r && ws;
-    for (int t = 0; ok && t < threads; ++t) ok = (ws[t] = jc_workspace_new()) != NULL;
-    if (!ok) {
-        cli_error("%s: out of memory", b->cmd);
-        rc = EXIT_FAIL;
-    }
-    cli_Progress progress;
+    taker t;
+    memset(&t, 0, sizeof t);
+    t.j = &j;
+    t.w = &w;
+    t.notes.first_invalid = -1;
+    t.lo = lo;
+    t.done = done;
+    t.next = lo + done;
     char label[64];
     snprintf(label, sizeof label, "%s: cases", b->cmd);
-    cli_progress_begin(&progress, label);
-    if (b->quiet || !writer) progress.enabled = 0;
-    case_notes notes = {0, 0, -1};
-    long next = lo + done;
-    while (rc == EXIT_OK && next < hi) {
-        /* Rank 0 decides whether to go on (a stop signal reaches it first). */
-        if (share_long(cli_stop_requested()) != 0) {
-            rc = -1;
-            break;
-        }
-        const long n = hi - next < block ? hi - next : block;
-        compute_block(b, next, n, r, ws);
-        if (writer) {
-            for (long i = 0; i < n; ++i)
-                if (b->consume) b->consume(b->consume_ctx, next + i, &r[i]);
-            note_cases(&notes, next, r, n);
-            if (rows_write(b, &w, r, n, next + n == hi) != 0) rc = EXIT_FAIL;
-        }
-        rc = (int)share_long(rc);
-        next += n;
-        cli_progress_update(&progress, next - lo - done, hi - lo - done);
-    }
-    cli_progress_end(&progress);
-    if (rc == -1) rc = EXIT_OK; /* stopped: the caller's status comes from the signal */
+    cli_progress_begin(&t.progress, label);
+    if (b->quiet || !writer) t.progress.enabled = 0;
+#ifdef JC_HAVE_MPI
+    if (size > 1) rc = run_ranks(&t, hi, writer);
+    else
+#endif
+        rc = run_here(&t, hi);
+    cli_progress_end(&t.progress);
+    const long next = t.next;
     const int complete = rc == EXIT_OK && next >= hi;
     if (writer && rows_close(b, &w, complete) != 0 && rc == EXIT_OK) rc = EXIT_FAIL;
     if (writer && !complete && w.part[0] && cli_stop_requested())
         cli_error("%s: stopped after %ld of %ld cases; they are kept in %s: run the same command with --resume to "
                   "continue",
                   b->cmd, next - lo, hi - lo, w.part);
-    if (writer && notes.invalid > 0)
-        cli_error("%s: %ld case(s) are not valid setups (first: case %ld)%s", b->cmd, notes.invalid,
-                  notes.first_invalid, b->output ? "; their rows say invalid_setup" : "");
-    if (writer && notes.failed > 0)
-        cli_error("%s: %ld case(s) failed numerically%s", b->cmd, notes.failed,
+    if (writer && t.notes.invalid > 0)
+        cli_error("%s: %ld case(s) are not valid setups (first: case %ld)%s", b->cmd, t.notes.invalid,
+                  t.notes.first_invalid, b->output ? "; their rows say invalid_setup" : "");
+    if (writer && t.notes.failed > 0)
+        cli_error("%s: %ld case(s) failed numerically%s", b->cmd, t.notes.failed,
                   b->output ? "; their rows say failed" : "");
-    for (int t = 0; ws && t < threads; ++t) jc_workspace_free(ws[t]);
-    free(ws);
-    free(r);
     if (rc == EXIT_OK && !complete) return writer ? cli_stop_status() : EXIT_FAIL;
     return rc;
 }

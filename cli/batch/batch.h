@@ -1,37 +1,39 @@
 /* Many runs of the full model: sweeps over a grid of setup values, Monte
- * Carlo samples of uncertain inputs, regime maps (docs/batch.md). Every
- * case is one run of the library on a setup of its own; the cases of a job
- * are numbered, computed on all cores (OpenMP), on several processes (MPI)
- * or in disjoint shards (Slurm job arrays), and written in case order, so
- * that the output never depends on how the work was spread. */
+ * Carlo samples of uncertain inputs, regime maps (docs/batch.md). The cases
+ * are the library's studies (include/jumpcyl/study.h: typed parameters,
+ * each case one run computed on every core); here the options' text
+ * becomes those parameters, and the cases of a job are shared by several
+ * processes (MPI) or disjoint shards (Slurm job arrays) and written in case
+ * order, so that the output never depends on how the work was spread. */
 #ifndef JUMPCYL_BATCH_H
 #define JUMPCYL_BATCH_H
 
 #include "cli.h"
 
+#include <jumpcyl/study.h>
 #include <stdint.h>
 
 /* ---- params.c: the varied or sampled setup options ---- */
 
-#define CLI_PARAM_MAX 16          /* varied or sampled options per job */
-#define CLI_PARAM_VALUES_MAX 1000000L
+#define CLI_PARAM_MAX JC_STUDY_PARAM_MAX /* varied or sampled options per job */
+#define CLI_PARAM_VALUES_MAX JC_STUDY_VALUES_MAX
 #define CLI_TOKEN_MAX 48
 
-typedef enum { PARAM_LIST, PARAM_NORMAL, PARAM_UNIFORM, PARAM_FIXED } cli_ParamKind;
-
+/* A varied or sampled option as the command line gave it: the library's
+ * typed parameter (cli_param_study) and what messages and tables show. */
 typedef struct {
     int id;                     /* the parameter (jc_param_info) */
     int is_name;                /* impact-law: values are names, not numbers */
     cli_Quantity q;
-    char column[48];            /* CSV column: "rod_offset_m", "incline_deg", "impact_law" */
+    char column[48];            /* CSV column: "rod_offset_m", "incline_deg", "impact_law" (jc_study_column) */
     double column_scale;        /* SI value times this is the column's value (1, or 180/pi for degrees) */
     char unit[16];              /* the column's unit as in its name ("m", "deg", "radps"; "" for numbers and names) */
-    cli_ParamKind kind;
-    /* PARAM_LIST: the values, SI (numbers) or indices into names (impact-law) */
+    jc_StudySpread kind;
+    /* JC_STUDY_VALUES: the values, SI (numbers) or indices into names (impact-law) */
     long count;
     double *values;
     const char *text;           /* the user's text, for messages */
-    /* PARAM_NORMAL: nominal, sigma; PARAM_UNIFORM: lo, hi (SI) */
+    /* JC_STUDY_NORMAL: nominal, sigma; JC_STUDY_UNIFORM: lo, hi (SI) */
     double a, b;
 } cli_Param;
 
@@ -42,9 +44,9 @@ void cli_param_describe(int id, cli_Param *p);
  * (base_args: the job's other setup options), so that a bad one is refused
  * before any work. 0, or -1 with a one-line message in err. */
 int cli_param_parse_vary(const char *text, const cli_SetupArgs *base_args, cli_Param *p, char *err, size_t err_len);
-/* "NAME=SIGMA" (kind PARAM_NORMAL) or "NAME=LO:HI" (PARAM_UNIFORM); the
- * nominal value of a normal comes from the setup. 0, or -1 with a message. */
-int cli_param_parse_spread(const char *text, cli_ParamKind kind, const jc_Setup *nominal, cli_Param *p, char *err,
+/* "NAME=SIGMA" (kind JC_STUDY_NORMAL) or "NAME=LO:HI" (JC_STUDY_UNIFORM);
+ * the nominal value of a normal comes from the setup. 0, or -1 with a message. */
+int cli_param_parse_spread(const char *text, jc_StudySpread kind, const jc_Setup *nominal, cli_Param *p, char *err,
                            size_t err_len);
 /* Frees a parameter's list of values. */
 void cli_param_free(cli_Param *p);
@@ -53,60 +55,30 @@ void cli_param_free(cli_Param *p);
 double cli_param_nominal(int id, const jc_Setup *s);
 /* The value as its CSV column: "%.12g" of the value in the column's unit, or the name. */
 void cli_param_column_value(const cli_Param *p, double si_or_index, char *out, size_t len);
-/* The rows' header: "case,<the parameters' columns>,<outcome>\n"; NULL when
- * out of memory (free it). */
-char *cli_batch_header(const cli_Param *params, int n);
-/* The values' CSV columns, comma-separated. */
-void cli_param_columns(const cli_Param *params, int n, const double *values, char *out, size_t len);
+/* The library's parameter (its values point into p's). */
+jc_StudyParam cli_param_study(const cli_Param *p);
 /* The setup of one case: base (the job's setup before its single-valued
  * options) with the job's options (read once: cli_setup_values) and the
- * case's values over them, set as values (cli_setup_apply_values). */
+ * case's values over them, set as values (cli_setup_apply_values: the
+ * messages name the options). */
 int cli_case_setup(const jc_Setup *base, const cli_SetupValues *job, const cli_Param *params, int n,
                    const double *values, jc_Setup *out, char *err, size_t err_len);
+/* The study of a job: its kind, base setup, single values, parameters and
+ * simulation options (threads and, for a Monte Carlo, samples and seed are
+ * the caller's to set). */
+void cli_study_init(jc_StudyDef *def, jc_StudyKind kind, const jc_Setup *base, const cli_SetupValues *values,
+                    const cli_Param *params, int n, const jc_SimOptions *sim);
 
-/* ---- number.c: numbers in rows ---- */
-
-#define CLI_NUMBER_MAX 32
-/* printf("%.*g", precision, v), the same bytes, without printf (exact
- * digits in integers); out holds CLI_NUMBER_MAX chars. Returns the length. */
-int cli_format_g(double v, int precision, char *out);
-
-/* ---- random.c: counter-based random numbers (Random123's Philox) ---- */
-
-/* The d-th draw of sample i under seed, the same wherever and whenever it
- * is computed: a uniform in (0, 1) and a standard normal. */
-double cli_random_uniform(uint64_t seed, uint64_t sample, uint32_t draw);
-double cli_random_normal(uint64_t seed, uint64_t sample, uint32_t draw);
-
-/* ---- outcome.c: one case, run and written as a CSV row ---- */
-
-#define CLI_ROW_MAX 1536
-
-typedef enum {
-    CASE_LIFTOFF,          /* lifts off on the ramp */
-    CASE_NO_LIFTOFF,       /* reaches the ramp's end, its top, rest or a limit without a lift-off */
-    CASE_SLIDES_AT_START,  /* cannot roll: it slips at the very start */
-    CASE_INVALID,          /* the combination of values is not a valid setup */
-    CASE_FAILED            /* the run failed (a numerical failure, reported in the row) */
-} cli_CaseKind;
+/* ---- outcome.c: a case's row, computed or read back ---- */
 
 typedef struct {
-    cli_CaseKind kind;
-    double liftoff_x_m;    /* first lift-off, NaN if none */
-    double largest_hop_m;  /* 0 if none */
+    jc_CaseOutcome outcome; /* read back from a row: kind, liftoff_x_m and largest_hop_m only */
     int row_len;
-    char row[CLI_ROW_MAX]; /* the whole CSV line, '\n' included */
+    char row[JC_STUDY_ROW_MAX]; /* the whole CSV line, '\n' included */
 } cli_CaseResult;
 
-/* The outcome columns, after the case index and the input columns. */
-void cli_outcome_header(FILE *out);
-#define CLI_OUTCOME_COLUMNS 14
-/* Runs the case and writes its row: "index,inputs,outcome\n". setup may be
- * NULL: an invalid case (its row says so). */
-void cli_case_run(long index, const char *inputs, const jc_Setup *setup, const jc_SimOptions *sim,
-                  jc_Workspace *ws, cli_CaseResult *r);
-/* The result of a row read back from a file (for --resume): 0, or -1 if the
- * line is not a row of input_columns inputs. */
+/* The result of a row read back from a file (for --resume and mc
+ * --summarize): 0, or -1 if the line is not a row of input_columns inputs. */
 int cli_case_from_row(const char *line, size_t len, int input_columns, cli_CaseResult *r);
 
 /* ---- batch.c: the job ---- */
@@ -120,26 +92,19 @@ int cli_shard_parse(const char *text, cli_Shard *s, char *err, size_t err_len);
 typedef struct cli_Batch_s cli_Batch;
 struct cli_Batch_s {
     const char *cmd;            /* "sweep", "mc", "map": for messages */
-    long total;                 /* cases in the whole job (every shard) */
+    const jc_StudyDef *study;   /* the cases (its threads are the job's, below) */
     cli_Shard shard;
     int threads;                /* 0: OpenMP's default (every core) */
     int quiet;                  /* no progress line */
     int resume;
     const char *output;         /* the rows' file, "-" for standard output; NULL: none */
-    int input_columns;
-    /* The header of the rows' file (first line, shard 1 only), '\n' included. */
-    const char *header;
-    const jc_SimOptions *sim;
-    /* Case i: its input columns (comma-separated, no leading comma) and its
-     * setup; returns 0, or -1 with why set for a combination that is not a
-     * valid setup. Called from several threads at once. */
-    int (*make_case)(const void *ctx, long index, char *inputs, size_t inputs_len, jc_Setup *setup, char *why,
-                     size_t why_len);
-    const void *ctx;
     /* Every case in index order, on the process that writes (rank 0):
-     * summaries, maps. May be NULL. */
-    void (*consume)(void *ctx, long index, const cli_CaseResult *r);
+     * summaries, maps. row: its CSV line, '\n' included, when there is an
+     * output or consume_rows; NULL otherwise (no row is written then). May
+     * be NULL. */
+    void (*consume)(void *ctx, long index, const jc_CaseOutcome *o, const char *row, int row_len);
     void *consume_ctx;
+    int consume_rows;
 };
 
 /* The cases of this shard: [*lo, *hi). */
@@ -189,32 +154,6 @@ int cli_batch_command_parse(int argc, char **argv, const cli_Command *cmd, void 
 /* Their help lines. */
 void cli_batch_help(void);
 
-/* ---- stats.c: the distribution of an outcome ---- */
-
-typedef struct {
-    double lo_m, hi_m;  /* extent of the samples in it */
-    long count;
-    double mean_m;
-} cli_Region;
-
-#define CLI_REGION_MAX 16
-
-typedef struct {
-    long n;                    /* samples with a value */
-    long none;                 /* samples without one (no lift-off on the ramp) */
-    long invalid;              /* invalid or failed cases */
-    double mean, sd;
-    double p2_5, p50, p97_5;
-    int region_count;          /* separate clusters of values (gaps wider than the gap given) */
-    cli_Region regions[CLI_REGION_MAX];
-    int regions_truncated;
-} cli_Stats;
-
-/* Sorts v[0..n) and summarises it; gap_m separates regions. */
-void cli_stats_compute(double *v, long n, long none, long invalid, double gap_m, cli_Stats *out);
-/* The p-quantile of sorted values (linear between order statistics). */
-double cli_quantile(const double *sorted, long n, double p);
-
 /* ---- mc_job.c: Monte Carlo samples of uncertain inputs ---- */
 
 typedef struct {
@@ -227,42 +166,24 @@ typedef struct {
     uint64_t seed;
 } cli_McJob;
 
-/* Sample draws tried before a sample is given up as an invalid setup (a
- * normal spread can reach a negative mass): a truncation of the spread. */
-#define CLI_MC_ATTEMPTS 64
 /* The job for the options sa: the spreads given (--sigma, --range texts),
- * then the defaults (the paper's stated tolerances, and ranges for the
- * friction and restitution it did not measure) for every option that is
- * neither given a spread nor set on the command line, unless no_defaults.
- * EXIT_OK, or EXIT_USAGE after a message. */
+ * then the library's defaults (jc_study_default_spreads: the paper's stated
+ * tolerances, and ranges for the friction and restitution it did not
+ * measure) for every option that is neither given a spread nor set on the
+ * command line, unless no_defaults. EXIT_OK, or EXIT_USAGE after a message. */
 int cli_mc_job_init(cli_McJob *job, const char *cmd, const cli_SetupArgs *sa, const char *const *sigma, int n_sigma,
                     const char *const *range, int n_range, int no_defaults, uint64_t seed);
-/* The batch's make_case for the job's samples. */
-int cli_mc_make_case(const void *ctx, long index, char *inputs, size_t len, jc_Setup *setup, char *why,
-                     size_t why_len);
-
-/* The outcomes of the samples, gathered by the batch's consume. */
-typedef struct {
-    double *liftoff_x_m;  /* first lift-offs on the ramp */
-    long liftoffs;
-    double *hop_m;        /* largest hops of the valid samples (0 without a hop) */
-    long valid;
-    long none, slides, invalid;
-    long cap;
-    int out_of_memory;
-} cli_McTally;
-int cli_mc_tally_init(cli_McTally *t, long samples);
-void cli_mc_tally_free(cli_McTally *t);
-void cli_mc_consume(void *ctx, long index, const cli_CaseResult *r);
-
-/* The batch's fields for the job's samples, gathered into tally. */
-void cli_mc_batch(cli_Batch *b, const cli_McJob *job, cli_McTally *tally, long samples, const jc_SimOptions *sim);
+/* The study of the job's samples. */
+void cli_mc_study(jc_StudyDef *def, const cli_McJob *job, long samples, const jc_SimOptions *sim);
+/* A batch's consume: the case into the jc_Tally ctx. */
+void cli_mc_consume(void *ctx, long index, const jc_CaseOutcome *o, const char *row, int row_len);
 /* The first lift-off's distribution for the options sa on an incline
  * (degrees), with the default spreads, computed on every core: for
- * `paper` and its figure. tally (may be NULL) receives the counts only.
- * EXIT_OK, an exit status after a message, or the stop status. */
+ * `paper` and its figure. counts (may be NULL) receives the tally's counts
+ * (its arrays NULL). EXIT_OK, an exit status after a message, or the stop
+ * status. */
 int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double incline_deg, long samples, uint64_t seed,
-                         cli_Stats *out, cli_McTally *tally);
+                         jc_Stats *out, jc_Tally *counts);
 /* Samples per incline of `paper` and `plot --what paper-uncertainty`. */
 #define CLI_PAPER_MC_SAMPLES 2000
 #define CLI_PAPER_MC_SEED 1

@@ -1,7 +1,8 @@
 /* The setup parameters a job varies (--vary) or samples (--sigma, --range),
- * by the names of the library's table (jc_param_find). A case's values are
- * set as values (jc_param_set) over the job's own options, read once, in the
- * order the command line's are (cli_setup_apply_values): a case of a sweep is
+ * by the names of the library's table (jc_param_find). They become the
+ * library's typed study parameters (cli_param_study): a case's values are
+ * set as values over the job's own options, read once, in the order the
+ * command line's are (jc_param_values_apply), so a case of a sweep is
  * exactly the run that `jumpcyl simulate` with those options makes, and no
  * text is read per case. */
 #include "batch.h"
@@ -11,34 +12,22 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A parameter's column holds SI values, angles in degrees ("incline_deg"). */
-static const char *column_unit(const jc_ParamInfo *in)
-{
-    return in->quantity == JC_Q_ANGLE ? "deg" : in->si_unit;
-}
-
-/* The unit as a name's suffix: "m/s2" -> "mps2", "N m s2" -> "Nms2". */
-static void unit_suffix(const char *unit, char *out, size_t len)
-{
-    size_t n = 0;
-    for (; *unit && n + 1 < len; ++unit) {
-        if (*unit == ' ' || *unit == '^') continue;
-        out[n++] = *unit == '/' ? 'p' : *unit;
-    }
-    out[n] = '\0';
-}
-
 void cli_param_describe(int id, cli_Param *p)
 {
     const jc_ParamInfo *in = jc_param_info(id);
+    jc_StudyColumn c;
+    jc_study_column(id, &c);
     p->id = id;
     p->q = in->quantity;
     p->is_name = in->quantity == JC_Q_NAME;
-    unit_suffix(p->is_name ? "" : column_unit(in), p->unit, sizeof p->unit);
-    snprintf(p->column, sizeof p->column, "%s%s%s", in->name, *p->unit ? "_" : "", p->unit);
-    for (char *c = p->column; *c; ++c)
-        if (*c == '-') *c = '_';
-    p->column_scale = in->quantity == JC_Q_ANGLE ? 180.0 / CLI_PI : 1.0;
+    snprintf(p->column, sizeof p->column, "%s", c.name);
+    snprintf(p->unit, sizeof p->unit, "%s", c.unit);
+    p->column_scale = c.per_si;
+}
+
+jc_StudyParam cli_param_study(const cli_Param *p)
+{
+    return (jc_StudyParam){p->id, p->kind, p->values, p->count, p->a, p->b};
 }
 
 /* "radius, disc-mass, ...": the names of the table's parameters. */
@@ -80,31 +69,8 @@ static int param_begin(const char *text, size_t name_len, const char *flag, cli_
 
 void cli_param_column_value(const cli_Param *p, double v, char *out, size_t len)
 {
-    if (p->is_name) {
-        jc_param_format(p->id, v, out, len);
-        return;
-    }
-    char number[CLI_NUMBER_MAX];
-    size_t n = (size_t)cli_format_g(v * p->column_scale, 12, number); /* "%.12g", without printf */
-    if (len == 0) return;
-    if (n >= len) n = len - 1;
-    memcpy(out, number, n);
-    out[n] = '\0';
-}
-
-void cli_param_columns(const cli_Param *params, int n, const double *values, char *out, size_t len)
-{
-    size_t used = 0;
-    out[0] = '\0';
-    for (int j = 0; j < n; ++j) {
-        char v[CLI_TOKEN_MAX];
-        cli_param_column_value(&params[j], values[j], v, sizeof v);
-        const size_t w = strlen(v) + (j > 0);
-        if (used + w + 1 > len) break; /* no room: the row is cut (CLI_ROW_MAX is far above) */
-        if (j) out[used] = ',';
-        memcpy(out + used + (j > 0), v, w - (j > 0) + 1);
-        used += w;
-    }
+    if (p->is_name) jc_param_format(p->id, v, out, len);
+    else snprintf(out, len, "%.12g", v * p->column_scale);
 }
 
 void cli_param_free(cli_Param *p)
@@ -129,6 +95,18 @@ int cli_case_setup(const jc_Setup *base, const cli_SetupValues *job, const cli_P
     }
     *out = *base;
     return cli_setup_apply_values(&v, out, err, err_len);
+}
+
+void cli_study_init(jc_StudyDef *def, jc_StudyKind kind, const jc_Setup *base, const cli_SetupValues *values,
+                    const cli_Param *params, int n, const jc_SimOptions *sim)
+{
+    memset(def, 0, sizeof *def);
+    def->kind = kind;
+    def->base = *base;
+    def->fixed = *values;
+    def->param_count = n < CLI_PARAM_MAX ? n : CLI_PARAM_MAX;
+    for (int j = 0; j < def->param_count; ++j) def->params[j] = cli_param_study(&params[j]);
+    def->sim = *sim;
 }
 
 /* One value of a list: a number with units, or one of the parameter's names. */
@@ -224,7 +202,7 @@ int cli_param_parse_vary(const char *text, const cli_SetupArgs *base_args, cli_P
 {
     const char *eq = strchr(text, '=');
     if (param_begin(text, eq ? (size_t)(eq - text) : 0, "--vary", p, err, err_len)) return -1;
-    p->kind = PARAM_LIST;
+    p->kind = JC_STUDY_VALUES;
     if (!eq[1]) {
         snprintf(err, err_len, "--vary '%s': no values (give START:STOP:STEP or V1,V2,...)", text);
         return -1;
@@ -262,10 +240,10 @@ int cli_param_parse_vary(const char *text, const cli_SetupArgs *base_args, cli_P
     return 0;
 }
 
-int cli_param_parse_spread(const char *text, cli_ParamKind kind, const jc_Setup *nominal, cli_Param *p, char *err,
+int cli_param_parse_spread(const char *text, jc_StudySpread kind, const jc_Setup *nominal, cli_Param *p, char *err,
                            size_t err_len)
 {
-    const char *flag = kind == PARAM_NORMAL ? "--sigma" : "--range";
+    const char *flag = kind == JC_STUDY_NORMAL ? "--sigma" : "--range";
     const char *eq = strchr(text, '=');
     if (param_begin(text, eq ? (size_t)(eq - text) : 0, flag, p, err, err_len)) return -1;
     p->kind = kind;
@@ -279,7 +257,7 @@ int cli_param_parse_spread(const char *text, cli_ParamKind kind, const jc_Setup 
         snprintf(err, err_len, "%s '%s': the setup's body has no such part (use a disc+rod body)", flag, text);
         return -1;
     }
-    if (kind == PARAM_NORMAL) {
+    if (kind == JC_STUDY_NORMAL) {
         if (parse_value(p, flag, eq + 1, &p->b, err, err_len)) return -1;
         if (!(p->b >= 0)) {
             snprintf(err, err_len, "%s '%s': a standard deviation is >= 0", flag, text);
@@ -300,22 +278,4 @@ int cli_param_parse_spread(const char *text, cli_ParamKind kind, const jc_Setup 
         return -1;
     }
     return 0;
-}
-
-char *cli_batch_header(const cli_Param *params, int n)
-{
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *m = open_memstream(&buf, &len);
-    if (!m) return NULL;
-    fputs("case", m);
-    for (int j = 0; j < n; ++j) fprintf(m, ",%s", params[j].column);
-    fputc(',', m);
-    cli_outcome_header(m);
-    fputc('\n', m);
-    if (fclose(m) != 0) {
-        free(buf);
-        return NULL;
-    }
-    return buf;
 }

@@ -67,7 +67,7 @@ static const struct option own[] = {
     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
-/* The free option as a parameter of cli_case_setup; EXIT_OK or EXIT_USAGE. */
+/* The free option (its id, column and unit); EXIT_OK or EXIT_USAGE. */
 static int free_param(const char *name, const cli_SetupArgs *sa, cli_Param *p)
 {
     static const char *const allowed[] = {"rod-offset", "rod-mass", "theta0", "incline", "radius"};
@@ -80,7 +80,6 @@ static int free_param(const char *name, const cli_SetupArgs *sa, cli_Param *p)
     }
     memset(p, 0, sizeof *p);
     cli_param_describe(jc_param_find(name), p); /* column and unit: SI, angles in degrees */
-    p->kind = PARAM_FIXED;
     if (sa->value[p->id]) {
         cli_error("design: --%s and --free %s both given; give one (--range LO:HI bounds the search)", name, name);
         return EXIT_USAGE;
@@ -186,10 +185,10 @@ static int parse_points(const char *text, long *out)
     char *end;
     errno = 0;
     const long n = text ? strtol(text, &end, 10) : CLI_DESIGN_POINTS_DEFAULT;
-    if (text && (end == text || *end || errno || text[0] == '+' || n < CLI_DESIGN_POINTS_MIN ||
-                 n > CLI_DESIGN_POINTS_MAX)) {
+    if (text && (end == text || *end || errno || text[0] == '+' || n < JC_DESIGN_POINTS_MIN ||
+                 n > JC_DESIGN_POINTS_MAX)) {
         cli_error("design: --points '%s' is not valid (allowed: a whole number from %ld to %ld)", text,
-                  CLI_DESIGN_POINTS_MIN, CLI_DESIGN_POINTS_MAX);
+                  JC_DESIGN_POINTS_MIN, JC_DESIGN_POINTS_MAX);
         return EXIT_USAGE;
     }
     *out = n;
@@ -274,7 +273,7 @@ int cmd_design(int argc, char **argv)
     memset(&job, 0, sizeof job);
     char note[128];
     if ((st = make_job(&o, &sa, &sim_args, &job, note, sizeof note)) != EXIT_OK) return st;
-    cli_DesignResult r;
+    jc_DesignResult r;
     st = cli_design_run(&job, &r);
     if (st == EXIT_OK) cli_design_print(&job, &r, note);
     if (st == EXIT_OK && o.json) st = cli_design_write_json(&job, &r, o.json);
@@ -289,6 +288,6 @@ int cmd_design(int argc, char **argv)
         if (o.csv) printf("CSV: %s\n", o.csv);
         if (o.figure) printf("Figure: %s\n", o.figure);
     }
-    cli_design_free(&r);
+    jc_design_free(&r);
     return st == EXIT_OK ? cli_stdout_finish() : st;
 }

@@ -83,16 +83,6 @@ typedef struct {
     int n;
 } map_job;
 
-static int make_case(const void *ctx, long index, char *inputs, size_t len, jc_Setup *setup, char *why,
-                     size_t why_len)
-{
-    const map_job *job = ctx;
-    const long nx = job->params[1].count;
-    const double values[2] = {job->params[0].values[index / nx], job->params[1].values[index % nx]};
-    cli_param_columns(job->params, 2, values, inputs, len);
-    return cli_case_setup(&job->base, &job->values, job->params, 2, values, setup, why, why_len);
-}
-
 /* What the cases gave, in case order; and their rows, for STEM.csv. */
 typedef struct {
     unsigned char *kind;
@@ -101,13 +91,13 @@ typedef struct {
     FILE *rows; /* NULL without --keep-script */
 } map_grid;
 
-static void consume(void *ctx, long index, const cli_CaseResult *r)
+static void consume(void *ctx, long index, const jc_CaseOutcome *o, const char *row, int row_len)
 {
     map_grid *g = ctx;
-    g->kind[index] = (unsigned char)r->kind;
-    g->liftoff_cm[index] = r->kind == CASE_LIFTOFF ? 100.0 * r->liftoff_x_m : NAN;
+    g->kind[index] = (unsigned char)o->kind;
+    g->liftoff_cm[index] = o->kind == JC_CASE_LIFTOFF ? 100.0 * o->liftoff_x_m : NAN;
     g->done = index + 1;
-    if (g->rows) fwrite(r->row, 1, (size_t)r->row_len, g->rows);
+    if (g->rows && row) fwrite(row, 1, (size_t)row_len, g->rows);
 }
 
 /* ---- the axes ---- */
@@ -503,11 +493,15 @@ static int run(const cli_Batch *options, map_job *job, const jc_Setup *fixed, co
     int st = EXIT_OK;
     const long nx = job->params[1].count, ny = job->params[0].count, total = nx * ny;
     map_grid g = {malloc((size_t)total), malloc((size_t)total * sizeof(double)), 0, NULL};
-    char *header = cli_batch_header(job->params, 2);
+    /* The cases: a sweep over (y, x), x varying fastest, so that case = iy * nx + ix. */
+    jc_StudyDef study;
+    cli_study_init(&study, JC_STUDY_GRID, &job->base, &job->values, job->params, 2, sim);
+    char header[2 * JC_STUDY_ROW_MAX];
+    jc_study_header(&study, header, sizeof header);
     double *xv = NULL, *yv = NULL;
     fig_Map m;
     memset(&m, 0, sizeof m);
-    if (!g.kind || !g.liftoff_cm || !header || figure_axis(&job->params[1], &m.x, &xv) != 0 ||
+    if (!g.kind || !g.liftoff_cm || figure_axis(&job->params[1], &m.x, &xv) != 0 ||
         figure_axis(&job->params[0], &m.y, &yv) != 0) {
         cli_error("map: out of memory for %ld cells", total);
         st = EXIT_FAIL;
@@ -521,13 +515,9 @@ static int run(const cli_Batch *options, map_job *job, const jc_Setup *fixed, co
         }
     }
     if (st == EXIT_OK) {
-        b.total = total;
-        b.input_columns = 2;
-        b.header = header;
-        b.sim = sim;
-        b.make_case = make_case;
-        b.ctx = job;
+        b.study = &study;
         b.consume = consume;
+        b.consume_rows = files->keep; /* STEM.csv */
         b.consume_ctx = &g;
         const double t0 = cli_now_s();
         st = cli_batch_run(&b);
@@ -553,7 +543,6 @@ static int run(const cli_Batch *options, map_job *job, const jc_Setup *fixed, co
     cli_output_abort(&files->csv);
     free(xv);
     free(yv);
-    free(header);
     free(g.kind);
     free(g.liftoff_cm);
     return st;

@@ -12,8 +12,8 @@
 
 #define DEFAULT_SAMPLES 1000
 #define MAX_SAMPLES 100000000L /* the summary keeps two doubles per sample: 1.6 GB at most */
-#define DEFAULT_GAP_M 0.02     /* lift-offs further apart than this are separate regions */
-#define HOP_GAP_M 0.005        /* the same for the largest hops */
+#define DEFAULT_GAP_M JC_MC_LIFTOFF_GAP_M /* lift-offs further apart than this are separate regions */
+#define HOP_GAP_M JC_MC_HOP_GAP_M         /* the same for the largest hops */
 
 typedef struct {
     const char *samples, *seed, *gap, *summarize;
@@ -121,7 +121,7 @@ static void print_spreads(const cli_McJob *job)
         const cli_Param *p = &job->params[j];
         const double k = p->column_scale;
         const char *unit = p->unit;
-        if (p->kind == PARAM_NORMAL)
+        if (p->kind == JC_STUDY_NORMAL)
             printf("  %-14s normal  %.6g %s, sigma %.4g %s   (%s)\n", jc_param_info(p->id)->name, p->a * k, unit,
                    p->b * k, unit, job->why[j]);
         else
@@ -130,7 +130,7 @@ static void print_spreads(const cli_McJob *job)
     }
 }
 
-static void print_stats(const char *what, const cli_Stats *s, long total, double scale, const char *unit)
+static void print_stats(const char *what, const jc_Stats *s, long total, double scale, const char *unit)
 {
     if (s->n == 0) {
         printf("  no sample has one\n");
@@ -140,13 +140,13 @@ static void print_stats(const char *what, const cli_Stats *s, long total, double
            s->sd * scale, unit, s->p2_5 * scale, s->p50 * scale, s->p97_5 * scale, unit);
     printf("  %d separate region(s)%s:\n", s->region_count, s->regions_truncated ? " (first 16 shown)" : "");
     for (int i = 0; i < s->region_count; ++i) {
-        const cli_Region *r = &s->regions[i];
+        const jc_StatsRegion *r = &s->regions[i];
         printf("    %8.2f .. %8.2f %s: %5.1f %% of the samples (mean %.2f %s)\n", r->lo_m * scale, r->hi_m * scale,
                unit, 100.0 * (double)r->count / (double)total, r->mean_m * scale, unit);
     }
 }
 
-static cJSON *json_stats(const cli_Stats *s, long total)
+static cJSON *json_stats(const jc_Stats *s, long total)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddNumberToObject(o, "count", (double)s->n);
@@ -170,12 +170,12 @@ static cJSON *json_stats(const cli_Stats *s, long total)
     return o;
 }
 
-static int report(const cli_McJob *job, cli_McTally *t, long samples, double gap, int json, const cli_Shard *shard)
+static int report(const cli_McJob *job, jc_Tally *t, long samples, double gap, int json, const cli_Shard *shard)
 {
-    cli_Stats lift, hop;
+    jc_Stats lift, hop;
     const long valid = t->valid;
-    cli_stats_compute(t->liftoff_x_m, t->liftoffs, t->none, t->invalid, gap, &lift);
-    cli_stats_compute(t->hop_m, t->valid, 0, t->invalid, HOP_GAP_M, &hop);
+    jc_stats_compute(t->liftoff_x_m, t->liftoffs, t->none, t->invalid, gap, &lift);
+    jc_stats_compute(t->hop_m, t->valid, 0, t->invalid, HOP_GAP_M, &hop);
     if (json) {
         cJSON *doc = cJSON_CreateObject();
         cJSON_AddNumberToObject(doc, "samples", (double)samples);
@@ -219,17 +219,17 @@ static int summarize(const mc_opts *o, double gap)
     ssize_t n = getline(&line, &cap, f);
     int commas = 0;
     for (ssize_t i = 0; i < n; ++i) commas += line[i] == ',';
-    const int inputs = commas - CLI_OUTCOME_COLUMNS;
+    const int inputs = commas - JC_CASE_COLUMNS;
     int st = EXIT_OK;
     if (n <= 0 || strncmp(line, "case,", 5) != 0 || inputs < 0) {
         cli_error("mc: --summarize '%s': the first line is not the header of mc or sweep rows (case,...)",
                   o->summarize);
         st = EXIT_USAGE;
     }
-    cli_McTally t;
+    jc_Tally t;
     long rows = 0, line_no = 1;
     memset(&t, 0, sizeof t);
-    if (st == EXIT_OK && cli_mc_tally_init(&t, 1 << 16) != 0) st = EXIT_FAIL;
+    if (st == EXIT_OK && jc_tally_init(&t, 1 << 16) != JC_OK) st = EXIT_FAIL;
     while (st == EXIT_OK && (n = getline(&line, &cap, f)) > 0) {
         ++line_no;
         cli_CaseResult r;
@@ -239,19 +239,13 @@ static int summarize(const mc_opts *o, double gap)
             st = EXIT_USAGE;
             break;
         }
-        if (t.valid >= t.cap) { /* grow: a merged file has no stated size */
-            double *a = realloc(t.liftoff_x_m, 2 * (size_t)t.cap * sizeof *a);
-            if (a) t.liftoff_x_m = a;
-            double *b = a ? realloc(t.hop_m, 2 * (size_t)t.cap * sizeof *b) : NULL;
-            if (b) t.hop_m = b;
-            if (!a || !b) {
-                cli_error("mc: --summarize: out of memory after %ld rows", rows);
-                st = EXIT_FAIL;
-                break;
-            }
-            t.cap *= 2;
+        /* the tally grows: a merged file has no stated size */
+        if (jc_tally_add(&t, &r.outcome) != JC_OK) {
+            cli_error("mc: --summarize: out of memory after %ld rows", rows);
+            st = EXIT_FAIL;
+            break;
         }
-        cli_mc_consume(&t, rows++, &r);
+        ++rows;
     }
     free(line);
     fclose(f);
@@ -260,7 +254,7 @@ static int summarize(const mc_opts *o, double gap)
         const cli_Shard whole = {1, 1};
         st = report(NULL, &t, rows, gap, o->json, &whole);
     }
-    cli_mc_tally_free(&t);
+    jc_tally_free(&t);
     return st;
 }
 
@@ -287,16 +281,17 @@ int cmd_mc(int argc, char **argv)
     cli_McJob job;
     if ((st = cli_mc_job_init(&job, "mc", &in.args, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != 0)
         return st;
-    char *header = cli_batch_header(job.params, job.n);
-    cli_McTally tally;
-    if (!header || cli_mc_tally_init(&tally, samples) != 0) {
+    jc_Tally tally;
+    if (jc_tally_init(&tally, samples) != JC_OK) {
         cli_error("mc: out of memory for %ld samples", samples);
-        free(header);
-        cli_mc_tally_free(&tally);
+        jc_tally_free(&tally);
         return EXIT_FAIL;
     }
-    cli_mc_batch(&in.job, &job, &tally, samples, &sim);
-    in.job.header = header;
+    jc_StudyDef study;
+    cli_mc_study(&study, &job, samples, &sim);
+    in.job.study = &study;
+    in.job.consume = cli_mc_consume;
+    in.job.consume_ctx = &tally;
     st = cli_batch_run(&in.job);
     long lo, hi;
     cli_shard_range(&in.job.shard, samples, &lo, &hi);
@@ -309,7 +304,6 @@ int cmd_mc(int argc, char **argv)
         }
         st = report(&job, &tally, hi - lo, gap, o.json, &in.job.shard);
     }
-    cli_mc_tally_free(&tally);
-    free(header);
+    jc_tally_free(&tally);
     return st;
 }

@@ -39,8 +39,8 @@ typedef struct {
     full_result drag; /* the full model with air drag at PAPER_DRAG_CD */
     full_result newton; /* the full model with Newton's impact law instead of Stronge's */
     full_result sweep[SWEEP_COUNT];
-    cli_Stats mc;       /* the full model's first lift-off under the inputs' uncertainties */
-    cli_McTally mc_counts;
+    jc_Stats mc;        /* the full model's first lift-off under the inputs' uncertainties */
+    jc_Tally mc_counts;
 } paper_row;
 
 static void help(void)
@@ -115,7 +115,7 @@ static int run_full(const jc_Setup *s, full_result *out, char *err, size_t err_l
 
 /* The Monte Carlo spread of the full model's first lift-off at the row's
  * incline: the paper's tolerances and the unmeasured friction and
- * restitution (cli/batch/mc_job.c). */
+ * restitution (jc_study_default_spreads, cli/batch/mc_job.c). */
 static int run_uncertainty(const cli_SetupArgs *sa, paper_row *r, char *err, size_t err_len)
 {
     const int st = cli_mc_liftoff_stats("paper", sa, r->table.incline_deg, CLI_PAPER_MC_SAMPLES, CLI_PAPER_MC_SEED,
@@ -301,7 +301,7 @@ static void print_uncertainty(const paper_row *rows, int n)
     }
     printf("\n%-40s", "  samples that lift off on the ramp");
     for (int i = 0; i < n; ++i) {
-        const cli_McTally *t = &rows[i].mc_counts;
+        const jc_Tally *t = &rows[i].mc_counts;
         printf(" %13.1f%%", t->valid ? 100.0 * (double)t->liftoffs / (double)t->valid : 0.0);
     }
     printf("\n%-40s", "  measurement inside the 95 % interval");

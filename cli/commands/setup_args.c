@@ -250,47 +250,19 @@ static int check_shortcuts(const cli_SetupValues *v, char *err, size_t err_len)
     return 0;
 }
 
-/* One value over the setup (jc_param_set); 0, or -1 with the message. Parts
- * given with --part keep the radii given there: --radius moves only the rim
- * (their default radius was already the rim the options give). */
-static int set_param(const cli_SetupValues *v, int id, jc_Setup *s, char *err, size_t err_len)
-{
-    char msg[256];
-    const int keep_parts = v->parts_given && id == jc_param_find("radius");
-    jc_Part parts[JC_MAX_PARTS];
-    if (keep_parts) memcpy(parts, s->body.parts, sizeof parts);
-    if (jc_param_set(s, id, v->value[id], msg, sizeof msg) != JC_OK) {
-        double now;
-        if (jc_param_get(s, id, &now, NULL, 0) != JC_OK) /* a body without the part it sets */
-            snprintf(err, err_len, "--%s; with --part, give it in the part", msg);
-        else
-            snprintf(err, err_len, "invalid setup: %s", msg);
-        return -1;
-    }
-    if (keep_parts) memcpy(s->body.parts, parts, sizeof parts);
-    return 0;
-}
-
 int cli_setup_apply_values(const cli_SetupValues *v, jc_Setup *s, char *err, size_t err_len)
 {
     char msg[256];
     if (check_shortcuts(v, err, err_len)) return -1;
-    /* The body first: a disc+rod body's shortcuts act on the rim the options give. */
-    int body_changed = v->parts_given;
-    for (int id = 0; id < jc_param_count(); ++id) {
-        if (!v->given[id] || !(jc_param_info(id)->flags & JC_PARAM_BODY)) continue;
-        if (set_param(v, id, s, err, err_len)) return -1;
-        body_changed = 1;
-    }
-    if (body_changed) s->paper_cm_offset_m = 0.0; /* the printed d was for the paper's body */
-    for (int id = 0; id < jc_param_count(); ++id)
-        if (v->given[id] && !(jc_param_info(id)->flags & JC_PARAM_BODY) && set_param(v, id, s, err, err_len))
-            return -1;
-    if (jc_setup_validate(s, msg, sizeof msg) != JC_OK) {
+    /* The library sets them in the table's order, the body first, and checks the setup. */
+    int failed = -1;
+    if (jc_param_values_apply(v, s, &failed, msg, sizeof msg) == JC_OK) return 0;
+    double now;
+    if (failed >= 0 && jc_param_get(s, failed, &now, NULL, 0) != JC_OK) /* a body without the part it sets */
+        snprintf(err, err_len, "--%s; with --part, give it in the part", msg);
+    else
         snprintf(err, err_len, "invalid setup: %s", msg);
-        return -1;
-    }
-    return 0;
+    return -1;
 }
 
 int cli_setup_apply(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_len)

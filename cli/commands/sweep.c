@@ -64,21 +64,6 @@ typedef struct {
     int n;
 } sweep_job;
 
-/* Case index -> one value of each parameter, the last varying fastest. */
-static int make_case(const void *ctx, long index, char *inputs, size_t len, jc_Setup *setup, char *why,
-                     size_t why_len)
-{
-    const sweep_job *job = ctx;
-    double values[CLI_PARAM_MAX];
-    long rest = index;
-    for (int j = job->n - 1; j >= 0; --j) {
-        values[j] = job->params[j].values[rest % job->params[j].count];
-        rest /= job->params[j].count;
-    }
-    cli_param_columns(job->params, job->n, values, inputs, len);
-    return cli_case_setup(&job->base, &job->values, job->params, job->n, values, setup, why, why_len);
-}
-
 /* The varied options, checked against the others. */
 static int parse_params(const sweep_opts *o, const cli_SetupArgs *sa, sweep_job *job)
 {
@@ -149,26 +134,17 @@ int cmd_sweep(int argc, char **argv)
         free_params(&job);
         return EXIT_USAGE;
     }
-    char *header = cli_batch_header(job.params, job.n);
-    if (!header) {
-        cli_error("sweep: out of memory");
-        free_params(&job);
-        return EXIT_FAIL;
-    }
-    in.job.total = (long)total;
-    in.job.input_columns = job.n;
-    in.job.header = header;
-    in.job.sim = &sim;
-    in.job.make_case = make_case;
-    in.job.ctx = &job;
+    /* The grid: every combination of the values, the last --vary fastest. */
+    jc_StudyDef study;
+    cli_study_init(&study, JC_STUDY_GRID, &job.base, &job.values, job.params, job.n, &sim);
+    in.job.study = &study;
     const double t0 = cli_now_s();
     st = cli_batch_run(&in.job);
     long lo, hi;
-    cli_shard_range(&in.job.shard, in.job.total, &lo, &hi);
+    cli_shard_range(&in.job.shard, jc_study_case_count(&study), &lo, &hi);
     if (st == EXIT_OK && cli_batch_is_writer() && strcmp(in.job.output, "-") != 0)
         printf("Sweep: %ld cases%s in %s (%.1f s)\n", hi - lo, in.job.shard.n > 1 ? " (this shard)" : "", in.job.output,
                cli_now_s() - t0);
-    free(header);
     free_params(&job);
     return st;
 }

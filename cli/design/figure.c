@@ -11,20 +11,20 @@
 
 /* The branches' points: scan points inside, edge sides at the ends; a blank
  * line between branches breaks the curve. */
-static void write_branches(FILE *gp, const cli_DesignResult *r, double per_si)
+static void write_branches(FILE *gp, const jc_DesignResult *r, double per_si)
 {
     fig_block_begin(gp, "branches");
     fputs("# columns: free option (display unit), first lift-off (cm); a blank line ends a branch\n", gp);
     long i = 0;
     for (int k = 0; k < r->branch_count; ++k) {
-        const cli_DesignBranch *b = &r->branches[k];
-        if (b->kind != CASE_LIFTOFF) continue;
-        const cli_DesignPoint *first = k > 0 ? &r->edges[k - 1].hi : NULL;
-        const cli_DesignPoint *last = k < r->edge_count ? &r->edges[k].lo : NULL;
+        const jc_DesignBranch *b = &r->branches[k];
+        if (b->kind != JC_CASE_LIFTOFF) continue;
+        const jc_DesignPoint *first = k > 0 ? &r->edges[k - 1].hi : NULL;
+        const jc_DesignPoint *last = k < r->edge_count ? &r->edges[k].lo : NULL;
         if (first) fprintf(gp, "%.12g %.12g\n", first->p * per_si, first->x_m * 100);
         for (i = 0; i < r->scan_count; ++i) {
-            const cli_DesignPoint *s = &r->scan[i];
-            if (s->p >= b->p_lo && s->p <= b->p_hi && s->kind == CASE_LIFTOFF)
+            const jc_DesignPoint *s = &r->scan[i];
+            if (s->p >= b->p_lo && s->p <= b->p_hi && s->kind == JC_CASE_LIFTOFF)
                 fprintf(gp, "%.12g %.12g\n", s->p * per_si, s->x_m * 100);
         }
         if (last) fprintf(gp, "%.12g %.12g\n", last->p * per_si, last->x_m * 100);
@@ -33,7 +33,7 @@ static void write_branches(FILE *gp, const cli_DesignResult *r, double per_si)
     fig_block_end(gp);
 }
 
-static void write_script(FILE *gp, const cli_DesignJob *job, const cli_DesignResult *r, fig_Format f,
+static void write_script(FILE *gp, const cli_DesignJob *job, const jc_DesignResult *r, fig_Format f,
                          const char *base, const char *cmdline)
 {
     const cli_DesignUnits u = cli_design_units(job);
@@ -67,8 +67,8 @@ static void write_script(FILE *gp, const cli_DesignJob *job, const cli_DesignRes
     fputs("set autoscale y\nset offsets 0, 0, graph 0.08, graph 0.08\n", gp);
     int obj = 1;
     for (int k = 0; k < r->branch_count; ++k) {
-        const cli_DesignBranch *b = &r->branches[k];
-        if (b->kind == CASE_LIFTOFF) continue;
+        const jc_DesignBranch *b = &r->branches[k];
+        if (b->kind == JC_CASE_LIFTOFF) continue;
         fprintf(gp, "set object %d rect from %.12g, graph 0 to %.12g, graph 1 behind fc rgb C_GREY fs transparent "
                     "solid 0.15 noborder\n",
                 obj++, b->p_lo * u.per_si, b->p_hi * u.per_si);
@@ -87,7 +87,7 @@ static void write_script(FILE *gp, const cli_DesignJob *job, const cli_DesignRes
             job->target_m * 100);
 }
 
-int cli_design_figure(const cli_DesignJob *job, const cli_DesignResult *r, const char *path, const char *cmdline)
+int cli_design_figure(const cli_DesignJob *job, const jc_DesignResult *r, const char *path, const char *cmdline)
 {
     fig_Format f;
     if (fig_format_from_path(path, &f) != 0) return EXIT_USAGE; /* checked before the search */

@@ -23,51 +23,39 @@ cli_DesignUnits cli_design_units(const cli_DesignJob *job)
 
 static const char *free_name(const cli_DesignJob *job) { return jc_param_info(job->param.id)->name; }
 
-static const char *outcome_words(cli_CaseKind k)
+static const char *outcome_words(jc_CaseKind k)
 {
     switch (k) {
-    case CASE_LIFTOFF: return "lifts off";
-    case CASE_NO_LIFTOFF: return "no lift-off on the ramp";
-    case CASE_SLIDES_AT_START: return "slides from the start, no lift-off";
-    case CASE_INVALID: return "not a valid setup";
-    case CASE_FAILED: return "the run failed";
+    case JC_CASE_LIFTOFF: return "lifts off";
+    case JC_CASE_NO_LIFTOFF: return "no lift-off on the ramp";
+    case JC_CASE_SLIDES_AT_START: return "slides from the start, no lift-off";
+    case JC_CASE_INVALID: return "not a valid setup";
+    case JC_CASE_FAILED: return "the run failed";
     }
     return "?";
 }
 
-static const char *outcome_name(cli_CaseKind k)
-{
-    switch (k) {
-    case CASE_LIFTOFF: return "liftoff";
-    case CASE_NO_LIFTOFF: return "no_liftoff";
-    case CASE_SLIDES_AT_START: return "slides_at_start";
-    case CASE_INVALID: return "invalid_setup";
-    case CASE_FAILED: return "failed";
-    }
-    return "?";
-}
-
-static void print_branches(const cli_DesignJob *job, const cli_DesignResult *r, cli_DesignUnits u)
+static void print_branches(const cli_DesignJob *job, const jc_DesignResult *r, cli_DesignUnits u)
 {
     printf("\nFirst lift-off along %s, branch by branch (continuous within each):\n", free_name(job));
     printf("  %-30s %s\n", "", "first lift-off (cm)");
     for (int k = 0; k < r->branch_count; ++k) {
-        const cli_DesignBranch *b = &r->branches[k];
+        const jc_DesignBranch *b = &r->branches[k];
         char span[64];
         snprintf(span, sizeof span, "%.6g - %.6g %s", b->p_lo * u.per_si, b->p_hi * u.per_si, u.unit);
-        if (b->kind == CASE_LIFTOFF)
+        if (b->kind == JC_CASE_LIFTOFF)
             printf("  %-30s %.4f - %.4f\n", span, b->x_min_m * 100, b->x_max_m * 100);
         else printf("  %-30s %s\n", span, outcome_words(b->kind));
     }
 }
 
-static void print_side(const cli_DesignPoint *s)
+static void print_side(const jc_DesignPoint *s)
 {
-    if (s->kind == CASE_LIFTOFF) printf("%14.4f cm", s->x_m * 100);
+    if (s->kind == JC_CASE_LIFTOFF) printf("%14.4f cm", s->x_m * 100);
     else printf("  %s", outcome_words(s->kind));
 }
 
-static void print_edges(const cli_DesignJob *job, const cli_DesignResult *r, cli_DesignUnits u)
+static void print_edges(const cli_DesignJob *job, const jc_DesignResult *r, cli_DesignUnits u)
 {
     if (r->edge_count == 0) {
         printf("\nNo discontinuity: the first lift-off is continuous over the whole range.\n");
@@ -76,19 +64,19 @@ static void print_edges(const cli_DesignJob *job, const cli_DesignResult *r, cli
     printf("\nDiscontinuities (each located to %.2g %s; first lift-offs between the two sides are gaps there):\n",
            r->edge_width * u.per_si, u.unit);
     for (int k = 0; k < r->edge_count; ++k) {
-        const cli_DesignEdge *e = &r->edges[k];
+        const jc_DesignEdge *e = &r->edges[k];
         printf("  at %s = %.10g %s: ", free_name(job), 0.5 * (e->lo.p + e->hi.p) * u.per_si, u.unit);
         print_side(&e->lo);
         printf("  ->");
         print_side(&e->hi);
-        if (e->lo.kind == CASE_LIFTOFF && e->hi.kind == CASE_LIFTOFF)
+        if (e->lo.kind == JC_CASE_LIFTOFF && e->hi.kind == JC_CASE_LIFTOFF)
             printf("   (gap %.4f - %.4f cm)", fmin(e->lo.x_m, e->hi.x_m) * 100, fmax(e->lo.x_m, e->hi.x_m) * 100);
         putchar('\n');
     }
 }
 
 /* No solution: where X lies among the reachable first lift-offs. */
-static void print_no_solution(const cli_DesignJob *job, const cli_DesignResult *r, cli_DesignUnits u,
+static void print_no_solution(const cli_DesignJob *job, const jc_DesignResult *r, cli_DesignUnits u,
                               const double *lo, const double *hi, int n)
 {
     printf("\nNo solution: no %s in %.6g - %.6g %s makes the first lift-off happen at %.4f cm.\n", free_name(job),
@@ -119,15 +107,15 @@ static void print_no_solution(const cli_DesignJob *job, const cli_DesignResult *
         printf("%.4f cm lies before every reachable first lift-off (the nearest is %.4f cm).\n",
                job->target_m * 100, above * 100);
     for (int k = 0; k < r->edge_count; ++k) {
-        const cli_DesignEdge *e = &r->edges[k];
-        if (e->lo.kind == CASE_LIFTOFF && e->hi.kind == CASE_LIFTOFF &&
+        const jc_DesignEdge *e = &r->edges[k];
+        if (e->lo.kind == JC_CASE_LIFTOFF && e->hi.kind == JC_CASE_LIFTOFF &&
             (e->lo.x_m - job->target_m) * (e->hi.x_m - job->target_m) < 0.0)
             printf("At %s = %.6g %s the first lift-off leaps over it, from %.4f to %.4f cm.\n", free_name(job),
                    0.5 * (e->lo.p + e->hi.p) * u.per_si, u.unit, e->lo.x_m * 100, e->hi.x_m * 100);
     }
 }
 
-void cli_design_print(const cli_DesignJob *job, const cli_DesignResult *r, const char *range_note)
+void cli_design_print(const cli_DesignJob *job, const jc_DesignResult *r, const char *range_note)
 {
     const cli_DesignUnits u = cli_design_units(job);
     jc_Model m;
@@ -142,14 +130,14 @@ void cli_design_print(const cli_DesignJob *job, const cli_DesignResult *r, const
     print_branches(job, r, u);
     print_edges(job, r, u);
     double lo[REACHABLE_MAX], hi[REACHABLE_MAX];
-    const int n = cli_design_reachable(r, lo, hi, REACHABLE_MAX);
+    const int n = jc_design_reachable(r, lo, hi, REACHABLE_MAX);
     printf("\nReachable first lift-offs:");
     for (int k = 0; k < n; ++k) printf("%s %.4f - %.4f cm", k ? "," : "", lo[k] * 100, hi[k] * 100);
     printf("%s\n", n ? "" : " none (nothing lifts off on the ramp)");
     if (r->solution_count == 0) print_no_solution(job, r, u, lo, hi, n);
     else {
         printf("\nSolutions (%d; each run again and found within %g m of X):\n", r->solution_count,
-               CLI_DESIGN_VERIFY_M);
+               JC_DESIGN_VERIFY_M);
         char head[64];
         snprintf(head, sizeof head, "%s (%s)", free_name(job), u.unit);
         char margin_head[48];
@@ -157,7 +145,7 @@ void cli_design_print(const cli_DesignJob *job, const cli_DesignResult *r, const
         printf("  %2s %-22s %20s %12s   %-22s %s\n", "#", head, "first lift-off (cm)", "x - X (m)", "dX/dp",
                margin_head);
         for (int k = 0; k < r->solution_count; ++k) {
-            const cli_DesignSolution *s = &r->solutions[k];
+            const jc_DesignSolution *s = &r->solutions[k];
             char slope[48];
             snprintf(slope, sizeof slope, "%+.4g %s", s->dxdp * u.dx_per_si, u.dx_unit);
             printf("  %2d %-22.10g %20.6f %12.2e   %-22s ", k + 1, s->p * u.per_si, s->x_m * 100,
@@ -169,26 +157,26 @@ void cli_design_print(const cli_DesignJob *job, const cli_DesignResult *r, const
     if (r->at_edge > 0)
         printf("Note: %d root(s) lie so near a discontinuity that its edge is within %g m of X: there X is the\n"
                "limit of the first lift-off at the edge, not a value one could build, so not listed.\n",
-               r->at_edge, CLI_DESIGN_VERIFY_M);
+               r->at_edge, JC_DESIGN_VERIFY_M);
     if (r->unverified > 0)
         printf("Note: %d bracket(s) did not give a root that lands within %g m of X when run again; they are not\n"
                "listed (raise --points to resolve the scan there).\n",
-               r->unverified, CLI_DESIGN_VERIFY_M);
+               r->unverified, JC_DESIGN_VERIFY_M);
 }
 
 /* ---- --json ---- */
 
-static cJSON *side_json(const cli_DesignPoint *s)
+static cJSON *side_json(const jc_DesignPoint *s)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddNumberToObject(o, "value", s->p);
-    cJSON_AddStringToObject(o, "outcome", outcome_name(s->kind));
-    if (s->kind == CASE_LIFTOFF) cJSON_AddNumberToObject(o, "x_m", s->x_m);
+    cJSON_AddStringToObject(o, "outcome", jc_case_kind_name(s->kind));
+    if (s->kind == JC_CASE_LIFTOFF) cJSON_AddNumberToObject(o, "x_m", s->x_m);
     else cJSON_AddNullToObject(o, "x_m");
     return o;
 }
 
-static cJSON *design_json(const cli_DesignJob *job, const cli_DesignResult *r, cli_DesignUnits u)
+static cJSON *design_json(const cli_DesignJob *job, const jc_DesignResult *r, cli_DesignUnits u)
 {
     cJSON *doc = cJSON_CreateObject();
     cJSON_AddNumberToObject(doc, "target_x_m", job->target_m);
@@ -203,12 +191,12 @@ static cJSON *design_json(const cli_DesignJob *job, const cli_DesignResult *r, c
     cJSON_AddNumberToObject(doc, "edge_width", r->edge_width);
     cJSON *br = cJSON_AddArrayToObject(doc, "branches");
     for (int k = 0; k < r->branch_count; ++k) {
-        const cli_DesignBranch *b = &r->branches[k];
+        const jc_DesignBranch *b = &r->branches[k];
         cJSON *o = cJSON_CreateObject();
         cJSON_AddNumberToObject(o, "lo", b->p_lo);
         cJSON_AddNumberToObject(o, "hi", b->p_hi);
-        cJSON_AddStringToObject(o, "outcome", outcome_name(b->kind));
-        if (b->kind == CASE_LIFTOFF) {
+        cJSON_AddStringToObject(o, "outcome", jc_case_kind_name(b->kind));
+        if (b->kind == JC_CASE_LIFTOFF) {
             cJSON_AddNumberToObject(o, "x_min_m", b->x_min_m);
             cJSON_AddNumberToObject(o, "x_max_m", b->x_max_m);
         }
@@ -222,12 +210,12 @@ static cJSON *design_json(const cli_DesignJob *job, const cli_DesignResult *r, c
         cJSON_AddItemToArray(ed, o);
     }
     double lo[REACHABLE_MAX], hi[REACHABLE_MAX];
-    const int n = cli_design_reachable(r, lo, hi, REACHABLE_MAX);
+    const int n = jc_design_reachable(r, lo, hi, REACHABLE_MAX);
     cJSON *re = cJSON_AddArrayToObject(doc, "reachable_m");
     for (int k = 0; k < n; ++k) cJSON_AddItemToArray(re, cJSON_CreateDoubleArray((double[]){lo[k], hi[k]}, 2));
     cJSON *so = cJSON_AddArrayToObject(doc, "solutions");
     for (int k = 0; k < r->solution_count; ++k) {
-        const cli_DesignSolution *s = &r->solutions[k];
+        const jc_DesignSolution *s = &r->solutions[k];
         cJSON *o = cJSON_CreateObject();
         cJSON_AddNumberToObject(o, "value", s->p);
         cJSON_AddNumberToObject(o, "x_m", s->x_m);
@@ -246,7 +234,7 @@ static cJSON *design_json(const cli_DesignJob *job, const cli_DesignResult *r, c
     return doc;
 }
 
-int cli_design_write_json(const cli_DesignJob *job, const cli_DesignResult *r, const char *path)
+int cli_design_write_json(const cli_DesignJob *job, const jc_DesignResult *r, const char *path)
 {
     cJSON *doc = design_json(job, r, cli_design_units(job));
     char *text = doc ? cJSON_Print(doc) : NULL;
@@ -269,7 +257,7 @@ int cli_design_write_json(const cli_DesignJob *job, const cli_DesignResult *r, c
 /* ---- --csv: every point the search ran, in p order ---- */
 
 typedef struct {
-    cli_DesignPoint pt;
+    jc_DesignPoint pt;
     const char *what;
 } csv_row;
 
@@ -279,7 +267,7 @@ static int row_order(const void *a, const void *b)
     return (pa > pb) - (pa < pb);
 }
 
-int cli_design_write_csv(const cli_DesignJob *job, const cli_DesignResult *r, const char *path)
+int cli_design_write_csv(const cli_DesignJob *job, const jc_DesignResult *r, const char *path)
 {
     const long n = r->scan_count + 2L * r->edge_count + r->solution_count;
     csv_row *rows = malloc((size_t)n * sizeof *rows);
@@ -294,7 +282,7 @@ int cli_design_write_csv(const cli_DesignJob *job, const cli_DesignResult *r, co
         rows[m++] = (csv_row){r->edges[k].hi, "edge_above"};
     }
     for (int k = 0; k < r->solution_count; ++k)
-        rows[m++] = (csv_row){{r->solutions[k].p, CASE_LIFTOFF, r->solutions[k].x_m}, "solution"};
+        rows[m++] = (csv_row){{r->solutions[k].p, JC_CASE_LIFTOFF, r->solutions[k].x_m}, "solution"};
     qsort(rows, (size_t)m, sizeof *rows, row_order);
     cli_Output o;
     if (cli_output_begin(&o, path, 0) != 0) {
@@ -305,9 +293,9 @@ int cli_design_write_csv(const cli_DesignJob *job, const cli_DesignResult *r, co
     for (long i = 0; i < m; ++i) {
         char v[CLI_TOKEN_MAX];
         cli_param_column_value(&job->param, rows[i].pt.p, v, sizeof v);
-        if (rows[i].pt.kind == CASE_LIFTOFF)
-            fprintf(o.f, "%s,%.12g,%s,%s\n", v, rows[i].pt.x_m, outcome_name(rows[i].pt.kind), rows[i].what);
-        else fprintf(o.f, "%s,,%s,%s\n", v, outcome_name(rows[i].pt.kind), rows[i].what);
+        if (rows[i].pt.kind == JC_CASE_LIFTOFF)
+            fprintf(o.f, "%s,%.12g,%s,%s\n", v, rows[i].pt.x_m, jc_case_kind_name(rows[i].pt.kind), rows[i].what);
+        else fprintf(o.f, "%s,,%s,%s\n", v, jc_case_kind_name(rows[i].pt.kind), rows[i].what);
     }
     free(rows);
     return cli_output_commit(&o, CLI_CHECK_WRITES) == 0 ? EXIT_OK : EXIT_FAIL;

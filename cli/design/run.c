@@ -1,40 +1,43 @@
-/* design: the whole search on every core: the scan, the edges and the
- * branches (scan.c), then the roots within the branches (solve.c), one
- * workspace per thread. */
+/* design: the library's search (jc_design_run) on the command's job, with
+ * the scan's progress line on a terminal and a stop signal as its
+ * cancellation. */
 #include "design.h"
+#include "figures.h"
 
-#include <stdlib.h>
 #include <string.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
-static int thread_count(int threads)
+/* The scan's progress line, cleared when the scan is over; nonzero (stop)
+ * after a stop signal. */
+static int progress(void *ctx, const jc_DesignProgress *p)
 {
-#ifdef _OPENMP
-    if (threads > 0) omp_set_num_threads(threads);
-    return omp_get_max_threads();
-#else
-    (void)threads;
-    return 1;
-#endif
+    cli_Progress *line = ctx;
+    if (strcmp(p->stage, "scan") == 0) cli_progress_update(line, p->done, p->total);
+    else cli_progress_end(line);
+    return cli_stop_requested() != 0;
 }
 
-int cli_design_run(const cli_DesignJob *job, cli_DesignResult *r)
+int cli_design_run(const cli_DesignJob *job, jc_DesignResult *r)
 {
-    memset(r, 0, sizeof *r);
-    const double t0 = cli_now_s();
-    r->threads_used = thread_count(job->threads);
-    jc_Workspace **ws = calloc((size_t)r->threads_used, sizeof *ws);
-    int ok = ws != NULL;
-    for (int t = 0; ok && t < r->threads_used; ++t) ok = (ws[t] = jc_workspace_new()) != NULL;
-    int st = ok && cli_design_scan(job, r, ws) == 0 ? EXIT_OK : EXIT_FAIL;
-    if (st == EXIT_FAIL) cli_error("design: out of memory for %ld points", job->points);
-    if (st == EXIT_OK && !cli_stop_requested()) st = cli_design_solve(job, r, ws);
-    if (st == EXIT_OK && cli_stop_requested()) st = cli_stop_status();
-    for (int t = 0; ws && t < r->threads_used; ++t) jc_workspace_free(ws[t]);
-    free(ws);
-    r->seconds = cli_now_s() - t0;
-    return st;
+    jc_DesignDef def;
+    memset(&def, 0, sizeof def);
+    def.base = job->base;
+    def.fixed = job->values;
+    def.free_id = job->param.id;
+    def.lo = job->lo;
+    def.hi = job->hi;
+    def.target_x_m = job->target_m;
+    def.points = job->points;
+    def.threads = job->threads;
+    def.sim = job->sim;
+    cli_Progress line;
+    cli_progress_begin(&line, "design: scan");
+    def.progress = progress;
+    def.progress_ctx = &line;
+    char err[512];
+    const int st = jc_design_run(&def, r, err, sizeof err);
+    cli_progress_end(&line);
+    if (st == JC_OK) return EXIT_OK;
+    if (st == JC_ESTOPPED && cli_stop_requested()) return cli_stop_status();
+    cli_error("%s", err);
+    return EXIT_FAIL;
 }

@@ -41,7 +41,7 @@ int fig_uncertainty_prepare(fig_Data *d)
                 "# columns: incline_deg printed_cm nominal_cm p2_5_cm p50_cm p97_5_cm measured_cm measured_error_cm\n",
             CLI_PAPER_MC_SAMPLES, CLI_PAPER_MC_SEED);
     for (int i = 0; i < n && i < TABLE_MAX; ++i) {
-        cli_Stats st;
+        jc_Stats st;
         const int rc = cli_mc_liftoff_stats("plot", d->setup_args, t[i].incline_deg, CLI_PAPER_MC_SAMPLES,
                                             CLI_PAPER_MC_SEED, &st, NULL);
         if (rc != EXIT_OK) return rc;

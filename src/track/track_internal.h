@@ -7,18 +7,20 @@
  * hops (start.c), residuals (residuals.c), the fit's values (fit_params.c),
  * the least squares (fit.c), where the free motion starts (launch.c), the
  * whole fit (fit_video.c), the comparison (compare.c), synthetic videos
- * (synthetic.c) and their random numbers (random.c).
+ * (synthetic.c). Their random numbers are the library's Philox
+ * (src/random.c, <jumpcyl/study.h>).
  *
  * Calls run one way, no file calling back into one that calls it:
  *   read.c -> trk.c, table.c, frame.c, derive.c; derive.c -> rim.c, frame.c;
  *   frame.c, rim.c -> surface.c; read.c, trk.c, table.c, frame.c -> data.c;
  *   fit_video.c -> launch.c -> fit.c -> model_path.c, start.c, residuals.c,
- *   fit_params.c, random.c; model_path.c -> start.c; compare.c -> launch.c,
- *   model_path.c; synthetic.c -> read.c, data.c, random.c; compare.c,
+ *   fit_params.c; model_path.c -> start.c; compare.c -> launch.c,
+ *   model_path.c; synthetic.c -> read.c, data.c; compare.c,
  *   launch.c and fit.c check the track with read.c's jc_track_require. */
 #ifndef JUMPCYL_TRACK_INTERNAL_H
 #define JUMPCYL_TRACK_INTERNAL_H
 
+#include "jumpcyl/study.h" /* jc_random_uniform, jc_random_normal */
 #include "jumpcyl/track.h"
 
 #include <math.h>
@@ -275,12 +277,5 @@ int jc_track_fit_solve(const jc_Setup *setup, const jc_Track *t, const jc_TrackF
 int jc_track_launch(const jc_Setup *setup, const jc_Track *t, const jc_SimOptions *o, long from, double to_s,
                     int scan, double mark_angle_rad, const jc_TrackFitSpan *span, jc_TrackLaunch *out, char *err,
                     size_t err_len);
-
-/* ---- random.c: counter-based random numbers (Random123's Philox4x32-10) ---- */
-
-/* A uniform in (0, 1) and a standard normal, each a pure function of
- * (seed, sample, draw): the same for any thread or order. */
-double jc_random_uniform(uint64_t seed, uint64_t sample, uint32_t draw);
-double jc_random_normal(uint64_t seed, uint64_t sample, uint32_t draw);
 
 #endif

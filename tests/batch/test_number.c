@@ -1,18 +1,18 @@
-/* cli_format_g (cli/batch/number.c) against printf's own "%.*g": the same
+/* jc_format_g (src/study/number.c) against printf's own "%.*g": the same
  * bytes for doubles of every bit pattern, for the magnitudes rows hold,
  * for exact ties (rounded half to even), powers of ten and their
  * neighbours, at every precision from 1 to 17. */
 #include "../test.h"
-#include "batch.h"
+#include "study/study_internal.h"
 
 #include <float.h>
 #include <stdlib.h>
 
 static int same_as_printf(double v, int precision)
 {
-    char want[64], got[CLI_NUMBER_MAX];
+    char want[64], got[JC_NUMBER_MAX];
     snprintf(want, sizeof want, "%.*g", precision, v);
-    const int n = cli_format_g(v, precision, got);
+    const int n = jc_format_g(v, precision, got);
     ENSURE_MSG(strcmp(want, got) == 0 && n == (int)strlen(want), "%a with %%.%dg: printf '%s', here '%s'", v,
                precision, want, got);
     return 0;

@@ -19,7 +19,7 @@
  *
  * Environment: JC_FIT_TRIALS (default 200; below 100 the figures are printed
  * and not judged), JC_TEST_SEED (default 16). */
-#include "batch.h"
+#include <jumpcyl/study.h>
 #include <jumpcyl/track.h>
 #include "../test.h"
 
@@ -57,7 +57,7 @@ static jc_TrackSynthOptions synth(uint64_t seed, int i)
     memset(&o, 0, sizeof o);
     static const double fps[4] = {30, 60, 120, 240};
     o.fps_hz = fps[i % 4];
-    o.sigma_m = 0.5e-3 * pow(6.0, cli_random_uniform(seed, (uint64_t)i, 1000u));
+    o.sigma_m = 0.5e-3 * pow(6.0, jc_random_uniform(seed, (uint64_t)i, 1000u));
     o.t_end_s = 1.5;
     o.mark_radius_m = 0.055;
     o.seed = seed;

@@ -1,8 +1,8 @@
-/* design: the roots of x(p) - X inside the continuous branches. A bracket
- * never spans an edge (the branches end at the edges' sides), so Brent's
- * method converges to a true root, not to a leap; each root is then run
- * again and kept only when it lands within 1e-6 m of X. */
-#include "design.h"
+/* The design search's roots of x(p) - X inside the continuous branches. A
+ * bracket never spans an edge (the branches end at the edges' sides), so
+ * Brent's method converges to a true root, not to a leap; each root is then
+ * run again and kept only when it lands within 1e-6 m of X. */
+#include "study_internal.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_min.h>
@@ -25,7 +25,7 @@
 #define DIFF_REL_STEP 1e-6
 
 typedef struct {
-    const cli_DesignJob *job;
+    const jc_DesignDef *def;
     jc_Workspace *ws;
     double sign;    /* +1, or -1 to minimise -x (a maximum) */
     long runs;
@@ -36,30 +36,30 @@ typedef struct {
 static double offset_from_target(double p, void *params)
 {
     eval_ctx *c = params;
-    cli_DesignPoint pt;
-    cli_design_eval(c->job, p, c->ws, &pt);
+    jc_DesignPoint pt;
+    jc_design_eval(c->def, p, c->ws, &pt);
     ++c->runs;
     c->last_p = p;
-    c->last_f = pt.x_m - c->job->target_m;
+    c->last_f = pt.x_m - c->def->target_x_m;
     return c->sign * c->last_f;
 }
 
 typedef struct {
-    cli_DesignPoint a, b;
+    jc_DesignPoint a, b;
     int branch;
 } bracket;
 
 /* The extremum of x near a scan point j (a minimum when sign is +1), by
  * Brent's minimiser on [a, b]; 0 and *out, or -1. */
-static int refine_turn(const cli_DesignJob *job, const cli_DesignPoint *a, const cli_DesignPoint *m,
-                       const cli_DesignPoint *b, double sign, jc_Workspace *ws, double width, cli_DesignPoint *out,
+static int refine_turn(const jc_DesignDef *def, const jc_DesignPoint *a, const jc_DesignPoint *m,
+                       const jc_DesignPoint *b, double sign, jc_Workspace *ws, double width, jc_DesignPoint *out,
                        long *runs)
 {
-    eval_ctx c = {job, ws, sign, 0, NAN, NAN};
+    eval_ctx c = {def, ws, sign, 0, NAN, NAN};
     gsl_function f = {offset_from_target, &c};
     gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
     if (!s) return -1;
-    const double target = job->target_m;
+    const double target = def->target_x_m;
     int st = gsl_min_fminimizer_set_with_values(s, &f, m->p, sign * (m->x_m - target), a->p, sign * (a->x_m - target),
                                                 b->p, sign * (b->x_m - target));
     for (int k = 0; st == GSL_SUCCESS && k < MIN_ITERATIONS_MAX; ++k) {
@@ -75,70 +75,70 @@ static int refine_turn(const cli_DesignJob *job, const cli_DesignPoint *a, const
     gsl_min_fminimizer_free(s);
     *runs += c.runs;
     if (isnan(p)) return -1;
-    cli_design_eval(job, p, ws, out);
+    jc_design_eval(def, p, ws, out);
     ++*runs;
-    return out->kind == CASE_LIFTOFF ? 0 : -1;
+    return out->kind == JC_CASE_LIFTOFF ? 0 : -1;
 }
 
 /* The lift-off points of branch k in p order: its first side, the scan
  * points inside, its last side. */
-static int branch_points(const cli_DesignResult *r, int k, cli_DesignPoint *out, long cap)
+static int branch_points(const jc_DesignResult *r, int k, jc_DesignPoint *out, long cap)
 {
-    const cli_DesignBranch *b = &r->branches[k];
+    const jc_DesignBranch *b = &r->branches[k];
     long n = 0;
-    const cli_DesignPoint *first = k > 0 ? &r->edges[k - 1].hi : &r->scan[0];
-    const cli_DesignPoint *last = k < r->edge_count ? &r->edges[k].lo : &r->scan[r->scan_count - 1];
-    if (n < cap && first->kind == CASE_LIFTOFF) out[n++] = *first;
+    const jc_DesignPoint *first = k > 0 ? &r->edges[k - 1].hi : &r->scan[0];
+    const jc_DesignPoint *last = k < r->edge_count ? &r->edges[k].lo : &r->scan[r->scan_count - 1];
+    if (n < cap && first->kind == JC_CASE_LIFTOFF) out[n++] = *first;
     for (long i = 0; i < r->scan_count && n < cap; ++i) {
-        const cli_DesignPoint *s = &r->scan[i];
-        if (s->p > b->p_lo && s->p < b->p_hi && s->kind == CASE_LIFTOFF) out[n++] = *s;
+        const jc_DesignPoint *s = &r->scan[i];
+        if (s->p > b->p_lo && s->p < b->p_hi && s->kind == JC_CASE_LIFTOFF) out[n++] = *s;
     }
-    if (n < cap && last->kind == CASE_LIFTOFF && last->p > first->p) out[n++] = *last;
+    if (n < cap && last->kind == JC_CASE_LIFTOFF && last->p > first->p) out[n++] = *last;
     return (int)n;
 }
 
 static int point_order(const void *a, const void *b)
 {
-    const double pa = ((const cli_DesignPoint *)a)->p, pb = ((const cli_DesignPoint *)b)->p;
+    const double pa = ((const jc_DesignPoint *)a)->p, pb = ((const jc_DesignPoint *)b)->p;
     return (pa > pb) - (pa < pb);
 }
 
-static int crosses(const cli_DesignPoint *a, const cli_DesignPoint *b, double target)
+static int crosses(const jc_DesignPoint *a, const jc_DesignPoint *b, double target)
 {
     return (a->x_m - target) * (b->x_m - target) <= 0.0;
 }
 
 /* Turning points that may pass X between scan points, refined and added
  * to the branch's points (kept sorted). Returns the new count. */
-static long add_turns(const cli_DesignJob *job, cli_DesignPoint *pts, long n, long cap, double width,
+static long add_turns(const jc_DesignDef *def, jc_DesignPoint *pts, long n, long cap, double width,
                       jc_Workspace *ws, long *runs)
 {
-    const double target = job->target_m;
+    const double target = def->target_x_m;
     const long n0 = n;
     int turns = 0;
     for (long j = 1; j + 1 < n0 && turns < TURNS_PER_BRANCH_MAX && n < cap; ++j) {
-        const cli_DesignPoint *a = &pts[j - 1], *m = &pts[j], *b = &pts[j + 1];
+        const jc_DesignPoint *a = &pts[j - 1], *m = &pts[j], *b = &pts[j + 1];
         const double da = m->x_m - a->x_m, db = b->x_m - m->x_m;
         if (!(da * db < 0.0) || crosses(a, m, target) || crosses(m, b, target)) continue;
         const double reach = TURN_REACH_STEPS * fmax(fabs(da), fabs(db));
         if (fabs(m->x_m - target) > reach) continue;
         const double sign = da < 0.0 ? 1.0 : -1.0; /* a minimum, or a maximum */
         if (sign * (m->x_m - target) < 0.0) continue; /* on the far side of X already: no crossing to add */
-        cli_DesignPoint turn;
+        jc_DesignPoint turn;
         ++turns;
-        if (refine_turn(job, a, m, b, sign, ws, width, &turn, runs) == 0) pts[n++] = turn;
+        if (refine_turn(def, a, m, b, sign, ws, width, &turn, runs) == 0) pts[n++] = turn;
     }
     qsort(pts, (size_t)n, sizeof *pts, point_order);
     return n;
 }
 
 /* Brent's method on one bracket inside a branch; the root, or NaN. */
-static double polish(const cli_DesignJob *job, const bracket *br, jc_Workspace *ws, double width, long *runs)
+static double polish(const jc_DesignDef *def, const bracket *br, jc_Workspace *ws, double width, long *runs)
 {
-    const double target = job->target_m;
-    if (fabs(br->a.x_m - target) <= CLI_DESIGN_ROOT_M) return br->a.p;
-    if (fabs(br->b.x_m - target) <= CLI_DESIGN_ROOT_M) return br->b.p;
-    eval_ctx c = {job, ws, 1.0, 0, NAN, NAN};
+    const double target = def->target_x_m;
+    if (fabs(br->a.x_m - target) <= JC_DESIGN_ROOT_M) return br->a.p;
+    if (fabs(br->b.x_m - target) <= JC_DESIGN_ROOT_M) return br->b.p;
+    eval_ctx c = {def, ws, 1.0, 0, NAN, NAN};
     gsl_function f = {offset_from_target, &c};
     gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     if (!s) return NAN;
@@ -147,7 +147,7 @@ static double polish(const cli_DesignJob *job, const bracket *br, jc_Workspace *
     for (int k = 0; st == GSL_SUCCESS && k < BRENT_ITERATIONS_MAX; ++k) {
         if ((st = gsl_root_fsolver_iterate(s)) != GSL_SUCCESS) break;
         const double p = gsl_root_fsolver_root(s);
-        if (c.last_p == p && fabs(c.last_f) <= CLI_DESIGN_ROOT_M) {
+        if (c.last_p == p && fabs(c.last_f) <= JC_DESIGN_ROOT_M) {
             root = p;
             break;
         }
@@ -164,29 +164,29 @@ static double polish(const cli_DesignJob *job, const bracket *br, jc_Workspace *
 }
 
 /* dX/dp by a central difference inside the branch (one-sided by its ends). */
-static double slope(const cli_DesignJob *job, const cli_DesignBranch *b, double p, double x, jc_Workspace *ws,
+static double slope(const jc_DesignDef *def, const jc_DesignBranch *b, double p, double x, jc_Workspace *ws,
                     long *runs)
 {
-    const double h = (job->hi - job->lo) * DIFF_REL_STEP;
+    const double h = (def->hi - def->lo) * DIFF_REL_STEP;
     const double lo = fmax(p - h, b->p_lo), hi = fmin(p + h, b->p_hi);
-    cli_DesignPoint u = {p, CASE_LIFTOFF, x}, v = u;
+    jc_DesignPoint u = {p, JC_CASE_LIFTOFF, x}, v = u;
     if (lo < p) {
-        cli_design_eval(job, lo, ws, &u);
+        jc_design_eval(def, lo, ws, &u);
         ++*runs;
     }
     if (hi > p) {
-        cli_design_eval(job, hi, ws, &v);
+        jc_design_eval(def, hi, ws, &v);
         ++*runs;
     }
-    if (u.kind != CASE_LIFTOFF || v.kind != CASE_LIFTOFF || !(v.p > u.p)) return NAN;
+    if (u.kind != JC_CASE_LIFTOFF || v.kind != JC_CASE_LIFTOFF || !(v.p > u.p)) return NAN;
     return (v.x_m - u.x_m) / (v.p - u.p);
 }
 
 /* The distance from p to the nearer end of its branch that is an edge
  * (INFINITY when both ends are the range's). */
-static double edge_margin(const cli_DesignResult *r, int branch, double p)
+static double edge_margin(const jc_DesignResult *r, int branch, double p)
 {
-    const cli_DesignBranch *b = &r->branches[branch];
+    const jc_DesignBranch *b = &r->branches[branch];
     double m = INFINITY;
     if (branch > 0) m = fmin(m, p - b->p_lo);
     if (branch < r->branch_count - 1) m = fmin(m, b->p_hi - p);
@@ -194,25 +194,25 @@ static double edge_margin(const cli_DesignResult *r, int branch, double p)
 }
 
 /* The brackets of every lift-off branch; NULL when out of memory. */
-static bracket *find_brackets(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace *ws, int *count)
+static bracket *find_brackets(const jc_DesignDef *def, jc_DesignResult *r, jc_Workspace *ws, int *count)
 {
     const long cap = r->scan_count + 2 + TURNS_PER_BRANCH_MAX;
-    cli_DesignPoint *pts = malloc((size_t)cap * sizeof *pts);
+    jc_DesignPoint *pts = malloc((size_t)cap * sizeof *pts);
     long bcap = 16;
     bracket *out = malloc((size_t)bcap * sizeof *out);
     *count = 0;
     for (int k = 0; pts && out && k < r->branch_count; ++k) {
-        if (r->branches[k].kind != CASE_LIFTOFF) continue;
+        if (r->branches[k].kind != JC_CASE_LIFTOFF) continue;
         long n = branch_points(r, k, pts, cap);
-        n = add_turns(job, pts, n, cap, r->edge_width, ws, &r->evaluations);
+        n = add_turns(def, pts, n, cap, r->edge_width, ws, &r->evaluations);
         for (long j = 0; j < n; ++j) { /* refined turning points widen the branch's range */
             r->branches[k].x_min_m = fmin(r->branches[k].x_min_m, pts[j].x_m);
             r->branches[k].x_max_m = fmax(r->branches[k].x_max_m, pts[j].x_m);
         }
         for (long j = 0; j + 1 < n; ++j) {
-            if (!crosses(&pts[j], &pts[j + 1], job->target_m)) continue;
+            if (!crosses(&pts[j], &pts[j + 1], def->target_x_m)) continue;
             /* x equal to X at a shared point: one bracket, not two. */
-            if (j > 0 && pts[j].x_m == job->target_m && crosses(&pts[j - 1], &pts[j], job->target_m)) continue;
+            if (j > 0 && pts[j].x_m == def->target_x_m && crosses(&pts[j - 1], &pts[j], def->target_x_m)) continue;
             if (*count == bcap) {
                 bracket *bigger = realloc(out, (size_t)(bcap *= 2) * sizeof *out);
                 if (!bigger) {
@@ -233,42 +233,40 @@ static bracket *find_brackets(const cli_DesignJob *job, cli_DesignResult *r, jc_
     return out;
 }
 
-int cli_design_solve(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace **ws)
+int jc_design_solve(const jc_DesignDef *def, jc_DesignResult *r, jc_Workspace **ws)
 {
     int count = 0;
-    bracket *br = find_brackets(job, r, ws[0], &count);
-    cli_DesignSolution *sol = malloc((size_t)(count > 0 ? count : 1) * sizeof *sol);
+    bracket *br = find_brackets(def, r, ws[0], &count);
+    jc_DesignSolution *sol = malloc((size_t)(count > 0 ? count : 1) * sizeof *sol);
     if (!br || !sol) {
         free(br);
         free(sol);
-        cli_error("design: out of memory for the brackets");
-        return EXIT_FAIL;
+        return JC_ENOMEM;
     }
     long runs = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : runs)
+    JC_OMP("omp parallel for schedule(dynamic, 1) reduction(+ : runs) num_threads(r->threads_used)")
     for (int k = 0; k < count; ++k) {
         sol[k].p = NAN;
         sol[k].x_m = NAN;
-        if (cli_stop_requested()) continue;
-        jc_Workspace *w = ws[cli_design_thread_index()];
-        const double p = polish(job, &br[k], w, r->edge_width, &runs);
+        jc_Workspace *w = ws[jc_thread_index()];
+        const double p = polish(def, &br[k], w, r->edge_width, &runs);
         if (isnan(p)) continue;
         /* Verified by a run of its own: what the user will see. */
-        cli_DesignPoint check;
-        cli_design_eval(job, p, w, &check);
+        jc_DesignPoint check;
+        jc_design_eval(def, p, w, &check);
         ++runs;
-        if (check.kind != CASE_LIFTOFF || !(fabs(check.x_m - job->target_m) <= CLI_DESIGN_VERIFY_M)) continue;
-        const cli_DesignBranch *b = &r->branches[br[k].branch];
-        const double dxdp = slope(job, b, p, check.x_m, w, &runs);
+        if (check.kind != JC_CASE_LIFTOFF || !(fabs(check.x_m - def->target_x_m) <= JC_DESIGN_VERIFY_M)) continue;
+        const jc_DesignBranch *b = &r->branches[br[k].branch];
+        const double dxdp = slope(def, b, p, check.x_m, w, &runs);
         const double margin = edge_margin(r, br[k].branch, p);
         /* A root so near a leap that going all the way to the edge changes
          * x by less than the check's tolerance is the edge's limit: not a
          * value anyone could build. Said, never listed. */
-        if (margin <= EDGE_NEAR_WIDTHS * r->edge_width || margin * fabs(dxdp) <= CLI_DESIGN_VERIFY_M) {
+        if (margin <= EDGE_NEAR_WIDTHS * r->edge_width || margin * fabs(dxdp) <= JC_DESIGN_VERIFY_M) {
             sol[k].x_m = INFINITY;
             continue;
         }
-        sol[k] = (cli_DesignSolution){p, check.x_m, dxdp, margin, br[k].branch};
+        sol[k] = (jc_DesignSolution){p, check.x_m, dxdp, margin, br[k].branch};
     }
     r->evaluations += runs;
     for (int k = 0; k < count; ++k) {
@@ -281,7 +279,7 @@ int cli_design_solve(const cli_DesignJob *job, cli_DesignResult *r, jc_Workspace
     }
     r->solutions = sol;
     free(br);
-    return EXIT_OK;
+    return JC_OK;
 }
 
 static int interval_order(const void *a, const void *b)
@@ -290,13 +288,13 @@ static int interval_order(const void *a, const void *b)
     return (pa > pb) - (pa < pb);
 }
 
-int cli_design_reachable(const cli_DesignResult *r, double *lo, double *hi, int cap)
+int jc_design_reachable(const jc_DesignResult *r, double *lo, double *hi, int cap)
 {
     double (*iv)[2] = malloc((size_t)(r->branch_count > 0 ? r->branch_count : 1) * sizeof *iv);
     if (!iv) return 0;
     int n = 0;
     for (int k = 0; k < r->branch_count; ++k)
-        if (r->branches[k].kind == CASE_LIFTOFF && r->branches[k].x_min_m <= r->branches[k].x_max_m) {
+        if (r->branches[k].kind == JC_CASE_LIFTOFF && r->branches[k].x_min_m <= r->branches[k].x_max_m) {
             iv[n][0] = r->branches[k].x_min_m;
             iv[n++][1] = r->branches[k].x_max_m;
         }

@@ -1,11 +1,11 @@
 /* printf's "%.*g" of a double, the same bytes, without printf: the rows of
- * a batch job are mostly numbers, and glibc's printf of a double (exact
- * multi-precision arithmetic) was a sixth of a Monte Carlo sample's
- * instructions. The decimal digits are found exactly in 128-bit integers
+ * a study are mostly numbers, and glibc's printf of a double (exact
+ * multi-precision arithmetic) costs a large share of a Monte Carlo
+ * sample's work (docs/performance.md). The decimal digits are found exactly in 128-bit integers
  * (a double is m 2^e, m < 2^53) and rounded half to even, as printf rounds
  * in the default rounding mode; values whose digits do not fit 128 bits
  * (beyond about 1e-22 .. 1e27) go to snprintf. */
-#include "batch.h"
+#include "study_internal.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -117,13 +117,13 @@ static int digits_of(double a, int p, char *digits, int *exp10)
     return -1;
 }
 
-int cli_format_g(double v, int precision, char *out)
+int jc_format_g(double v, int precision, char *out)
 {
     const int p = precision < 1 ? 1 : precision;
     char digits[40];
     int x = 0, n = 0;
     if (!isfinite(v) || v == 0.0 || p > 19 || digits_of(fabs(v), p, digits, &x) != 0)
-        return snprintf(out, CLI_NUMBER_MAX, "%.*g", precision, v);
+        return snprintf(out, JC_NUMBER_MAX, "%.*g", precision, v);
     if (signbit(v)) out[n++] = '-';
     int nd = p; /* %g drops trailing zeros of the fraction */
     if (x < -4 || x >= p) {
@@ -161,8 +161,8 @@ int cli_format_g(double v, int precision, char *out)
     return n;
 }
 #else
-int cli_format_g(double v, int precision, char *out)
+int jc_format_g(double v, int precision, char *out)
 {
-    return snprintf(out, CLI_NUMBER_MAX, "%.*g", precision, v);
+    return snprintf(out, JC_NUMBER_MAX, "%.*g", precision, v);
 }
 #endif
