@@ -192,7 +192,7 @@ static int test_grid_rows_against_case_run(void)
             jc_case_run(&s, &def.sim, NULL, &o);
             ENSURE_MSG(same_outcome(&o, &r.outcome[i]), "case %ld on %d threads", i, threads);
             ENSURE(r.values[i][0] == incline_deg * DEG && r.values[i][1] == mu);
-            char want[JC_STUDY_ROW_MAX], fields[JC_STUDY_ROW_MAX];
+            char want[2 * JC_STUDY_ROW_MAX], fields[JC_STUDY_ROW_MAX];
             outcome_fields(&o, fields, sizeof fields);
             snprintf(want, sizeof want, "%ld,%.12g,%.12g,%s\n", i, incline_deg * DEG * (180.0 / PI), mu, fields);
             ENSURE_MSG(strcmp(want, r.csv[i]) == 0, "case %ld: printf '%s', the library '%s'", i, want, r.csv[i]);
