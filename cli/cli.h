@@ -180,15 +180,4 @@ void cli_sim_help(FILE *out);
 /* The help of the shared options: simulation options (with_sim) and setup options. */
 void cli_options_help(FILE *out, int with_sim);
 
-/* ---- commands ---- */
-int cmd_paper(int argc, char **argv);
-int cmd_predict(int argc, char **argv);
-int cmd_simulate(int argc, char **argv);
-int cmd_plot(int argc, char **argv);    /* commands/plot.c: figures with gnuplot */
-int cmd_animate(int argc, char **argv); /* commands/animate.c: films with cairo and ffmpeg */
-int cmd_track(int argc, char **argv);   /* commands/track.c: a video's tracked points (Tracker) */
-int cmd_compare(int argc, char **argv); /* commands/compare.c: a tracked video against the model */
-int cmd_fit(int argc, char **argv);     /* commands/fit.c: setup values fitted to a tracked video */
-int cmd_params(int argc, char **argv);  /* commands/params.c: the parameter table */
-
 #endif

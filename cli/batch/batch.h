@@ -188,9 +188,4 @@ int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double inclin
 #define CLI_PAPER_MC_SAMPLES 2000
 #define CLI_PAPER_MC_SEED 1
 
-/* ---- sweep.c, mc.c, map.c ---- */
-int cmd_sweep(int argc, char **argv);
-int cmd_mc(int argc, char **argv);
-int cmd_map(int argc, char **argv);
-
 #endif

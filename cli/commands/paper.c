@@ -1,6 +1,7 @@
 /* jumpcyl paper: the seed paper's Table 1 recomputed beside the exact rolling
  * model and the measurement. Only the printed and measured values are data
  * (jc_paper_table); every other number comes from the library. */
+#include "commands.h"
 #include "cli.h"
 #include "batch.h"
 

@@ -1,4 +1,5 @@
 /* jumpcyl predict: the paper's model and the exact rolling model for one setup. */
+#include "commands.h"
 #include "cli.h"
 
 #include <cjson/cJSON.h>

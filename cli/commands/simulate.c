@@ -1,4 +1,5 @@
 /* jumpcyl simulate: the full motion down the ramp, as an event table. */
+#include "commands.h"
 #include "cli.h"
 
 #include <errno.h>
