@@ -2,7 +2,7 @@
  * exit 0 ok, 1 failure, 2 bad usage or input, 3 a fit whose model does not
  * describe the video. */
 #include "commands.h"
-#include "cli.h"
+#include "inputs.h"
 #include "batch.h" /* cli_batch_mpi_begin, cli_batch_mpi_end */
 
 #include <gsl/gsl_errno.h>

@@ -8,7 +8,7 @@
 #ifndef JUMPCYL_BATCH_H
 #define JUMPCYL_BATCH_H
 
-#include "cli.h"
+#include "inputs.h"
 
 #include <jumpcyl/study.h>
 #include <stdint.h>

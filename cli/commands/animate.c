@@ -4,7 +4,7 @@
  * ends when the motion does (film_end_s), then holds its last picture for
  * FILM_HOLD_S of playback. */
 #include "commands.h"
-#include "cli.h"
+#include "inputs.h"
 #include "figures.h" /* cli_paper_row */
 #include "films.h"
 

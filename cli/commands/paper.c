@@ -2,7 +2,7 @@
  * model and the measurement. Only the printed and measured values are data
  * (jc_paper_table); every other number comes from the library. */
 #include "commands.h"
-#include "cli.h"
+#include "inputs.h"
 #include "batch.h"
 
 #include <cjson/cJSON.h>

@@ -1,6 +1,6 @@
 /* jumpcyl predict: the paper's model and the exact rolling model for one setup. */
 #include "commands.h"
-#include "cli.h"
+#include "inputs.h"
 
 #include <cjson/cJSON.h>
 #include <string.h>

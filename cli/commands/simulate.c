@@ -1,6 +1,6 @@
 /* jumpcyl simulate: the full motion down the ramp, as an event table. */
 #include "commands.h"
-#include "cli.h"
+#include "inputs.h"
 
 #include <errno.h>
 #include <math.h>

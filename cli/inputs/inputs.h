@@ -1,7 +1,10 @@
-/* Shared pieces of the command-line tool: unit parsing, setup options,
- * output helpers. The tool is a thin client of the library. */
-#ifndef JUMPCYL_CLI_H
-#define JUMPCYL_CLI_H
+/* The header of inputs/: what a command is given, read into the library's
+ * types: unit parsing (units.c), experiment files (config.c, config_write.c),
+ * the setup and simulation options (setup_args.c) and a command's arguments
+ * (options.c). Below the commands and the batch jobs, which both build their
+ * inputs here. The tool is a thin client of the library. */
+#ifndef JUMPCYL_INPUTS_H
+#define JUMPCYL_INPUTS_H
 
 #include "outputs.h" /* and process.h: exit statuses, cli_error */
 
