@@ -1,9 +1,9 @@
 /* jumpcyl: command dispatch. Data goes to stdout, messages to stderr;
  * exit 0 ok, 1 failure, 2 bad usage or input, 3 a fit whose model does not
  * describe the video. */
-#include "cli.h"
-#include "batch.h"
-#include "design.h"
+#include "commands.h"
+#include "inputs.h"
+#include "batch.h" /* cli_batch_mpi_begin, cli_batch_mpi_end */
 
 #include <gsl/gsl_errno.h>
 #include <signal.h>

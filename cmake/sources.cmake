@@ -42,6 +42,6 @@ list(TRANSFORM JC_TRACK_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 # the library: the page links them whole (tests: web_link). The native
 # tool builds them into jc_cli_common with the rest.
 set(JC_TOOL_SHARED_SOURCES
-  cli/commands/setup_args.c cli/commands/units.c cli/commands/config_write.c
+  cli/inputs/setup_args.c cli/inputs/units.c cli/inputs/config_write.c
   cli/outputs/report.c cli/outputs/sim_json.c cli/figures/paper_row.c cli/process/error.c)
 list(TRANSFORM JC_TOOL_SHARED_SOURCES PREPEND "${JC_SOURCE_ROOT}/")

@@ -1,4 +1,4 @@
-/* Fuzz target: experiment files (cli/commands/config.c), as bytes in memory.
+/* Fuzz target: experiment files (cli/inputs/config.c), as bytes in memory.
  *
  * Invariants: a rejected file leaves a one-line message that starts with
  * the file's name; a file read is written back (cli_config_write) in a form
@@ -7,7 +7,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "fuzz.h"
 
-#include "cli.h"
+#include "inputs.h"
 
 #include <string.h>
 

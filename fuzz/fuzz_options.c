@@ -9,7 +9,7 @@
  * pass jc_sim_options_validate; a rejected token leaves a message. */
 #include "fuzz.h"
 
-#include "cli.h"
+#include "inputs.h"
 
 #include <float.h>
 #include <math.h>

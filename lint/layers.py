@@ -50,12 +50,12 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 # The layers, top first: a file may include or call files of its own layer
 # and of the layers below it, never above. Keys are path prefixes (longest
-# wins); cli/ itself (main.c, cli.h) is the tool's top with commands/; web/
+# wins); cli/main.c is the tool's top with commands/; web/
 # (the page's entry point) is a client beside the tool.
 LAYERS = [
-    ("commands", ["cli/commands/", "cli/main.c", "cli/cli.h", "web/"]),
+    ("commands", ["cli/commands/", "cli/main.c", "web/"]),
     ("batch, design, track", ["cli/batch/", "cli/design/", "cli/track/"]),
-    ("figures, films, outputs", ["cli/figures/", "cli/films/", "cli/outputs/"]),
+    ("figures, films, inputs, outputs", ["cli/figures/", "cli/films/", "cli/inputs/", "cli/outputs/"]),
     ("process", ["cli/process/"]),
     ("library", ["src/", "include/"]),
 ]
@@ -65,7 +65,7 @@ LAYERS = [
 SOURCE_DIRS = ["src", "include", "cli", "web"]
 # Where a quoted #include is looked for after the including file's own
 # directory (the build's include directories, CMakeLists.txt).
-INCLUDE_DIRS = ["include", "src", "cli", "cli/commands", "cli/figures", "cli/films", "cli/outputs",
+INCLUDE_DIRS = ["include", "src", "cli", "cli/commands", "cli/inputs", "cli/figures", "cli/films", "cli/outputs",
                 "cli/process", "cli/batch", "cli/design", "cli/track"]
 DEFINED_TYPES = set("TDBRCVGSW")  # nm -P: global definitions (text, data, bss, read-only, common, weak)
 SHOW_SYMBOLS = 3  # symbols named per edge

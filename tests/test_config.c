@@ -1,4 +1,4 @@
-/* Experiment files (cli/commands/config.c, docs/config.md): the examples read as
+/* Experiment files (cli/inputs/config.c, docs/config.md): the examples read as
  * documented, --dump-config round-trips exactly (dump -> read -> dump is
  * byte-identical, and the setup read back equals the original bit for bit),
  * command-line options override the file's values. Parts run in-process
@@ -7,7 +7,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "test.h"
 
-#include "cli.h"
+#include "inputs.h"
 #include "cli_run.h"
 
 #include <stdint.h>

@@ -7,7 +7,7 @@
  * library's jc_param_set on the preset. */
 #include "test.h"
 #include "cli_run.h"
-#include "cli.h"
+#include "inputs.h"
 
 #include <cjson/cJSON.h>
 

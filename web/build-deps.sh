@@ -99,7 +99,7 @@ fi
 
 # ---- one-file libraries: cJSON ----
 # (not inih: the page reads no experiment file, so the reader that needs it,
-# cli/commands/config.c, is not compiled for wasm)
+# cli/inputs/config.c, is not compiled for wasm)
 # one_file LABEL PACKAGE OUT HEADER_DIR NAME LIB: OUT/include/HEADER_DIR/NAME.h
 # and OUT/lib/libLIB.a from the source package's NAME.c compiled with emcc -O2.
 one_file() {

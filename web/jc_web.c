@@ -6,7 +6,7 @@
  *
  * A thin client of the tool's own code, compiled into the wasm too: the
  * options are collected with cli_setup_take / cli_sim_take and built with
- * cli_setup_from_options / cli_sim_build (cli/commands/setup_args.c,
+ * cli_setup_from_options / cli_sim_build (cli/inputs/setup_args.c,
  * units.c: the command line's options without its files), the document is
  * cli_sim_json_doc's (cli/outputs/sim_json.c, report.c). The page and the
  * tool cannot disagree on a setup or on a field. The page reads no file:
@@ -22,7 +22,7 @@
  * No global mutable state; the only process-wide setting touched is GSL's
  * error handler, switched off as the library's header asks.
  */
-#include "cli.h"
+#include "inputs.h"
 #include "figures.h" /* cli_paper_row (cli/figures/paper_row.c) */
 
 #include <cjson/cJSON.h>

@@ -8,7 +8,7 @@
 #ifndef JUMPCYL_BATCH_H
 #define JUMPCYL_BATCH_H
 
-#include "cli.h"
+#include "inputs.h"
 
 #include <jumpcyl/study.h>
 #include <stdint.h>
@@ -187,10 +187,5 @@ int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double inclin
 /* Samples per incline of `paper` and `plot --what paper-uncertainty`. */
 #define CLI_PAPER_MC_SAMPLES 2000
 #define CLI_PAPER_MC_SEED 1
-
-/* ---- sweep.c, mc.c, map.c ---- */
-int cmd_sweep(int argc, char **argv);
-int cmd_mc(int argc, char **argv);
-int cmd_map(int argc, char **argv);
 
 #endif

@@ -3,7 +3,8 @@
  * assembled with ffmpeg (video.c), or kept as numbered PNG files. The film
  * ends when the motion does (film_end_s), then holds its last picture for
  * FILM_HOLD_S of playback. */
-#include "cli.h"
+#include "commands.h"
+#include "inputs.h"
 #include "figures.h" /* cli_paper_row */
 #include "films.h"
 

@@ -1,5 +1,6 @@
 /* jumpcyl design: the values of one setup option for which the first
  * lift-off happens at X on the ramp (cli/design/, docs/design.md). */
+#include "commands.h"
 #include "design.h"
 #include "figures.h"
 

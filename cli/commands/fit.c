@@ -1,6 +1,7 @@
 /* jumpcyl fit: setup values and the start fitted to a tracked video by
  * nonlinear least squares from many start points, with what the video
  * determines and a verdict on the fit (docs/tracker.md, "Fit"). */
+#include "commands.h"
 #include "figures.h"
 #include "track_input.h"
 

@@ -3,6 +3,7 @@
  * sweep's (the batch engine, cli/batch/batch.h): with --keep-script the
  * map's rows are written as `jumpcyl sweep --vary Y --vary X` writes them,
  * byte for byte. */
+#include "commands.h"
 #include "batch.h"
 #include "figures.h"
 

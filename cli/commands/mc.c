@@ -1,6 +1,7 @@
 /* jumpcyl mc: Monte Carlo propagation of input uncertainties through the
  * full model: where the first lift-off falls, how sure that is, and in how
  * many separate windows of the ramp. */
+#include "commands.h"
 #include "batch.h"
 #include "figures.h"
 

@@ -1,7 +1,8 @@
 /* jumpcyl paper: the seed paper's Table 1 recomputed beside the exact rolling
  * model and the measurement. Only the printed and measured values are data
  * (jc_paper_table); every other number comes from the library. */
-#include "cli.h"
+#include "commands.h"
+#include "inputs.h"
 #include "batch.h"
 
 #include <cjson/cJSON.h>

@@ -1,6 +1,7 @@
 /* jumpcyl params: the library's parameter table (jc_param_info), as text or
  * JSON: every setup option, experiment-file key and batch parameter name. */
-#include "cli.h"
+#include "commands.h"
+#include "inputs.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,5 +1,6 @@
 /* jumpcyl predict: the paper's model and the exact rolling model for one setup. */
-#include "cli.h"
+#include "commands.h"
+#include "inputs.h"
 
 #include <cjson/cJSON.h>
 #include <string.h>

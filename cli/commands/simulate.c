@@ -1,5 +1,6 @@
 /* jumpcyl simulate: the full motion down the ramp, as an event table. */
-#include "cli.h"
+#include "commands.h"
+#include "inputs.h"
 
 #include <errno.h>
 #include <math.h>

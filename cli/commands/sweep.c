@@ -1,4 +1,5 @@
 /* jumpcyl sweep: the full model over every combination of setup values. */
+#include "commands.h"
 #include "batch.h"
 #include "figures.h"
 

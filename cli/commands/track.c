@@ -3,6 +3,7 @@
  * recovered from a mark), the surface and the incline, the noise, the hops
  * and θ, each with how well it is known or why it is not
  * (docs/tracker.md). Every readable file gives a report. */
+#include "commands.h"
 #include "track_input.h"
 
 #include <cjson/cJSON.h>

@@ -4,7 +4,7 @@
 #ifndef JUMPCYL_TRACK_INPUT_H
 #define JUMPCYL_TRACK_INPUT_H
 
-#include "cli.h"
+#include "inputs.h"
 #include "figures.h"
 
 #include <jumpcyl/track.h>

@@ -52,7 +52,4 @@ int cli_design_write_csv(const cli_DesignJob *job, const jc_DesignResult *r, con
 /* ---- figure.c: x(p) with X and the solutions (gnuplot, figures.h) ---- */
 int cli_design_figure(const cli_DesignJob *job, const jc_DesignResult *r, const char *path, const char *cmdline);
 
-/* ---- commands/design.c ---- */
-int cmd_design(int argc, char **argv);
-
 #endif

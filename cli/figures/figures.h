@@ -7,7 +7,7 @@
 #ifndef JUMPCYL_FIGURES_H
 #define JUMPCYL_FIGURES_H
 
-#include "cli.h" /* cli_SetupArgs: the paper-uncertainty figure's Monte Carlo (fig_Data) */
+#include "inputs.h" /* cli_SetupArgs: the paper-uncertainty figure's Monte Carlo (fig_Data) */
 #include "outputs.h"
 
 #include <jumpcyl/jumpcyl.h>

@@ -8,7 +8,7 @@
 #ifndef JC_CLI_CONFIG_KEYS_H
 #define JC_CLI_CONFIG_KEYS_H
 
-#include "cli.h"
+#include "inputs.h"
 
 #include <stddef.h>
 

@@ -5,7 +5,7 @@
  * nothing, so that the web page, which shares this file with the tool, has
  * no experiment-file reader to link: --config is options.c's
  * (cli_setup_base). */
-#include "cli.h"
+#include "inputs.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,7 +1,10 @@
-/* Shared pieces of the command-line tool: unit parsing, setup options,
- * output helpers. The tool is a thin client of the library. */
-#ifndef JUMPCYL_CLI_H
-#define JUMPCYL_CLI_H
+/* The header of inputs/: what a command is given, read into the library's
+ * types: unit parsing (units.c), experiment files (config.c, config_write.c),
+ * the setup and simulation options (setup_args.c) and a command's arguments
+ * (options.c). Below the commands and the batch jobs, which both build their
+ * inputs here. The tool is a thin client of the library. */
+#ifndef JUMPCYL_INPUTS_H
+#define JUMPCYL_INPUTS_H
 
 #include "outputs.h" /* and process.h: exit statuses, cli_error */
 
@@ -179,16 +182,5 @@ int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed);
 void cli_sim_help(FILE *out);
 /* The help of the shared options: simulation options (with_sim) and setup options. */
 void cli_options_help(FILE *out, int with_sim);
-
-/* ---- commands ---- */
-int cmd_paper(int argc, char **argv);
-int cmd_predict(int argc, char **argv);
-int cmd_simulate(int argc, char **argv);
-int cmd_plot(int argc, char **argv);    /* commands/plot.c: figures with gnuplot */
-int cmd_animate(int argc, char **argv); /* commands/animate.c: films with cairo and ffmpeg */
-int cmd_track(int argc, char **argv);   /* commands/track.c: a video's tracked points (Tracker) */
-int cmd_compare(int argc, char **argv); /* commands/compare.c: a tracked video against the model */
-int cmd_fit(int argc, char **argv);     /* commands/fit.c: setup values fitted to a tracked video */
-int cmd_params(int argc, char **argv);  /* commands/params.c: the parameter table */
 
 #endif

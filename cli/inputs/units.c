@@ -1,6 +1,6 @@
 /* Numbers with units on the command line: the library's reader
  * (jc_quantity_parse, src/units.c) under the tool's names. */
-#include "cli.h"
+#include "inputs.h"
 
 int cli_parse_quantity(const char *text, cli_Quantity q, double *out, char *err, size_t err_len)
 {

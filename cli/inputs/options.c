@@ -4,7 +4,7 @@
  * or the one-line error. The options themselves, collected as text and
  * built into a jc_Setup and jc_SimOptions without any file, are
  * setup_args.c's, which the web page shares. */
-#include "cli.h"
+#include "inputs.h"
 
 #include <ctype.h>
 #include <errno.h>
