@@ -28,7 +28,7 @@ LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/te
                 tests/test_study.c examples/mc_example.c
 
 .PHONY: all deps configure build run test asan test-asan bench install-check clean help
-.PHONY: test-valgrind fuzz lint test-mpi install deps-fuzz deps-valgrind deps-lint deps-mpi deps-install
+.PHONY: test-valgrind fuzz lint lint-layers test-mpi install deps-fuzz deps-valgrind deps-lint deps-mpi deps-install
 
 all: build
 
@@ -42,7 +42,8 @@ help:
 	@echo "make test-valgrind  the CLI tests with every run of the tool under valgrind"
 	@echo "make fuzz       build the libFuzzer targets (clang) and run each FUZZ_SECONDS=$(FUZZ_SECONDS) s"
 	@echo "make test-mpi   the MPI build (-DJUMPCYL_MPI=ON): sweep and mc under mpirun -n 2 equal one process"
-	@echo "make lint       cppcheck on the sources, zero findings (lint/cppcheck-suppressions.txt)"
+	@echo "make lint       cppcheck on the sources, zero findings (lint/cppcheck-suppressions.txt), and"
+	@echo "                the layering check (lint/layers.py: no loops, no call or include upwards)"
 	@echo "make bench      build and run the benchmarks"
 	@echo "make install    install the tool, man page, bash completion and library (PREFIX=/usr/local, DESTDIR=)"
 	@echo "make install-check  install into a scratch prefix and build a program against it"
@@ -136,10 +137,20 @@ fuzz: deps-fuzz
 	fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 # Static analysis: every finding fails, unless lint/cppcheck-suppressions.txt
-# says why it is not a defect.
-lint: deps-lint
+# says why it is not a defect. Then the layers (lint-layers).
+lint: deps-lint lint-layers
 	cppcheck --enable=warning,style,performance,portability --std=c11 --error-exitcode=1 --inline-suppr --quiet \
 	  -I include -I cli -I src --suppressions-list=lint/cppcheck-suppressions.txt $(LINT_SOURCES)
+
+# The layering check (docs/architecture.md, Layers): includes read from the
+# sources, calls from the build's objects (nm); a loop between files, or a
+# call or include from a lower layer to a higher one, fails unless
+# lint/layers-allow.txt lists it with its reason. All of them:
+# python3 lint/layers.py --report $(BUILD). The build as it is configured
+# (not configured again: its objects are what is read).
+lint-layers: $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+	python3 lint/layers.py $(BUILD) --allow lint/layers-allow.txt
 
 bench: build
 	cmake --build $(BUILD) --target jumpcyl_bench -j $(JOBS)

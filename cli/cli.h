@@ -3,16 +3,13 @@
 #ifndef JUMPCYL_CLI_H
 #define JUMPCYL_CLI_H
 
+#include "outputs.h" /* and process.h: exit statuses, cli_error */
+
 #include <jumpcyl/jumpcyl.h>
 
 #include <getopt.h>
-#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <sys/types.h>
-
-/* Exit statuses. */
-enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_MISFIT = 3 /* fit: the model does not describe the video */ };
 
 /* ---- units.c: the library's numbers with units (jc_quantity_parse) ---- */
 typedef jc_Quantity cli_Quantity;
@@ -45,7 +42,7 @@ int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *s
  * reported an error. */
 int cli_config_write(FILE *out, const jc_Setup *setup);
 
-/* ---- options.c ---- */
+/* ---- setup_args.c (the options as text, built without files) and options.c (argv, files) ---- */
 /* The setup options: their own (--preset, --part, --config, --dump-config),
  * then --NAME for every parameter of the library's table (jc_param_info),
  * getopt values CLI_SETUP_OPT_BASE + CLI_OPT_PARAMS + id. */
@@ -77,11 +74,20 @@ typedef jc_ParamValues cli_SetupValues;
 /* If opt is a setup option's val, records it and returns 1; 0 otherwise;
  * -1 with a message on a repeated option or too many parts. */
 int cli_setup_take(cli_SetupArgs *args, int opt, const char *optarg_text, char *err, size_t err_len);
-/* Builds and validates the setup: cli_setup_base, then cli_setup_apply. */
+/* Builds and validates the setup: cli_setup_base, then cli_setup_apply
+ * (options.c). */
 int cli_setup_build(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
 /* The preset, the experiment file and the parts: where the single-valued
- * options start from (made once for the many cases of a sweep). */
+ * options start from (made once for the many cases of a sweep; options.c). */
 int cli_setup_base(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
+/* The preset's setup (the paper's without --preset), and the --part bodies
+ * over a setup: cli_setup_base's steps before and after the file. */
+int cli_setup_preset(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
+int cli_setup_parts(const cli_SetupArgs *args, jc_Setup *s, char *err, size_t err_len);
+/* cli_setup_build without an experiment file, for a caller that reads none
+ * (the web page): the preset, the parts, the single values and the check;
+ * --config is refused. */
+int cli_setup_from_options(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
 /* The single-valued options over a base setup, then the setup's check:
  * cli_setup_values, then cli_setup_apply_values. */
 int cli_setup_apply(const cli_SetupArgs *args, jc_Setup *s, char *err, size_t err_len);
@@ -173,88 +179,6 @@ int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed);
 void cli_sim_help(FILE *out);
 /* The help of the shared options: simulation options (with_sim) and setup options. */
 void cli_options_help(FILE *out, int with_sim);
-
-/* ---- record.c: the simulation, stopped by a signal ---- */
-/* Runs the full model into run's arrays; prints the library's message on
- * failure (nothing for a stop by a signal). Returns a status (JC_OK, ...,
- * JC_ESTOPPED after a signal). The caller frees the run. */
-int cli_simulate(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd);
-/* The same without keeping events or samples: for the run's end and counts. */
-int cli_simulate_probe(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd);
-/* Runs the full model into a caller's recorder; a signal stops it. No
- * message for JC_ESTOPPED (a signal, or the recorder's own stop). */
-int cli_simulate_stream(const jc_Model *m, const jc_SimOptions *o, const jc_Recorder *rec, jc_Run *run,
-                        const char *cmd);
-
-/* ---- safe_output.c: files written whole or not at all (safe_output.h) ---- */
-#define CLI_PATH_MAX 4096
-#include "safe_output.h"
-/* Flushes standard output: EXIT_OK, or EXIT_FAIL after a message. */
-int cli_stdout_finish(void);
-
-/* ---- signals.c: SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ ---- */
-/* At start-up. The first signal sets a flag (and ends the running child);
- * commands check cli_stop_requested where they can stop, keep targets as
- * they were and return cli_stop_status(). A second signal ends the process
- * at once, after removing the recorded temporary files and directories. */
-void cli_signals_install(void);
-int cli_stop_requested(void); /* the signal number, 0 if none */
-int cli_stop_status(void);    /* 128 + the signal number: 130 SIGINT, 143 SIGTERM */
-const char *cli_signal_name(int sig);
-/* Blocks the stop signals (while a record and the thing it records change
- * together, or around starting a child); release restores the old mask. */
-void cli_signals_hold(sigset_t *old);
-void cli_signals_release(const sigset_t *old);
-/* The running child, ended by a signal; 0 when none. */
-void cli_child_set(pid_t pid);
-/* mkstemp, recorded so that a signal that ends the process removes the file.
- * Returns the descriptor or -1 (errno); *slot is the record. */
-int cli_tmpfile_create(char *template_path, int *slot);
-/* Renames the temporary file to final_path (removes it if final_path is
- * NULL, or if the rename fails) and drops the record. 0 or -1 (errno). */
-int cli_tmpfile_finish(int slot, const char *tmp_path, const char *final_path);
-/* A scratch directory, removed with its files by a signal that ends the
- * process; returns the record (-1 if none is free) for cli_tmpdir_untrack. */
-int cli_tmpdir_track(const char *path);
-void cli_tmpdir_untrack(int slot);
-
-/* ---- report.c ---- */
-#define CLI_PI 3.14159265358979323846
-double cli_deg(double rad);
-/* v as printf shows it with that many decimals, without a negative zero:
- * values that round to zero become +0. */
-double cli_shown(double v, int decimals);
-void cli_print_setup(FILE *out, const jc_Model *m, int show_incline);
-/* A word as the shell reads it: single-quoted unless plainly safe; control
- * characters shown as '?', so that it stays on one line (and a comment line
- * of a script never ends in a backslash). */
-void cli_shell_word(FILE *out, const char *s);
-/* Prints "jumpcyl: <msg>" on stderr. */
-void cli_error(const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 1, 2)))
-#endif
-    ;
-
-/* JSON helpers (cJSON). */
-struct cJSON;
-/* {"theta": rad, "x": m, "omega": rad/s, "normal": N, "friction": N, "grazing": bool} or null */
-struct cJSON *cli_json_crossing(const jc_RollingCrossing *c);
-/* The setup: the body, then every parameter with a json_key (jc_ParamInfo). */
-struct cJSON *cli_json_setup(const jc_Model *m);
-/* The parameter table, as `jumpcyl params --json` prints it and the web
- * page reads it: {"presets": [...], "params": [{"name", "quantity", "unit",
- * "min", "max", ..., "defaults": {preset: SI or null}}, ...]}. */
-struct cJSON *cli_json_params(void);
-struct cJSON *cli_json_event(const jc_Event *e);
-struct cJSON *cli_json_energy(const jc_EnergyReport *e);
-/* Prints the document on stdout and frees it; EXIT_FAIL if that fails. */
-int cli_json_print(struct cJSON *doc);
-/* sim_json.c: `simulate --json`, whole or streamed (the same text). */
-struct cJSON *cli_sim_json_doc(const jc_Model *m, const jc_Run *run);
-int cli_sim_json_begin(FILE *out, const jc_Model *m); /* 0, or -1 (a write or memory failed) */
-int cli_sim_json_event(FILE *out, const jc_Event *e, int index);
-int cli_sim_json_end(FILE *out, const jc_Model *m, const jc_Run *run, const jc_RunSummary *sum);
 
 /* ---- commands ---- */
 int cmd_paper(int argc, char **argv);

@@ -11,7 +11,7 @@
  * to the name (control characters as '?'); an absolute path starts with '/'. */
 #include "fuzz.h"
 
-#include "plot.h"
+#include "figures.h"
 
 #include <string.h>
 

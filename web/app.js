@@ -64,8 +64,9 @@ function call0(fn) {
   return text;
 }
 // A run. The samples come as binary columns (sample-format "binary"): the
-// answer gives the address of count x 19 doubles in the wasm memory, copied
-// here into one Float64Array per quantity and freed; no printing and no
+// answer names the library's numeric sample columns ("t_s", "x_m", ...) and
+// gives the address of count doubles for each in the wasm memory, copied
+// here into one Float64Array per column and freed; no printing and no
 // parsing of numbers (7 times faster than the JSON columns, docs/web.md).
 function simulate(request) {
   const run = JSON.parse(call('jc_web_simulate', { ...request, 'sample-format': 'binary' }));
@@ -138,6 +139,8 @@ function recompute() {
   }
   err.hidden = true;
   state.request = req;
+  state.sampledRequest = { ...req, 'sample-dt': `${state.dtMs}ms` }; // what the run was
+  document.body.dataset.sampleDt = state.sampledRequest['sample-dt'];
   state.run = run;
   prepareRun(run);
   state.t = Math.min(state.t, run.t_end);
@@ -192,12 +195,12 @@ function prepareRun(run) {
   const K = new Float64Array(n), U = new Float64Array(n), L = new Float64Array(n), E = new Float64Array(n);
   for (let i = 0; i < n; ++i) {
     const contact = S.mode[i] !== 'flight';
-    ratioN[i] = S.normal[i] / (Mg * Math.cos(a));
-    ratioF[i] = contact && S.normal[i] > 1e-9 * Mg ? Math.abs(S.friction[i]) / S.normal[i] : NaN;
-    gapMm[i] = S.gap[i] * 1000;
-    K[i] = S.kinetic[i] * 1000;
-    U[i] = S.potential[i] * 1000;
-    L[i] = (S.friction_loss[i] + S.impact_loss[i] + S.air_loss[i] + S.rolling_resistance_loss[i]) * 1000;
+    ratioN[i] = S.normal_N[i] / (Mg * Math.cos(a));
+    ratioF[i] = contact && S.normal_N[i] > 1e-9 * Mg ? Math.abs(S.friction_N[i]) / S.normal_N[i] : NaN;
+    gapMm[i] = S.gap_m[i] * 1000;
+    K[i] = S.kinetic_J[i] * 1000;
+    U[i] = S.potential_J[i] * 1000;
+    L[i] = (S.friction_loss_J[i] + S.impact_loss_J[i] + S.air_loss_J[i] + S.rolling_resistance_loss_J[i]) * 1000;
     E[i] = K[i] + U[i] + L[i];
   }
   // The body's CM direction in the body (angle of the mass-weighted offsets).
@@ -210,7 +213,7 @@ function prepareRun(run) {
 
 // Index i with t[i] <= t < t[i+1] (binary search).
 function sampleAt(t) {
-  const T = state.run.samples.t;
+  const T = state.run.samples.t_s;
   let lo = 0, hi = T.length - 1;
   if (t <= T[0]) return 0;
   if (t >= T[hi]) return hi;
@@ -222,9 +225,9 @@ function sampleAt(t) {
 // the CM is not cut into straight pieces by a coarse sampling).
 function ballistic(i, t) {
   const run = state.run, S = run.samples, s = run.setup, d = s.body.cm_offset, a = run.derived.a;
-  const th = S.theta[i], w = S.omega[i], tau = t - S.t[i];
-  const gx = S.x[i] + d * Math.sin(th), gy = S.y[i] + d * Math.cos(th);
-  const vgx = S.vx[i] + d * w * Math.cos(th), vgy = S.vy[i] - d * w * Math.sin(th);
+  const th = S.theta_rad[i], w = S.omega_radps[i], tau = t - S.t_s[i];
+  const gx = S.x_m[i] + d * Math.sin(th), gy = S.y_m[i] + d * Math.cos(th);
+  const vgx = S.vx_mps[i] + d * w * Math.cos(th), vgy = S.vy_mps[i] - d * w * Math.sin(th);
   const th2 = th + w * tau;
   const gX = gx + vgx * tau + 0.5 * s.g * Math.sin(a) * tau * tau;
   const gY = gy + vgy * tau - 0.5 * s.g * Math.cos(a) * tau * tau;
@@ -234,14 +237,14 @@ const airFree = (s) => !s.drag_coefficient && !s.lift_coefficient && !s.spin_dra
 // The state at time t: between samples ballistic in flight (no air), else linear.
 function stateAt(t) {
   const S = state.run.samples, i = sampleAt(t), j = Math.min(i + 1, S.count - 1);
-  if (S.mode[i] === 'flight' && j > i && t > S.t[i] && t < S.t[j] && airFree(state.run.setup)) {
+  if (S.mode[i] === 'flight' && j > i && t > S.t_s[i] && t < S.t_s[j] && airFree(state.run.setup)) {
     return { i, ...ballistic(i, t), normal: 0, friction: 0, mode: 'flight' };
   }
-  const span = S.t[j] - S.t[i];
-  const f = span > 0 ? Math.min(1, Math.max(0, (t - S.t[i]) / span)) : 0;
+  const span = S.t_s[j] - S.t_s[i];
+  const f = span > 0 ? Math.min(1, Math.max(0, (t - S.t_s[i]) / span)) : 0;
   const lerp = (c) => S[c][i] + f * (S[c][j] - S[c][i]);
-  return { i, x: lerp('x'), y: lerp('y'), theta: lerp('theta'), normal: S.normal[f < 0.5 ? i : j],
-           friction: S.friction[f < 0.5 ? i : j], mode: S.mode[f < 0.5 ? i : j] };
+  return { i, x: lerp('x_m'), y: lerp('y_m'), theta: lerp('theta_rad'), normal: S.normal_N[f < 0.5 ? i : j],
+           friction: S.friction_N[f < 0.5 ? i : j], mode: S.mode[f < 0.5 ? i : j] };
 }
 
 // The centre's path for drawing: the samples, with flights cut finer.
@@ -249,10 +252,10 @@ function centrePath(run) {
   const S = run.samples, t = [], x = [], y = [];
   const fine = airFree(run.setup);
   for (let i = 0; i < S.count; ++i) {
-    t.push(S.t[i]); x.push(S.x[i]); y.push(S.y[i]);
+    t.push(S.t_s[i]); x.push(S.x_m[i]); y.push(S.y_m[i]);
     if (fine && S.mode[i] === 'flight' && i + 1 < S.count) {
-      const span = S.t[i + 1] - S.t[i], m = Math.min(40, Math.ceil(span / 0.002));
-      for (let k = 1; k < m; ++k) { const tk = S.t[i] + span * k / m, b = ballistic(i, tk); t.push(tk); x.push(b.x); y.push(b.y); }
+      const span = S.t_s[i + 1] - S.t_s[i], m = Math.min(40, Math.ceil(span / 0.002));
+      for (let k = 1; k < m; ++k) { const tk = S.t_s[i] + span * k / m, b = ballistic(i, tk); t.push(tk); x.push(b.x); y.push(b.y); }
     }
   }
   return { t, x, y };
@@ -300,7 +303,7 @@ function picture(a, x, y) { return [x * Math.cos(a) + y * Math.sin(a), -x * Math
 function sceneView(w, h) {
   const run = state.run, s = run.setup, S = run.samples, a = run.derived.a, r = s.body.radius;
   let xlo = 0, xhi = 0, yhi = 2 * r;
-  for (let i = 0; i < S.count; ++i) { xlo = Math.min(xlo, S.x[i]); xhi = Math.max(xhi, S.x[i]); yhi = Math.max(yhi, S.y[i] + r); }
+  for (let i = 0; i < S.count; ++i) { xlo = Math.min(xlo, S.x_m[i]); xhi = Math.max(xhi, S.x_m[i]); yhi = Math.max(yhi, S.y_m[i] + r); }
   // The whole ramp, unless it is a floor or much longer than the stretch
   // travelled (as `jumpcyl animate`'s fixed camera, LONG_RAMP_FACTOR 3).
   if (a > 0 && s.ramp_length <= 3 * Math.max(xhi - xlo, r)) xhi = Math.max(xhi, s.ramp_length);
@@ -486,7 +489,7 @@ function plot(canvasId, series, opts = {}) {
   ctx.clearRect(0, 0, w, h);
   const run = state.run;
   if (!run) return;
-  const T = run.samples.t, n = T.length;
+  const T = run.samples.t_s, n = T.length;
   const L = 44, R = 8, Tp = 20, B = 22;
   // A long run (the hoop rocks for a minute): a window of GRAPH_WINDOW_S
   // seconds that follows the current time.
@@ -794,15 +797,6 @@ function download(name, type, text) {
   document.body.appendChild(a); a.click(); a.remove();
   setTimeout(() => URL.revokeObjectURL(url), 1000);
 }
-function runCsv(run) {
-  const S = run.samples;
-  const cols = ['t', 'x', 'y', 'vx', 'vy', 'theta', 'omega', 'cm_x', 'cm_y', 'normal', 'friction', 'slip', 'gap',
-    'kinetic', 'potential', 'friction_loss', 'impact_loss', 'air_loss', 'rolling_resistance_loss'];
-  const lines = [`# jumpcyl ${run.version} (browser), request ${JSON.stringify(state.request)}; SI units`,
-    ['mode', ...cols].join(',')];
-  for (let i = 0; i < S.count; ++i) lines.push([S.mode[i], ...cols.map((c) => (Number.isFinite(S[c][i]) ? String(S[c][i]) : ''))].join(','));
-  return `${lines.join('\n')}\n`;
-}
 function fileStem() {
   const inc = state.run ? `${+state.run.setup.incline_deg.toFixed(2)}deg` : '';
   return `jumpcyl-${state.preset}-${inc}`;
@@ -828,7 +822,7 @@ function setPlaying(on) {
 }
 function stepFrame(dir) {
   setPlaying(false);
-  const T = state.run.samples.t;
+  const T = state.run.samples.t_s;
   let i = sampleAt(state.t);
   if (dir > 0) { while (i < T.length - 1 && T[i] <= state.t + 1e-12) ++i; } else if (T[i] >= state.t - 1e-12 && i > 0) --i;
   state.t = T[i];
@@ -856,7 +850,13 @@ function wire() {
     const tr = e.target.closest('tr'); if (!tr) return;
     e.preventDefault(); setPlaying(false); state.t = +tr.dataset.t; draw();
   });
-  $('#dl-csv').addEventListener('click', () => download(`${fileStem()}.csv`, 'text/csv', runCsv(state.run)));
+  // The run's samples as `jumpcyl simulate --csv` writes them for the same
+  // options: the wasm writes them with the library's table of columns.
+  $('#dl-csv').addEventListener('click', () => {
+    const ans = JSON.parse(call('jc_web_csv', state.sampledRequest));
+    if (!ans.ok) { tid('error').textContent = ans.error; tid('error').hidden = false; return; }
+    download(`${fileStem()}.csv`, 'text/csv', ans.csv);
+  });
   $('#dl-json').addEventListener('click', () => {
     const { derived, view, path, ...doc } = state.run;
     const samples = {};

@@ -6,9 +6,11 @@
  *
  * A thin client of the tool's own code, compiled into the wasm too: the
  * options are collected with cli_setup_take / cli_sim_take and built with
- * cli_setup_build / cli_sim_build (cli/commands/options.c, units.c), the
- * document is cli_sim_json_doc's (cli/outputs/sim_json.c, report.c). The
- * page and the tool cannot disagree on a setup or on a field.
+ * cli_setup_from_options / cli_sim_build (cli/commands/setup_args.c,
+ * units.c: the command line's options without its files), the document is
+ * cli_sim_json_doc's (cli/outputs/sim_json.c, report.c). The page and the
+ * tool cannot disagree on a setup or on a field. The page reads no file:
+ * 'config' is refused.
  *
  * jc_web_params gives the library's parameter table (what `jumpcyl params
  * --json` prints), from which the page makes its controls.
@@ -46,26 +48,12 @@ JC_WEB_EXPORT char *jc_web_presets(void);
 JC_WEB_EXPORT const char *jc_web_version(void);
 JC_WEB_EXPORT void jc_web_free(char *text);
 JC_WEB_EXPORT char *jc_web_config(const char *request_json);
+JC_WEB_EXPORT char *jc_web_csv(const char *request_json);
 JC_WEB_EXPORT char *jc_web_params(void);
 
 #define WEB_DEFAULT_MAX_SAMPLES 100000 /* the library's default is 10^6: too much JSON for a page */
 #define ERR_LEN 512
 #define NUM_LEN 32
-
-/* ---- experiment files: none in the browser ---- */
-
-/* cli_setup_base (options.c) reads --config with cli_config_load, the
- * tool's reader (cli/commands/config.c, inih), which the wasm build does
- * not compile: the page never reads a file (a request naming 'config' is
- * refused in take_member, so this is never reached), and writing one
- * (cli_config_write) is config_write.c, which needs no inih. This stands in
- * for the reader so that the link resolves. */
-int cli_config_load(const char *path, jc_Setup *setup, char *err, size_t err_len)
-{
-    (void)setup;
-    snprintf(err, err_len, "cannot read %.200s: no experiment files in the browser", path);
-    return -1;
-}
 
 /* ---- the request ---- */
 
@@ -157,7 +145,7 @@ static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, in
     int rc = 0, k = 0;
     for (const cJSON *it = req->child; !rc && it; it = it->next, ++k)
         rc = take_member(&a, it, a.numbers[k], err, err_len);
-    if (!rc) rc = cli_setup_build(&a.setup, setup, err, err_len) || cli_sim_build(&a.sim, o, err, err_len);
+    if (!rc) rc = cli_setup_from_options(&a.setup, setup, err, err_len) || cli_sim_build(&a.sim, o, err, err_len);
     if (!rc) {
         double v = WEB_DEFAULT_MAX_SAMPLES;
         char msg[256];
@@ -178,35 +166,6 @@ static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, in
 }
 
 /* ---- the answer ---- */
-
-/* The samples as columns (one array per quantity), ready for plotting. */
-enum { C_T, C_X, C_Y, C_VX, C_VY, C_THETA, C_OMEGA, C_CM_X, C_CM_Y, C_NORMAL, C_FRICTION, C_SLIP, C_GAP,
-       C_KINETIC, C_POTENTIAL, C_FRICTION_LOSS, C_IMPACT_LOSS, C_AIR_LOSS, C_RR_LOSS, C_COUNT };
-
-static double column_value(const jc_Sample *s, int c)
-{
-    switch (c) {
-    case C_T: return s->state.t_s;
-    case C_X: return s->state.x_m;
-    case C_Y: return s->state.y_m;
-    case C_VX: return s->state.vx_mps;
-    case C_VY: return s->state.vy_mps;
-    case C_THETA: return s->state.theta_rad;
-    case C_OMEGA: return s->state.omega_radps;
-    case C_CM_X: return s->cm_x_m;
-    case C_CM_Y: return s->cm_y_m;
-    case C_NORMAL: return s->normal_N;
-    case C_FRICTION: return s->friction_N;
-    case C_SLIP: return s->slip_mps;
-    case C_GAP: return s->gap_m;
-    case C_KINETIC: return s->kinetic_J;
-    case C_POTENTIAL: return s->potential_J;
-    case C_FRICTION_LOSS: return s->friction_loss_J;
-    case C_IMPACT_LOSS: return s->impact_loss_J;
-    case C_AIR_LOSS: return s->air_loss_J;
-    default: return s->rolling_resistance_loss_J;
-    }
-}
 
 /* A growing text, for the sample columns: printed straight, not through a
  * cJSON node per number. */
@@ -251,42 +210,53 @@ static void put_number(text_buf *b, double v)
     put(b, tmp, (size_t)n);
 }
 
-static const char *const column_names[C_COUNT] = {
-    "t", "x", "y", "vx", "vy", "theta", "omega", "cm_x", "cm_y", "normal", "friction", "slip", "gap",
-    "kinetic", "potential", "friction_loss", "impact_loss", "air_loss", "rolling_resistance_loss"};
+static void put_text(text_buf *b, const char *s)
+{
+    put(b, s, strlen(s));
+}
 
-/* {"count": N, "mode": [...], "t": [...], ...} as raw JSON; with binary,
- * {"count": N, "mode": [...], "columns": ["t", ...], "buffer": ADDRESS}
- * instead of the numbers: ADDRESS is that of count * C_COUNT doubles,
- * column after column (t first), which the caller reads from the wasm
+/* The modes as a JSON array of names. */
+static void put_modes(text_buf *b, const jc_Run *run)
+{
+    put(b, "[", 1);
+    for (int i = 0; i < run->sample_count; ++i) {
+        if (i) put(b, ",", 1);
+        put(b, "\"", 1);
+        put_text(b, jc_mode_name(run->samples[i].mode));
+        put(b, "\"", 1);
+    }
+    put(b, "]", 1);
+}
+
+/* The library's sample columns (jc_sample_column_info), each an array:
+ * {"count": N, "t_s": [...], "mode": [...], "x_m": [...], ...} as raw JSON,
+ * in the table's order. With binary, {"count": N, "mode": [...],
+ * "columns": ["t_s", "x_m", ...], "buffer": ADDRESS} instead: the numeric
+ * columns' names, and ADDRESS that of count doubles per numeric column,
+ * column after column in that order, which the caller reads from the wasm
  * memory and frees with jc_web_free (no printing, no parsing: the page's
  * way). NaN and infinities stay as they are there. */
 static cJSON *samples_json(const jc_Run *run, int binary)
 {
-    const char *const *names = column_names;
     text_buf b = {NULL, 0, 0, 0};
     char head[64];
-    put(&b, head, (size_t)snprintf(head, sizeof head, "{\"count\":%d,\"mode\":[", run->sample_count));
-    for (int i = 0; i < run->sample_count; ++i) {
-        const char *m = jc_mode_name(run->samples[i].mode);
-        if (i) put(&b, ",", 1);
-        put(&b, "\"", 1);
-        put(&b, m, strlen(m));
-        put(&b, "\"", 1);
-    }
-    put(&b, "]", 1);
+    put(&b, head, (size_t)snprintf(head, sizeof head, "{\"count\":%d", run->sample_count));
     if (binary) {
         const size_t n = (size_t)run->sample_count;
-        double *buf = malloc((n ? n : 1) * C_COUNT * sizeof *buf);
+        double *buf = malloc((n ? n : 1) * JC_SAMPLE_COLUMNS * sizeof *buf);
         if (!buf) b.failed = 1;
-        for (int c = 0; buf && c < C_COUNT; ++c)
-            for (size_t i = 0; i < n; ++i) buf[(size_t)c * n + i] = column_value(&run->samples[i], c);
-        put(&b, ",\"columns\":[", 12);
-        for (int c = 0; c < C_COUNT; ++c) {
-            if (c) put(&b, ",", 1);
+        put_text(&b, ",\"mode\":");
+        put_modes(&b, run);
+        put_text(&b, ",\"columns\":[");
+        size_t k = 0; /* numeric columns so far */
+        for (int c = 0; c < JC_SAMPLE_COLUMNS; ++c) {
+            const jc_SampleColumn *col = jc_sample_column_info(c);
+            if (col->is_mode) continue;
+            put_text(&b, k ? ",\"" : "\"");
+            put_text(&b, col->name);
             put(&b, "\"", 1);
-            put(&b, names[c], strlen(names[c]));
-            put(&b, "\"", 1);
+            for (size_t i = 0; buf && i < n; ++i) buf[k * n + i] = jc_sample_value(&run->samples[i], c);
+            ++k;
         }
         char tail[48];
         put(&b, tail, (size_t)snprintf(tail, sizeof tail, "],\"buffer\":%lu}", (unsigned long)(uintptr_t)buf));
@@ -295,13 +265,19 @@ static cJSON *samples_json(const jc_Run *run, int binary)
         free(b.text);
         return raw;
     }
-    for (int c = 0; c < C_COUNT; ++c) {
-        put(&b, ",\"", 2);
-        put(&b, names[c], strlen(names[c]));
-        put(&b, "\":[", 3);
+    for (int c = 0; c < JC_SAMPLE_COLUMNS; ++c) {
+        const jc_SampleColumn *col = jc_sample_column_info(c);
+        put_text(&b, ",\"");
+        put_text(&b, col->name);
+        put_text(&b, "\":");
+        if (col->is_mode) {
+            put_modes(&b, run);
+            continue;
+        }
+        put(&b, "[", 1);
         for (int i = 0; i < run->sample_count; ++i) {
             if (i) put(&b, ",", 1);
-            put_number(&b, column_value(&run->samples[i], c));
+            put_number(&b, jc_sample_value(&run->samples[i], c));
         }
         put(&b, "]", 1);
     }
@@ -309,6 +285,30 @@ static cJSON *samples_json(const jc_Run *run, int binary)
     cJSON *raw = b.failed ? NULL : cJSON_CreateRaw(b.text);
     free(b.text);
     return raw;
+}
+
+/* The samples as `jumpcyl simulate --csv` writes them: the header, then a
+ * row per sample (jc_sample_format_row), the same bytes. NULL when memory
+ * ran out. */
+static char *samples_csv(const jc_Run *run)
+{
+    text_buf b = {NULL, 0, 0, 0};
+    for (int c = 0; c < JC_SAMPLE_COLUMNS; ++c) {
+        if (c) put(&b, ",", 1);
+        put_text(&b, jc_sample_column_info(c)->name);
+    }
+    put(&b, "\n", 1);
+    char row[JC_SAMPLE_ROW_MAX + 1];
+    for (int i = 0; i < run->sample_count; ++i) {
+        size_t n = (size_t)jc_sample_format_row(&run->samples[i], row, sizeof row - 1);
+        row[n++] = '\n';
+        put(&b, row, n);
+    }
+    if (b.failed) {
+        free(b.text);
+        return NULL;
+    }
+    return b.text;
 }
 
 static void add_state(cJSON *o, const jc_State *st)
@@ -413,32 +413,60 @@ static char *read_request(const char *request_json, jc_Setup *setup, jc_SimOptio
     return rc ? error_text(err) : NULL;
 }
 
-JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
+/* Runs the request: NULL and the run (free it with jc_run_free), or the
+ * answer that refuses the request or reports the failure. */
+static char *run_request(const char *request_json, jc_Model *model, jc_Run *run, int *binary)
 {
     char err[ERR_LEN];
     jc_Setup setup;
     jc_SimOptions options;
-    int binary = 0;
-    char *refused = read_request(request_json, &setup, &options, &binary);
+    char *refused = read_request(request_json, &setup, &options, binary);
     if (refused) return refused;
-
-    jc_Model *model = malloc(sizeof *model);
-    if (!model) return NULL;
-    if (jc_model_init(model, &setup, err, sizeof err) != JC_OK) {
-        free(model);
-        return error_text(err);
-    }
-    jc_Run run = {0};
-    const int st = jc_simulate(model, &options, &run, err, sizeof err);
-    char *text;
+    if (jc_model_init(model, &setup, err, sizeof err) != JC_OK) return error_text(err);
+    const int st = jc_simulate(model, &options, run, err, sizeof err);
     if (st != JC_OK) {
         char msg[ERR_LEN + 40];
         snprintf(msg, sizeof msg, "simulation failed (%s): %s", jc_status_text(st), err);
-        text = error_text(msg);
-    } else {
-        text = print_or_fail(run_json(model, &run, binary));
+        jc_run_free(run);
+        return error_text(msg);
     }
-    jc_run_free(&run);
+    return NULL;
+}
+
+JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
+{
+    jc_Model *model = malloc(sizeof *model);
+    if (!model) return NULL;
+    jc_Run run = {0};
+    int binary = 0;
+    char *text = run_request(request_json, model, &run, &binary);
+    if (!text) {
+        text = print_or_fail(run_json(model, &run, binary));
+        jc_run_free(&run);
+    }
+    free(model);
+    return text;
+}
+
+/* The request's run as {"ok": true, "csv": "..."}: its samples as
+ * `jumpcyl simulate --csv` writes them (the same columns, digits and
+ * bytes), for the page's download. */
+JC_WEB_EXPORT char *jc_web_csv(const char *request_json)
+{
+    jc_Model *model = malloc(sizeof *model);
+    if (!model) return NULL;
+    jc_Run run = {0};
+    int binary = 0;
+    char *text = run_request(request_json, model, &run, &binary);
+    if (!text) {
+        char *csv = samples_csv(&run);
+        cJSON *doc = csv ? cJSON_CreateObject() : NULL;
+        cJSON_AddTrueToObject(doc, "ok");
+        cJSON_AddStringToObject(doc, "csv", csv);
+        free(csv);
+        text = print_or_fail(doc);
+        jc_run_free(&run);
+    }
     free(model);
     return text;
 }

@@ -157,7 +157,7 @@ test('the setup round-trips through the URL', async () => {
   await Promise.all([page.close(), again.page.close(), hoop.page.close()]);
 });
 
-test('downloads: the experiment file is --dump-config\'s, CSV and JSON hold the run', async () => {
+test('downloads: the experiment file is --dump-config\'s, the CSV has simulate --csv\'s layout, the JSON holds the run', async () => {
   const { page } = await open(`${base}/index.html?preset=paper&incline=15&restitution=0.4`);
   const grab = async (id) => {
     const [dl] = await Promise.all([page.waitForEvent('download'), page.click(id)]);
@@ -167,11 +167,27 @@ test('downloads: the experiment file is --dump-config\'s, CSV and JSON hold the 
   const dump = execFileSync(native, ['simulate', '--incline', '15deg', '--restitution', '0.4', '--dump-config'],
     { encoding: 'utf8' });
   assert.equal(ini, dump);
-  const csv = (await grab('#dl-csv')).trim().split('\n');
-  assert.match(csv[1], /^mode,t,x,y,/);
+  // The CSV is laid out as the tool's for the same options and the page's
+  // sample step: the same header (one table of columns), a row per sample,
+  // the modes, and numbers that agree to their printed digits (the wasm's
+  // arithmetic may differ from the native in the last bits: make test-web).
+  const csvText = await grab('#dl-csv');
+  const dt = await page.getAttribute('body', 'data-sample-dt');
+  const nativeCsv = execFileSync(native, ['simulate', '--incline', '15deg', '--restitution', '0.4', '--sample-dt', dt,
+    '--csv', '-'], { encoding: 'utf8', maxBuffer: 64 << 20 });
+  const rows = csvText.trim().split('\n').map((l) => l.split(','));
+  const nativeRows = nativeCsv.trim().split('\n').map((l) => l.split(','));
+  assert.match(csvText, /^t_s,mode,x_m,y_m,/);
+  assert.deepEqual(rows[0], nativeRows[0]);
+  assert.equal(rows.length, nativeRows.length);
+  rows.forEach((r, i) => r.forEach((cell, j) => {
+    const want = nativeRows[i][j];
+    if (j === 1 || i === 0) assert.equal(cell, want);
+    else assert.ok(Math.abs(Number(cell) - Number(want)) <= 1e-8 * Math.max(1, Math.abs(Number(want))), `${i},${j}: ${cell} vs ${want}`);
+  }));
   const json = JSON.parse(await grab('#dl-json'));
   assert.equal(json.ok, true);
-  assert.equal(json.samples.count, csv.length - 2);
+  assert.equal(json.samples.count, rows.length - 1);
   await page.close();
 });
 

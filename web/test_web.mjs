@@ -33,9 +33,9 @@ async function loadModule(file) {
 }
 
 // The entry point's answer as text, the returned string freed.
-function call(jc, request) {
-  const ptr = jc.ccall('jc_web_simulate', 'number', ['string'], [JSON.stringify(request)]);
-  assert.notEqual(ptr, 0, 'jc_web_simulate returned NULL');
+function call(jc, request, fn = 'jc_web_simulate') {
+  const ptr = jc.ccall(fn, 'number', ['string'], [JSON.stringify(request)]);
+  assert.notEqual(ptr, 0, `${fn} returned NULL`);
   const text = jc.UTF8ToString(ptr);
   jc.ccall('jc_web_free', null, ['number'], [ptr]);
   return text;
@@ -215,19 +215,20 @@ test('the sampled trajectory comes at the requested spacing', () => {
   assert.equal(web.ok, true, web.error);
   const s = web.samples;
   assert.ok(s.count > 10);
-  for (const k of ['t', 'x', 'y', 'theta', 'mode', 'normal', 'friction', 'gap', 'kinetic', 'potential'])
+  for (const k of ['t_s', 'x_m', 'y_m', 'theta_rad', 'mode', 'normal_N', 'friction_N', 'gap_m', 'kinetic_J', 'potential_J'])
     assert.equal(s[k].length, s.count, k);
   assert.ok(s.mode.includes('flight') && s.mode.includes('rolling'));
   // Fixed samples at k * 0.01 s, with the events' samples between them.
-  const fixed = s.t.filter((t) => Math.abs(t / 0.01 - Math.round(t / 0.01)) < 1e-9);
+  const fixed = s.t_s.filter((t) => Math.abs(t / 0.01 - Math.round(t / 0.01)) < 1e-9);
   assert.ok(fixed.length >= Math.floor(web.t_end / 0.01), `${fixed.length} fixed samples up to ${web.t_end} s`);
   // Sampling does not change the events.
   assert.deepEqual(web.events, simulate(jc, { incline: 30 }).events);
 });
 
 // The samples against the tool's --csv, which prints 12 significant digits
-// (9 for forces, slip, gap and losses): every value within half a unit of
-// the CSV's last digit plus 1e-9 of its column's largest value; the modes equal.
+// (9 for forces, slip, gap and losses): the same columns under the same
+// names, in the same order; every value within half a unit of the CSV's
+// last digit plus 1e-9 of its column's largest value; the modes equal.
 // Half a unit in the last digit of a number printed with %g ("1.5e-05", "0.125").
 function halfLastDigit(text) {
   const [mantissa, exponent = '0'] = text.toLowerCase().split('e');
@@ -249,12 +250,12 @@ test('the samples equal the native tool\'s CSV', () => {
       const web = simulate(jc, request);
       assert.equal(web.ok, true, web.error);
       assert.equal(web.samples.count, rows.length, 'sample count');
+      assert.deepEqual(Object.keys(web.samples), ['count', ...head]);
       let worst = 0;
       head.forEach((name, j) => {
-        const key = name.replace(/_(s|m|mps|rad|radps|N|J)$/, '');
-        const col = web.samples[key];
+        const col = web.samples[name];
         assert.ok(col, `column ${name}`);
-        if (key === 'mode') {
+        if (name === 'mode') {
           assert.deepEqual(col, rows.map((r) => r[j]));
           return;
         }
@@ -268,6 +269,68 @@ test('the samples equal the native tool\'s CSV', () => {
       report.push({ case: `samples ${JSON.stringify(args)}: beyond the CSV's rounding / column scale`, samples: rows.length, 'worst event rel': worst });
       assert.ok(worst <= REL_TOL, `${JSON.stringify(request)}: worst difference / column scale ${worst}`);
     }
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+// C's printf("%.*g", p, v), written out: the text form of a sample column.
+function formatG(v, p) {
+  if (Number.isNaN(v)) return 'nan';
+  if (!Number.isFinite(v)) return v < 0 ? '-inf' : 'inf';
+  if (v === 0) return Object.is(v, -0) ? '-0' : '0';
+  const [m, ex] = v.toExponential(p - 1).split('e');
+  const e = Number(ex);
+  const strip = (t) => (t.includes('.') ? t.replace(/0+$/, '').replace(/\.$/, '') : t);
+  if (e < -4 || e >= p) return `${strip(m)}e${e < 0 ? '-' : '+'}${String(Math.abs(e)).padStart(2, '0')}`;
+  return strip(v.toFixed(p - 1 - e));
+}
+
+// The page's CSV download (jc_web_csv) has simulate --csv's layout: the same
+// header (the library's table of sample columns), a row per sample, each
+// cell the wasm's own sample printed with the column's digits (12, or 9 for
+// forces, slip, gap and losses), within the rounding of the native tool's.
+test('jc_web_csv writes the samples as simulate --csv does', () => {
+  const nine = new Set(['normal_N', 'friction_N', 'slip_mps', 'gap_m', 'friction_loss_J', 'impact_loss_J',
+    'air_loss_J', 'rolling_resistance_loss_J']);
+  const dir = mkdtempSync(path.join(tmpdir(), 'jc-web-'));
+  try {
+    for (const [request, args] of [
+      [{ incline: 30, 'sample-dt': '10ms' }, ['--incline', '30', '--sample-dt', '10ms']],
+      [{ preset: 'hoop', 'sample-dt': 0.05, 't-max': 5 }, ['--preset', 'hoop', '--sample-dt', '0.05', '--t-max', '5']],
+      [{ incline: 45, 'drag-coefficient': 1.2, 'sample-dt': '1ms' },
+        ['--incline', '45', '--drag-coefficient', '1.2', '--sample-dt', '1ms']],
+    ]) {
+      const file = path.join(dir, 'run.csv');
+      execFileSync(nativeTool, ['simulate', ...args, '--csv', file], { stdio: 'ignore' });
+      const ans = JSON.parse(call(jc, request, 'jc_web_csv'));
+      assert.equal(ans.ok, true, ans.error);
+      const [head, ...rows] = ans.csv.split('\n').slice(0, -1).map((l) => l.split(','));
+      const [nhead, ...nrows] = readFileSync(file, 'utf8').split('\n').slice(0, -1).map((l) => l.split(','));
+      assert.ok(ans.csv.endsWith('\n'));
+      assert.deepEqual(head, nhead);
+      assert.equal(rows.length, nrows.length, 'rows');
+      const web = simulate(jc, request).samples;
+      assert.equal(web.count, rows.length);
+      let worst = 0;
+      head.forEach((name, j) => {
+        const col = web[name];
+        if (name === 'mode') {
+          rows.forEach((r, i) => { assert.equal(r[j], col[i]); assert.equal(r[j], nrows[i][j]); });
+          return;
+        }
+        const scale = Math.max(...col.map(Math.abs), 1e-300);
+        rows.forEach((r, i) => {
+          assert.equal(r[j], formatG(col[i] === null ? NaN : col[i], nine.has(name) ? 9 : 12), `${name}[${i}]`);
+          const excess = Math.abs(Number(r[j]) - Number(nrows[i][j])) - halfLastDigit(r[j]) - halfLastDigit(nrows[i][j]);
+          worst = Math.max(worst, excess / scale);
+        });
+      });
+      assert.ok(worst <= REL_TOL, `${JSON.stringify(request)}: worst difference / column scale ${worst}`);
+    }
+    const bad = JSON.parse(call(jc, { incline: 95 }, 'jc_web_csv'));
+    assert.equal(bad.ok, false);
+    assert.match(bad.error, /incline/);
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }

@@ -3,8 +3,9 @@
  * assembled with ffmpeg (video.c), or kept as numbered PNG files. The film
  * ends when the motion does (film_end_s), then holds its last picture for
  * FILM_HOLD_S of playback. */
-#include "draw.h"
-#include "video.h"
+#include "cli.h"
+#include "figures.h" /* cli_paper_row */
+#include "films.h"
 
 #include <ctype.h>
 #include <math.h>

@@ -1,7 +1,7 @@
 /* jumpcyl design: the values of one setup option for which the first
  * lift-off happens at X on the ramp (cli/design/, docs/design.md). */
 #include "design.h"
-#include "plot.h"
+#include "figures.h"
 
 #include <errno.h>
 #include <math.h>

@@ -4,7 +4,7 @@
  * map's rows are written as `jumpcyl sweep --vary Y --vary X` writes them,
  * byte for byte. */
 #include "batch.h"
-#include "plot.h"
+#include "figures.h"
 
 #include <errno.h>
 #include <math.h>

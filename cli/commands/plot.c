@@ -2,7 +2,7 @@
  * library; they are written as data files with a commented gnuplot script
  * beside them (kept with --keep-script, so that a researcher can restyle the
  * figure), and gnuplot renders the figure file atomically. */
-#include "plot.h"
+#include "figures.h"
 
 #include <errno.h>
 #include <math.h>

@@ -63,22 +63,25 @@ static void check_stdout(sim_stream *st)
     }
 }
 
+/* The trajectory CSV: the library's sample columns (jc_sample_column_info),
+ * named with their units, a row per sample (jc_sample_format_row). */
 static void csv_header(FILE *f)
 {
-    fputs("t_s,mode,x_m,y_m,vx_mps,vy_mps,theta_rad,omega_radps,cm_x_m,cm_y_m,normal_N,friction_N,"
-          "slip_mps,gap_m,kinetic_J,potential_J,friction_loss_J,impact_loss_J,air_loss_J,rolling_resistance_loss_J\n",
-          f);
+    for (int c = 0; c < JC_SAMPLE_COLUMNS; ++c) {
+        if (c) fputc(',', f);
+        fputs(jc_sample_column_info(c)->name, f);
+    }
+    fputc('\n', f);
 }
 
 static int on_sample(void *ctx, const jc_Sample *p)
 {
     sim_stream *st = ctx;
-    const jc_State *s = &p->state;
     FILE *f = st->csv->f;
-    fprintf(f, "%.12g,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g\n",
-            s->t_s, jc_mode_name(p->mode), s->x_m, s->y_m, s->vx_mps, s->vy_mps, s->theta_rad, s->omega_radps,
-            p->cm_x_m, p->cm_y_m, p->normal_N, p->friction_N, p->slip_mps, p->gap_m, p->kinetic_J,
-            p->potential_J, p->friction_loss_J, p->impact_loss_J, p->air_loss_J, p->rolling_resistance_loss_J);
+    char row[JC_SAMPLE_ROW_MAX + 1];
+    size_t n = (size_t)jc_sample_format_row(p, row, sizeof row - 1);
+    row[n++] = '\n';
+    fwrite(row, 1, n, f);
     /* A full disk stops the run at once instead of computing for nothing. */
     if (ferror(f) && !st->csv_errno) {
         st->csv_errno = errno ? errno : EIO; /* fprintf's reason: ENOSPC, EFBIG */

@@ -5,7 +5,7 @@
 #define JUMPCYL_TRACK_INPUT_H
 
 #include "cli.h"
-#include "plot.h"
+#include "figures.h"
 
 #include <jumpcyl/track.h>
 

@@ -49,7 +49,7 @@ void cli_design_print(const cli_DesignJob *job, const jc_DesignResult *r, const 
 int cli_design_write_json(const cli_DesignJob *job, const jc_DesignResult *r, const char *path);
 int cli_design_write_csv(const cli_DesignJob *job, const jc_DesignResult *r, const char *path);
 
-/* ---- plot_design.c: x(p) with X and the solutions (gnuplot) ---- */
+/* ---- figure.c: x(p) with X and the solutions (gnuplot, figures.h) ---- */
 int cli_design_figure(const cli_DesignJob *job, const jc_DesignResult *r, const char *path, const char *cmdline);
 
 /* ---- commands/design.c ---- */

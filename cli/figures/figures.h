@@ -1,16 +1,20 @@
-/* Helpers shared by `jumpcyl plot` and `jumpcyl animate`: progress on a
- * terminal, external programs (gnuplot, ffmpeg), scratch directories, file
- * names. The drawing of a frame has its own header, draw.h. */
+/* `jumpcyl plot` and the figures of the other commands (cli/figures/):
+ * each kind of figure is a gnuplot "panel" drawn from data that the C side
+ * computes with the library, written as data blocks into the script
+ * itself; the overview puts four panels on one page (gnuplot.c: formats,
+ * the shared style, running gnuplot). Also the paper's Table 1 beside a
+ * setup (paper_row.c), which the films and the page mark. */
 #ifndef JUMPCYL_FIGURES_H
 #define JUMPCYL_FIGURES_H
 
-#include "cli.h"
+#include "cli.h" /* cli_SetupArgs: the paper-uncertainty figure's Monte Carlo (fig_Data) */
+#include "outputs.h"
+
+#include <jumpcyl/jumpcyl.h>
+#include <jumpcyl/track.h>
 
 #include <stddef.h>
-
-#ifndef CLI_PATH_MAX
-#define CLI_PATH_MAX 4096
-#endif
+#include <stdio.h>
 
 /* ---- paper_row.c: the paper's Table 1 beside the model ---- */
 
@@ -19,66 +23,172 @@
  * paper's model has none of them); NULL for any other setup. */
 const jc_PaperTableRow *cli_paper_row(const jc_Setup *s);
 
-/* ---- progress.c: "frame 120/264, ETA 3 s" on stderr ---- */
+typedef enum { FIG_PNG, FIG_SVG, FIG_PDF } fig_Format;
 
-/* Shown only when stderr is a terminal, and only once the job has taken
- * more than a second, so quick jobs and pipelines stay silent. */
+/* Everything the panels need: the model, the computed numbers, and the
+ * script being written. Filled by the *_prepare functions, which write their
+ * data as data blocks ($run << EOD ... EOD) into the script itself: the
+ * script reads no file, so no name of the user's ever reaches gnuplot. */
 typedef struct {
-    char label[96];
-    int enabled;     /* stderr is a terminal */
-    int shown;       /* a line is on the screen and must be cleared */
-    double start_s;  /* monotonic clock at begin */
-    double last_s;   /* last redraw, to redraw at most ~10 times a second */
-} cli_Progress;
+    const jc_Model *model;
+    const cli_SetupArgs *setup_args; /* the options the model came from (paper-uncertainty) */
+    int table_rows;                  /* paper-uncertainty: inclines of the paper's table */
+    FILE *gp;                /* the script, in the scratch directory */
+    char caption[256];       /* the setup in one line (enhanced text); "" in the overview,
+                                whose page title carries it */
 
-double cli_now_s(void);
-void cli_progress_begin(cli_Progress *p, const char *label);
-/* done of total; total <= 0 means unknown (elapsed time only). */
-void cli_progress_update(cli_Progress *p, long done, long total);
-void cli_progress_end(cli_Progress *p);
+    /* paper-criterion (plot_criterion.c) */
+    jc_PaperResult paper;
+    jc_RollingResult rolling;
+    double printed_theta_rad; /* NaN when the setup is not in the paper's table */
+    double printed_x_m;
+    double theta_max_rad, crit_ymax;
 
-/* ---- spawn.c: external programs ---- */
+    /* forces, path, energy (plot_run.c) */
+    jc_Run run;
+    int have_run;
+    double sample_dt_s;
+    double x_min_cm, x_max_cm, t_max_s;
+    int time_axis;             /* forces and path against time (the body went back and forth) */
+    double axis_min, axis_max; /* their horizontal range: cm, or s */
+    double n_min, n_max;       /* N / (M g cos a) */
+    double ratio_max;          /* |F| / N */
+    double gap_max_mm, speed_max_mps;
+    double energy_min_J, energy_max_J;
+    double resistance_loss_max_J; /* air and rolling resistance; 0 when switched off */
+    int hop_count;
 
-/* Full path of an executable named name found in $PATH; 0, or -1 if none. */
-int cli_find_program(const char *name, char *path, size_t len);
-/* Runs argv (argv[0] looked up in $PATH) in the directory cwd (NULL: ours)
- * with stdin from /dev/null and stdout and stderr appended to log_path
- * (NULL: inherited), waits for it, updating progress (may be NULL)
- * meanwhile. Returns its exit status; -1 after a message if it could not
- * start or was killed by a signal; CLI_RUN_STOPPED (no message) when a stop
- * signal came (the child was ended and reaped); CLI_RUN_EFBIG when a write
- * of the child crossed the file size limit (ulimit -f). */
-#define CLI_RUN_STOPPED (-2)
-#define CLI_RUN_EFBIG (-3)
-int cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_Progress *progress);
-/* Copies the last lines of a program's log to stderr, indented. */
-void cli_print_log_tail(const char *log_path);
+    /* The zoom on what matters: from before the first lift-off to after the
+     * last flight's landing (plot_run.c). zoomed is 0 when nothing flies. */
+    int zoom_wanted; /* set before fig_run_prepare: forces, gap, energy panels take the zoom (overview) */
+    int zoomed;
+    double zoom_x_lo_cm, zoom_x_hi_cm; /* centre's distance down the incline */
+    double zoom_t_lo_s, zoom_t_hi_s;
+} fig_Data;
 
-/* ---- workdir.c: scratch directories and file names ---- */
+/* ---- gnuplot.c: formats, the shared style, running gnuplot ---- */
+
+/* From the output's extension; -1 if it is not png, svg or pdf. */
+int fig_format_from_path(const char *path, fig_Format *f);
+/* Writes s as a gnuplot single-quoted string (newlines become spaces). */
+void fig_quote(FILE *gp, const char *s);
+/* "$name << EOD" and "EOD": a data block of the script. */
+void fig_block_begin(FILE *gp, const char *name);
+void fig_block_end(FILE *gp);
+/* The script's head: comments, terminal for a cols x rows page of panels,
+ * the colours and the style block every panel applies. */
+void fig_script_begin(FILE *gp, fig_Format f, int cols, int rows, const char *default_output,
+                      const char *command_line);
+/* Starts a panel: forgets the previous panel's settings, applies the style. */
+void fig_panel_begin(FILE *gp, const char *what);
+/* The names the tool gives the script, the figure and gnuplot's log in the
+ * scratch directory: the only names gnuplot is ever given. */
+#define FIG_SCRIPT_NAME "figure.gp"
+#define FIG_LOG_NAME "gnuplot.log"
+/* "figure.png", "figure.svg", "figure.pdf". */
+const char *fig_scratch_name(fig_Format f);
+/* How a finished figure of the format is checked (outputs.h). */
+cli_Check fig_check(fig_Format f);
+/* Runs gnuplot in the scratch directory work on FIG_SCRIPT_NAME, which
+ * writes fig_scratch_name(f) there; checks that it is complete. cmd
+ * ("plot", "map") and output, the user's name, are for messages only.
+ * Returns EXIT_OK, EXIT_FAIL after a message, or cli_stop_status() after a
+ * stop signal. */
+int fig_render(const char *cmd, const char *work, fig_Format f, const char *output);
+/* The command line (argv[0] the command's name), for a script's header:
+ * shell-quoted words on one line, control characters shown as '?'. */
+void fig_command_line(int argc, char **argv, char *out, size_t len);
+/* The incline and contact in one line, and the body in another, for titles. */
+void fig_caption(const jc_Model *m, char *out, size_t len);
+void fig_body_caption(const jc_Model *m, char *out, size_t len);
+
+/* ---- plot_criterion.c: the paper's Eq. 9 and the exact N = 0 criterion ---- */
+int fig_criterion_prepare(fig_Data *d);
+void fig_criterion_panel(FILE *gp, const fig_Data *d);
+
+/* ---- plot_uncertainty.c: the paper's jump sites with the full model's band ---- */
+int fig_uncertainty_prepare(fig_Data *d);
+void fig_uncertainty_panels(FILE *gp, const fig_Data *d);
+
+/* ---- plot_run.c: the full model's trajectory, events and hops ---- */
+/* Simulates (with options o; a fine sample_dt is chosen unless dt_given;
+ * refused past max_samples samples, estimated by a first run that keeps
+ * nothing) and writes the run, events and hops data blocks. */
+int fig_run_prepare(fig_Data *d, const jc_SimOptions *o, int dt_given, double max_samples);
+/* The readable name of an event ("lift-off", "ramp end"). */
+const char *fig_event_label(jc_EventKind k);
+/* "bounce ×4, touchdown": the kinds of events first..last of a run in order,
+ * repeats counted (per-kind totals when that is too long for len). */
+void fig_event_cluster_label(const jc_Run *run, int first, int last, char *out, size_t len);
+/* Whether an event starts a flight (a lift-off, or a bounce into flight). */
+int fig_event_flies(const jc_Event *e);
+/* "zoomed to x = 53.8–320 cm (t = 0.43–1.09 s), around the first lift-off
+ * and the hops": the zoom in words, for titles (d->zoomed). */
+void fig_zoom_caption(const fig_Data *d, char *out, size_t len);
+
+/* ---- plot_trajectory.c: the body's path to scale in the laboratory frame ---- */
+/* Writes the trajectory's data blocks (after fig_run_prepare). */
+int fig_trajectory_prepare(fig_Data *d);
+/* Its panels: a main one zoomed on the lift-off and the hops, the whole
+ * ramp with the zoom marked, and a close-up of the first flight's gap. */
+void fig_trajectory_panels(FILE *gp, const fig_Data *d);
+
+/* ---- plot_panels.c: the three panels drawn from a run ---- */
+void fig_forces_panel(FILE *gp, const fig_Data *d);
+void fig_path_panel(FILE *gp, const fig_Data *d);
+void fig_energy_panel(FILE *gp, const fig_Data *d);
+
+/* ---- plot_map.c: jumpcyl map, the first lift-off over two setup options ---- */
+
+/* What a cell of the map is: the batch's case kinds (batch.h, cli_CaseKind). */
+enum { FIG_CELL_LIFTOFF, FIG_CELL_NONE, FIG_CELL_SLIDES, FIG_CELL_INVALID, FIG_CELL_FAILED, FIG_CELL_KINDS };
 
 typedef struct {
-    char path[CLI_PATH_MAX];
-    int slot; /* its record in signals.c: a signal that ends the process removes it */
-} cli_WorkDir;
+    char label[96];         /* "incline (°)", "rod-offset (cm)": enhanced text */
+    long count;             /* >= 2 */
+    const double *values;   /* the axis' values in its unit, increasing */
+} fig_MapAxis;
 
-/* A new private directory under $TMPDIR (or /tmp); 0, or -1 after a message. */
-int cli_workdir_make(cli_WorkDir *w, const char *cmd);
-/* Removes the directory and the files in it (it holds no subdirectories). */
-void cli_workdir_remove(cli_WorkDir *w);
-/* Removes a directory's regular files and the directory; 0, or -1. */
-int cli_remove_flat_dir(const char *path);
+#define FIG_MAP_PAPER_MAX 3
 
-/* The extension of the file name in path, without the dot ("" if none). */
-const char *cli_path_ext(const char *path);
-/* Splits path into its directory ("." if none) and its base name without
- * the extension. -1 if a part does not fit. */
-int cli_path_split(const char *path, char *dir, size_t dir_len, char *stem, size_t stem_len);
-/* path made absolute against the working directory; 0, or -1. */
-int cli_path_absolute(const char *path, char *out, size_t len);
-/* Whether the directory that will hold path exists and is writable, so that
- * a command fails before its work, not after; 0, or -1 after a message. */
-int cli_check_output_dir(const char *path);
-/* dir/name; -1 if it does not fit. */
-int cli_path_join(char *out, size_t len, const char *dir, const char *name);
+typedef struct {
+    fig_Format format;
+    fig_MapAxis x, y;
+    const unsigned char *kind; /* per cell, cell iy * x.count + ix: FIG_CELL_* */
+    const double *liftoff_cm;  /* per cell: first lift-off x (cm), NaN if none */
+    double ramp_cm;            /* the colour scale when nothing lifts off */
+    char title[256], subtitle[256]; /* the fixed setup (enhanced text) */
+    /* The paper's setups: points in the axes' units, labels ("paper 15°"). */
+    int paper_count;
+    double paper_x[FIG_MAP_PAPER_MAX], paper_y[FIG_MAP_PAPER_MAX];
+    char paper_label[FIG_MAP_PAPER_MAX][40];
+    int paper_differs;         /* the map's other options are not the paper's */
+} fig_Map;
+
+/* Writes the map's data blocks and its panel into the script (after
+ * fig_script_begin). */
+void fig_map_write(FILE *gp, const fig_Map *m);
+
+/* ---- plot_track.c: the figure of compare and fit ---- */
+
+typedef struct {
+    const jc_Track *track;
+    long first, count;               /* the frames shown */
+    const double *sim_x, *sim_y, *sim_theta; /* the model at those frames (theta: the mark's) */
+    const double *path_t, *path_x, *path_y;  /* the model finely sampled, for its curves */
+    long path_n;
+    double radius_m;                 /* the body's: a height shown is the centre's y less it */
+    double mark_radius_m;            /* > 0: the mark's residual across its radius is shown */
+    double sigma_m;                  /* residuals are shown in units of it */
+    double hop_threshold_m;
+    char title[256];                 /* text the tool made (numbers, fixed words) */
+} cli_TrackFigure;
+
+/* Three panels, each sized to its data: the centre along the incline
+ * against time; its height above the surface against time (the hops); the
+ * residuals in units of sigma. Rendered by gnuplot in a scratch directory
+ * and written to output (.png, .svg, .pdf) whole or not at all. cmdline is
+ * for the script's header. EXIT_OK, or an exit status after a message. */
+int cli_track_figure(const char *cmd, const cli_TrackFigure *f, const char *output, const char *cmdline);
 
 #endif

@@ -2,7 +2,7 @@
  * every jumpcyl figure shares, and running gnuplot so that the figure file is
  * written whole or not at all. */
 #define _POSIX_C_SOURCE 200809L
-#include "plot.h"
+#include "figures.h"
 
 #include <errno.h>
 #include <math.h>
@@ -184,7 +184,7 @@ int fig_render(const char *cmd, const char *work, fig_Format f, const char *outp
     cli_Progress progress;
     snprintf(label, sizeof label, "%s: gnuplot is rendering", cmd);
     cli_progress_begin(&progress, label);
-    const int st = cli_run_program(argv, work, log_path, &progress);
+    const int st = cli_run_program(argv, work, log_path, cli_progress_tick, &progress);
     cli_progress_end(&progress);
     if (st == CLI_RUN_STOPPED) return cli_stop_status();
     if (st == CLI_RUN_EFBIG) {

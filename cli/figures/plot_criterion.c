@@ -3,7 +3,7 @@
  * Table 1 prints, and the exact rolling model's N = 0 condition written in
  * the same form, w^2/g = (cos a - d sin th th''/g) / (d cos th), so that the
  * two criteria can be compared curve by curve. */
-#include "plot.h"
+#include "figures.h"
 
 #include <math.h>
 #include <string.h>

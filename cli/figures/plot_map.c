@@ -9,7 +9,7 @@
  * spaced, which gives one seamless raster in every format, and as boxes
  * between the midpoints of neighbouring values otherwise (a list such as
  * mu=0.1,0.2,0.5). */
-#include "plot.h"
+#include "figures.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 /* The three panels drawn from a run of the full model: contact forces,
  * hops (gap and speed), energy. The numbers come from the data files that
  * plot_run.c wrote; ranges are fixed here so that labels get room. */
-#include "plot.h"
+#include "figures.h"
 
 #include <math.h>
 

@@ -1,7 +1,7 @@
 /* The full model's run as data for the forces, path and energy panels: the
  * trajectory samples, the events (with labels grouped so that they do not
  * overprint each other) and the hops (with their heights). */
-#include "plot.h"
+#include "figures.h"
 
 #include <math.h>
 #include <stdlib.h>

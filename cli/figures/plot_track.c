@@ -1,7 +1,7 @@
 /* The figure of `compare` and `fit`: a tracked experiment over the model.
  * The data go into the script as data blocks, and every word in it is the
  * tool's own: nothing from the track file (names, text) reaches gnuplot. */
-#include "plot.h"
+#include "figures.h"
 
 #include <errno.h>
 #include <math.h>

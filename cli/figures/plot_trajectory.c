@@ -12,7 +12,7 @@
  * part at body angle phi and offset a_p sits at C + a_p (sin psi, cos psi),
  * psi = theta - cm_angle + phi (docs/physics.md 1.1). Everything is written
  * in cm. */
-#include "plot.h"
+#include "figures.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -3,7 +3,7 @@
  * inputs' uncertainties (Monte Carlo, cli/batch/mc_job.c), and the
  * measurement with its error bar: one panel per incline. */
 #include "batch.h"
-#include "plot.h"
+#include "figures.h"
 
 #include <math.h>
 #include <string.h>

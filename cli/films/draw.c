@@ -1,7 +1,7 @@
 /* One animation frame drawn with cairo (geometry in draw.h). Everything is
  * drawn to scale in metres and converted to pixels by the view; only line
  * widths, markers and text are sized in pixels, relative to the frame. */
-#include "draw.h"
+#include "films.h"
 
 #include <math.h>
 #include <stdio.h>

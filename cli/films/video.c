@@ -3,7 +3,7 @@
  * ffmpeg command line is built in one place, so that the one we run and the
  * one we print (when ffmpeg is missing) are the same. */
 #define _POSIX_C_SOURCE 200809L
-#include "video.h"
+#include "films.h"
 
 #include <errno.h>
 #include <stdlib.h>
@@ -114,7 +114,7 @@ int vid_assemble(const char *work, double fps, const char *output, vid_Format f)
      * place only when ffmpeg succeeded and it is not empty. */
     cli_Progress progress;
     cli_progress_begin(&progress, "animate: ffmpeg is encoding");
-    const int st = cli_run_program(cmd.argv, NULL, log_path, &progress);
+    const int st = cli_run_program(cmd.argv, NULL, log_path, cli_progress_tick, &progress);
     cli_progress_end(&progress);
     if (st == CLI_RUN_STOPPED) return cli_stop_status();
     if (st == CLI_RUN_EFBIG) {

@@ -3,7 +3,7 @@
  * would be noise. It appears after the first second, so that quick jobs
  * print nothing at all. */
 #define _POSIX_C_SOURCE 200809L
-#include "figures.h"
+#include "outputs.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -52,4 +52,9 @@ void cli_progress_end(cli_Progress *p)
     fprintf(stderr, "\r%*s\r", (int)strlen(p->label) + 40, "");
     fflush(stderr);
     p->shown = 0;
+}
+
+void cli_progress_tick(void *progress)
+{
+    cli_progress_update(progress, 0, 0);
 }

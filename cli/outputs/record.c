@@ -1,7 +1,7 @@
 /* The simulation as the commands run it: through a recorder that also
  * watches for a stop signal, so that a long run behind a plot, a film or a
  * streamed table stops at the next event or sample after Ctrl-C. */
-#include "cli.h"
+#include "outputs.h"
 
 typedef struct {
     const jc_Recorder *inner; /* NULL: nothing kept */

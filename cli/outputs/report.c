@@ -1,5 +1,5 @@
 /* Output helpers shared by the commands. */
-#include "cli.h"
+#include "outputs.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -12,21 +12,6 @@ double cli_shown(double v, int decimals)
     /* A value that rounds to zero at this many decimals prints as 0, never
      * as -0 (a normal force of -1e-17 N at a lift-off is zero). */
     return fabs(v) < 0.5 * pow(10.0, -decimals) ? 0.0 : v;
-}
-
-/* One line, whatever the message quotes: a value with a line break or a
- * control character (from a file or an argument) is shown with '?' in its
- * place, so that the message stays one line and cannot drive the terminal. */
-void cli_error(const char *fmt, ...)
-{
-    char msg[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    for (char *c = msg; *c; ++c)
-        if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
-    fprintf(stderr, "jumpcyl: %s\n", msg);
 }
 
 void cli_shell_word(FILE *out, const char *s)

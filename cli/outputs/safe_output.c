@@ -1,9 +1,7 @@
 /* Render in scratch, verify, move into place: the one implementation for
- * every output kind (safe_output.h). */
+ * every output kind (outputs.h). */
 #define _POSIX_C_SOURCE 200809L
-#include "safe_output.h"
-
-#include "figures.h"
+#include "outputs.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -4,7 +4,7 @@
  * events needs no more memory than one event. The pieces are printed by
  * cJSON itself and re-indented to their depth in the document, so the two
  * texts are identical byte for byte (tests/test_sim_json.c). */
-#include "cli.h"
+#include "outputs.h"
 
 #include <cjson/cJSON.h>
 #include <stdlib.h>

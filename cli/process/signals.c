@@ -16,12 +16,13 @@
  * This state is the command-line tool's, process-wide by nature (signal
  * dispositions are); the library has none. */
 #define _GNU_SOURCE /* syscall(SYS_getdents64): directory listing that is async-signal-safe */
-#include "cli.h"
+#include "process.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>

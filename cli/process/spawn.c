@@ -4,12 +4,13 @@
  * runs in the scratch directory (only names made there reach it) and is
  * recorded, so that a signal ends it and no child outlives the tool. */
 #define _GNU_SOURCE /* posix_spawn_file_actions_addchdir_np (glibc 2.29) */
-#include "figures.h"
+#include "process.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -54,9 +55,17 @@ static int setup_actions(posix_spawn_file_actions_t *fa, const char *cwd, const 
 /* Seconds a child may take to end after SIGTERM before it gets SIGKILL. */
 #define CHILD_GRACE_S 3.0
 
-/* Waits for pid, polling so that progress is redrawn and a stop request
- * ends the child (SIGTERM, then SIGKILL after a grace period). */
-static int wait_child(pid_t pid, int *status, cli_Progress *progress)
+static double monotonic_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Waits for pid, polling so that the caller's tick runs (a progress line)
+ * and a stop request ends the child (SIGTERM, then SIGKILL after a grace
+ * period). */
+static int wait_child(pid_t pid, int *status, cli_WaitTick tick, void *ctx)
 {
     double stop_at = -1.0;
     for (;;) {
@@ -64,22 +73,22 @@ static int wait_child(pid_t pid, int *status, cli_Progress *progress)
         if (r == pid) return 0;
         if (r < 0 && errno != EINTR) return -1;
         if (cli_stop_requested()) {
-            const double now = cli_now_s();
+            const double now = monotonic_s();
             if (stop_at < 0) {
                 stop_at = now;
                 kill(pid, SIGTERM);
             } else if (now - stop_at > CHILD_GRACE_S) {
                 kill(pid, SIGKILL);
             }
-        } else if (progress) {
-            cli_progress_update(progress, 0, 0);
+        } else if (tick) {
+            tick(ctx);
         }
         const struct timespec ts = {0, 10 * 1000 * 1000};
         nanosleep(&ts, NULL);
     }
 }
 
-int cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_Progress *progress)
+int cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_WaitTick tick, void *ctx)
 {
     posix_spawn_file_actions_t fa;
     if (setup_actions(&fa, cwd, log_path) != 0) {
@@ -110,7 +119,7 @@ int cli_run_program(char *const argv[], const char *cwd, const char *log_path, c
         return -1;
     }
     int status = 0;
-    const int waited = wait_child(pid, &status, progress);
+    const int waited = wait_child(pid, &status, tick, ctx);
     cli_child_set(0);
     if (waited != 0) {
         cli_error("waiting for %s: %s", argv[0], strerror(errno));

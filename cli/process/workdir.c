@@ -1,10 +1,11 @@
 /* Scratch directories for the data, scripts and frames that figures are made
  * from, and the few file-name operations they need. */
 #define _POSIX_C_SOURCE 200809L
-#include "figures.h"
+#include "process.h"
 
 #include <dirent.h>
 #include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>

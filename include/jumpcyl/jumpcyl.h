@@ -624,6 +624,50 @@ JC_API void jc_summary_add(jc_RunSummary *out, const jc_Event *e, int index);
 JC_API double jc_kinetic_energy(const jc_Model *model, const jc_State *s);
 JC_API double jc_potential_energy(const jc_Model *model, const jc_State *s);
 
+/* ------------------------------------------------------------------------ */
+/* Sample columns: one table for every table of samples (src/sample_columns.c) */
+/* ------------------------------------------------------------------------ */
+
+/* The columns of a trajectory sample (jc_Sample), in the order every table
+ * of samples has them: the tool's `simulate --csv`, the page's CSV
+ * download and its columns. Each name carries its unit's suffix. Column
+ * JC_COL_MODE is the mode, a name (jc_mode_name); the others are numbers in
+ * SI units. */
+typedef enum {
+    JC_COL_T_S, JC_COL_MODE, JC_COL_X_M, JC_COL_Y_M, JC_COL_VX_MPS, JC_COL_VY_MPS, JC_COL_THETA_RAD,
+    JC_COL_OMEGA_RADPS, JC_COL_CM_X_M, JC_COL_CM_Y_M, JC_COL_NORMAL_N, JC_COL_FRICTION_N, JC_COL_SLIP_MPS,
+    JC_COL_GAP_M, JC_COL_KINETIC_J, JC_COL_POTENTIAL_J, JC_COL_FRICTION_LOSS_J, JC_COL_IMPACT_LOSS_J,
+    JC_COL_AIR_LOSS_J, JC_COL_ROLLING_RESISTANCE_LOSS_J,
+    JC_SAMPLE_COLUMNS /* their number */
+} jc_SampleColumnId;
+
+typedef struct {
+    const char *name;        /* "t_s", "mode", "x_m", ..., "rolling_resistance_loss_J" */
+    const char *unit;        /* "s", "m", "m/s", "rad", "rad/s", "N", "J"; "" for the mode */
+    const char *description; /* one line */
+    int is_mode;             /* 1 for the mode column: a name, not a number */
+    int digits;              /* significant digits of its text form (jc_sample_format) */
+} jc_SampleColumn;
+
+/* JC_SAMPLE_COLUMNS, for callers that read the table at run time. */
+JC_API int jc_sample_column_count(void);
+/* The column's row of the table; NULL when col is not a column. */
+JC_API const jc_SampleColumn *jc_sample_column_info(int col);
+/* The column named name ("normal_N"), or -1. */
+JC_API int jc_sample_column_find(const char *name);
+/* A sample's value in a column, SI; the mode column gives the jc_Mode as a
+ * number. NaN when col is not a column. */
+JC_API double jc_sample_value(const jc_Sample *s, int col);
+/* A sample's value in a column as text: the mode's name, or the number
+ * printed with the column's significant digits (%.*g). snprintf's return
+ * (the length the text needs), or -1 when col is not a column. */
+JC_API int jc_sample_format(const jc_Sample *s, int col, char *buf, size_t len);
+/* Every column's text form in order, separated by commas: a CSV row
+ * without its line end (the header: the names, separated by commas).
+ * snprintf's return; JC_SAMPLE_ROW_MAX bytes always suffice. */
+#define JC_SAMPLE_ROW_MAX 512
+JC_API int jc_sample_format_row(const jc_Sample *s, char *buf, size_t len);
+
 #ifdef __cplusplus
 }
 #endif

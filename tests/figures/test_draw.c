@@ -4,7 +4,7 @@
  * rotation, the view's scale and centre) and the pixels are read back. */
 #include "../test.h"
 
-#include "draw.h"
+#include "films.h"
 
 #include <cairo.h>
 

@@ -3,7 +3,7 @@
  * discontinuities as dotted verticals, the ranges without a lift-off
  * shaded, X as a line and the solutions marked. */
 #include "design.h"
-#include "plot.h"
+#include "figures.h"
 
 #include <errno.h>
 #include <math.h>

@@ -1,0 +1,101 @@
+/* The tool as a process (cli/process/), the lowest layer of the tool: its
+ * exit statuses and one-line error messages (error.c), the stop signals
+ * (signals.c), child programs (spawn.c), private scratch directories and
+ * the few file-name operations they need (workdir.c). It calls nothing of
+ * the tool above it (docs/architecture.md, Layers). */
+#ifndef JUMPCYL_PROCESS_H
+#define JUMPCYL_PROCESS_H
+
+#include <signal.h>
+#include <stddef.h>
+#include <sys/types.h>
+
+/* Exit statuses. */
+enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_MISFIT = 3 /* fit: the model does not describe the video */ };
+
+#define CLI_PATH_MAX 4096
+
+/* ---- error.c ---- */
+
+/* Prints "jumpcyl: <msg>" on stderr, on one line (control characters
+ * shown as '?'). */
+void cli_error(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* ---- signals.c: SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ ---- */
+
+/* At start-up. The first signal sets a flag (and ends the running child);
+ * commands check cli_stop_requested where they can stop, keep targets as
+ * they were and return cli_stop_status(). A second signal ends the process
+ * at once, after removing the recorded temporary files and directories. */
+void cli_signals_install(void);
+int cli_stop_requested(void); /* the signal number, 0 if none */
+int cli_stop_status(void);    /* 128 + the signal number: 130 SIGINT, 143 SIGTERM */
+const char *cli_signal_name(int sig);
+/* Blocks the stop signals (while a record and the thing it records change
+ * together, or around starting a child); release restores the old mask. */
+void cli_signals_hold(sigset_t *old);
+void cli_signals_release(const sigset_t *old);
+/* The running child, ended by a signal; 0 when none. */
+void cli_child_set(pid_t pid);
+/* mkstemp, recorded so that a signal that ends the process removes the file.
+ * Returns the descriptor or -1 (errno); *slot is the record. */
+int cli_tmpfile_create(char *template_path, int *slot);
+/* Renames the temporary file to final_path (removes it if final_path is
+ * NULL, or if the rename fails) and drops the record. 0 or -1 (errno). */
+int cli_tmpfile_finish(int slot, const char *tmp_path, const char *final_path);
+/* A scratch directory, removed with its files by a signal that ends the
+ * process; returns the record (-1 if none is free) for cli_tmpdir_untrack. */
+int cli_tmpdir_track(const char *path);
+void cli_tmpdir_untrack(int slot);
+
+/* ---- spawn.c: external programs ---- */
+
+/* Full path of an executable named name found in $PATH; 0, or -1 if none. */
+int cli_find_program(const char *name, char *path, size_t len);
+/* Called about every 10 ms while a child runs (a progress line's redraw). */
+typedef void (*cli_WaitTick)(void *ctx);
+/* Runs argv (argv[0] looked up in $PATH) in the directory cwd (NULL: ours)
+ * with stdin from /dev/null and stdout and stderr appended to log_path
+ * (NULL: inherited), waits for it, calling tick(ctx) meanwhile (tick may be
+ * NULL). Returns its exit status; -1 after a message if it could not start
+ * or was killed by a signal; CLI_RUN_STOPPED (no message) when a stop
+ * signal came (the child was ended and reaped); CLI_RUN_EFBIG when a write
+ * of the child crossed the file size limit (ulimit -f). */
+#define CLI_RUN_STOPPED (-2)
+#define CLI_RUN_EFBIG (-3)
+int cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_WaitTick tick, void *ctx);
+/* Copies the last lines of a program's log to stderr, indented. */
+void cli_print_log_tail(const char *log_path);
+
+/* ---- workdir.c: scratch directories and file names ---- */
+
+typedef struct {
+    char path[CLI_PATH_MAX];
+    int slot; /* its record in signals.c: a signal that ends the process removes it */
+} cli_WorkDir;
+
+/* A new private directory under $TMPDIR (or /tmp); 0, or -1 after a message. */
+int cli_workdir_make(cli_WorkDir *w, const char *cmd);
+/* Removes the directory and the files in it (it holds no subdirectories). */
+void cli_workdir_remove(cli_WorkDir *w);
+/* Removes a directory's regular files and the directory; 0, or -1. */
+int cli_remove_flat_dir(const char *path);
+
+/* The extension of the file name in path, without the dot ("" if none). */
+const char *cli_path_ext(const char *path);
+/* Splits path into its directory ("." if none) and its base name without
+ * the extension. -1 if a part does not fit. */
+int cli_path_split(const char *path, char *dir, size_t dir_len, char *stem, size_t stem_len);
+/* path made absolute against the working directory; 0, or -1. */
+int cli_path_absolute(const char *path, char *out, size_t len);
+/* Whether the directory that will hold path exists and is writable, so that
+ * a command fails before its work, not after; 0, or -1 after a message. */
+int cli_check_output_dir(const char *path);
+/* dir/name; -1 if it does not fit. */
+int cli_path_join(char *out, size_t len, const char *dir, const char *name);
+
+#endif
