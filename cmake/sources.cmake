@@ -10,12 +10,20 @@ set(JC_LIB_SOURCES
   src/units.c src/param.c src/param_values.c src/sample_columns.c)
 list(TRANSFORM JC_LIB_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 
+# Studies (include/jumpcyl/study.h): grids, Monte Carlo samples (Random123's
+# Philox, src/random.c, which the tracks' fit and synthetic videos use too),
+# their statistics, the design search; on every core with OpenMP where the
+# compiler has it (the page's build has not: one thread).
+set(JC_STUDY_SOURCES
+  src/random.c src/study/number.c src/study/outcome.c src/study/case.c src/study/threads.c src/study/run.c
+  src/study/defaults.c src/study/stats.c src/study/design_scan.c src/study/design_solve.c src/study/design.c)
+list(TRANSFORM JC_STUDY_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
+
 # Tracked videos (include/jumpcyl/track.h, docs/tracker.md): Tracker's files
 # read (.trk through libxml2, exported tables) or the caller's arrays, the
 # incline frame and what the video tells; the model compared with them and
 # fitted to them (GSL's multifit), synthetic videos (the studies' Philox,
-# src/random.c).
-# Part of the library, in a list of its own: the web build, which has no
+# src/random.c). Part of the library, in a list of its own: the web build, which has no
 # libxml2, compiles JC_LIB_SOURCES alone.
 set(JC_TRACK_SOURCES
   src/track/data.c src/track/read.c src/track/trk.c src/track/table.c src/track/frame.c src/track/surface.c
@@ -23,17 +31,6 @@ set(JC_TRACK_SOURCES
   src/track/model_path.c src/track/start.c src/track/residuals.c src/track/fit_params.c src/track/fit.c
   src/track/launch.c src/track/fit_video.c src/track/compare.c src/track/synthetic.c)
 list(TRANSFORM JC_TRACK_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
-
-# Studies (include/jumpcyl/study.h, docs/api.md "Studies"): grids, Monte
-# Carlo samples (Random123's Philox, src/random.c, which the tracks' fit and
-# synthetic videos use too), their statistics, the design search; on every
-# core with OpenMP where it is there (the sources build without it, one
-# thread, as for the web). Part of the library, in a list of its own, as the
-# tracks'.
-set(JC_STUDY_SOURCES
-  src/random.c src/study/number.c src/study/outcome.c src/study/case.c src/study/threads.c src/study/run.c
-  src/study/defaults.c src/study/stats.c src/study/design_scan.c src/study/design_solve.c src/study/design.c)
-list(TRANSFORM JC_STUDY_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 
 # The tool's files that the web page compiles too, so that the page and the
 # tool read a setup and write a run the same way: the setup and simulation

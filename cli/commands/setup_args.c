@@ -254,9 +254,7 @@ int cli_setup_apply_values(const cli_SetupValues *v, jc_Setup *s, char *err, siz
 {
     char msg[256];
     if (check_shortcuts(v, err, err_len)) return -1;
-    /* The library sets them in the table's order, the body first (a disc+rod
-     * body's shortcuts act on the rim the options give; parts given with
-     * --part keep their radii), and checks the setup. */
+    /* The library sets them in the table's order, the body first, and checks the setup. */
     int failed = -1;
     if (jc_param_values_apply(v, s, &failed, msg, sizeof msg) == JC_OK) return 0;
     double now;
