@@ -22,8 +22,8 @@ list(TRANSFORM JC_STUDY_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 # Tracked videos (include/jumpcyl/track.h, docs/tracker.md): Tracker's files
 # read (.trk through libxml2, exported tables) or the caller's arrays, the
 # incline frame and what the video tells; the model compared with them and
-# fitted to them (GSL's multifit), synthetic videos (Random123's Philox).
-# Part of the library, in a list of its own: the web build, which has no
+# fitted to them (GSL's multifit), synthetic videos (the studies' Philox,
+# src/random.c). Part of the library, in a list of its own: the web build, which has no
 # libxml2, compiles JC_LIB_SOURCES alone.
 set(JC_TRACK_SOURCES
   src/track/data.c src/track/read.c src/track/trk.c src/track/table.c src/track/frame.c src/track/surface.c

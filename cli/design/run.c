@@ -2,7 +2,6 @@
  * the scan's progress line on a terminal and a stop signal as its
  * cancellation. */
 #include "design.h"
-#include "figures.h"
 
 #include <string.h>
 
