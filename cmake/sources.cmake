@@ -12,8 +12,8 @@ list(TRANSFORM JC_LIB_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 
 # Studies (include/jumpcyl/study.h): grids, Monte Carlo samples (Random123's
 # Philox, src/random.c, which the tracks' fit and synthetic videos use too),
-# their statistics, the design search; on every core with OpenMP where the
-# compiler has it (the page's build has not: one thread).
+# their statistics, the design search; on every core with OpenMP. The web
+# build compiles JC_LIB_SOURCES alone (its page runs single setups).
 set(JC_STUDY_SOURCES
   src/random.c src/study/number.c src/study/outcome.c src/study/case.c src/study/threads.c src/study/run.c
   src/study/defaults.c src/study/stats.c src/study/design_scan.c src/study/design_solve.c src/study/design.c)
