@@ -40,7 +40,7 @@ list(TRANSFORM JC_TRACK_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 # JSON of a run (sim_json.c, report.c), Table 1's row (paper_row.c) and the
 # tool's one-line errors (error.c). Nothing in them calls outside them and
 # the library: the page links them whole (tests: web_link). The native
-# tool builds them into jc_cli_common with the rest.
+# tool builds each into its folder's library (CMakeLists.txt: jc_cli_shared).
 set(JC_TOOL_SHARED_SOURCES
   cli/inputs/setup_args.c cli/inputs/units.c cli/inputs/config_write.c
   cli/outputs/report.c cli/outputs/sim_json.c cli/figures/paper_row.c cli/process/error.c)
