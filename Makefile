@@ -199,8 +199,9 @@ clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(MPI_BUILD)
 
 # ---- WebAssembly (docs/web.md) ----
-# make web: the library and its browser entry point (web/jc_web.c) compiled
-# with Emscripten into $(WEB_OUT): jumpcyl.js + jumpcyl.wasm, the one-file
+# make web: the library with its studies and its browser entry point
+# (web/jc_web.c, web/jc_web_study.c) compiled with Emscripten into
+# $(WEB_OUT): jumpcyl.js + jumpcyl.wasm, the one-file
 # jumpcyl-single.js, the page (index.html, app.js, style.css) and the
 # self-contained jumpcyl.html. GSL and cJSON are built for wasm32 from
 # Debian's source packages once, into $(WEB_BUILD) (web/build-deps.sh).
@@ -210,7 +211,8 @@ clean:
 WEB_BUILD    ?= build-web
 WEB_OUT      ?= out/web
 CHROMIUM     ?= /usr/bin/chromium
-WEB_PACKAGES := emscripten dpkg-dev autotools-dev nodejs
+# (librandom123-dev: the studies' Philox headers, copied into the wasm build.)
+WEB_PACKAGES := emscripten dpkg-dev autotools-dev nodejs librandom123-dev
 # Debian's chromium for make test-page; npm when node came without it.
 WEB_TEST_PACKAGES := chromium
 # Debian's emscripten finds its node modules (acorn, ...) there.
