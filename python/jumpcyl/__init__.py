@@ -10,8 +10,9 @@ from ._lib import Error, lib as _clib, text as _text
 from ._params import Param, params, presets, deg
 from ._setup import Setup
 from ._simulate import Event, Run, simulate, predict, sample_dtype
+from ._study import sweep, mc, map, design, McResult, Map
 
 __version__ = _text(_clib.jc_version())
 
 __all__ = ["Error", "Param", "params", "presets", "deg", "Setup", "Event", "Run", "simulate", "predict",
-           "sample_dtype"]
+           "sample_dtype", "sweep", "mc", "map", "design", "McResult", "Map"]
