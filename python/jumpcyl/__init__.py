@@ -11,8 +11,9 @@ from ._params import Param, params, presets, deg
 from ._setup import Setup
 from ._simulate import Event, Run, simulate, predict, sample_dtype
 from ._study import sweep, mc, map, design, McResult, Map
+from ._paper import paper_table
 
 __version__ = _text(_clib.jc_version())
 
 __all__ = ["Error", "Param", "params", "presets", "deg", "Setup", "Event", "Run", "simulate", "predict",
-           "sample_dtype", "sweep", "mc", "map", "design", "McResult", "Map"]
+           "sample_dtype", "sweep", "mc", "map", "design", "McResult", "Map", "paper_table"]
