@@ -12,8 +12,9 @@ from ._setup import Setup
 from ._simulate import Event, Run, simulate, predict, sample_dtype
 from ._study import sweep, mc, map, design, McResult, Map
 from ._paper import paper_table
+from ._track import Track, read_track, fit
 
 __version__ = _text(_clib.jc_version())
 
 __all__ = ["Error", "Param", "params", "presets", "deg", "Setup", "Event", "Run", "simulate", "predict",
-           "sample_dtype", "sweep", "mc", "map", "design", "McResult", "Map", "paper_table"]
+           "sample_dtype", "sweep", "mc", "map", "design", "McResult", "Map", "paper_table", "Track", "read_track", "fit"]
