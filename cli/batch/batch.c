@@ -463,9 +463,10 @@ static int run_here(taker *t, long hi)
     char err[256];
     const int st = jc_study_run(&t->j->def, t->next, hi - t->next, &cb, err, sizeof err);
     if (t->write_failed) return EXIT_FAIL;
-    if (st == JC_OK || (st == JC_ESTOPPED && cli_stop_requested())) return EXIT_OK;
-    cli_error("%s: %s", t->j->b->cmd, err);
-    return EXIT_FAIL;
+    if (st == JC_ESTOPPED && cli_stop_requested()) return EXIT_OK; /* the cases not taken tell the caller */
+    const int rc = cli_exit_status(st, CLI_INPUTS_CHECKED);
+    if (rc != EXIT_OK) cli_error("%s: %s", t->j->b->cmd, err);
+    return rc;
 }
 
 #ifdef JC_HAVE_MPI
@@ -542,9 +543,10 @@ int cli_batch_run(const cli_Batch *b)
     job j = {b, *b->study, "", b->output != NULL || b->consume_rows};
     j.def.threads = b->threads;
     char err[256];
-    if (jc_study_check(&j.def, err, sizeof err) != JC_OK) {
+    const int checked = jc_study_check(&j.def, err, sizeof err);
+    if (checked != JC_OK) {
         cli_error("%s: %s", b->cmd, err);
-        return EXIT_FAIL;
+        return cli_exit_status(checked, CLI_INPUTS_CHECKED);
     }
     jc_study_header(&j.def, j.header, sizeof j.header);
     long lo, hi, done = 0;

@@ -407,7 +407,7 @@ static int check_length(const jc_Model *model, const jc_SimOptions *sim, const a
     film_Watch w = {NAN};
     const jc_Recorder rec = {&w, watch_event, NULL};
     const int st = cli_simulate_stream(model, &probe_opts, &rec, &probe, "animate");
-    if (st != JC_OK) return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
+    if (st != JC_OK) return cli_exit_status(st, CLI_INPUTS_CHECKED);
     *film_end = film_end_s(&probe, &w, o->t_max_given);
     const double frames = motion_frames(*film_end, o) + hold_frames(o);
     if (frames > o->max_frames) {
@@ -466,7 +466,7 @@ int cmd_animate(int argc, char **argv)
     in.sim.max_samples = (int)fmin(1e8, (double)o.max_frames + in.sim.max_events + 16.0);
     if ((st = cli_simulate(&in.model, &in.sim, &run, "animate")) != JC_OK) {
         jc_run_free(&run);
-        return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_CHECKED);
     }
     st = animate_run(&in.model, &run, &o);
     jc_run_free(&run);

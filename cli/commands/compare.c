@@ -115,17 +115,13 @@ int cmd_compare(int argc, char **argv)
     shown.ramp_length_m -= JC_TRACK_RAMP_MARGIN_M;
     jc_Model model;
     char err[512];
-    if (jc_model_init(&model, &shown, err, sizeof err) != JC_OK) {
-        cli_error("compare: %s", err);
-        jc_track_free(&t);
-        return EXIT_USAGE;
-    }
     jc_TrackCompare c;
-    if (jc_track_compare(&setup, &t, &opts, a.from_setup_start ? JC_TRACK_START_SETUP : JC_TRACK_START_TRACKED, a.from_s,
-                         a.to_s, a.mark_angle_rad, &c, err, sizeof err) != 0) {
+    if ((st = jc_model_init(&model, &shown, err, sizeof err)) != JC_OK ||
+        (st = jc_track_compare(&setup, &t, &opts, a.from_setup_start ? JC_TRACK_START_SETUP : JC_TRACK_START_TRACKED,
+                               a.from_s, a.to_s, a.mark_angle_rad, &c, err, sizeof err)) != JC_OK) {
         cli_error("compare: %s", err);
         jc_track_free(&t);
-        return EXIT_USAGE;
+        return cli_exit_status(st, CLI_INPUTS_VIDEO);
     }
     cli_track_print_head(a.track, &t, c.first, c.count);
     cli_print_setup(stdout, &model, 1);

@@ -427,14 +427,10 @@ int cmd_fit(int argc, char **argv)
     fo.progress_ctx = &progress;
     const int fitted = jc_track_fit(&setup, &t, &fo, &opts, &r, err, sizeof err);
     cli_progress_end(&progress);
-    if (fitted == JC_ESTOPPED) { /* a stop signal: no report */
+    if (fitted != JC_OK) { /* stopped by a signal: no message, no report */
+        if (fitted != JC_ESTOPPED) cli_error("fit: %s", err);
         jc_track_free(&t);
-        return cli_stop_status();
-    }
-    if (fitted != 0) {
-        cli_error("fit: %s", err);
-        jc_track_free(&t);
-        return EXIT_USAGE;
+        return cli_exit_status(fitted, CLI_INPUTS_VIDEO);
     }
     report(o.track.track, &t, &r, &fo);
     st = o.track.output ? figure(o.track.output, &t, &r, &opts, argc, argv) : EXIT_OK;

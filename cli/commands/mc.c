@@ -230,7 +230,7 @@ static int summarize(const mc_opts *o, double gap)
     jc_Tally t;
     long rows = 0, line_no = 1;
     memset(&t, 0, sizeof t);
-    if (st == EXIT_OK && jc_tally_init(&t, 1 << 16) != JC_OK) st = EXIT_FAIL;
+    if (st == EXIT_OK) st = cli_exit_status(jc_tally_init(&t, 1 << 16), CLI_INPUTS_CHECKED);
     while (st == EXIT_OK && (n = getline(&line, &cap, f)) > 0) {
         ++line_no;
         cli_CaseResult r;
@@ -241,9 +241,8 @@ static int summarize(const mc_opts *o, double gap)
             break;
         }
         /* the tally grows: a merged file has no stated size */
-        if (jc_tally_add(&t, &r.outcome) != JC_OK) {
+        if ((st = cli_exit_status(jc_tally_add(&t, &r.outcome), CLI_INPUTS_CHECKED)) != EXIT_OK) {
             cli_error("mc: --summarize: out of memory after %ld rows", rows);
-            st = EXIT_FAIL;
             break;
         }
         ++rows;
@@ -283,10 +282,10 @@ int cmd_mc(int argc, char **argv)
     if ((st = cli_mc_job_init(&job, "mc", &in.args, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != 0)
         return st;
     jc_Tally tally;
-    if (jc_tally_init(&tally, samples) != JC_OK) {
+    if ((st = jc_tally_init(&tally, samples)) != JC_OK) {
         cli_error("mc: out of memory for %ld samples", samples);
         jc_tally_free(&tally);
-        return EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_CHECKED);
     }
     jc_StudyDef study;
     cli_mc_study(&study, &job, samples, &sim);

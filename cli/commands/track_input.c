@@ -163,26 +163,24 @@ int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *
     opt.axes = a->axes && strcmp(a->axes, "incline") == 0 ? JC_TRACK_AXES_INCLINE : JC_TRACK_AXES_LEVEL;
     if (a->hop_sigmas) opt.hop_sigmas = a->hop_sigmas_k;
     char err[1024];
-    if (jc_track_read_file(path, &opt, t, err, sizeof err) != 0) {
-        cli_error("%s: %s", cmd, err);
-        return EXIT_USAGE;
-    }
-    return 0;
+    const int st = jc_track_read_file(path, &opt, t, err, sizeof err);
+    if (st != JC_OK) cli_error("%s: %s", cmd, err);
+    return cli_exit_status(st, CLI_INPUTS_VIDEO);
 }
 
 int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const cli_SetupArgs *sa, jc_Setup *setup,
                                   jc_Track *t)
 {
     int rc = cli_track_args_load(cmd, a->track, a, sa, setup, t);
-    if (rc != 0) return rc;
+    if (rc != EXIT_OK) return rc;
     char err[1024];
-    if (jc_track_require(a->track, t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, sizeof err) != 0) {
+    if ((rc = jc_track_require(a->track, t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, sizeof err)) != JC_OK) {
         jc_track_free(t);
         cli_error("%s: %s", cmd, err);
-        return EXIT_USAGE;
+        return cli_exit_status(rc, CLI_INPUTS_VIDEO);
     }
     setup->incline_rad = t->incline_rad;
-    return 0;
+    return EXIT_OK;
 }
 
 const char *const cli_track_centre_sources[JC_TRACK_CENTRE_FROM_MARK + 1] = {"none", "tracked", "recovered from the mark"};

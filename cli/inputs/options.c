@@ -162,7 +162,7 @@ int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs
     const int st = model ? jc_model_init(model, setup, err, sizeof err) : JC_OK;
     if (st != JC_OK) {
         cli_error("%s: %s", cmd, err);
-        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_GIVEN);
     }
     note_bare_units(cmd, sa);
     return 0;
