@@ -147,9 +147,9 @@ int cli_batch_take(const char *cmd, cli_BatchArgs *a, int opt, const char *arg)
     case 'o': return cli_take_once(cmd, &a->output, "output", arg);
     case 't': return cli_take_once(cmd, &a->threads, "threads", arg);
     case 's': return cli_take_once(cmd, &a->shard, "shard", arg);
-    case 'r': a->resume = 1; return 0;
-    case 'q': a->quiet = 1; return 0;
-    default: return 1;
+    case 'r': a->resume = 1; return CLI_GO_ON;
+    case 'q': a->quiet = 1; return CLI_GO_ON;
+    default: return EXIT_USAGE; /* not one of them (getopt passes none such) */
     }
 }
 

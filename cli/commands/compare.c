@@ -20,11 +20,7 @@ static void help(void)
     puts("  -h, --help          this help\n");
 }
 
-static int take(int opt, const char *arg, void *ctx)
-{
-    const int rc = cli_track_args_take("compare", ctx, opt, arg);
-    return rc == 1 ? EXIT_USAGE : rc;
-}
+static int take(int opt, const char *arg, void *ctx) { return cli_track_args_take("compare", ctx, opt, arg); }
 
 static const struct option own[] = {CLI_TRACK_ARG_OPTIONS, {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};

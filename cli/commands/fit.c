@@ -65,8 +65,6 @@ static void help(void)
 static int take(int opt, const char *arg, void *ctx)
 {
     fit_opts *o = ctx;
-    const int rc = cli_track_args_take("fit", &o->track, opt, arg);
-    if (rc != 1) return rc;
     switch (opt) {
     case 'f': return cli_take_once("fit", &o->free_list, "free", arg);
     case 'l': return cli_take_once("fit", &o->loss, "loss", arg);
@@ -74,9 +72,9 @@ static int take(int opt, const char *arg, void *ctx)
     case 's': return cli_take_once("fit", &o->sigma, "sigma", arg);
     case 'n': return cli_take_once("fit", &o->starts, "starts", arg);
     case 'r': return cli_take_once("fit", &o->seed, "seed", arg);
-    case 'a': o->allow_misfit = 1; return 0;
-    case 'H': o->hold_start = 1; return 0;
-    default: return EXIT_USAGE;
+    case 'a': o->allow_misfit = 1; return CLI_GO_ON;
+    case 'H': o->hold_start = 1; return CLI_GO_ON;
+    default: return cli_track_args_take("fit", &o->track, opt, arg);
     }
 }
 

@@ -60,10 +60,9 @@ static int take(int opt, const char *arg, void *ctx)
     if (opt == 'y') return cli_take_once("map", &o->y, "y", arg);
     if (opt == 'k') {
         o->keep_script = 1;
-        return 0;
+        return CLI_GO_ON;
     }
-    const int st = cli_batch_take("map", &o->batch, opt, arg);
-    return st == 1 ? EXIT_USAGE : st;
+    return cli_batch_take("map", &o->batch, opt, arg);
 }
 
 static const struct option own[] = {{"x", required_argument, 0, 'x'},

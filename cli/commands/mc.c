@@ -60,9 +60,9 @@ static int take(int opt, const char *arg, void *ctx)
     case 'n': return cli_take_once("mc", &o->samples, "samples", arg);
     case 'S': return cli_take_once("mc", &o->seed, "seed", arg);
     case 'g': return cli_take_once("mc", &o->gap, "region-gap", arg);
-    case 'D': o->no_defaults = 1; return 0;
+    case 'D': o->no_defaults = 1; return CLI_GO_ON;
     case 'f': return cli_take_once("mc", &o->summarize, "summarize", arg);
-    case 'j': o->json = 1; return 0;
+    case 'j': o->json = 1; return CLI_GO_ON;
     case 'z':
     case 'u': {
         const char **list = opt == 'z' ? o->sigma : o->range;
@@ -73,12 +73,9 @@ static int take(int opt, const char *arg, void *ctx)
             return EXIT_USAGE;
         }
         list[(*n)++] = arg;
-        return 0;
+        return CLI_GO_ON;
     }
-    default: {
-        const int st = cli_batch_take("mc", &o->batch, opt, arg);
-        return st == 1 ? EXIT_USAGE : st;
-    }
+    default: return cli_batch_take("mc", &o->batch, opt, arg);
     }
 }
 

@@ -76,7 +76,7 @@ static int take(int opt, const char *arg, void *ctx)
     plot_opts *o = ctx;
     if (opt == 'w') return cli_take_once("plot", &o->what, "what", arg);
     if (opt == 'o') return cli_take_once("plot", &o->output, "output", arg);
-    if (opt == 'k') { o->keep_script = 1; return 0; }
+    if (opt == 'k') { o->keep_script = 1; return CLI_GO_ON; }
     if (opt == 'm') return cli_take_once("plot", &o->max_samples, "max-samples", arg);
     return EXIT_USAGE;
 }

@@ -29,8 +29,8 @@ static void help(void)
 static int take(int opt, const char *arg, void *ctx)
 {
     simulate_opts *o = ctx;
-    if (opt == 'j') { o->json = 1; return 0; }
-    if (opt == 'c') { o->csv = arg; return 0; }
+    if (opt == 'j') { o->json = 1; return CLI_GO_ON; }
+    if (opt == 'c') { o->csv = arg; return CLI_GO_ON; }
     return EXIT_USAGE;
 }
 

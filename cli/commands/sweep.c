@@ -48,10 +48,9 @@ static int take(int opt, const char *arg, void *ctx)
             return EXIT_USAGE;
         }
         o->vary[o->vary_count++] = arg;
-        return 0;
+        return CLI_GO_ON;
     }
-    const int st = cli_batch_take("sweep", &o->batch, opt, arg);
-    return st == 1 ? EXIT_USAGE : st;
+    return cli_batch_take("sweep", &o->batch, opt, arg);
 }
 
 static const struct option own[] = {{"vary", required_argument, 0, 'v'}, CLI_BATCH_OPTIONS,

@@ -41,11 +41,9 @@ static void help(void)
 static int take(int opt, const char *arg, void *ctx)
 {
     track_opts *o = ctx;
-    const int rc = cli_track_args_take("track", &o->read, opt, arg);
-    if (rc != 1) return rc;
     if (opt == 'v') return cli_take_once("track", &o->csv, "csv", arg);
     if (opt == 'j') return cli_take_once("track", &o->json, "json", arg);
-    return EXIT_USAGE;
+    return cli_track_args_take("track", &o->read, opt, arg);
 }
 
 static const struct option own[] = {CLI_TRACK_READ_OPTIONS,

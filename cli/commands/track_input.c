@@ -21,9 +21,9 @@ int cli_track_args_take(const char *cmd, cli_TrackArgs *a, int opt, const char *
     case CLI_TRACK_OPT_OUTPUT: return cli_take_once(cmd, &a->output, "output", arg);
     case CLI_TRACK_OPT_MARK_ANGLE: return cli_take_once(cmd, &a->mark_angle, "mark-angle", arg);
     case CLI_TRACK_OPT_HOP_SIGMAS: return cli_take_once(cmd, &a->hop_sigmas, "hop-sigmas", arg);
-    case CLI_TRACK_OPT_SETUP_START: a->from_setup_start = 1; return 0;
-    case CLI_TRACK_OPT_FIT_TILT: a->fit_tilt = 1; return 0;
-    default: return 1; /* not one of these */
+    case CLI_TRACK_OPT_SETUP_START: a->from_setup_start = 1; return CLI_GO_ON;
+    case CLI_TRACK_OPT_FIT_TILT: a->fit_tilt = 1; return CLI_GO_ON;
+    default: return EXIT_USAGE; /* not one of these (getopt passes none such) */
     }
 }
 

@@ -36,7 +36,8 @@ typedef struct {
     double hop_sigmas_k; /* --hop-sigmas's K, when given */
 } cli_TrackArgs;
 
-/* 0 when it took the option, EXIT_USAGE after a message, 1 when the option is not one of these. */
+/* A command's take for these options: CLI_GO_ON when it took the option,
+ * EXIT_USAGE after a message (or for an option that is not one of these). */
 int cli_track_args_take(const char *cmd, cli_TrackArgs *a, int opt, const char *arg);
 /* The help of the reading options; with window 1, those of compare and fit too. */
 void cli_track_args_help(int window);

@@ -74,9 +74,15 @@ typedef struct {
 #include <jumpcyl/study.h>
 typedef jc_ParamValues cli_SetupValues;
 
-/* If opt is a setup option's val, records it and returns 1; 0 otherwise;
- * -1 with a message on a repeated option or too many parts. */
-int cli_setup_take(cli_SetupArgs *args, int opt, const char *optarg_text, char *err, size_t err_len);
+/* What cli_setup_take and cli_sim_take did with an option. They print
+ * nothing (the web page shares them): a refusal's message is in err. */
+typedef enum {
+    CLI_OPTION_REFUSED = -1, /* one of theirs, refused: repeated, or too many parts */
+    CLI_OPTION_NOT_OURS = 0, /* not one of theirs: the caller's to take */
+    CLI_OPTION_TAKEN = 1     /* recorded */
+} cli_OptionTake;
+/* A setup option (opt: its getopt val) recorded. */
+cli_OptionTake cli_setup_take(cli_SetupArgs *args, int opt, const char *optarg_text, char *err, size_t err_len);
 /* Builds and validates the setup: cli_setup_base, then cli_setup_apply
  * (options.c). */
 int cli_setup_build(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
@@ -109,11 +115,18 @@ void cli_setup_help(FILE *out);
 /* Builds an option table: command options followed by the setup options. */
 void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd, int cmd_count);
 
-/* Parses a command's arguments: its own options (handled by own_take, which
- * returns 0 when it took the option, -1 to stop with exit 0 (help printed),
- * or EXIT_USAGE after a message) and the setup options. Returns -1 for help
- * or --dump-config printed (exit 0), EXIT_USAGE after a message, or 0 to go
- * on. Commands call it through cli_command_parse. */
+/* The answer of a step that reads the command line (an option's take, the
+ * parse) when the command goes on. Any other answer is the exit status the
+ * command returns at once: EXIT_OK after --help or --dump-config printed
+ * what was asked, EXIT_USAGE after a one-line message. Not an exit status
+ * (they are >= 0); docs/architecture.md, "Return values". */
+#define CLI_GO_ON (-1)
+
+/* Parses a command's arguments: its own options (handled by own_take: for
+ * option opt with its value arg, CLI_GO_ON when it took it, or the exit
+ * status) and the setup options. CLI_GO_ON, or the exit status (EXIT_OK
+ * when --dump-config printed the setup). Commands call it through
+ * cli_command_parse. */
 typedef int (*cli_own_take_fn)(int opt, const char *arg, void *ctx);
 struct cli_SimArgs_s;
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
@@ -121,15 +134,14 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
                    struct cli_SimArgs_s *sim_args);
 
 /* A command's own options: the table (with {"help", no_argument, 0, 'h'}),
- * take for each of them but --help, and the command's part of the help. */
+ * take for each of them but --help (CLI_GO_ON, or the exit status), and the
+ * command's part of the help. */
 typedef struct {
     const struct option *own;
     int own_count;
     cli_own_take_fn take;
     void (*help)(void);
 } cli_Command;
-/* cli_command_parse's answer when the command goes on to run. */
-#define CLI_GO_ON (-1)
 /* cli_parse_args for a command: --help prints its help, then the shared
  * options' (the simulation options' too when sim_args is not NULL).
  * CLI_GO_ON, or the exit status: EXIT_OK after --help or --dump-config. */
@@ -146,7 +158,8 @@ extern const struct option cli_sim_options[CLI_SIM_OPTION_COUNT];
 typedef struct cli_SimArgs_s {
     const char *value[CLI_SIM_OPTION_COUNT];
 } cli_SimArgs;
-int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len);
+/* A simulation option recorded, as cli_setup_take. */
+cli_OptionTake cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len);
 int cli_sim_build(const cli_SimArgs *args, jc_SimOptions *out, char *err, size_t err_len);
 /* Whether a simulation option (by long name) was given. */
 int cli_sim_given(const cli_SimArgs *args, const char *long_name);
@@ -170,11 +183,12 @@ typedef struct {
     jc_SimOptions sim;
     jc_Model model;
 } cli_RunInputs;
-/* cli_command_parse into in's options. */
+/* cli_command_parse into in's options: CLI_GO_ON, or the exit status. */
 int cli_run_inputs_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_RunInputs *in);
 /* cli_build_model from in's options into in's model and simulation options. */
 int cli_run_inputs_build(const char *cmd, cli_RunInputs *in);
-/* A single-valued option: stores arg in *slot, or refuses a second value. */
+/* A single-valued option's take: stores arg in *slot and returns
+ * CLI_GO_ON, or refuses a second value (EXIT_USAGE after a message). */
 int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg);
 /* A --seed value: a whole number from 0 to 2^64 - 1, no sign (mc, fit).
  * 0, or EXIT_USAGE after a one-line message. */
