@@ -84,10 +84,8 @@ static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, con
     f.hop_threshold_m = t->hop_threshold_m;
     snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; path residuals RMS %.2f mm (%.2f σ)",
              cli_deg(t->incline_rad), c->rms_path_m * 1e3, c->rms_path_m / t->sigma_m);
-    const int rc = cli_track_figure_draw("compare", &f, setup, &c->launch.start, NULL, o, out, argc, argv);
-    if (rc != CLI_TRACK_FIGURE_NO_PATH) return rc;
-    cli_error("compare: out of memory for the figure's path");
-    return EXIT_FAIL;
+    return cli_track_figure_draw("compare", "out of memory for the figure's path", &f, setup, &c->launch.start, NULL, o,
+                                 out, argc, argv);
 }
 
 int cmd_compare(int argc, char **argv)
@@ -98,12 +96,12 @@ int cmd_compare(int argc, char **argv)
     cli_SimArgs sim_args;
     int st = cli_command_parse(argc, argv, &command, &a, &sa, &sim_args);
     if (st != CLI_GO_ON) return st;
-    if ((st = cli_track_args_check("compare", &a)) != 0) return st;
+    if ((st = cli_track_args_check("compare", &a)) != EXIT_OK) return st;
     jc_Setup setup;
     jc_SimOptions opts;
-    if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
+    if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, NULL)) != EXIT_OK) return st;
     jc_Track t;
-    if ((st = cli_track_args_load_for_model("compare", &a, &sa, &setup, &t)) != 0) return st;
+    if ((st = cli_track_args_load_for_model("compare", &a, &sa, &setup, &t)) != EXIT_OK) return st;
     /* The setup the runs use, its ramp without their margin uphill: printed,
      * and its body for the report and the figure (built once: a failure is
      * an error, not a setup left unprinted). */

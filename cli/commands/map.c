@@ -571,7 +571,7 @@ int cmd_map(int argc, char **argv)
     memset(&job, 0, sizeof job);
     jc_Setup fixed;
     jc_SimOptions sim;
-    if ((st = cli_batch_build_inputs("map", &sa, &sim_args, &fixed, &sim, NULL)) != 0) return st;
+    if ((st = cli_batch_build_inputs("map", &sa, &sim_args, &fixed, &sim, NULL)) != EXIT_OK) return st;
     char err[512];
     if (cli_setup_base(&sa, &job.base, err, sizeof err) != 0 || cli_setup_values(&sa, &job.values, err, sizeof err) != 0) {
         cli_error("map: %s", err);

@@ -102,7 +102,7 @@ static int parse_numbers(const mc_opts *o, long *samples, uint64_t *seed, double
             return EXIT_USAGE;
         }
     }
-    if (o->seed && cli_parse_seed("mc", o->seed, seed) != 0) return EXIT_USAGE;
+    if (o->seed && cli_parse_seed("mc", o->seed, seed) != EXIT_OK) return EXIT_USAGE;
     char msg[256];
     if (o->gap && (cli_parse_quantity(o->gap, Q_LENGTH, gap, msg, sizeof msg) != 0 || !(*gap > 0))) {
         cli_error("mc: --region-gap '%s' is not valid (allowed: a length > 0, e.g. 2cm)", o->gap);
@@ -274,9 +274,9 @@ int cmd_mc(int argc, char **argv)
     jc_Setup setup;
     jc_SimOptions sim;
     jc_Model model;
-    if ((st = cli_batch_build_inputs("mc", &in.args, &in.sim_args, &setup, &sim, &model)) != 0) return st;
+    if ((st = cli_batch_build_inputs("mc", &in.args, &in.sim_args, &setup, &sim, &model)) != EXIT_OK) return st;
     cli_McJob job;
-    if ((st = cli_mc_job_init(&job, "mc", &in.args, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != 0)
+    if ((st = cli_mc_job_init(&job, "mc", &in.args, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != EXIT_OK)
         return st;
     jc_Tally tally;
     if ((st = jc_tally_init(&tally, samples)) != JC_OK) {

@@ -531,7 +531,7 @@ int cmd_paper(int argc, char **argv)
         return EXIT_USAGE;
     }
     jc_Setup setup;
-    if ((st = cli_build_inputs("paper", &sa, NULL, &setup, NULL, NULL)) != 0) return st;
+    if ((st = cli_build_inputs("paper", &sa, NULL, &setup, NULL, NULL)) != EXIT_OK) return st;
     char err[512];
     paper_row rows[ROWS_MAX];
     int n = 0;

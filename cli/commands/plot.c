@@ -118,7 +118,7 @@ static int check_opts(const plot_opts *o, const plot_kind **kind, fig_Format *fo
         else cli_error("plot: --output '%s' has no extension (allowed extensions: .png, .svg, .pdf)", o->output);
         return EXIT_USAGE;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 static void write_overview(FILE *gp, const fig_Data *d)
@@ -239,10 +239,10 @@ int cmd_plot(int argc, char **argv)
     if (st != CLI_GO_ON) return st;
     const plot_kind *kind;
     fig_Format format;
-    if ((st = check_opts(&o, &kind, &format)) != 0) return st;
+    if ((st = check_opts(&o, &kind, &format)) != EXIT_OK) return st;
     fig_Data d;
     memset(&d, 0, sizeof d);
-    if ((st = cli_run_inputs_build("plot", &in)) != 0) return st;
+    if ((st = cli_run_inputs_build("plot", &in)) != EXIT_OK) return st;
     double max_samples = DEFAULT_MAX_SAMPLES;
     if (o.max_samples) {
         char msg[256];

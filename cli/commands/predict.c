@@ -127,7 +127,7 @@ int cmd_predict(int argc, char **argv)
     if (st != CLI_GO_ON) return st;
 
     jc_Model model;
-    if ((st = cli_build_model("predict", &sa, NULL, NULL, &model)) != 0) return st;
+    if ((st = cli_build_model("predict", &sa, NULL, NULL, &model)) != EXIT_OK) return st;
     char err[512];
     jc_PaperResult paper;
     jc_RollingResult rolling;

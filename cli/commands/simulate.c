@@ -193,7 +193,7 @@ int cmd_simulate(int argc, char **argv)
     cli_RunInputs in;
     int st = cli_run_inputs_parse(argc, argv, &command, &o, &in);
     if (st != CLI_GO_ON) return st;
-    if ((st = cli_run_inputs_build("simulate", &in)) != 0) return st;
+    if ((st = cli_run_inputs_build("simulate", &in)) != EXIT_OK) return st;
     if (o.csv && o.json && strcmp(o.csv, "-") == 0) {
         cli_error("simulate: --csv - and --json would both write to standard output; give --csv a file");
         return EXIT_USAGE;

@@ -116,8 +116,8 @@ static int take_file(int *argc, char **argv, int *help, const char **file, const
     return unknown;
 }
 
-/* One file, not two, and none only for --help: 0, or EXIT_USAGE after a
- * message. */
+/* One file, not two, and none only for --help: EXIT_OK, or EXIT_USAGE after
+ * a message. */
 static int one_file(const char *file, const char *extra, int help)
 {
     if (extra) {
@@ -128,7 +128,7 @@ static int one_file(const char *file, const char *extra, int help)
         cli_error("track: which file? 'jumpcyl track FILE' (see 'jumpcyl track --help')");
         return EXIT_USAGE;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 static cJSON *num(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
@@ -386,7 +386,7 @@ int cmd_track(int argc, char **argv)
     /* An unknown option is reported first (by the parser): its value may
      * have been taken for a file ("--from 1"). */
     const int unknown = take_file(&n, args, &want_help, &file, &extra);
-    if (!unknown && one_file(file, extra, want_help) != 0) {
+    if (!unknown && one_file(file, extra, want_help) != EXIT_OK) {
         free(args);
         return EXIT_USAGE;
     }
@@ -396,9 +396,9 @@ int cmd_track(int argc, char **argv)
     int st = cli_command_parse(n, args, &command, &o, &sa, NULL);
     free(args);
     if (st != CLI_GO_ON) return st;
-    if ((st = one_file(file, extra, 0)) != 0) return st;
+    if ((st = one_file(file, extra, 0)) != EXIT_OK) return st;
     jc_Setup setup;
-    if ((st = cli_build_inputs("track", &sa, NULL, &setup, NULL, NULL)) != 0) return st;
+    if ((st = cli_build_inputs("track", &sa, NULL, &setup, NULL, NULL)) != EXIT_OK) return st;
     if ((o.csv && strcmp(o.csv, "-") == 0) || (o.json && strcmp(o.json, "-") == 0)) {
         cli_error("track: --csv and --json write files; the report goes to standard output");
         return EXIT_USAGE;
@@ -407,9 +407,9 @@ int cmd_track(int argc, char **argv)
         cli_error("track: --csv and --json name the same file");
         return EXIT_USAGE;
     }
-    if ((st = cli_track_args_check_reading("track", &o.read)) != 0) return st;
+    if ((st = cli_track_args_check_reading("track", &o.read)) != EXIT_OK) return st;
     jc_Track t;
-    if ((st = cli_track_args_load("track", file, &o.read, &sa, &setup, &t)) != 0) return st;
+    if ((st = cli_track_args_load("track", file, &o.read, &sa, &setup, &t)) != EXIT_OK) return st;
     if (o.csv && t.centre_source == JC_TRACK_CENTRE_NONE) {
         cli_error("track: --csv needs the centre's path, which is %s", t.note[JC_TRACK_Q_CENTRE].text);
         jc_track_free(&t);

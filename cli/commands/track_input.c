@@ -68,13 +68,13 @@ static int parse_time(const char *cmd, const char *name, const char *text, doubl
     char err[256];
     if (!text) {
         *out = NAN;
-        return 0;
+        return EXIT_OK;
     }
     if (cli_parse_quantity(text, Q_TIME, out, err, sizeof err) != 0 || !(*out >= 0.0 && *out <= 1e6)) {
         cli_error("%s: --%s '%s' is not a time from 0 to 1e6 s", cmd, name, text);
         return EXIT_USAGE;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 int cli_track_args_check_reading(const char *cmd, cli_TrackArgs *a)
@@ -92,7 +92,7 @@ int cli_track_args_check_reading(const char *cmd, cli_TrackArgs *a)
         }
         a->hop_sigmas_k = k;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
@@ -104,9 +104,9 @@ int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
         return EXIT_USAGE;
     }
     int rc = cli_track_args_check_reading(cmd, a);
-    if (rc == 0) rc = parse_time(cmd, "from", a->from, &a->from_s);
-    if (rc == 0) rc = parse_time(cmd, "to", a->to, &a->to_s);
-    if (rc != 0) return rc;
+    if (rc == EXIT_OK) rc = parse_time(cmd, "from", a->from, &a->from_s);
+    if (rc == EXIT_OK) rc = parse_time(cmd, "to", a->to, &a->to_s);
+    if (rc != EXIT_OK) return rc;
     if (!isnan(a->from_s) && !isnan(a->to_s) && !(a->from_s < a->to_s)) {
         cli_error("%s: --from %g s is not before --to %g s", cmd, a->from_s, a->to_s);
         return EXIT_USAGE;
@@ -134,7 +134,7 @@ int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
             return EXIT_FAIL;
         }
     }
-    return 0;
+    return EXIT_OK;
 }
 
 /* Whether the incline was given: --incline, or an experiment file's key. */
@@ -213,14 +213,15 @@ int cli_track_fine_path(const jc_Setup *setup, const jc_Track *t, const jc_State
     return jc_track_model_path(setup, t, start, frame, o, *pt, *n, *px, *py, NULL, err, sizeof err) == JC_OK ? 0 : -1;
 }
 
-int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_State *start,
-                          const jc_TrackFitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv)
+int cli_track_figure_draw(const char *cmd, const char *no_path, cli_TrackFigure *f, const jc_Setup *setup,
+                          const jc_State *start, const jc_TrackFitFrame *frame, const jc_SimOptions *o, const char *out,
+                          int argc, char **argv)
 {
     const jc_Track *t = f->track;
     double *pt = NULL, *px = NULL, *py = NULL;
-    int rc = cli_track_fine_path(setup, t, start, frame, o, t->t_s[f->first + f->count - 1], &pt, &px, &py,
-                                 &f->path_n);
-    if (rc == 0) {
+    int rc = EXIT_FAIL;
+    if (cli_track_fine_path(setup, t, start, frame, o, t->t_s[f->first + f->count - 1], &pt, &px, &py, &f->path_n) ==
+        0) {
         f->path_t = pt;
         f->path_x = px;
         f->path_y = py;
@@ -230,7 +231,7 @@ int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *s
         rc = cli_track_figure(cmd, f, out, cmdline);
         f->path_t = f->path_x = f->path_y = NULL;
     } else {
-        rc = CLI_TRACK_FIGURE_NO_PATH;
+        cli_error("%s: %s", cmd, no_path);
     }
     free(pt);
     free(px);

@@ -166,7 +166,7 @@ int cli_sim_given(const cli_SimArgs *args, const char *long_name);
 /* A command's inputs, built and checked: the setup, the simulation options
  * (when sim_args is not NULL) and the model (when model is not NULL). On a
  * bad value prints "CMD: message" and returns the exit status (EXIT_USAGE
- * for a value out of range); 0 when all is well. */
+ * for a value out of range); EXIT_OK when all is well. */
 int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
                      jc_SimOptions *sim, jc_Model *model);
 /* cli_build_inputs for a command that needs no jc_Setup of its own (the
@@ -191,7 +191,7 @@ int cli_run_inputs_build(const char *cmd, cli_RunInputs *in);
  * CLI_GO_ON, or refuses a second value (EXIT_USAGE after a message). */
 int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg);
 /* A --seed value: a whole number from 0 to 2^64 - 1, no sign (mc, fit).
- * 0, or EXIT_USAGE after a one-line message. */
+ * EXIT_OK, or EXIT_USAGE after a one-line message. */
 int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed);
 void cli_sim_help(FILE *out);
 /* The help of the shared options: simulation options (with_sim) and setup options. */

@@ -165,7 +165,7 @@ int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs
         return cli_exit_status(st, CLI_INPUTS_GIVEN);
     }
     note_bare_units(cmd, sa);
-    return 0;
+    return EXIT_OK;
 }
 
 int cli_build_model(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_SimOptions *sim,
@@ -208,7 +208,7 @@ int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed)
         return EXIT_USAGE;
     }
     *seed = (uint64_t)s;
-    return 0;
+    return EXIT_OK;
 }
 
 /* --dump-config: the setup (and simulation options, when the command has
