@@ -83,6 +83,8 @@ typedef enum {
 } cli_OptionTake;
 /* A setup option (opt: its getopt val) recorded. */
 cli_OptionTake cli_setup_take(cli_SetupArgs *args, int opt, const char *optarg_text, char *err, size_t err_len);
+/* The setup's builders below print nothing: each returns 0, or -1 with a
+ * one-line message in err. */
 /* Builds and validates the setup: cli_setup_base, then cli_setup_apply
  * (options.c). */
 int cli_setup_build(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
@@ -148,7 +150,7 @@ typedef struct {
 int cli_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_SetupArgs *setup_args,
                       struct cli_SimArgs_s *sim_args);
 /* cli_command_parse for a command whose one own option is --json (paper,
- * predict); *json is set when it is given. */
+ * predict); *json is set when it is given. CLI_GO_ON, or the exit status. */
 int cli_json_command_parse(int argc, char **argv, void (*help)(void), int *json, cli_SetupArgs *setup_args);
 
 /* Simulator options (--t-max, --sample-dt, ...), for commands that simulate. */
@@ -160,6 +162,7 @@ typedef struct cli_SimArgs_s {
 } cli_SimArgs;
 /* A simulation option recorded, as cli_setup_take. */
 cli_OptionTake cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len);
+/* The simulation options built and checked: 0, or -1 with a one-line message in err. */
 int cli_sim_build(const cli_SimArgs *args, jc_SimOptions *out, char *err, size_t err_len);
 /* Whether a simulation option (by long name) was given. */
 int cli_sim_given(const cli_SimArgs *args, const char *long_name);
@@ -171,7 +174,7 @@ int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs
                      jc_SimOptions *sim, jc_Model *model);
 /* cli_build_inputs for a command that needs no jc_Setup of its own (the
  * model holds it): the model, and the simulation options when sim_args and
- * sim are not NULL. */
+ * sim are not NULL. The exit status, as cli_build_inputs. */
 int cli_build_model(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_SimOptions *sim,
                     jc_Model *model);
 /* The shared inputs of a command that runs one simulation (simulate, plot,
@@ -185,7 +188,8 @@ typedef struct {
 } cli_RunInputs;
 /* cli_command_parse into in's options: CLI_GO_ON, or the exit status. */
 int cli_run_inputs_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_RunInputs *in);
-/* cli_build_model from in's options into in's model and simulation options. */
+/* cli_build_model from in's options into in's model and simulation
+ * options: EXIT_OK, or the exit status after a message. */
 int cli_run_inputs_build(const char *cmd, cli_RunInputs *in);
 /* A single-valued option's take: stores arg in *slot and returns
  * CLI_GO_ON, or refuses a second value (EXIT_USAGE after a message). */
