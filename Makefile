@@ -18,6 +18,12 @@ VALGRIND_PACKAGES := valgrind
 LINT_PACKAGES     := cppcheck
 MPI_PACKAGES      := libopenmpi-dev openmpi-bin
 INSTALL_PACKAGES  := help2man
+# make python, make test-python: the Python package (docs/python.md), built
+# offline against this build with Debian's cffi, numpy, pandas and pytest.
+PYTHON_PACKAGES   := python3-dev python3-cffi python3-numpy python3-pandas python3-pytest python3-venv \
+                     python3-pip python3-setuptools
+# make notebook: examples/jumpcyl.ipynb executed (matplotlib, nbconvert, a kernel).
+NOTEBOOK_PACKAGES := python3-matplotlib jupyter-nbconvert python3-ipykernel
 MPI_BUILD    ?= build-mpi
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 60
@@ -29,6 +35,7 @@ LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/te
 
 .PHONY: all deps configure build run test asan test-asan bench install-check clean help
 .PHONY: test-valgrind fuzz lint lint-layers test-mpi install deps-fuzz deps-valgrind deps-lint deps-mpi deps-install
+.PHONY: python test-python deps-python notebook deps-notebook
 
 all: build
 
@@ -45,6 +52,9 @@ help:
 	@echo "make lint       cppcheck on the sources, zero findings (lint/cppcheck-suppressions.txt), and"
 	@echo "                the layering check (lint/layers.py: no loops, no call or include upwards)"
 	@echo "make bench      build and run the benchmarks"
+	@echo "make python     the Python package (python/, docs/python.md) in $(BUILD)/python-venv;"
+	@echo "                make test-python: its tests (make test runs them when Python is there);"
+	@echo "                make notebook: examples/jumpcyl.ipynb executed into $(BUILD)/notebook/"
 	@echo "make install    install the tool, man page, bash completion and library (PREFIX=/usr/local, DESTDIR=)"
 	@echo "make install-check  install into a scratch prefix and build a program against it"
 	@echo "Variables: BUILD=$(BUILD) WERROR=$(WERROR) JOBS=$(JOBS) CMAKE_ARGS=..."
@@ -78,6 +88,10 @@ deps-mpi: deps
 	@$(call need,$(MPI_PACKAGES))
 deps-install: deps
 	@$(call need,$(INSTALL_PACKAGES))
+deps-python: deps
+	@$(call need,$(PYTHON_PACKAGES))
+deps-notebook: deps-python
+	@$(call need,$(NOTEBOOK_PACKAGES))
 
 $(BUILD)/CMakeCache.txt: | deps
 	cmake -S . -B $(BUILD) -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
@@ -155,7 +169,31 @@ lint-layers: $(BUILD)/CMakeCache.txt
 bench: build
 	cmake --build $(BUILD) --target jumpcyl_bench -j $(JOBS)
 	@# The batch commands too (and under mpirun when the MPI build is there: make test-mpi).
-	./$(BUILD)/bench/jumpcyl_bench ./$(BUILD)/jumpcyl $$(test -x $(MPI_BUILD)/jumpcyl && echo ./$(MPI_BUILD)/jumpcyl)
+	@# One jc.simulate from Python (python_simulate_us), when the package builds here (python/venv.sh).
+	@py_us=$$(python/venv.sh $(BUILD) >/dev/null 2>&1 && $(BUILD)/python-venv/bin/python -P python/bench_simulate.py); \
+	JC_BENCH_PYTHON_US="$$py_us" ./$(BUILD)/bench/jumpcyl_bench ./$(BUILD)/jumpcyl \
+	  $$(test -x $(MPI_BUILD)/jumpcyl && echo ./$(MPI_BUILD)/jumpcyl)
+
+# The Python package built against this build's library and installed into
+# $(BUILD)/python-venv (python/venv.sh): $(BUILD)/python-venv/bin/python -c 'import jumpcyl'.
+python: build deps-python
+	python/venv.sh $(BUILD)
+	@echo "jumpcyl for Python installed in $(BUILD)/python-venv: $(BUILD)/python-venv/bin/python"
+
+# Its tests (the ctest test python_tests, which make test runs when Python is there).
+test-python: build deps-python
+	ctest --test-dir $(BUILD) --output-on-failure -R '^python_tests$$' --no-tests=error
+
+# The example notebook run top to bottom with nbconvert on a kernel of the
+# venv's Python (its kernelspec, found first through JUPYTER_PATH); any
+# failing cell fails. The executed copy, with its figures, goes to $(BUILD)/notebook/.
+notebook: build deps-notebook
+	python/venv.sh $(BUILD)
+	$(BUILD)/python-venv/bin/python -m ipykernel install --sys-prefix --name python3 \
+	  --display-name "Python 3 (jumpcyl)" >/dev/null
+	JUPYTER_PATH=$(CURDIR)/$(BUILD)/python-venv/share/jupyter PYDEVD_DISABLE_FILE_VALIDATION=1 \
+	  $(BUILD)/python-venv/bin/python -m nbconvert --to notebook --execute examples/jumpcyl.ipynb \
+	  --output-dir $(BUILD)/notebook
 
 # make install [PREFIX=/usr/local] [DESTDIR=...]: the tool, its man page and
 # bash completion, the library, headers, pkg-config and CMake files. The
@@ -199,8 +237,9 @@ clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(MPI_BUILD)
 
 # ---- WebAssembly (docs/web.md) ----
-# make web: the library and its browser entry point (web/jc_web.c) compiled
-# with Emscripten into $(WEB_OUT): jumpcyl.js + jumpcyl.wasm, the one-file
+# make web: the library with its studies and its browser entry point
+# (web/jc_web.c, web/jc_web_study.c) compiled with Emscripten into
+# $(WEB_OUT): jumpcyl.js + jumpcyl.wasm, the one-file
 # jumpcyl-single.js, the page (index.html, app.js, style.css) and the
 # self-contained jumpcyl.html. GSL and cJSON are built for wasm32 from
 # Debian's source packages once, into $(WEB_BUILD) (web/build-deps.sh).
@@ -210,7 +249,8 @@ clean:
 WEB_BUILD    ?= build-web
 WEB_OUT      ?= out/web
 CHROMIUM     ?= /usr/bin/chromium
-WEB_PACKAGES := emscripten dpkg-dev autotools-dev nodejs
+# (librandom123-dev: the studies' Philox headers, copied into the wasm build.)
+WEB_PACKAGES := emscripten dpkg-dev autotools-dev nodejs librandom123-dev
 # Debian's chromium for make test-page; npm when node came without it.
 WEB_TEST_PACKAGES := chromium
 # Debian's emscripten finds its node modules (acorn, ...) there.

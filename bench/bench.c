@@ -6,8 +6,10 @@
  * 100 times tighter). Given the tool's path (and an MPI build's), it also
  * times the batch commands end to end: simulations per second of `sweep`
  * and `mc` on 1 and 2 threads and under `mpirun -n 2`, and samples per
- * second of `mc --incline 15 --output` (mc_samples_per_s). The last line is
- * one JSON object.
+ * second of `mc --incline 15 --output` (mc_samples_per_s). With
+ * JC_BENCH_PYTHON_US set (make bench: python/bench_simulate.py, the same
+ * runs through the Python package), it reports python_simulate_us and its
+ * ratio to the C call. The last line is one JSON object.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <jumpcyl/jumpcyl.h>
@@ -233,6 +235,12 @@ int main(int argc, char **argv)
                "\"mc_sims_per_s_2t\": %.0f, \"sweep_sims_per_s_mpi2\": %.0f, \"million_sims_s\": %.2f, "
                "\"mc_samples_per_s\": %.0f",
                br.sweep[0], br.sweep[1], br.mc[0], br.mc[1], br.sweep_mpi, 1e6 / br.sweep[1], br.mc_output);
+    /* make bench times jc.simulate from Python first (python/bench_simulate.py). */
+    const char *py_us = getenv("JC_BENCH_PYTHON_US");
+    if (py_us && *py_us) {
+        const double us = atof(py_us);
+        printf(", \"python_simulate_us\": %.3f, \"python_over_c\": %.2f", us, us / ms);
+    }
     printf("}\n");
     return 0;
 }

@@ -13,7 +13,9 @@ list(TRANSFORM JC_LIB_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 # Studies (include/jumpcyl/study.h): grids, Monte Carlo samples (Random123's
 # Philox, src/random.c, which the tracks' fit and synthetic videos use too),
 # their statistics, the design search; on every core with OpenMP. The web
-# build compiles JC_LIB_SOURCES alone (its page runs single setups).
+# build compiles them too, with JC_LIB_SOURCES (the page's sweep and the
+# spread of the jump site, web/jc_web_study.c), on one thread: OpenMP's
+# pragmas and calls compile only where _OPENMP is defined.
 set(JC_STUDY_SOURCES
   src/random.c src/study/number.c src/study/outcome.c src/study/case.c src/study/threads.c src/study/run.c
   src/study/defaults.c src/study/stats.c src/study/design_scan.c src/study/design_solve.c src/study/design.c)
@@ -24,7 +26,7 @@ list(TRANSFORM JC_STUDY_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 # incline frame and what the video tells; the model compared with them and
 # fitted to them (GSL's multifit), synthetic videos (the studies' Philox,
 # src/random.c). Part of the library, in a list of its own: the web build, which has no
-# libxml2, compiles JC_LIB_SOURCES alone.
+# libxml2, compiles JC_LIB_SOURCES and JC_STUDY_SOURCES without it.
 set(JC_TRACK_SOURCES
   src/track/data.c src/track/read.c src/track/trk.c src/track/table.c src/track/frame.c src/track/surface.c
   src/track/rim.c src/track/derive.c
@@ -40,7 +42,7 @@ list(TRANSFORM JC_TRACK_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 # JSON of a run (sim_json.c, report.c), Table 1's row (paper_row.c) and the
 # tool's one-line errors (error.c). Nothing in them calls outside them and
 # the library: the page links them whole (tests: web_link). The native
-# tool builds them into jc_cli_common with the rest.
+# tool builds each into its folder's library (CMakeLists.txt: jc_cli_shared).
 set(JC_TOOL_SHARED_SOURCES
   cli/inputs/setup_args.c cli/inputs/units.c cli/inputs/config_write.c
   cli/outputs/report.c cli/outputs/sim_json.c cli/figures/paper_row.c cli/process/error.c)

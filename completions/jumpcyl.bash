@@ -39,9 +39,11 @@ _jumpcyl()
             return ;;
         --free)
             if [ "$cmd" = design ]; then
-                # the parameters design --help lists after "the option to choose:"
+                # the parameters design --help lists on the lines after "the option to choose,
+                # one of", up to the line that begins with "(" (those it cannot free)
                 COMPREPLY=($(compgen -W "$("${COMP_WORDS[0]}" design --help 2>/dev/null |
-                    awk '/the option to choose:/ {sub(/.*choose: /, ""); gsub(/,/, " "); print; exit}')" -- "$cur"))
+                    awk '/the option to choose, one of/ {on = 1; next} on && /^ *\(/ {exit}
+                         on {gsub(/,/, " "); print}')" -- "$cur"))
                 return
             fi
             # the names fit --help lists under --free, from "): " to "(those its parts have)";

@@ -28,11 +28,14 @@ Violations:
   (a) a loop: a strongly connected component of more than one unit in the
       union of the three graphs;
   (b) an edge from a lower layer to a higher one (LAYERS below): a cli/
-      folder reaching up, or the library reaching into the tool at all.
+      folder reaching up, or the library reaching into the tool at all;
+  (c) a folder of cli/ whose headers are not exactly one, named after it
+      (cli/outputs/outputs.h): a second header, or none of that name.
 
 Output: one violation per line,
   cli/design/scan.c -> cli/commands/options.c (calls cli_setup_apply)
   loop: cli/design/scan.c cli/design/solve.c
+  header: cli/commands/track_input.h (cli/commands/ has one header, commands.h)
 with, under a loop, the edges inside it (indented). --report lists all and
 exits 0; the default (check) exits 1 on any violation not covered by the
 allow-list (--allow FILE: one violation per line as printed, without the
@@ -165,8 +168,10 @@ def read_objects(build, files):
     table = {}
     for src, paths in sorted(objs.items()):
         # The same source in several targets (the library, shared and
-        # static): one set of symbols.
-        out = subprocess.run(["nm", "-P", paths[0]], check=True, capture_output=True, text=True).stdout
+        # static): one set of symbols, the newest object's (an older one
+        # may be left by a target the build no longer has).
+        newest = max(paths, key=os.path.getmtime)
+        out = subprocess.run(["nm", "-P", newest], check=True, capture_output=True, text=True).stdout
         defined, undefined = set(), set()
         for line in out.splitlines():
             parts = line.split()
@@ -360,6 +365,28 @@ def violations(build):
         details = [f"  {a} -> {b} ({describe(merged[(a, b)])})" for a in comp for b in sorted(succ[a] & members)]
         key = "loop: " + " ".join(comp)
         found.append((key, key, details))
+    found += header_violations(files)
+    return found
+
+
+def header_violations(files):
+    """(c): each folder of cli/ has one header, named after it."""
+    headers = defaultdict(set)
+    for f in files:
+        folder = os.path.dirname(f)
+        if os.path.dirname(folder) == "cli":
+            headers[folder]
+            if f.endswith(".h"):
+                headers[folder].add(f)
+    found = []
+    for folder, hs in sorted(headers.items()):
+        own = f"{os.path.basename(folder)}.h"
+        for h in sorted(hs - {f"{folder}/{own}"}):
+            key = f"header: {h}"
+            found.append((key, f"{key} ({folder}/ has one header, {own})", []))
+        if f"{folder}/{own}" not in hs:
+            key = f"header: {folder}/{own}"
+            found.append((key, f"{key} is missing (each folder of cli/ has one header named after it)", []))
     return found
 
 

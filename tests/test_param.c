@@ -7,6 +7,7 @@
  * what the table promises: names found in both spellings, sections and
  * keys unique, the body parameters' semantics. */
 #include "test.h"
+#include "same_setup.h"
 
 #include <jumpcyl/jumpcyl.h>
 
@@ -56,25 +57,6 @@ static int field_of(const char *name, const jc_Setup *s, double *v, int *known)
     else if (strcmp(name, "paper-d") == 0) *v = s->paper_cm_offset_m;
     else *known = 0;
     return *known;
-}
-
-/* Field by field: padding makes memcmp of a struct unreliable. */
-static int same_setup(const jc_Setup *a, const jc_Setup *b)
-{
-    if (a->body.radius_m != b->body.radius_m || a->body.part_count != b->body.part_count) return 0;
-    for (int i = 0; i < a->body.part_count; ++i) {
-        const jc_Part *p = &a->body.parts[i], *q = &b->body.parts[i];
-        if (p->kind != q->kind || p->mass_kg != q->mass_kg || p->offset_m != q->offset_m ||
-            p->angle_rad != q->angle_rad || p->radius_m != q->radius_m)
-            return 0;
-    }
-    return a->incline_rad == b->incline_rad && a->gravity_mps2 == b->gravity_mps2 &&
-           a->mu_static == b->mu_static && a->mu_kinetic == b->mu_kinetic && a->restitution == b->restitution &&
-           a->impact_law == b->impact_law && a->theta0_rad == b->theta0_rad && a->omega0_radps == b->omega0_radps &&
-           a->ramp_length_m == b->ramp_length_m && a->paper_cm_offset_m == b->paper_cm_offset_m &&
-           a->length_m == b->length_m && a->air_density_kgpm3 == b->air_density_kgpm3 &&
-           a->drag_coefficient == b->drag_coefficient && a->lift_coefficient == b->lift_coefficient &&
-           a->spin_drag_Nms2 == b->spin_drag_Nms2 && a->rolling_resistance_m == b->rolling_resistance_m;
 }
 
 /* SI per unit, written here from the units' definitions. */
@@ -294,7 +276,9 @@ static int check_end(int id, double v, int ok)
         ENSURE_MSG(st == JC_OK, "%s = %.17g refused: %s", in->name, v, err);
     } else {
         ENSURE_MSG(st == JC_EINVAL, "%s = %.17g taken", in->name, v);
-        ENSURE_MSG(same_setup(&s, &before), "%s = %.17g: refused but changed the setup", in->name, v);
+        const char *what;
+        ENSURE_MSG(same_setup(&s, &before, &what), "%s = %.17g: refused but changed the setup (%s)", in->name, v,
+                   what);
         ENSURE_MSG(strstr(err, "out of range") || strstr(err, "unknown"), "%s: '%s'", in->name, err);
     }
     return 0;
@@ -364,7 +348,8 @@ static int test_semantics(void)
     ENSURE_OK(jc_preset_setup("hoop", &s, err, sizeof err), err);
     const jc_Setup hoop = s;
     ENSURE(jc_param_set(&s, jc_param_find("rod-mass"), 0.05, err, sizeof err) == JC_EINVAL && strstr(err, "rod"));
-    ENSURE(same_setup(&s, &hoop));
+    const char *what;
+    ENSURE_MSG(same_setup(&s, &hoop, &what), "%s differs from the hoop preset", what);
     ENSURE(jc_param_set(&s, jc_param_find("disc-mass"), 0.05, err, sizeof err) == JC_EINVAL);
     /* mu sets both coefficients */
     s = jc_paper_setup();

@@ -4,7 +4,9 @@
  * makes), is listed in every setup command's --help and is offered by the
  * bash completion (completions/jumpcyl.bash, run in bash). The value given
  * is checked by reading --dump-config back (cli_config_parse) against the
- * library's jc_param_set on the preset. */
+ * library's jc_param_set on the preset. Every numeric row that moves the
+ * first lift-off works as `design --free NAME` (a value found is run again
+ * by `simulate --NAME`), the others are refused in one line. */
 #include "test.h"
 #include "cli_run.h"
 #include "inputs.h"
@@ -305,8 +307,244 @@ static int test_text_listing(void)
     return 0;
 }
 
+/* ---- design --free ---- */
+
+/* The rows design refuses: names (impact-law), and the rows that never move
+ * the first lift-off (test_design_inert checks that they do not). */
+static int design_refuses(const row_t *r)
+{
+    static const char *const inert[] = {"restitution", "ramp-length", "paper-d"};
+    for (size_t k = 0; k < sizeof inert / sizeof inert[0]; ++k)
+        if (strcmp(r->name, inert[k]) == 0) return 1;
+    return r->is_name;
+}
+
+/* The index of a CSV header's column, -1 if absent. */
+static int column_index(const char *header, const char *name)
+{
+    const size_t n = strlen(name);
+    int k = 0;
+    for (const char *s = header; s; s = strchr(s, ','), s = s ? s + 1 : NULL, ++k)
+        if (strncmp(s, name, n) == 0 && (s[n] == ',' || s[n] == '\n' || s[n] == '\0')) return k;
+    return -1;
+}
+
+/* A refused numeric row never moves the first lift-off: a sweep of two of
+ * its values gives the same first_liftoff_x_m (the paper's, at 15 and 30
+ * deg, with an initial spin and air drag, which make g and the air's rows
+ * matter). */
+static int check_inert(const row_t *r)
+{
+    double v[2];
+    char a[80], b[80], vary[200];
+    ENSURE(pick_values(r, v) == 0 && value_text(r, v[0], a, sizeof a) == 0 && value_text(r, v[1], b, sizeof b) == 0);
+    snprintf(vary, sizeof vary, "%s=%s,%s", r->name, a, b);
+    const char *args[] = {"sweep", "--vary", vary, "--vary", "incline=15,30", "--omega0", "3", "--drag-coefficient",
+                          "1", "--output", "-", "--quiet", "--threads", "1", NULL};
+    cli_result res = cli_run(args);
+    ENSURE_MSG(res.status == 0, "--vary %s: %s", vary, res.err);
+    const int col = column_index(res.out, "first_liftoff_x_m");
+    char *line[5] = {res.out, NULL, NULL, NULL, NULL};
+    for (int k = 1; k < 5 && line[k - 1]; ++k) {
+        char *nl = strchr(line[k - 1], '\n');
+        if (nl) *nl = '\0';
+        line[k] = nl ? nl + 1 : NULL;
+    }
+    int same = col >= 0 && line[4] != NULL, both = 0;
+    for (int k = 0; same && k < 2; ++k) { /* rows: (a, 15), (a, 30), (b, 15), (b, 30) */
+        const char *x = after_fields(line[1 + k], col), *y = after_fields(line[3 + k], col);
+        same = x && y;
+        if (!same || x[0] == ',' || y[0] == ',') continue; /* no lift-off on one ramp (ramp-length) */
+        same = strcspn(x, ",") == strcspn(y, ",") && strncmp(x, y, strcspn(x, ",")) == 0;
+        ++both;
+    }
+    if (!same || !both) fprintf(stderr, "%s\n%s\n%s\n%s\n", line[1], line[2], line[3], line[4]);
+    cli_result_free(&res);
+    ENSURE_MSG(same && both, "%s moves the first lift-off, yet design refuses it", r->name);
+    return 0;
+}
+
+/* The setup design --free is tried on: the paper's with an initial spin
+ * and air drag, so that every row moves the first lift-off (g only moves it
+ * with a spin: without one, every force scales with g or v^2 and the path
+ * does not change); the free row itself is not given. Appended at args[n]
+ * and NULL-terminated. */
+static void add_base(const row_t *r, const char **args, int n)
+{
+    if (strcmp(r->name, "omega0") != 0) {
+        args[n++] = "--omega0";
+        args[n++] = "3";
+    }
+    if (strcmp(r->name, "drag-coefficient") != 0) {
+        args[n++] = "--drag-coefficient";
+        args[n++] = "1";
+    }
+    args[n] = NULL;
+}
+
+/* design --free NAME --jump-at X on that setup, 40 scan points; its JSON
+ * document, or NULL. */
+static cJSON *design_doc(const row_t *r, const char *x, const char *json_path)
+{
+    const char *args[24] = {"design", "--free", r->name, "--jump-at", x, "--points", "40", "--threads", "1",
+                            "--json", json_path};
+    add_base(r, args, 11);
+    cli_result res = cli_run(args);
+    const int ok = res.status == 0 && res.err[0] == '\0';
+    if (!ok) fprintf(stderr, "design --free %s --jump-at %s: exit %d: %s\n", r->name, x, res.status, res.err);
+    cli_result_free(&res);
+    char *text = ok ? cli_run_slurp(json_path) : NULL;
+    unlink(json_path);
+    cJSON *doc = text ? cJSON_Parse(text) : NULL;
+    free(text);
+    return doc;
+}
+
+static double num(const cJSON *o, const char *key) { return cJSON_GetNumberValue(cJSON_GetObjectItem(o, key)); }
+
+/* The middle value of the widest lift-off branch (the one the scan
+ * resolves best) among those whose first lift-offs span 20 um; NaN if none. */
+static double widest_branch_middle(const cJSON *doc)
+{
+    double best = 0.0, p = NAN;
+    const cJSON *b;
+    cJSON_ArrayForEach(b, cJSON_GetObjectItem(doc, "branches"))
+    {
+        const char *outcome = cJSON_GetStringValue(cJSON_GetObjectItem(b, "outcome"));
+        if (!outcome || strcmp(outcome, jc_case_kind_name(JC_CASE_LIFTOFF)) != 0) continue;
+        const double lo = num(b, "lo"), hi = num(b, "hi");
+        if (num(b, "x_max_m") - num(b, "x_min_m") > 2e-5 && hi - lo > best) {
+            best = hi - lo;
+            p = 0.5 * (lo + hi);
+        }
+    }
+    return p;
+}
+
+/* The first lift-off of `simulate --NAME VALUE` on the setup design_doc uses. */
+static double simulated_liftoff(const row_t *r, double v)
+{
+    char text[80], opt[80];
+    if (value_text(r, v, text, sizeof text) != 0) return NAN;
+    snprintf(opt, sizeof opt, "--%s", r->name);
+    const char *args[12] = {"simulate", opt, text, "--json"};
+    add_base(r, args, 4);
+    cli_result res = cli_run(args);
+    cJSON *doc = res.status == 0 ? cJSON_Parse(res.out) : NULL;
+    const cJSON *x = cJSON_GetObjectItem(cJSON_GetObjectItem(doc, "summary"), "first_liftoff_x");
+    const double out = cJSON_IsNumber(x) ? x->valuedouble : NAN;
+    if (!doc) fprintf(stderr, "simulate %s %s: exit %d: %s\n", opt, text, res.status, res.err);
+    cJSON_Delete(doc);
+    cli_result_free(&res);
+    return out;
+}
+
+/* Both ends of the search's range are valid setups for the library. */
+static int valid_with(const row_t *r, double v)
+{
+    jc_Setup s = jc_paper_setup();
+    if (strcmp(r->name, "omega0") != 0) s.omega0_radps = 3.0;
+    if (strcmp(r->name, "drag-coefficient") != 0) s.drag_coefficient = 1.0;
+    return jc_param_set(&s, r->id, v, NULL, 0) == JC_OK && jc_setup_validate(&s, NULL, 0) == JC_OK;
+}
+
+/* design --free NAME finds a value that puts the first lift-off at X, and
+ * simulate --NAME with that value lifts off at X within the design's
+ * verification tolerance. X: where simulate lifts off with the middle value
+ * of the widest branch of a first search (one that X = 1 m need not hit). */
+static int check_design_free(const row_t *r, const char *json_path)
+{
+    cJSON *doc = design_doc(r, "1m", json_path);
+    ENSURE_MSG(doc, "design --free %s", r->name);
+    const double middle = widest_branch_middle(doc);
+    const cJSON *fr = cJSON_GetObjectItem(doc, "free");
+    const double lo = num(fr, "lo"), hi = num(fr, "hi");
+    cJSON_Delete(doc);
+    ENSURE_MSG(!isnan(middle), "design --free %s: no branch spans 20 um of first lift-offs", r->name);
+    ENSURE_MSG(lo < hi && valid_with(r, lo) && valid_with(r, hi), "design --free %s: the range %.17g .. %.17g",
+               r->name, lo, hi);
+    const double x = simulated_liftoff(r, middle);
+    ENSURE_MSG(!isnan(x), "simulate --%s %.17g (SI): no lift-off", r->name, middle);
+    char target[64];
+    snprintf(target, sizeof target, "%.17gm", x);
+    doc = design_doc(r, target, json_path);
+    ENSURE_MSG(doc, "design --free %s --jump-at %s", r->name, target);
+    const cJSON *sol = cJSON_GetArrayItem(cJSON_GetObjectItem(doc, "solutions"), 0);
+    const double v = num(sol, "value"), want = num(doc, "target_x_m");
+    cJSON_Delete(doc);
+    ENSURE_MSG(sol && v >= lo && v <= hi, "design --free %s --jump-at %s: no solution", r->name, target);
+    const double got = simulated_liftoff(r, v);
+    ENSURE_MSG(fabs(got - want) <= JC_DESIGN_VERIFY_M, "design --free %s --jump-at %s: %s = %.17g lifts off at %.9f m",
+               r->name, target, r->name, v, got);
+    printf("  design --free %-19s X = %.6f m: %.10g (SI), simulate lifts off %.1e m from X\n", r->name, want, v,
+           fabs(got - want));
+    return 0;
+}
+
+/* The refusal: exit 2, one line naming the row and the names allowed. */
+static int check_design_refused(const row_t *r, const char *allowed)
+{
+    const char *args[] = {"design", "--free", r->name, "--jump-at", "1m", NULL};
+    cli_result res = cli_run(args);
+    char want[600];
+    snprintf(want, sizeof want, "(allowed: %s)", allowed);
+    const int ok = res.status == 2 && cli_one_line(res.err) && res.out[0] == '\0' && strstr(res.err, r->name) &&
+                   strstr(res.err, want);
+    if (!ok) fprintf(stderr, "design --free %s: exit %d: %s", r->name, res.status, res.err);
+    cli_result_free(&res);
+    ENSURE_MSG(ok, "design --free %s is not refused in one line listing %s", r->name, allowed);
+    return 0;
+}
+
+static int test_design_free(const char *completion_file)
+{
+    const char *args[] = {"params", "--json", NULL};
+    cli_result res = cli_run(args);
+    cJSON *doc = res.status == 0 ? cJSON_Parse(res.out) : NULL;
+    cli_result_free(&res);
+    const cJSON *rows = cJSON_GetObjectItem(doc, "params");
+    ENSURE(cJSON_IsArray(rows));
+    char *offered = complete(completion_file, "design --free \"\"");
+    char allowed[600] = "", dir[] = "/tmp/jc_design_free_XXXXXX", path[256];
+    const cJSON *it;
+    int st = offered && cli_scratch(dir, path, sizeof path, "d.json") == 0 ? 0 : 1, freed = 0, refused = 0;
+    cJSON_ArrayForEach(it, rows) /* the names allowed, in the table's order */
+    {
+        row_t r;
+        if (row_of(it, &r) == 0 && !design_refuses(&r))
+            snprintf(allowed + strlen(allowed), sizeof allowed - strlen(allowed), "%s%s", allowed[0] ? ", " : "",
+                     r.name);
+    }
+    cJSON_ArrayForEach(it, rows)
+    {
+        row_t r;
+        if (st || (st = row_of(it, &r)) != 0) break;
+        const int refuses = design_refuses(&r);
+        if (has_line(offered, r.name) == refuses) {
+            fprintf(stderr, "the completion of 'design --free ' %s %s:\n%s\n", refuses ? "offers" : "lacks", r.name,
+                    offered);
+            st = 1;
+            break;
+        }
+        if (refuses) {
+            st = check_design_refused(&r, allowed);
+            if (!st && !r.is_name) st = check_inert(&r);
+            ++refused;
+        } else {
+            st = check_design_free(&r, path);
+            ++freed;
+        }
+    }
+    printf("  design --free: %d rows found a jump at X, %d refused\n", freed, refused);
+    rmdir(dir);
+    free(offered);
+    cJSON_Delete(doc);
+    return st;
+}
+
 static const char *completion_path;
 static int test_every_row_run(void) { return test_every_row(completion_path); }
+static int test_design_free_run(void) { return test_design_free(completion_path); }
 
 int main(int argc, char **argv)
 {
@@ -319,5 +557,6 @@ int main(int argc, char **argv)
     if (cli_run_init(2, tool_only) != 0) return 2;
     RUN_TEST(test_text_listing);
     RUN_TEST(test_every_row_run);
+    RUN_TEST(test_design_free_run);
     TEST_MAIN_END();
 }

@@ -2,29 +2,13 @@
  * and src/status.c: the paper's numbers as physics.md states them, every
  * validation path, and what the model precomputes. */
 #include "test.h"
+#include "same_setup.h"
 #include "bad_values.h"
 
 #include <jumpcyl/jumpcyl.h>
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
-
-/* Field by field: struct padding makes memcmp unreliable. */
-static int same_setup(const jc_Setup *a, const jc_Setup *b)
-{
-    if (a->body.radius_m != b->body.radius_m || a->body.part_count != b->body.part_count) return 0;
-    for (int i = 0; i < a->body.part_count; ++i) {
-        const jc_Part *p = &a->body.parts[i], *q = &b->body.parts[i];
-        if (p->kind != q->kind || p->mass_kg != q->mass_kg || p->offset_m != q->offset_m ||
-            p->angle_rad != q->angle_rad || p->radius_m != q->radius_m)
-            return 0;
-    }
-    return a->incline_rad == b->incline_rad && a->gravity_mps2 == b->gravity_mps2 &&
-           a->mu_static == b->mu_static && a->mu_kinetic == b->mu_kinetic &&
-           a->restitution == b->restitution && a->theta0_rad == b->theta0_rad &&
-           a->omega0_radps == b->omega0_radps && a->ramp_length_m == b->ramp_length_m &&
-           a->paper_cm_offset_m == b->paper_cm_offset_m;
-}
 
 static int test_paper_setup_values(void)
 {
@@ -63,7 +47,8 @@ static int test_presets(void)
     jc_Setup s;
     ENSURE_OK(jc_preset_setup("paper", &s, err, sizeof err), err);
     const jc_Setup p = jc_paper_setup();
-    ENSURE(same_setup(&s, &p));
+    const char *what;
+    ENSURE_MSG(same_setup(&s, &p, &what), "%s differs", what);
 
     /* disc: the paper's size and mass with d = 0. */
     jc_Model m;
@@ -159,7 +144,8 @@ static int test_model_init_precomputes(void)
     s.theta0_rad = 0.25;
     jc_Model m;
     ENSURE_OK(jc_model_init(&m, &s, err, sizeof err), err);
-    ENSURE(same_setup(&m.setup, &s));
+    const char *what;
+    ENSURE_MSG(same_setup(&m.setup, &s, &what), "the model's setup: %s differs", what);
     ENSURE_REL(m.sin_incline, sin(0.4), 0.0);
     ENSURE_REL(m.cos_incline, cos(0.4), 0.0);
     /* The contact point travels r (th - th0): the ramp ends at th0 + L / r. */

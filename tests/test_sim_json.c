@@ -5,7 +5,7 @@
  * lift-offs. */
 #include "test.h"
 
-#include "inputs.h"
+#include "outputs.h"
 #include "stream_setups.h"
 
 #include <cjson/cJSON.h>

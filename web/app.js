@@ -150,6 +150,7 @@ function recompute() {
   draw();
   showTiming(t1 - t0, performance.now() - t1);
   timeFrame(t0);
+  sweepSetupChanged();
   return true;
 }
 // The browser's share of a change: a message posted from the next animation
@@ -274,7 +275,7 @@ const sizeWatch = typeof ResizeObserver === 'function' ? new ResizeObserver((ent
     const w = e.contentRect.width;
     if (w > 0 && cssWidths.get(e.target) !== w) { cssWidths.set(e.target, w); changed = true; }
   }
-  if (changed && state.run) draw();
+  if (changed && state.run) { draw(); drawSweep(); }
 }) : null;
 function cssWidth(canvas) {
   let w = cssWidths.get(canvas);
@@ -483,6 +484,11 @@ function drawScene() {
 }
 
 // ---- graphs ----
+// An axis' tick spacing: 1, 2 or 5 times a power of ten, about span / count.
+const tickStep = (span, count) => {
+  const raw = span / count, p = 10 ** Math.floor(Math.log10(raw));
+  return [1, 2, 5, 10].map((m) => m * p).find((v) => v >= raw);
+};
 function plot(canvasId, series, opts = {}) {
   const canvas = document.getElementById(canvasId);
   const { ctx, w, h } = fitCanvas(canvas);
@@ -512,14 +518,13 @@ function plot(canvasId, series, opts = {}) {
   const Y = (y) => Tp + (h - Tp - B) * (hi - y) / (hi - lo);
   // Grid and axes.
   ctx.font = '11px system-ui, sans-serif'; ctx.fillStyle = '#444'; ctx.strokeStyle = '#e1e3e8'; ctx.lineWidth = 1;
-  const niceStep = (span, count) => { const raw = span / count, p = 10 ** Math.floor(Math.log10(raw)); return [1, 2, 5, 10].map((m) => m * p).find((s) => s >= raw); };
-  const ys = niceStep(hi - lo, 4);
+  const ys = tickStep(hi - lo, 4);
   ctx.textAlign = 'right';
   for (let y = Math.ceil(lo / ys) * ys; y <= hi; y += ys) {
     ctx.beginPath(); ctx.moveTo(L, Y(y)); ctx.lineTo(w - R, Y(y)); ctx.stroke();
     ctx.fillText(String(+y.toPrecision(6)), L - 4, Y(y) + 4);
   }
-  const ts = niceStep(t1 - t0, 6);
+  const ts = tickStep(t1 - t0, 6);
   ctx.textAlign = 'center';
   for (let t = Math.ceil(t0 / ts) * ts; t <= t1 + 1e-12; t += ts) {
     if (X(t) > w - R - 34) continue; // room for the axis' name
@@ -583,6 +588,277 @@ function draw() {
   scrub.value = String(Math.round(1000 * state.t / Math.max(run.t_end, 1e-12)));
   $('#tnow').textContent = `${state.t.toFixed(3)} s`;
   highlightEvent();
+}
+
+// ---- the sweep and the spread of the jump site ----
+// One parameter over a range, the rest of the setup as the controls have it:
+// jc_web_sweep, a grid of the library's studies (jc_study_run), the rows
+// `jumpcyl sweep` writes for the same options. jc_web_uncertainty: the
+// library's default tolerances (jc_study_default_spreads) as a Monte Carlo,
+// the first lift-off's median and 95 % interval, as `jumpcyl mc` gives them.
+// The sweep runs when its panel comes into view, on the button, and again
+// SWEEP_DEBOUNCE_MS after the last change of the setup or the range while it
+// is in view, if the last one took at most SWEEP_AUTO_MS; otherwise it is
+// marked out of date until the button is pressed. A change of the setup
+// never waits for a sweep.
+const SWEEP_AUTO_MS = 400;
+const SWEEP_DEBOUNCE_MS = 400;
+const SWEEP_LIFT = '#c0392b', SWEEP_SLIP = '#1f5fbf', SWEEP_NOW = '#d35400', SWEEP_BAND = '#27a050';
+const SWEEP_INVALID = '#eceef2';
+const sweep = { answer: null, shown: '', ms: 0, timer: 0, stale: true, visible: false, spread: null, seq: 0 };
+
+function buildSweep() {
+  const sel = $('#sw-param');
+  for (const c of CONTROLS) {
+    if (c.choices) continue;
+    const o = document.createElement('option');
+    o.value = c.key;
+    o.textContent = c.unit ? `${c.label} (${c.unit})` : c.label;
+    sel.appendChild(o);
+  }
+  sel.value = BY_KEY.incline ? 'incline' : sel.options[0].value;
+  sweepRangeFromTable();
+  sel.addEventListener('change', () => { sweepRangeFromTable(); scheduleSweep(0); });
+  for (const id of ['#sw-lo', '#sw-hi', '#sw-n']) $(id).addEventListener('input', () => scheduleSweep(SWEEP_DEBOUNCE_MS));
+  $('#sw-run').addEventListener('click', () => runSweep(true));
+  $('#sp-run').addEventListener('click', () => runSpread());
+  if (typeof IntersectionObserver === 'function') {
+    new IntersectionObserver((entries) => {
+      sweep.visible = entries.some((e) => e.isIntersecting);
+      if (!sweep.visible || !sweep.stale) return;
+      if (!sweep.answer || sweep.ms <= SWEEP_AUTO_MS) scheduleSweep(0);
+      else { showSweepStatus(); drawSweep(); }
+    }).observe($('#sweep'));
+  }
+  drawSweep();
+}
+// The range: the parameter's typical span from the table, in the unit shown.
+function sweepRangeFromTable() {
+  const c = BY_KEY[$('#sw-param').value];
+  $('#sw-lo').value = fmt(c.min, c.step);
+  $('#sw-hi').value = fmt(c.max, c.step);
+  $('#sw-unit').textContent = c.unit;
+}
+function scheduleSweep(ms) {
+  clearTimeout(sweep.timer);
+  sweep.timer = setTimeout(() => runSweep(false), ms);
+}
+// Out of view nothing is drawn: the panel is brought up to date when it
+// comes into view.
+function sweepSetupChanged() {
+  if (!sweep.answer) return;
+  sweep.stale = true;
+  if (sweep.spread) sweep.spread = null;
+  if (!sweep.visible) return;
+  showSpread();
+  if (sweep.ms <= SWEEP_AUTO_MS) { scheduleSweep(SWEEP_DEBOUNCE_MS); return; }
+  showSweepStatus();
+  drawSweep();
+}
+
+// The request: the current setup, the parameter, its range with the unit
+// shown (as the controls give values: "10deg"), the number of points.
+function sweepRequest() {
+  const c = BY_KEY[$('#sw-param').value];
+  const text = (id) => { const v = $(id).value.trim(); return v === '' || !Number.isFinite(+v) ? v : num(v) + c.suffix; };
+  const n = $('#sw-n').value.trim();
+  return { setup: buildRequest(), vary: c.key, lo: text('#sw-lo'), hi: text('#sw-hi'), n: n === '' ? n : +n };
+}
+function runSweep(force) {
+  clearTimeout(sweep.timer);
+  if (!state.jc) return;
+  const req = sweepRequest(), key = JSON.stringify(req);
+  if (!force && key === sweep.shown && !sweep.stale) return;
+  const t0 = performance.now();
+  const ans = JSON.parse(call('jc_web_sweep', req));
+  const ms = performance.now() - t0;
+  const d = document.body.dataset;
+  if (!ans.ok) {
+    sweep.error = ans.error;
+    sweep.stale = true;
+    showSweepStatus();
+    d.sweepSeq = String(++sweep.seq);
+    return;
+  }
+  sweep.error = null;
+  Object.assign(sweep, { answer: ans, shown: key, ms, stale: false });
+  d.sweepMs = ms.toFixed(1);
+  d.sweepRows = String(ans.rows.length);
+  d.sweepSeq = String(++sweep.seq);
+  showSweepStatus();
+  drawSweep();
+}
+function showSweepStatus() {
+  const el = tid('sweep-status');
+  el.classList.toggle('error', !!sweep.error);
+  if (sweep.error) { el.textContent = sweep.error; return; }
+  const a = sweep.answer;
+  if (!a) { el.textContent = ''; return; }
+  const lifts = a.rows.filter((r) => r.liftoff_x_m !== null).length;
+  const bad = a.rows.filter((r) => r.kind === 'invalid_setup' || r.kind === 'failed').length;
+  let text = `${a.rows.length} runs in ${sweep.ms < 10 ? sweep.ms.toFixed(1) : sweep.ms.toFixed(0)} ms: `
+    + `${lifts} lift off on the ramp, ${a.rows.length - lifts - bad} do not`;
+  if (bad) text += `, ${bad} are no valid setup`;
+  text += '.';
+  if (sweep.stale) text += ' The setup has changed since: press Run sweep to update it.';
+  el.textContent = text;
+}
+
+function runSpread() {
+  if (!state.jc) return;
+  const t0 = performance.now();
+  const ans = JSON.parse(call('jc_web_uncertainty', { setup: buildRequest(), samples: Math.round(+$('#sp-n').value) }));
+  sweep.spread = { ...ans, ms: performance.now() - t0 };
+  document.body.dataset.spreadSeq = String((+document.body.dataset.spreadSeq || 0) + 1);
+  showSpread();
+  drawSweep();
+}
+function showSpread() {
+  const el = tid('spread-result'), s = sweep.spread;
+  el.classList.toggle('error', !!(s && !s.ok));
+  if (!s) { el.textContent = ''; return; }
+  if (!s.ok) { el.textContent = s.error; return; }
+  const x = s.first_liftoff_x_m, cm = (v) => (v * 100).toFixed(1);
+  const ms = s.ms < 1000 ? `${s.ms.toFixed(0)} ms` : `${(s.ms / 1000).toFixed(1)} s`;
+  const varied = s.spreads.map((p) => p.name).join(', ');
+  el.title = s.spreads.map((p) => `${p.name}: ${p.why}`).join('\n');
+  el.textContent = x.count
+    ? `First lift-off over ${s.samples} samples of ${varied}: median ${cm(x.p50)} cm, 95 % between `
+      + `${cm(x.p2_5)} and ${cm(x.p97_5)} cm; ${x.count} of ${s.valid} lift off on the ramp (${ms}).`
+    : `None of ${s.samples} samples of ${varied} lifts off on the ramp (${ms}).`;
+}
+
+// First lift-off and first slip (cm along the ramp) against the parameter,
+// in the unit its control shows; values that make no valid setup shaded;
+// the current value marked, with the current run's lift-off, and beside it
+// the spread of the jump site when computed.
+function drawSweep() {
+  const canvas = $('#g-sweep');
+  if (!canvas) return;
+  const aspect = window.innerWidth < 760 ? '0.62' : '0.34';
+  if (canvas.dataset.aspect !== aspect) canvas.dataset.aspect = aspect;
+  const { ctx, w, h } = fitCanvas(canvas);
+  ctx.clearRect(0, 0, w, h);
+  const a = sweep.answer;
+  if (!a) {
+    ctx.font = '13px system-ui, sans-serif'; ctx.fillStyle = '#4a4a4a'; ctx.textAlign = 'center';
+    ctx.fillText('Not computed yet: the sweep runs when this panel comes into view, or with Run sweep.', w / 2, h / 2, w - 20);
+    return;
+  }
+  const c = BY_KEY[a.vary];
+  const px = a.rows.map((r) => r.value_si * c.perSi);
+  const cm = (v) => (v === null ? NaN : v * 100);
+  const series = [
+    { name: 'first lift-off', color: SWEEP_LIFT, y: a.rows.map((r) => cm(r.liftoff_x_m)) },
+    { name: 'first slip', color: SWEEP_SLIP, y: a.rows.map((r) => cm(r.slip_x_m)) },
+  ];
+  const invalid = a.rows.map((r) => r.kind === 'invalid_setup' || r.kind === 'failed');
+  const x0 = px[0], x1 = px[px.length - 1];
+  const now = controlValue(c), run = state.run;
+  const nowIn = now !== null && now >= x0 && now <= x1;
+  const nowX = nowIn && run && run.first_liftoff ? run.first_liftoff.x * 100 : NaN;
+  const spread = sweep.spread && sweep.spread.ok && sweep.spread.first_liftoff_x_m.count ? sweep.spread.first_liftoff_x_m : null;
+  const sp = nowIn ? spread : null;
+  // The legend, in as many lines as the width needs: the plot starts below it.
+  const legend = [...series];
+  if (invalid.some(Boolean)) legend.push({ name: 'no valid setup', color: SWEEP_INVALID, box: true });
+  if (sp) legend.push({ name: '95 % of the jump site (tolerances)', color: SWEEP_BAND });
+  if (nowIn) legend.push({ name: `this setup (${fmt(now, c.step)}${c.unit ? ` ${c.unit}` : ''})`, color: SWEEP_NOW });
+  ctx.font = '11px system-ui, sans-serif';
+  const L = 52, R = 10, B = 24;
+  let lx = L + 2, ly = 12;
+  for (const s of legend) {
+    const wText = 20 + ctx.measureText(s.name).width + 8;
+    if (lx > L + 2 && lx + wText > w - R) { lx = L + 2; ly += 14; }
+    Object.assign(s, { lx, ly });
+    lx += wText;
+  }
+  const Tp = ly + 10;
+  let lo = Infinity, hi = -Infinity;
+  for (const v of [...series[0].y, ...series[1].y, ...(sp ? [sp.p2_5 * 100, sp.p97_5 * 100] : [])]) {
+    if (Number.isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+  }
+  if (!Number.isFinite(lo)) { lo = 0; hi = 1; }
+  lo = Math.min(0, lo);
+  if (hi - lo < 1e-9) hi = lo + 1;
+  hi += (hi - lo) * 0.08;
+  const X = (v) => L + (w - L - R) * (v - x0) / (x1 - x0);
+  const Y = (v) => Tp + (h - Tp - B) * (hi - v) / (hi - lo);
+  ctx.globalAlpha = sweep.stale ? 0.45 : 1;
+  // Values that make no valid setup: each one's half-way span to its neighbours.
+  ctx.fillStyle = SWEEP_INVALID;
+  for (let i = 0; i < px.length; ++i) {
+    if (!invalid[i]) continue;
+    const left = i ? (px[i - 1] + px[i]) / 2 : px[i], right = i + 1 < px.length ? (px[i] + px[i + 1]) / 2 : px[i];
+    ctx.fillRect(X(left), Tp, Math.max(1, X(right) - X(left)), h - Tp - B);
+  }
+  // Grid, ticks and the axes' names.
+  ctx.fillStyle = '#444'; ctx.strokeStyle = '#e1e3e8'; ctx.lineWidth = 1;
+  const ys = tickStep(hi - lo, h > 300 ? 6 : 4);
+  ctx.textAlign = 'right';
+  for (let y = Math.ceil(lo / ys) * ys; y <= hi; y += ys) {
+    ctx.beginPath(); ctx.moveTo(L, Y(y)); ctx.lineTo(w - R, Y(y)); ctx.stroke();
+    ctx.fillText(String(+y.toPrecision(6)), L - 4, Y(y) + 4);
+  }
+  const xName = c.unit ? `${c.label} (${c.unit})` : c.label;
+  const nameW = ctx.measureText(xName).width;
+  const xs = tickStep(x1 - x0, Math.max(3, Math.round((w - L - R) / 90)));
+  ctx.textAlign = 'center';
+  for (let v = Math.ceil(x0 / xs - 1e-9) * xs; v <= x1 + 1e-9 * Math.abs(xs); v += xs) {
+    ctx.beginPath(); ctx.moveTo(X(v), Tp); ctx.lineTo(X(v), h - B); ctx.stroke();
+    if (X(v) < w - R - nameW - 20) ctx.fillText(String(+v.toPrecision(6)), X(v), h - 8);
+  }
+  ctx.textAlign = 'right'; ctx.fillText(xName, w - R, h - 8);
+  ctx.save(); ctx.translate(13, Tp + (h - Tp - B) / 2); ctx.rotate(-Math.PI / 2);
+  ctx.textAlign = 'center'; ctx.fillText('x along the ramp (cm)', 0, 0); ctx.restore();
+  // The curves: points, joined where neighbours are close (a leap of the
+  // lift-off is left as a gap, not drawn as a slope).
+  ctx.save(); ctx.beginPath(); ctx.rect(L, Tp - 4, w - L - R, h - Tp - B + 8); ctx.clip();
+  const leap = 0.12 * (hi - lo);
+  for (const s of series) {
+    ctx.strokeStyle = ctx.fillStyle = s.color; ctx.lineWidth = 1.4;
+    ctx.beginPath();
+    for (let i = 1; i < px.length; ++i) {
+      const y0 = s.y[i - 1], y1 = s.y[i];
+      if (Number.isFinite(y0) && Number.isFinite(y1) && Math.abs(y1 - y0) <= leap) { ctx.moveTo(X(px[i - 1]), Y(y0)); ctx.lineTo(X(px[i]), Y(y1)); }
+    }
+    ctx.stroke();
+    const r = (w - L - R) / px.length < 6 ? 1.6 : 2.4;
+    ctx.beginPath();
+    for (let i = 0; i < px.length; ++i) {
+      if (Number.isFinite(s.y[i])) { ctx.moveTo(X(px[i]) + r, Y(s.y[i])); ctx.arc(X(px[i]), Y(s.y[i]), r, 0, 2 * Math.PI); }
+    }
+    ctx.fill();
+  }
+  ctx.restore();
+  ctx.globalAlpha = 1;
+  // The current value: a line, the current run's lift-off on it, and just
+  // beside it the spread of the jump site (2.5 to 97.5 %, the median).
+  if (nowIn) {
+    const xn = X(now);
+    ctx.strokeStyle = SWEEP_NOW; ctx.lineWidth = 1.5; ctx.setLineDash([5, 3]);
+    ctx.beginPath(); ctx.moveTo(xn, Tp); ctx.lineTo(xn, h - B); ctx.stroke(); ctx.setLineDash([]);
+    if (sp) {
+      const xb = xn + (xn + 24 < w - R ? 11 : -11), y0 = Y(sp.p2_5 * 100), y1 = Y(sp.p97_5 * 100);
+      ctx.strokeStyle = SWEEP_BAND; ctx.lineWidth = 3;
+      ctx.beginPath(); ctx.moveTo(xb, y0); ctx.lineTo(xb, y1); ctx.stroke();
+      ctx.lineWidth = 2;
+      ctx.beginPath();
+      for (const y of [y0, y1]) { ctx.moveTo(xb - 5, y); ctx.lineTo(xb + 5, y); }
+      ctx.moveTo(xb - 7, Y(sp.p50 * 100)); ctx.lineTo(xb + 7, Y(sp.p50 * 100));
+      ctx.stroke();
+    }
+    if (Number.isFinite(nowX)) {
+      ctx.strokeStyle = SWEEP_NOW; ctx.fillStyle = '#fff'; ctx.lineWidth = 2;
+      ctx.beginPath(); ctx.arc(xn, Y(nowX), 4.5, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+    }
+  }
+  ctx.textAlign = 'left';
+  for (const s of legend) {
+    ctx.fillStyle = s.color;
+    if (s.box) ctx.fillRect(s.lx, s.ly - 8, 12, 9); else ctx.fillRect(s.lx, s.ly - 6, 12, 3);
+    ctx.fillStyle = '#222'; ctx.fillText(s.name, s.lx + 15, s.ly);
+  }
 }
 
 // ---- summary and events ----
@@ -872,7 +1148,7 @@ function wire() {
     try { await navigator.clipboard.writeText(location.href); $('#copy-link').textContent = 'Link copied'; } catch (err) { $('#copy-link').textContent = 'Copy the address bar'; }
     setTimeout(() => { $('#copy-link').textContent = 'Copy link to this setup'; }, 2000);
   });
-  window.addEventListener('resize', () => draw());
+  window.addEventListener('resize', () => { draw(); drawSweep(); });
   // Keys, outside text fields and menus: space plays/pauses, arrows step a frame.
   document.addEventListener('keydown', (e) => {
     const el = e.target;
@@ -923,6 +1199,7 @@ async function start() {
       state.presetSetups[p] = r.setup;
     }
     buildControls();
+    buildSweep();
     readUrl();
     wire();
     syncControls();
@@ -940,7 +1217,8 @@ async function start() {
     tid('first-liftoff-cm').textContent = '—';
   }
 }
-window.jumpcylPage = { state, recompute, simulate: (r) => simulate(r), controls: () => CONTROLS,
+window.jumpcylPage = { state, recompute, simulate: (r) => simulate(r), controls: () => CONTROLS, sweep,
+  runSweep: () => runSweep(), runSpread: () => runSpread(),
   seek: (t) => { setPlaying(false); state.t = t; draw(); } };
 start();
 })();

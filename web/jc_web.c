@@ -13,7 +13,9 @@
  * 'config' is refused.
  *
  * jc_web_params gives the library's parameter table (what `jumpcyl params
- * --json` prints), from which the page makes its controls.
+ * --json` prints), from which the page makes its controls. Sweeps and the
+ * spread of the jump site are web/jc_web_study.c's, on the library's
+ * studies; both files read a setup with web_read_inputs (here).
  *
  * Every returned string is malloc'd and owned by the caller: free it with
  * jc_web_free. A bad request gives {"ok": false, "error": "..."} (one
@@ -22,10 +24,11 @@
  * No global mutable state; the only process-wide setting touched is GSL's
  * error handler, switched off as the library's header asks.
  */
+#include "jc_web.h"
+
 #include "inputs.h"
 #include "figures.h" /* cli_paper_row (cli/figures/paper_row.c) */
 
-#include <cjson/cJSON.h>
 #include <gsl/gsl_errno.h>
 #include <jumpcyl/jumpcyl.h>
 
@@ -35,24 +38,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef __EMSCRIPTEN__
-#include <emscripten/emscripten.h>
-#define JC_WEB_EXPORT EMSCRIPTEN_KEEPALIVE
-#else
-#define JC_WEB_EXPORT
-#endif
-
-/* The declarations, for -Wmissing-prototypes (the JS side calls these). */
-JC_WEB_EXPORT char *jc_web_simulate(const char *request_json);
-JC_WEB_EXPORT char *jc_web_presets(void);
-JC_WEB_EXPORT const char *jc_web_version(void);
-JC_WEB_EXPORT void jc_web_free(char *text);
-JC_WEB_EXPORT char *jc_web_config(const char *request_json);
-JC_WEB_EXPORT char *jc_web_csv(const char *request_json);
-JC_WEB_EXPORT char *jc_web_params(void);
-
 #define WEB_DEFAULT_MAX_SAMPLES 100000 /* the library's default is 10^6: too much JSON for a page */
-#define ERR_LEN 512
 #define NUM_LEN 32
 
 /* ---- the request ---- */
@@ -69,9 +55,7 @@ typedef struct {
     char (*numbers)[NUM_LEN];
 } request_args;
 
-/* A member's value as the command line's text: a string as it is ("10cm",
- * "15deg"), a number printed with %.17g. NULL with a message otherwise. */
-static const char *value_text(const cJSON *v, const char *key, char *slot, char *err, size_t err_len)
+const char *web_value_text(const cJSON *v, const char *key, char *slot, char *err, size_t err_len)
 {
     if (cJSON_IsString(v)) return v->valuestring;
     if (cJSON_IsNumber(v) && isfinite(v->valuedouble)) {
@@ -93,7 +77,7 @@ static int take_member(request_args *a, const cJSON *it, char *slot, char *err, 
     }
     for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
         if (strcmp(key, cli_sim_options[i].name) == 0) {
-            const char *text = value_text(it, key, slot, err, err_len);
+            const char *text = web_value_text(it, key, slot, err, err_len);
             return !text || cli_sim_take(&a->sim, cli_sim_options[i].val, text, err, err_len) < 0 ? -1 : 0;
         }
     if (strcmp(key, "sample-format") == 0) { /* the page's own: "json" (default) or "binary" */
@@ -104,7 +88,7 @@ static int take_member(request_args *a, const cJSON *it, char *slot, char *err, 
         return -1;
     }
     if (strcmp(key, "max-samples") == 0) { /* the page's own: the tool keeps every sample */
-        a->max_samples = value_text(it, key, slot, err, err_len);
+        a->max_samples = web_value_text(it, key, slot, err, err_len);
         return a->max_samples ? 0 : -1;
     }
     struct option table[CLI_SETUP_OPTION_MAX];
@@ -127,13 +111,14 @@ static int take_member(request_args *a, const cJSON *it, char *slot, char *err, 
         }
         return 0;
     }
-    const char *text = value_text(it, key, slot, err, err_len);
+    const char *text = web_value_text(it, key, slot, err, err_len);
     return !text || cli_setup_take(&a->setup, val, text, err, err_len) < 0 ? -1 : 0;
 }
 
-static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, int *binary, char *err,
-                         size_t err_len)
+int web_read_inputs(const cJSON *req, web_Inputs *in, char *err, size_t err_len)
 {
+    gsl_set_error_handler_off(); /* GSL reports failures as status codes, never aborts */
+    memset(in, 0, sizeof *in);
     request_args a;
     memset(&a, 0, sizeof a);
     const int members = cJSON_GetArraySize(req);
@@ -145,7 +130,13 @@ static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, in
     int rc = 0, k = 0;
     for (const cJSON *it = req->child; !rc && it; it = it->next, ++k)
         rc = take_member(&a, it, a.numbers[k], err, err_len);
-    if (!rc) rc = cli_setup_from_options(&a.setup, setup, err, err_len) || cli_sim_build(&a.sim, o, err, err_len);
+    jc_SimOptions *o = &in->sim;
+    if (!rc) rc = cli_setup_from_options(&a.setup, &in->setup, err, err_len) || cli_sim_build(&a.sim, o, err, err_len);
+    /* The same setup in a study's terms: the preset and parts, and the
+     * single values set over them (as the tool's batch jobs take them). */
+    if (!rc)
+        rc = cli_setup_preset(&a.setup, &in->base, err, err_len) || cli_setup_parts(&a.setup, &in->base, err, err_len) ||
+             cli_setup_values(&a.setup, &in->values, err, err_len);
     if (!rc) {
         double v = WEB_DEFAULT_MAX_SAMPLES;
         char msg[256];
@@ -161,7 +152,7 @@ static int build_request(const cJSON *req, jc_Setup *setup, jc_SimOptions *o, in
         }
     }
     free(a.numbers);
-    *binary = a.binary;
+    in->binary = a.binary;
     return rc ? -1 : 0;
 }
 
@@ -374,10 +365,9 @@ static cJSON *run_json(const jc_Model *m, const jc_Run *run, int binary)
     return doc;
 }
 
-/* {"ok": false, "error": "..."}: the message on one line. */
-static char *error_text(const char *msg)
+char *web_error(const char *msg)
 {
-    char line[ERR_LEN];
+    char line[WEB_ERR_LEN];
     snprintf(line, sizeof line, "%s", msg);
     for (char *c = line; *c; ++c)
         if (*c == '\n' || *c == '\r') *c = ' ';
@@ -389,46 +379,45 @@ static char *error_text(const char *msg)
     return text;
 }
 
-static char *print_or_fail(cJSON *doc)
+char *web_print(cJSON *doc)
 {
     char *text = doc ? cJSON_PrintUnformatted(doc) : NULL;
     cJSON_Delete(doc);
-    return text ? text : error_text("out of memory for the answer");
+    return text ? text : web_error("out of memory for the answer");
 }
 
 /* ---- exported ---- */
 
 /* Reads and checks a request: NULL, or the answer that refuses it. */
-static char *read_request(const char *request_json, jc_Setup *setup, jc_SimOptions *options, int *binary)
+static char *read_request(const char *request_json, web_Inputs *in)
 {
-    char err[ERR_LEN];
-    gsl_set_error_handler_off(); /* GSL reports failures as status codes, never aborts */
+    char err[WEB_ERR_LEN];
     cJSON *req = request_json ? cJSON_Parse(request_json) : NULL;
     if (!cJSON_IsObject(req)) {
         cJSON_Delete(req);
-        return error_text("the request is not a JSON object (e.g. {\"incline\": 30})");
+        return web_error("the request is not a JSON object (e.g. {\"incline\": 30})");
     }
-    const int rc = build_request(req, setup, options, binary, err, sizeof err);
+    const int rc = web_read_inputs(req, in, err, sizeof err);
     cJSON_Delete(req);
-    return rc ? error_text(err) : NULL;
+    return rc ? web_error(err) : NULL;
 }
 
 /* Runs the request: NULL and the run (free it with jc_run_free), or the
  * answer that refuses the request or reports the failure. */
 static char *run_request(const char *request_json, jc_Model *model, jc_Run *run, int *binary)
 {
-    char err[ERR_LEN];
-    jc_Setup setup;
-    jc_SimOptions options;
-    char *refused = read_request(request_json, &setup, &options, binary);
+    char err[WEB_ERR_LEN];
+    web_Inputs in;
+    char *refused = read_request(request_json, &in);
     if (refused) return refused;
-    if (jc_model_init(model, &setup, err, sizeof err) != JC_OK) return error_text(err);
-    const int st = jc_simulate(model, &options, run, err, sizeof err);
+    *binary = in.binary;
+    if (jc_model_init(model, &in.setup, err, sizeof err) != JC_OK) return web_error(err);
+    const int st = jc_simulate(model, &in.sim, run, err, sizeof err);
     if (st != JC_OK) {
-        char msg[ERR_LEN + 40];
+        char msg[WEB_ERR_LEN + 40];
         snprintf(msg, sizeof msg, "simulation failed (%s): %s", jc_status_text(st), err);
         jc_run_free(run);
-        return error_text(msg);
+        return web_error(msg);
     }
     return NULL;
 }
@@ -441,7 +430,7 @@ JC_WEB_EXPORT char *jc_web_simulate(const char *request_json)
     int binary = 0;
     char *text = run_request(request_json, model, &run, &binary);
     if (!text) {
-        text = print_or_fail(run_json(model, &run, binary));
+        text = web_print(run_json(model, &run, binary));
         jc_run_free(&run);
     }
     free(model);
@@ -464,7 +453,7 @@ JC_WEB_EXPORT char *jc_web_csv(const char *request_json)
         cJSON_AddTrueToObject(doc, "ok");
         cJSON_AddStringToObject(doc, "csv", csv);
         free(csv);
-        text = print_or_fail(doc);
+        text = web_print(doc);
         jc_run_free(&run);
     }
     free(model);
@@ -480,7 +469,7 @@ JC_WEB_EXPORT char *jc_web_presets(void)
         cJSON_AddStringToObject(o, "description", jc_preset_description(i));
         cJSON_AddItemToArray(arr, o);
     }
-    return print_or_fail(arr);
+    return web_print(arr);
 }
 
 /* The parameter table (the library's, jc_param_info), as `jumpcyl params
@@ -489,7 +478,7 @@ JC_WEB_EXPORT char *jc_web_presets(void)
  * builds its controls from it. */
 JC_WEB_EXPORT char *jc_web_params(void)
 {
-    return print_or_fail(cli_json_params());
+    return web_print(cli_json_params());
 }
 
 JC_WEB_EXPORT const char *jc_web_version(void)
@@ -508,23 +497,21 @@ JC_WEB_EXPORT void jc_web_free(char *text)
  * but not written (the file holds the setup only). */
 JC_WEB_EXPORT char *jc_web_config(const char *request_json)
 {
-    jc_Setup setup;
-    jc_SimOptions options;
-    int binary = 0; /* no samples here */
-    char *refused = read_request(request_json, &setup, &options, &binary);
+    web_Inputs in; /* the simulation options are read and checked, not written */
+    char *refused = read_request(request_json, &in);
     if (refused) return refused;
     char *text = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&text, &len);
-    if (!f) return error_text("out of memory");
-    const int wr = cli_config_write(f, &setup);
+    if (!f) return web_error("out of memory");
+    const int wr = cli_config_write(f, &in.setup);
     if (fclose(f) != 0 || wr != 0 || !text) {
         free(text);
-        return error_text("could not write the experiment file");
+        return web_error("could not write the experiment file");
     }
     cJSON *doc = cJSON_CreateObject();
     cJSON_AddTrueToObject(doc, "ok");
     cJSON_AddStringToObject(doc, "config", text);
     free(text);
-    return print_or_fail(doc);
+    return web_print(doc);
 }

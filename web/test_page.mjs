@@ -423,3 +423,106 @@ test('text contrast is at least 4.5:1 everywhere', async () => {
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+// The sweep panel: computed when it comes into view (incline over its
+// typical span, 61 points, as the table's row gives it), drawn (lift-off and
+// slip points on the canvas), its rows the tool's `jumpcyl sweep`; another
+// parameter and range by the form and the button; a bad range shows the
+// one-line refusal; a change of the setup runs it again; the spread of the
+// jump site equals `jumpcyl mc`'s median and interval. Screenshots of the
+// panel (desktop) and of the whole page (phone).
+test('the sweep panel runs, draws, equals jumpcyl sweep, and the spread equals jumpcyl mc', async () => {
+  const { page, problems } = await open(`${base}/index.html?preset=paper&incline=30`);
+  const seq = async () => Number(await page.getAttribute('body', 'data-sweep-seq'));
+  assert.equal(await page.getAttribute('body', 'data-sweep-seq'), null, 'no sweep before the panel is in view');
+  await page.locator('#sweep').scrollIntoViewIfNeeded();
+  await page.waitForSelector('body[data-sweep-seq]');
+  const incline = nativeParams.find((p) => p.name === 'incline');
+  assert.equal(await page.inputValue('#sw-param'), 'incline');
+  assert.equal(Number(await page.inputValue('#sw-lo')), +(incline.typical_min * 180 / Math.PI).toFixed(6));
+  assert.equal(Number(await page.inputValue('#sw-hi')), +(incline.typical_max * 180 / Math.PI).toFixed(6));
+  assert.equal(await page.getAttribute('body', 'data-sweep-rows'), '61');
+  assert.match(await text(page, 'sweep-status'), /^61 runs in [0-9.]+ ms: \d+ lift off on the ramp/);
+  // The plot's pixels, read from a copy (reading the page's own canvas twice
+  // makes Chromium warn about its readbacks).
+  const pixels = `const c = document.getElementById('g-sweep'), o = document.createElement('canvas');
+    o.width = c.width; o.height = c.height;
+    const x = o.getContext('2d', { willReadFrequently: true });
+    x.drawImage(c, 0, 0);
+    const d = x.getImageData(0, 0, o.width, o.height).data;`;
+  const inks = () => page.evaluate(`(() => { ${pixels}
+    let lift = 0, slip = 0, any = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i + 3] === 0) continue;
+      any += d[i] + d[i + 1] + d[i + 2] < 720;
+      lift += d[i] > 150 && d[i + 1] < 90 && d[i + 2] < 80;
+      slip += d[i + 2] > 150 && d[i] < 80 && d[i + 1] < 130;
+    }
+    return { lift, slip, any };
+  })()`);
+  const ink = await inks();
+  assert.ok(ink.lift > 200 && ink.slip > 200, `the plot's lift-off and slip points: ${JSON.stringify(ink)}`);
+  // Its rows against the native tool's for the same grid.
+  const rows = await page.evaluate(() => window.jumpcylPage.sweep.answer.rows);
+  const step = (rows[60].value_si - rows[0].value_si) / 60;
+  const csv = execFileSync(native, ['sweep', '--vary', `incline=${rows[0].value_si}rad:${rows[60].value_si}rad:${step}rad`,
+    '--output', '-'], { encoding: 'utf8' }).trim().split('\n').map((l) => l.split(','));
+  const lx = csv[0].indexOf('first_liftoff_x_m');
+  rows.forEach((r, i) => {
+    const t = csv[i + 1][lx];
+    assert.ok(r.liftoff_x_m === null ? t === '' : Math.abs(r.liftoff_x_m - Number(t)) <= 1e-9 * Math.abs(Number(t)) + 1e-12,
+      `row ${i}: ${r.liftoff_x_m} vs the tool's ${t}`);
+  });
+  await page.locator('#sweep').screenshot({ path: join(shots, 'sweep-desktop.png') });
+  // Another parameter: its typical span in the page's unit (cm), then the button.
+  let before = await seq();
+  await page.selectOption('#sw-param', 'rod-offset');
+  await page.waitForFunction((s) => Number(document.body.dataset.sweepSeq) > s, before);
+  assert.equal(await text(page, 'sweep-status').then((t) => t.startsWith('61 runs')), true);
+  const offset = nativeParams.find((p) => p.name === 'rod-offset');
+  assert.equal(Number(await page.inputValue('#sw-hi')), +(offset.typical_max * 100).toFixed(6));
+  assert.equal(await page.textContent('#sw-unit'), 'cm');
+  await page.fill('#sw-n', '21');
+  before = await seq();
+  await page.click('#sw-run');
+  await page.waitForFunction((s) => Number(document.body.dataset.sweepSeq) > s, before);
+  assert.equal(await page.getAttribute('body', 'data-sweep-rows'), '21');
+  // A bad number of points: the library's refusal, on one line.
+  await page.fill('#sw-n', '1000');
+  await page.click('#sw-run');
+  assert.match(await text(page, 'sweep-status'), /n: 1000 is not a whole number from 2 to 401/);
+  await page.fill('#sw-n', '31');
+  await page.click('#sw-run');
+  assert.equal(await page.getAttribute('body', 'data-sweep-rows'), '31');
+  // A change of the setup runs the sweep again (it is in view and quick).
+  before = await seq();
+  await page.$eval('#c-incline', (el) => { el.value = '20'; el.dispatchEvent(new Event('input', { bubbles: true })); });
+  await page.waitForFunction((s) => Number(document.body.dataset.sweepSeq) > s, before);
+  assert.equal(await page.evaluate(() => window.jumpcylPage.sweep.stale), false);
+  assert.equal(await page.evaluate(() => JSON.parse(window.jumpcylPage.sweep.shown).setup.incline), '20deg');
+  // The spread of the jump site: `jumpcyl mc`'s median and 95 % interval.
+  await page.fill('#sp-n', '200');
+  await page.click('#sp-run');
+  const mc = JSON.parse(execFileSync(native, ['mc', '--incline', '20deg', '--samples', '200', '--json'], { encoding: 'utf8' }));
+  const cm = (v) => (v * 100).toFixed(1);
+  const spread = await text(page, 'spread-result');
+  assert.ok(spread.includes(`median ${cm(mc.first_liftoff_x_m.p50)} cm, 95 % between ${cm(mc.first_liftoff_x_m.p2_5)} and `
+    + `${cm(mc.first_liftoff_x_m.p97_5)} cm`), spread);
+  const band = await page.evaluate(`(() => { ${pixels}
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) n += d[i + 1] > 120 && d[i] < 110 && d[i + 2] < 130 && d[i + 3] > 0;
+    return n;
+  })()`);
+  assert.ok(band > 20, `the spread's bar on the plot: ${band} green pixels`);
+  await page.locator('#sweep').screenshot({ path: join(shots, 'sweep-spread-desktop.png') });
+  console.log(`# sweep in the page: ${await page.getAttribute('body', 'data-sweep-ms')} ms for 31 points (rod-offset, paper 20 deg); `
+    + `the spread: ${spread.match(/\(([^)]*)\)\.$/)?.[1]}`);
+  assert.deepEqual(problems, []);
+  await page.close();
+  const phone = await open(`${base}/index.html?preset=paper&incline=30`, { width: 390, height: 844 });
+  await phone.page.locator('#sweep').scrollIntoViewIfNeeded();
+  await phone.page.waitForSelector('body[data-sweep-seq]');
+  await phone.page.screenshot({ path: join(shots, 'sweep-phone.png'), fullPage: true });
+  assert.deepEqual(phone.problems, []);
+  await phone.page.close();
+});

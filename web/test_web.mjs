@@ -5,7 +5,7 @@
 // REL_TOL, and the events match in count and kinds; a bad setup is a one-line
 // error, not a crash; the one-file build answers the same as the two-file one.
 // Prints the agreement it found, the time of a recompute and the file sizes.
-import test from 'node:test';
+import test, { after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { createRequire } from 'node:module';
@@ -408,6 +408,9 @@ test('recompute time and sizes (measured, printed)', () => {
     sizes[f] = { bytes: statSync(path.join(webDir, f)).size };
   console.log('Sizes:');
   console.table(sizes);
+});
+// After every test: what agreed how well (and the studies' times in wasm).
+after(() => {
   console.log('Agreement with the native tool (relative differences):');
   console.table(report);
 });
@@ -449,4 +452,134 @@ test('jc_web_config is --dump-config\'s text', () => {
   const bad = config({ incline: 95 });
   assert.equal(bad.ok, false);
   assert.match(bad.error, /incline/);
+});
+
+// ---- the studies: jc_web_sweep and jc_web_uncertainty ----
+
+// A CSV's header and rows (no quoting in the tool's batch files).
+function readCsv(file) {
+  const [head, ...rows] = readFileSync(file, 'utf8').trim().split('\n').map((l) => l.split(','));
+  return { head, rows };
+}
+// A number from the wasm against the tool's CSV text (12 digits): equal
+// within the text's rounding plus REL_TOL of its size; null is an empty field.
+function sameNumber(web, text) {
+  if (web === null || text === '') return web === null && text === '';
+  return Math.abs(web - Number(text)) <= halfLastDigit(text) + REL_TOL * Math.abs(Number(text));
+}
+
+// The page's sweep is the tool's sweep: for each setup and grid, the rows of
+// `jumpcyl sweep --vary NAME=lo:hi:step` with the step the page's n makes
+// ((hi - lo) / (n - 1) in SI, given with its SI unit: the same grid of
+// doubles); the varied value, the first event, the first slip's and
+// lift-off's x, the lift-offs and the termination of every row, within
+// REL_TOL beyond the CSV's 12 digits (the wasm and the native build may
+// differ in the last bits).
+test('jc_web_sweep gives the rows of jumpcyl sweep for the same setup and grid', () => {
+  const dir = mkdtempSync(path.join(tmpdir(), 'jc-web-'));
+  try {
+    for (const [setup, args, vary, lo, hi, n] of [
+      [{ incline: 30 }, ['--incline', '30'], 'rod-offset', '2cm', '8cm', 25],
+      [{ preset: 'hoop', restitution: 0.4, incline: 3 }, ['--preset', 'hoop', '--restitution', '0.4'], 'incline', '5deg', '40deg', 15],
+      [{ incline: 45 }, ['--incline', '45'], 'mu', 0.05, 1.2, 24],
+      [{ incline: 20, 'rod-mass': '40g' }, ['--incline', '20', '--rod-mass', '40g'], 'restitution', 0, 1, 11],
+    ]) {
+      const t0 = performance.now();
+      const web = JSON.parse(call(jc, { setup, vary, lo, hi, n }, 'jc_web_sweep'));
+      const ms = performance.now() - t0;
+      assert.equal(web.ok, true, web.error);
+      assert.equal(web.rows.length, n);
+      const step = (web.rows[n - 1].value_si - web.rows[0].value_si) / (n - 1);
+      const file = path.join(dir, 'sweep.csv');
+      execFileSync(nativeTool, ['sweep', ...args, '--vary', `${vary}=${lo}:${hi}:${step}${web.si_unit}`, '--output', file,
+        '--quiet'], { stdio: 'ignore' });
+      const { head, rows } = readCsv(file);
+      assert.equal(rows.length, n, `${vary}: the tool's rows`);
+      const col = (name) => head.indexOf(name);
+      const perColumn = web.si_unit === 'rad' ? 180 / Math.PI : 1; // the CSV's values: SI, angles in degrees
+      let worst = 0;
+      web.rows.forEach((r, i) => {
+        const t = rows[i], label = `${vary} row ${i}`;
+        assert.ok(sameNumber(r.value_si * perColumn, t[1]), `${label}: value ${r.value_si * perColumn} vs ${t[1]}`);
+        assert.equal(r.first_event ?? '', t[col('first_event')], label);
+        assert.equal(r.termination, t[col('termination')], label);
+        assert.equal(r.liftoffs === null ? '' : String(r.liftoffs), t[col('liftoffs')], label);
+        for (const [key, name] of [['slip_x_m', 'first_slip_x_m'], ['liftoff_x_m', 'first_liftoff_x_m']]) {
+          const text = t[col(name)];
+          assert.ok(sameNumber(r[key], text), `${label}: ${key} ${r[key]} vs the tool's ${text}`);
+          if (r[key] !== null) worst = Math.max(worst, Math.max(0, Math.abs(r[key] - Number(text)) - halfLastDigit(text)) / (Math.abs(Number(text)) || 1));
+        }
+      });
+      report.push({ case: `sweep ${vary} ${lo}..${hi}, ${n} points (${ms.toFixed(0)} ms in wasm)`, 'worst event rel': worst });
+    }
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test('jc_web_sweep: the varied value replaces the setup\'s, and the current value is given', () => {
+  const a = JSON.parse(call(jc, { setup: { incline: 12 }, vary: 'incline', lo: 10, hi: 40, n: 4 }, 'jc_web_sweep'));
+  const b = JSON.parse(call(jc, { setup: {}, vary: 'incline', lo: '10deg', hi: '40deg', n: 4 }, 'jc_web_sweep'));
+  assert.equal(a.ok, true, a.error);
+  assert.deepEqual(a.rows, b.rows);
+  assert.ok(Math.abs(a.current - 12) < 1e-12 && Math.abs(b.current - 30) < 1e-12, `${a.current}, ${b.current}`);
+  assert.equal(a.unit, 'deg');
+  assert.ok(Math.abs(a.rows[1].value - 20) < 1e-12 && Math.abs(a.rows[3].value - 40) < 1e-12);
+  // a row of the grid is the single run of that value
+  const single = simulate(jc, { incline: 20 });
+  assert.ok(rel(a.rows[1].liftoff_x_m, single.first_liftoff.x) <= REL_TOL);
+});
+
+test('jc_web_sweep: a bad request is a one-line error naming the value and what is allowed', () => {
+  for (const [request, words] of [
+    [{ vary: 'incline', lo: 10, hi: 40, n: 1000 }, ['n: 1000', 'from 2 to 401']],
+    [{ vary: 'incline', lo: 10, hi: 40, n: 1 }, ['n: 1 ', 'from 2 to 401']],
+    [{ vary: 'incline', lo: 10, hi: 40, n: '20' }, ['n: "20"', 'from 2 to 401']],
+    [{ vary: 'incline', lo: 10, hi: 95 }, ['hi: ', '95', '90']],
+    [{ vary: 'incline', lo: 40, hi: 10 }, ['lo 40 deg', 'hi 10 deg']],
+    [{ vary: 'incline', lo: '10furlongs', hi: 40 }, ['lo: ', 'furlongs']],
+    [{ vary: 'impact-law', lo: 0, hi: 2 }, ['impact-law', 'names']],
+    [{ vary: 'inclination', lo: 0, hi: 2 }, ['inclination', 'allowed: radius']],
+    [{ vary: 'incline', hi: 40 }, ['lo: missing']],
+    [{ vary: 'incline', lo: 10, hi: 40, points: 5 }, ["unknown key 'points'"]],
+    [{ vary: 'incline', lo: 10, hi: 40, setup: { incline: 95 } }, ['incline 95 deg']],
+    [{ vary: 'incline', lo: 10, hi: 40, setup: 30 }, ['setup: must be an object']],
+    [{ vary: 'rod-mass', lo: 0.01, hi: 0.05, setup: { preset: 'hoop' } }, ['vary: ']],
+  ]) {
+    const out = JSON.parse(call(jc, request, 'jc_web_sweep'));
+    assert.equal(out.ok, false, JSON.stringify(request));
+    assert.ok(!out.error.includes('\n'), out.error);
+    for (const w of words) assert.ok(out.error.includes(w), `${JSON.stringify(request)}: ${out.error}`);
+    if (request.n === 1000 || request.vary === 'rod-mass') report.push({ case: `sweep ${JSON.stringify(request)}`, error: out.error });
+  }
+  assert.equal(JSON.parse(call(jc, { vary: 'incline', lo: 10, hi: 40, n: 3 }, 'jc_web_sweep')).ok, true);
+});
+
+// The spread of the jump site is `jumpcyl mc --json`'s for the same setup,
+// samples and seed (the same Philox draws): the counts equal, the first
+// lift-off's mean, sd and quantiles within REL_TOL.
+test('jc_web_uncertainty is jumpcyl mc --json\'s summary', () => {
+  for (const [request, args] of [
+    [{ setup: { incline: 15 }, samples: 300 }, ['--incline', '15', '--samples', '300']],
+    [{ setup: { incline: 30, mu: 0.4 }, samples: 200, seed: 7 }, ['--incline', '30', '--mu', '0.4', '--samples', '200', '--seed', '7']],
+  ]) {
+    const t0 = performance.now();
+    const web = JSON.parse(call(jc, request, 'jc_web_uncertainty'));
+    const ms = performance.now() - t0;
+    assert.equal(web.ok, true, web.error);
+    const mc = JSON.parse(execFileSync(nativeTool, ['mc', ...args, '--json'], { encoding: 'utf8' }));
+    for (const k of ['samples', 'valid', 'invalid', 'slides_at_start', 'no_liftoff']) assert.equal(web[k], mc[k], k);
+    let worst = 0;
+    for (const k of ['count', 'fraction', 'mean', 'sd', 'p2_5', 'p50', 'p97_5']) {
+      const d = rel(web.first_liftoff_x_m[k], mc.first_liftoff_x_m[k]);
+      worst = Math.max(worst, d);
+      assert.ok(d <= REL_TOL, `${k}: ${web.first_liftoff_x_m[k]} vs ${mc.first_liftoff_x_m[k]}`);
+    }
+    assert.ok(!web.spreads.some((s) => s.name === 'mu' && request.setup.mu !== undefined), 'a value set is not spread');
+    report.push({ case: `spread ${JSON.stringify(request.setup)}, ${request.samples} samples (${ms.toFixed(0)} ms in wasm)`,
+      'x (cm)': (web.first_liftoff_x_m.p50 * 100).toFixed(3), 'worst event rel': worst });
+  }
+  const bad = JSON.parse(call(jc, { samples: 5 }, 'jc_web_uncertainty'));
+  assert.equal(bad.ok, false);
+  assert.match(bad.error, /samples: 5 is not a whole number from 10 to 20000/);
 });

@@ -11,7 +11,6 @@
  * finished row in FILE.part and an older FILE untouched, and --resume
  * checks the rows there and continues after them. */
 #include "batch.h"
-#include "figures.h"
 
 #include <errno.h>
 #include <limits.h>

@@ -1,7 +1,6 @@
 /* jumpcyl compare: a tracked video against the model run from the state the
  * frames show where the free motion starts (docs/tracker.md, "Compare"). */
 #include "commands.h"
-#include "track_input.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -13,24 +13,50 @@ typedef struct {
     const char *jump_at, *free, *range, *points, *threads, *json, *csv, *figure;
 } design_opts;
 
+#define HELP_INDENT 18
+#define HELP_WIDTH 96
+
+/* Text wrapped at HELP_WIDTH, each line indented by HELP_INDENT. */
+static void print_wrapped(const char *text)
+{
+    int col = printf("%*s", HELP_INDENT, "");
+    for (const char *s = text; *s;) {
+        const size_t word = strcspn(s, " ");
+        if (col > HELP_INDENT && col + 1 + (int)word > HELP_WIDTH) col = printf("\n%*s", HELP_INDENT, "") - 1;
+        else if (col > HELP_INDENT) col += printf(" ");
+        col += printf("%.*s", (int)word, s);
+        s += word;
+        s += strspn(s, " ");
+    }
+    putchar('\n');
+}
+
 static void help(void)
 {
-    puts("Usage: jumpcyl design --jump-at X --free NAME [--range LO:HI] [--points N] [SETUP OPTIONS]\n"
-         "                      [SIMULATION OPTIONS] [--threads N] [--json FILE] [--csv FILE] [--figure FILE]\n"
-         "Every value of one setup option for which the full model's first lift-off happens\n"
-         "at X down the ramp (the centre's travel from its start), each with the jump's\n"
-         "sensitivity to that option. The first lift-off leaps at discontinuities (a\n"
-         "near-miss of the normal force turning into a lift-off): the search goes branch by\n"
-         "branch, locates every leap, and reports the targets no value reaches as gaps.\n"
-         "\n"
-         "  --jump-at X     the wanted first lift-off, a length (1.00m, 100cm); on the ramp\n"
-         "  --free NAME     the option to choose: " CLI_DESIGN_FREE_NAMES "\n"
-         "                  (not also given as a setup option; the others are)\n"
-         "  --range LO:HI   its range, with units as on the command line (rod-offset=2cm:8cm\n"
+    char names[512], refused[256], rest[512];
+    cli_design_free_names(0, names, sizeof names);
+    cli_design_free_names(1, refused, sizeof refused);
+    snprintf(rest, sizeof rest,
+             "(not also given as a setup option; the others are). Not %s: they never move the first lift-off",
+             refused);
+    printf("Usage: jumpcyl design --jump-at X --free NAME [--range LO:HI] [--points N] [SETUP OPTIONS]\n"
+           "                      [SIMULATION OPTIONS] [--threads N] [--json FILE] [--csv FILE] [--figure FILE]\n"
+           "Every value of one setup option for which the full model's first lift-off happens\n"
+           "at X down the ramp (the centre's travel from its start), each with the jump's\n"
+           "sensitivity to that option. The first lift-off leaps at discontinuities (a\n"
+           "near-miss of the normal force turning into a lift-off): the search goes branch by\n"
+           "branch, locates every leap, and reports the targets no value reaches as gaps.\n"
+           "\n"
+           "  --jump-at X     the wanted first lift-off, a length (1.00m, 100cm); on the ramp\n"
+           "  --free NAME     the option to choose, one of ('jumpcyl params'):\n");
+    print_wrapped(names);
+    print_wrapped(rest);
+    puts("  --range LO:HI   its range, with units as on the command line (rod-offset=2cm:8cm\n"
          "                  is --range 2cm:8cm; angles in degrees). Default: rod-offset 1 % of r\n"
          "                  to the rim, rod-mass 1 % to 5 times the rest of the body, theta0\n"
          "                  -180 to 180 deg, incline 1 to 85 deg, radius just outside the\n"
-         "                  off-centre parts to 3 times r\n"
+         "                  off-centre parts to 3 times r; the others their typical span\n"
+         "                  ('jumpcyl params'), its ends moved in to valid setups (mu-k <= mu-s)\n"
          "  --points N      scan points over the range (default 1000; 10 to 200000)\n"
          "  --threads N     threads (default: every core; the answer does not depend on it)\n"
          "  --json FILE     the branches, discontinuities, reachable ranges and solutions (SI)\n"
@@ -68,74 +94,6 @@ static const struct option own[] = {
     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
-/* The free option (its id, column and unit); EXIT_OK or EXIT_USAGE. */
-static int free_param(const char *name, const cli_SetupArgs *sa, cli_Param *p)
-{
-    static const char *const allowed[] = {"rod-offset", "rod-mass", "theta0", "incline", "radius"};
-    size_t k = 0;
-    while (k < sizeof allowed / sizeof allowed[0] && strcmp(name, allowed[k]) != 0) ++k;
-    if (k == sizeof allowed / sizeof allowed[0]) {
-        cli_error("design: --free '%s' is not a parameter design can choose (allowed: " CLI_DESIGN_FREE_NAMES ")",
-                  name);
-        return EXIT_USAGE;
-    }
-    memset(p, 0, sizeof *p);
-    cli_param_describe(jc_param_find(name), p); /* column and unit: SI, angles in degrees */
-    if (sa->value[p->id]) {
-        cli_error("design: --%s and --free %s both given; give one (--range LO:HI bounds the search)", name, name);
-        return EXIT_USAGE;
-    }
-    if (strcmp(name, "radius") == 0 && sa->part_count > 0) {
-        cli_error("design: --free radius with --part bodies: choose the radius of a preset body (paper, disc, hoop)");
-        return EXIT_USAGE;
-    }
-    return EXIT_OK;
-}
-
-/* The default range of the free option, clipped to values that make sense
- * for the body (note says which); EXIT_OK or EXIT_USAGE after a message. */
-static int default_range(cli_DesignJob *job, char *note, size_t note_len)
-{
-    const char *name = jc_param_info(job->param.id)->name;
-    const jc_BodyDef *b = &job->nominal.body;
-    const jc_Part *rod = NULL;
-    double rest_kg = 0.0, extent_m = 0.0;
-    for (int i = 0; i < b->part_count; ++i) {
-        const jc_Part *p = &b->parts[i];
-        if (p->kind == JC_PART_ROD && !rod) rod = p;
-        else rest_kg += p->mass_kg;
-        /* Parts that fill the rim grow with it; the others set the smallest radius. */
-        const int fills_rim = (p->kind == JC_PART_DISC || p->kind == JC_PART_HOOP) && p->radius_m == b->radius_m;
-        if (!fills_rim) extent_m = fmax(extent_m, p->offset_m + p->radius_m);
-    }
-    if ((strcmp(name, "rod-offset") == 0 || strcmp(name, "rod-mass") == 0) && !rod) {
-        cli_error("design: --free %s needs a body with a rod (the paper preset, or --part rod:...)", name);
-        return EXIT_USAGE;
-    }
-    if (strcmp(name, "rod-offset") == 0) {
-        job->lo = 0.01 * b->radius_m;
-        job->hi = b->radius_m - rod->radius_m;
-        snprintf(note, note_len, "the default: 1 %% of r to the rim less the rod's radius");
-    } else if (strcmp(name, "rod-mass") == 0) {
-        job->lo = 0.01 * rest_kg;
-        job->hi = 5.0 * rest_kg;
-        snprintf(note, note_len, "the default: 1 %% to 5 times the rest of the body's mass");
-    } else if (strcmp(name, "theta0") == 0) {
-        job->lo = -CLI_PI;
-        job->hi = CLI_PI;
-        snprintf(note, note_len, "the default: a whole turn");
-    } else if (strcmp(name, "incline") == 0) {
-        job->lo = CLI_PI / 180.0;
-        job->hi = 85.0 * CLI_PI / 180.0;
-        snprintf(note, note_len, "the default: 1 to 85 deg");
-    } else {
-        job->lo = fmax(1.01 * extent_m, 0.01 * b->radius_m);
-        job->hi = 3.0 * b->radius_m;
-        snprintf(note, note_len, "the default: just outside the off-centre parts to 3 times r");
-    }
-    return EXIT_OK;
-}
-
 /* --range LO:HI in the option's units; EXIT_OK or EXIT_USAGE. */
 static int parse_range(const char *text, cli_DesignJob *job)
 {
@@ -161,8 +119,8 @@ static int parse_range(const char *text, cli_DesignJob *job)
     return EXIT_OK;
 }
 
-/* Both ends of the range must be valid setups (between them validity does
- * not change for these options). */
+/* Both ends of the range must be valid setups (values between them that
+ * are not show as a branch "not a valid setup"). */
 static int check_range_ends(const cli_DesignJob *job, const char *range_text)
 {
     const double ends[2] = {job->lo, job->hi};
@@ -170,11 +128,13 @@ static int check_range_ends(const cli_DesignJob *job, const char *range_text)
         jc_Setup s;
         char msg[400];
         if (cli_case_setup(&job->base, &job->values, &job->param, 1, &ends[k], &s, msg, sizeof msg) != 0) {
+            const jc_ParamInfo *in = jc_param_info(job->param.id);
+            const char *unit = in->quantity == JC_Q_ANGLE ? "deg" : in->si_unit; /* the column's value: SI, or deg */
             char shown[CLI_TOKEN_MAX];
             cli_param_column_value(&job->param, ends[k], shown, sizeof shown);
-            cli_error("design: %s%s%s: --%s %s %s is not allowed: %s", range_text ? "--range '" : "the default range",
-                      range_text ? range_text : "", range_text ? "'" : "", jc_param_info(job->param.id)->name,
-                      shown, job->param.unit, msg);
+            cli_error("design: %s%s%s: --%s %s%s%s is not allowed: %s", range_text ? "--range '" : "the default range",
+                      range_text ? range_text : "", range_text ? "'" : "", in->name, shown, *unit ? " " : "", unit,
+                      msg);
             return EXIT_USAGE;
         }
     }
@@ -241,7 +201,7 @@ static int make_job(const design_opts *o, const cli_SetupArgs *sa, const cli_Sim
         cli_error("design: --jump-at X and --free NAME are required (e.g. --jump-at 1.00m --free rod-offset)");
         return EXIT_USAGE;
     }
-    int st = free_param(o->free, sa, &job->param);
+    int st = cli_design_free_param(o->free, sa, &job->param);
     if (st == EXIT_OK && (st = cli_batch_build_inputs("design", sa, sim_args, &job->nominal, &job->sim, NULL)) != EXIT_OK)
         return st;
     char err[512];
@@ -251,7 +211,7 @@ static int make_job(const design_opts *o, const cli_SetupArgs *sa, const cli_Sim
         return EXIT_USAGE;
     }
     if (st == EXIT_OK) {
-        st = default_range(job, note, note_len);
+        st = cli_design_default_range(job, note, note_len);
         if (st == EXIT_OK && o->range) {
             st = parse_range(o->range, job);
             snprintf(note, note_len, "--range");

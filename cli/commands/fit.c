@@ -3,7 +3,6 @@
  * determines and a verdict on the fit (docs/tracker.md, "Fit"). */
 #include "commands.h"
 #include "figures.h"
-#include "track_input.h"
 
 #include <math.h>
 #include <stdlib.h>

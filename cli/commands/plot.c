@@ -2,6 +2,7 @@
  * library; they are written as data files with a commented gnuplot script
  * beside them (kept with --keep-script, so that a researcher can restyle the
  * figure), and gnuplot renders the figure file atomically. */
+#include "batch.h"
 #include "commands.h"
 #include "figures.h"
 
@@ -209,6 +210,27 @@ static int publish(const plot_opts *o, fig_Format format, const char *figure, co
     return ok ? EXIT_OK : EXIT_FAIL;
 }
 
+/* paper-uncertainty's numbers: the first lift-off's Monte Carlo spread at
+ * each incline of the paper's table (the paper command's, cli/batch/mc_job.c),
+ * handed to the figure in d. EXIT_OK, an exit status after a message, or the
+ * stop status. */
+static int site_spreads(const cli_SetupArgs *sa, jc_Stats *sites, fig_Data *d)
+{
+    const jc_PaperTableRow *t;
+    int n = jc_paper_table(&t);
+    if (n > FIG_TABLE_ROWS_MAX) n = FIG_TABLE_ROWS_MAX;
+    for (int i = 0; i < n; ++i) {
+        const int rc = cli_mc_liftoff_stats("plot", sa, t[i].incline_deg, CLI_PAPER_MC_SAMPLES, CLI_PAPER_MC_SEED,
+                                            &sites[i], NULL);
+        if (rc != EXIT_OK) return rc;
+    }
+    d->table_rows = n;
+    d->site_stats = sites;
+    d->mc_samples = CLI_PAPER_MC_SAMPLES;
+    d->mc_seed = CLI_PAPER_MC_SEED;
+    return EXIT_OK;
+}
+
 /* Script and gnuplot in a private scratch directory, then the results moved
  * into place. */
 static int make_figure(fig_Data *d, const plot_opts *o, const plot_kind *kind, fig_Format format,
@@ -269,8 +291,9 @@ int cmd_plot(int argc, char **argv)
         cli_error("plot: --what %s shows the table's inclines (15, 30, 45 deg); leave out --incline", kind->name);
         return EXIT_USAGE;
     }
+    jc_Stats sites[FIG_TABLE_ROWS_MAX];
+    if ((kind->needs & NEED_UNCERTAINTY) && (st = site_spreads(&in.args, sites, &d)) != EXIT_OK) return st;
     d.model = &in.model;
-    d.setup_args = &in.args;
     fig_caption(&in.model, d.caption, sizeof d.caption);
     if (kind->panel == NULL) d.caption[0] = '\0';
     char cmdline[2048];

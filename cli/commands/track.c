@@ -4,7 +4,6 @@
  * and θ, each with how well it is known or why it is not
  * (docs/tracker.md). Every readable file gives a report. */
 #include "commands.h"
-#include "track_input.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>

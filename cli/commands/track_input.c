@@ -1,8 +1,7 @@
 /* What track, compare and fit share: the track file and how to read it, the
  * time window, the mark's angle, the figure's file, and the model's fine
  * path for the figure. */
-#include "track_input.h"
-#include "figures.h"
+#include "commands.h"
 
 #include <math.h>
 #include <stdlib.h>

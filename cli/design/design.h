@@ -10,8 +10,6 @@
 
 #include "batch.h"
 
-/* The options design can free: the setup options of the same names. */
-#define CLI_DESIGN_FREE_NAMES "rod-offset, rod-mass, theta0, incline, radius"
 #define CLI_DESIGN_POINTS_DEFAULT 1000L
 
 typedef struct {
@@ -26,6 +24,26 @@ typedef struct {
     int threads;                 /* 0: every core */
 } cli_DesignJob;
 
+/* ---- free.c: the parameter --free NAME chooses ---- */
+
+/* Why design cannot free parameter id, one line, or NULL when it can: it
+ * frees every numeric row of the parameter table but those that never move
+ * the first lift-off (restitution, ramp-length, paper-d). */
+const char *cli_design_not_free(int id);
+/* The names of the rows design can free (refused: of those it cannot), in
+ * the table's order, ", " between them, cut to fit len. */
+void cli_design_free_names(int refused, char *buf, size_t len);
+/* --free NAME against the setup options given (not the free one itself, nor
+ * one that sets what it sets): its id, column and unit into p. EXIT_OK, or
+ * EXIT_USAGE after a message. */
+int cli_design_free_param(const char *name, const cli_SetupArgs *sa, cli_Param *p);
+/* The default range into job->lo, hi, for the nominal body (job->nominal):
+ * the rows that need one have their own (rod-offset, rod-mass, theta0,
+ * incline, radius); the others their typical span within their range, its
+ * ends moved in to valid setups. note says which. EXIT_OK, or EXIT_USAGE
+ * after a message (a body without the part the row sets). */
+int cli_design_default_range(cli_DesignJob *job, char *note, size_t note_len);
+
 /* ---- run.c: the library's search ---- */
 
 /* The search (jc_design_run) with a progress line on a terminal, stopped
@@ -35,11 +53,14 @@ int cli_design_run(const cli_DesignJob *job, jc_DesignResult *r);
 
 /* ---- report.c: what the command prints and writes ---- */
 
-/* How the free option is shown: its display unit and the factor from SI. */
+/* How the free option is shown: its display unit and the factor from SI.
+ * Lengths in cm, masses in g, angles in degrees, numbers bare, the other
+ * quantities in SI. */
 typedef struct {
-    const char *unit;     /* "cm", "g", "deg" */
+    char unit[16];        /* after a value: " cm", " g", " deg", " m/s2"; "" for numbers */
+    char paren[20];       /* after a name in a heading: " (cm)"; "" for numbers */
     double per_si;
-    const char *dx_unit;  /* the sensitivity's: "cm per mm", "cm per g", "cm per deg" */
+    char dx_unit[32];     /* the sensitivity's: "cm per mm", "cm per g", "cm per deg", "cm per 0.01" */
     double dx_per_si;     /* dX/dp in m per SI unit times this */
 } cli_DesignUnits;
 cli_DesignUnits cli_design_units(const cli_DesignJob *job);

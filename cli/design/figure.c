@@ -60,7 +60,7 @@ static void write_script(FILE *gp, const cli_DesignJob *job, const jc_DesignResu
     fputs(", ", gp);
     fig_quote(gp, body);
     fputs(")\n", gp);
-    fprintf(gp, "set xlabel '%s (%s)'\nset ylabel 'first lift-off down the ramp (cm)'\n", name, u.unit);
+    fprintf(gp, "set xlabel '%s%s'\nset ylabel 'first lift-off down the ramp (cm)'\n", name, u.paren);
     fprintf(gp, "set xrange [%.12g:%.12g]\n", job->lo * u.per_si, job->hi * u.per_si);
     /* The lift-offs and X decide the vertical range: a narrow --range would
      * flatten its curve against the whole ramp's. */

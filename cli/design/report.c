@@ -1,6 +1,7 @@
 /* design: the table on standard output, --json and --csv files. Lengths
- * are shown in cm, masses in g, angles in degrees; the files keep SI
- * (angles in degrees in the CSV, as sweep writes them). */
+ * are shown in cm, masses in g, angles in degrees, numbers bare, the other
+ * quantities in SI; the files keep SI (angles in degrees in the CSV, as
+ * sweep writes them). */
 #include "design.h"
 
 #include <cjson/cJSON.h>
@@ -11,14 +12,31 @@
 /* Intervals of reachable first lift-offs shown at most. */
 #define REACHABLE_MAX 64
 
+/* The display unit and its factor from SI; the sensitivity's unit, x in cm
+ * per step of the option (a mm, a g, a degree, 0.01 of a number, one SI
+ * unit of the others), and its factor from m per SI unit. */
+static cli_DesignUnits units_of(const char *unit, double per_si, const char *step, double dx_per_si)
+{
+    cli_DesignUnits u;
+    snprintf(u.unit, sizeof u.unit, "%s%s", *unit ? " " : "", unit);
+    snprintf(u.paren, sizeof u.paren, *unit ? " (%s)" : "%s", unit);
+    u.per_si = per_si;
+    snprintf(u.dx_unit, sizeof u.dx_unit, "cm per %s", step);
+    u.dx_per_si = dx_per_si;
+    return u;
+}
+
 cli_DesignUnits cli_design_units(const cli_DesignJob *job)
 {
     switch (job->param.q) {
-    case Q_MASS: return (cli_DesignUnits){"g", 1e3, "cm per g", 100.0 / 1e3};
-    case Q_ANGLE: return (cli_DesignUnits){"deg", 180.0 / CLI_PI, "cm per deg", 100.0 * CLI_PI / 180.0};
+    case Q_LENGTH: return units_of("cm", 100.0, "mm", 100.0 / 1e3);
+    case Q_MASS: return units_of("g", 1e3, "g", 100.0 / 1e3);
+    case Q_ANGLE: return units_of("deg", 180.0 / CLI_PI, "deg", 100.0 * CLI_PI / 180.0);
+    case Q_NUMBER: return units_of("", 1.0, "0.01", 1.0);
     default: break;
     }
-    return (cli_DesignUnits){"cm", 100.0, "cm per mm", 100.0 / 1e3};
+    const char *si = jc_param_info(job->param.id)->si_unit;
+    return units_of(si, 1.0, si, 100.0);
 }
 
 static const char *free_name(const cli_DesignJob *job) { return jc_param_info(job->param.id)->name; }
@@ -42,7 +60,7 @@ static void print_branches(const cli_DesignJob *job, const jc_DesignResult *r, c
     for (int k = 0; k < r->branch_count; ++k) {
         const jc_DesignBranch *b = &r->branches[k];
         char span[64];
-        snprintf(span, sizeof span, "%.6g - %.6g %s", b->p_lo * u.per_si, b->p_hi * u.per_si, u.unit);
+        snprintf(span, sizeof span, "%.6g - %.6g%s", b->p_lo * u.per_si, b->p_hi * u.per_si, u.unit);
         if (b->kind == JC_CASE_LIFTOFF)
             printf("  %-30s %.4f - %.4f\n", span, b->x_min_m * 100, b->x_max_m * 100);
         else printf("  %-30s %s\n", span, outcome_words(b->kind));
@@ -61,11 +79,11 @@ static void print_edges(const cli_DesignJob *job, const jc_DesignResult *r, cli_
         printf("\nNo discontinuity: the first lift-off is continuous over the whole range.\n");
         return;
     }
-    printf("\nDiscontinuities (each located to %.2g %s; first lift-offs between the two sides are gaps there):\n",
+    printf("\nDiscontinuities (each located to %.2g%s; first lift-offs between the two sides are gaps there):\n",
            r->edge_width * u.per_si, u.unit);
     for (int k = 0; k < r->edge_count; ++k) {
         const jc_DesignEdge *e = &r->edges[k];
-        printf("  at %s = %.10g %s: ", free_name(job), 0.5 * (e->lo.p + e->hi.p) * u.per_si, u.unit);
+        printf("  at %s = %.10g%s: ", free_name(job), 0.5 * (e->lo.p + e->hi.p) * u.per_si, u.unit);
         print_side(&e->lo);
         printf("  ->");
         print_side(&e->hi);
@@ -79,7 +97,7 @@ static void print_edges(const cli_DesignJob *job, const jc_DesignResult *r, cli_
 static void print_no_solution(const cli_DesignJob *job, const jc_DesignResult *r, cli_DesignUnits u,
                               const double *lo, const double *hi, int n)
 {
-    printf("\nNo solution: no %s in %.6g - %.6g %s makes the first lift-off happen at %.4f cm.\n", free_name(job),
+    printf("\nNo solution: no %s in %.6g - %.6g%s makes the first lift-off happen at %.4f cm.\n", free_name(job),
            job->lo * u.per_si, job->hi * u.per_si, u.unit, job->target_m * 100);
     if (n == 0) {
         printf("Nothing in the range lifts off on the ramp.\n");
@@ -110,7 +128,7 @@ static void print_no_solution(const cli_DesignJob *job, const jc_DesignResult *r
         const jc_DesignEdge *e = &r->edges[k];
         if (e->lo.kind == JC_CASE_LIFTOFF && e->hi.kind == JC_CASE_LIFTOFF &&
             (e->lo.x_m - job->target_m) * (e->hi.x_m - job->target_m) < 0.0)
-            printf("At %s = %.6g %s the first lift-off leaps over it, from %.4f to %.4f cm.\n", free_name(job),
+            printf("At %s = %.6g%s the first lift-off leaps over it, from %.4f to %.4f cm.\n", free_name(job),
                    0.5 * (e->lo.p + e->hi.p) * u.per_si, u.unit, e->lo.x_m * 100, e->hi.x_m * 100);
     }
 }
@@ -123,7 +141,7 @@ void cli_design_print(const cli_DesignJob *job, const jc_DesignResult *r, const 
     printf("Design: the %s that makes the first lift-off happen at X = %.4f cm down the ramp\n", free_name(job),
            job->target_m * 100);
     if (jc_model_init(&m, &job->nominal, err, sizeof err) == JC_OK) cli_print_setup(stdout, &m, 1);
-    printf("Free: %s from %.6g to %.6g %s (%s); the setup line shows its nominal value\n", free_name(job),
+    printf("Free: %s from %.6g to %.6g%s (%s); the setup line shows its nominal value\n", free_name(job),
            job->lo * u.per_si, job->hi * u.per_si, u.unit, range_note);
     printf("Search: %ld scan points, %ld runs of the model in all, %.2f s on %d thread%s\n", r->scan_count,
            r->evaluations, r->seconds, r->threads_used, r->threads_used == 1 ? "" : "s");
@@ -139,9 +157,9 @@ void cli_design_print(const cli_DesignJob *job, const jc_DesignResult *r, const 
         printf("\nSolutions (%d; each run again and found within %g m of X):\n", r->solution_count,
                JC_DESIGN_VERIFY_M);
         char head[64];
-        snprintf(head, sizeof head, "%s (%s)", free_name(job), u.unit);
+        snprintf(head, sizeof head, "%s%s", free_name(job), u.paren);
         char margin_head[48];
-        snprintf(margin_head, sizeof margin_head, "to a leap (%s)", u.unit);
+        snprintf(margin_head, sizeof margin_head, "to a leap%s", u.paren);
         printf("  %2s %-22s %20s %12s   %-22s %s\n", "#", head, "first lift-off (cm)", "x - X (m)", "dX/dp",
                margin_head);
         for (int k = 0; k < r->solution_count; ++k) {
@@ -182,7 +200,7 @@ static cJSON *design_json(const cli_DesignJob *job, const jc_DesignResult *r, cl
     cJSON_AddNumberToObject(doc, "target_x_m", job->target_m);
     cJSON *fr = cJSON_AddObjectToObject(doc, "free");
     cJSON_AddStringToObject(fr, "name", free_name(job));
-    cJSON_AddStringToObject(fr, "si_unit", job->param.q == Q_MASS ? "kg" : job->param.q == Q_ANGLE ? "rad" : "m");
+    cJSON_AddStringToObject(fr, "si_unit", jc_param_info(job->param.id)->si_unit);
     cJSON_AddNumberToObject(fr, "lo", job->lo);
     cJSON_AddNumberToObject(fr, "hi", job->hi);
     cJSON_AddNumberToObject(doc, "points", (double)r->scan_count);

@@ -7,10 +7,10 @@
 #ifndef JUMPCYL_FIGURES_H
 #define JUMPCYL_FIGURES_H
 
-#include "inputs.h" /* cli_SetupArgs: the paper-uncertainty figure's Monte Carlo (fig_Data) */
 #include "outputs.h"
 
 #include <jumpcyl/jumpcyl.h>
+#include <jumpcyl/study.h>
 #include <jumpcyl/track.h>
 
 #include <stddef.h>
@@ -31,8 +31,13 @@ typedef enum { FIG_PNG, FIG_SVG, FIG_PDF } fig_Format;
  * script reads no file, so no name of the user's ever reaches gnuplot. */
 typedef struct {
     const jc_Model *model;
-    const cli_SetupArgs *setup_args; /* the options the model came from (paper-uncertainty) */
-    int table_rows;                  /* paper-uncertainty: inclines of the paper's table */
+    /* paper-uncertainty: the first lift-off's Monte Carlo spread at each
+     * incline of the paper's table, in the table's order, computed by the
+     * caller (the figure draws what it is given); how many samples and the
+     * seed, for the script's comments and the title. */
+    int table_rows;            /* at most FIG_TABLE_ROWS_MAX */
+    const jc_Stats *site_stats; /* table_rows of them */
+    int mc_samples, mc_seed;
     FILE *gp;                /* the script, in the scratch directory */
     char caption[256];       /* the setup in one line (enhanced text); "" in the overview,
                                 whose page title carries it */
@@ -107,6 +112,10 @@ int fig_criterion_prepare(fig_Data *d);
 void fig_criterion_panel(FILE *gp, const fig_Data *d);
 
 /* ---- plot_uncertainty.c: the paper's jump sites with the full model's band ---- */
+/* Rows of the paper's table the figure shows at most. */
+#define FIG_TABLE_ROWS_MAX 8
+/* Writes the sites' data block: per row of the table, the printed site, the
+ * nominal run's first lift-off and d->site_stats' band, the measurement. */
 int fig_uncertainty_prepare(fig_Data *d);
 void fig_uncertainty_panels(FILE *gp, const fig_Data *d);
 

@@ -1,14 +1,12 @@
 /* paper-uncertainty: for each incline of the paper's Table 1, the jump site
  * it printed, the full model's first lift-off with its 95 % band under the
- * inputs' uncertainties (Monte Carlo, cli/batch/mc_job.c), and the
- * measurement with its error bar: one panel per incline. */
-#include "batch.h"
+ * inputs' uncertainties (a Monte Carlo that the caller ran and hands over:
+ * fig_Data's site_stats), and the measurement with its error bar: one panel
+ * per incline. */
 #include "figures.h"
 
 #include <math.h>
 #include <string.h>
-
-#define TABLE_MAX 8
 
 static double nominal_liftoff(const jc_Model *m, double incline_deg)
 {
@@ -39,19 +37,15 @@ int fig_uncertainty_prepare(fig_Data *d)
                 "# r, rod offset 0.05 cm, masses 0.05 g, theta0 3 deg) and of friction 0.3..1.0 and\n"
                 "# restitution 0.1..0.6 (uniform: not measured by the paper).\n"
                 "# columns: incline_deg printed_cm nominal_cm p2_5_cm p50_cm p97_5_cm measured_cm measured_error_cm\n",
-            CLI_PAPER_MC_SAMPLES, CLI_PAPER_MC_SEED);
-    for (int i = 0; i < n && i < TABLE_MAX; ++i) {
-        jc_Stats st;
-        const int rc = cli_mc_liftoff_stats("plot", d->setup_args, t[i].incline_deg, CLI_PAPER_MC_SAMPLES,
-                                            CLI_PAPER_MC_SEED, &st, NULL);
-        if (rc != EXIT_OK) return rc;
+            d->mc_samples, d->mc_seed);
+    for (int i = 0; i < d->table_rows && i < n; ++i) {
+        const jc_Stats *st = &d->site_stats[i];
         const double nominal = nominal_liftoff(d->model, t[i].incline_deg);
         fprintf(gp, "%g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", t[i].incline_deg, t[i].printed_x_m * 100,
-                nominal * 100, st.p2_5 * 100, st.p50 * 100, st.p97_5 * 100, t[i].measured_x_m * 100,
+                nominal * 100, st->p2_5 * 100, st->p50 * 100, st->p97_5 * 100, t[i].measured_x_m * 100,
                 t[i].measured_error_m * 100);
     }
     fig_block_end(gp);
-    d->table_rows = n < TABLE_MAX ? n : TABLE_MAX;
     return EXIT_OK;
 }
 
@@ -59,7 +53,7 @@ void fig_uncertainty_panels(FILE *gp, const fig_Data *d)
 {
     fprintf(gp, "\nset multiplot layout 1,%d title \"The paper's jump sites: printed, the full model with its 95 %% "
                 "band (Monte Carlo, %d samples), measured\" font F_TITLE\n",
-            d->table_rows, CLI_PAPER_MC_SAMPLES);
+            d->table_rows, d->mc_samples);
     for (int i = 0; i < d->table_rows; ++i) {
         fig_panel_begin(gp, "paper-uncertainty");
         fprintf(gp,

@@ -1,5 +1,5 @@
 /* Experiment files: a whole setup in a small INI file (docs/config.md), read
- * with inih (config_write.c writes them, config_keys.h is the format): every
+ * with inih (config_write.c writes them and holds the format's sections): every
  * key is a parameter of the library's table (jc_ParamInfo section and key,
  * or the parameter's name), read with jc_param_parse and set with
  * jc_param_set, and [part.N] sections.
@@ -13,7 +13,7 @@
  * staged while reading and applied afterwards in a fixed order, so that the
  * order of sections and keys in the file does not matter. */
 #define _POSIX_C_SOURCE 200809L
-#include "config_keys.h"
+#include "inputs.h"
 
 #include <ini.h>
 

@@ -2,10 +2,10 @@
  * that config.c reads back, every parameter under its table's section and
  * key, in its table's unit and in the shortest form that reads back to the
  * same double (jc_param_format). Also the format's sections
- * (config_keys.h), which the reader shares. No inih here: the WebAssembly
+ * (inputs.h), which the reader shares. No inih here: the WebAssembly
  * build (web/) compiles this file and not the reader. */
 #define _POSIX_C_SOURCE 200809L
-#include "config_keys.h"
+#include "inputs.h"
 
 #include <stdio.h>
 #include <string.h>

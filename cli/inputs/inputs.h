@@ -44,6 +44,19 @@ int cli_config_parse(const char *name, const char *text, size_t len, jc_Setup *s
  * the shortest form that reads back to the same double. 0, or -1 if out
  * reported an error. */
 int cli_config_write(FILE *out, const jc_Setup *setup);
+/* The format's sections and keys are the parameter table's (jc_ParamInfo
+ * section and key), sections in the order they first appear there,
+ * [part.1] .. [part.N] after [body]. The reader and the writer share them;
+ * config_write.c holds them, as the WebAssembly build (web/) compiles only
+ * the writer, so that the page needs no inih. */
+#define CLI_CONFIG_SECTION_MAX 16 /* named sections at most (the table's, [part.N] aside) */
+/* The named sections in file order into names; returns how many. The
+ * first is [body], which the [part.N] sections follow. */
+int cli_config_sections(const char *names[CLI_CONFIG_SECTION_MAX]);
+/* Whether the parameter is written by the writer, as a key of its own:
+ * not a shortcut for others (mu, disc-mass: the file holds mu_s and mu_k,
+ * the parts). */
+int cli_config_written(const jc_ParamInfo *in);
 
 /* ---- setup_args.c (the options as text, built without files) and options.c (argv, files) ---- */
 /* The setup options: their own (--preset, --part, --config, --dump-config),

@@ -388,8 +388,13 @@ static int test_threads(void)
 static int test_bad_options(void)
 {
     static const char *const bad[] = {
-        "--jump-at 1m --free mu",
+        "--jump-at 1m --free restitution",
+        "--jump-at 1m --free impact-law",
         "--jump-at 1m --free bogus",
+        "--jump-at 1m --free mu --mu-s 0.4",
+        "--jump-at 1m --free mu-k --mu 0.4",
+        "--jump-at 1m --free mu-k --range 0.1:0.9",
+        "--jump-at 1m --free disc-mass --preset hoop",
         "--jump-at 5m --free rod-offset",
         "--jump-at -10cm --free rod-offset",
         "--jump-at 0 --free rod-offset",

@@ -135,49 +135,43 @@ static jc_Setup random_setup(int trial)
     return s;
 }
 
-static int test_law_with_loads(void)
-{
-    for (int trial = 0; trial < 50; ++trial) {
-        const jc_Setup s = random_setup(trial);
-        jc_Model m;
-        if (sim_model(&m, &s)) return 1;
-        for (int i = 0; i < 2000; ++i) {
-            const double th = uniform(-20.0, 20.0), w = random_spin();
-            if (check_newton_euler(&m, th, w, uniform(0.0, 1.0) < 0.5 ? -1 : 1)) return 1;
-        }
-    }
-    return 0;
-}
+/* A law's check at 2000 random states of each of 50 random setups; with
+ * bare_odd, every other setup has no resistances (the resistance-free law
+ * of a model with resistances, and of one without). pick is uniform in
+ * [0, 1): the check's own choice. */
+typedef int state_check(const jc_Model *m, double th, double w, double pick);
 
-static int test_law_without_loads(void)
+static int over_random_states(int bare_odd, state_check *check)
 {
     for (int trial = 0; trial < 50; ++trial) {
-        /* The resistance-free law of a model with resistances, and of one without. */
         jc_Setup s = random_setup(trial);
-        if (trial % 2) s.drag_coefficient = s.lift_coefficient = s.spin_drag_Nms2 = s.rolling_resistance_m = 0.0;
+        if (bare_odd && trial % 2)
+            s.drag_coefficient = s.lift_coefficient = s.spin_drag_Nms2 = s.rolling_resistance_m = 0.0;
         jc_Model m;
         if (sim_model(&m, &s)) return 1;
         for (int i = 0; i < 2000; ++i) {
             const double th = uniform(-20.0, 20.0), w = random_spin();
-            if (check_closed_form(&m, th, w, uniform(0.0, 1.0) < 0.5 ? -1 : 1)) return 1;
+            if (check(&m, th, w, uniform(0.0, 1.0))) return 1;
         }
     }
     return 0;
 }
 
-static int test_air_loads(void)
+static int newton_euler_either_way(const jc_Model *m, double th, double w, double pick)
 {
-    for (int trial = 0; trial < 50; ++trial) {
-        const jc_Setup s = random_setup(trial);
-        jc_Model m;
-        if (sim_model(&m, &s)) return 1;
-        for (int i = 0; i < 2000; ++i) {
-            const double th = uniform(-20.0, 20.0), w = random_spin();
-            if (check_air_loads(&m, th, w, uniform(0.0, 1.0))) return 1;
-        }
-    }
-    return 0;
+    return check_newton_euler(m, th, w, pick < 0.5 ? -1 : 1);
 }
+
+static int closed_form_either_way(const jc_Model *m, double th, double w, double pick)
+{
+    return check_closed_form(m, th, w, pick < 0.5 ? -1 : 1);
+}
+
+static int test_law_with_loads(void) { return over_random_states(0, newton_euler_either_way); }
+
+static int test_law_without_loads(void) { return over_random_states(1, closed_form_either_way); }
+
+static int test_air_loads(void) { return over_random_states(0, check_air_loads); }
 
 int main(void)
 {
