@@ -1,6 +1,6 @@
 /* The tool as a process (cli/process/), the lowest layer of the tool: its
  * exit statuses and one-line error messages (error.c), the stop signals
- * and the library's statuses as exit statuses (signals.c), child programs (spawn.c), private scratch directories and
+ * (signals.c), child programs (spawn.c), private scratch directories and
  * the few file-name operations they need (workdir.c). It calls nothing of
  * the tool above it (docs/architecture.md, Layers). */
 #ifndef JUMPCYL_PROCESS_H
@@ -38,18 +38,6 @@ void cli_signals_install(void);
 int cli_stop_requested(void); /* the signal number, 0 if none */
 int cli_stop_status(void);    /* 128 + the signal number: 130 SIGINT, 143 SIGTERM */
 const char *cli_signal_name(int sig);
-/* What a library call was given, which decides whose fault its failure is. */
-typedef enum {
-    CLI_INPUTS_GIVEN,   /* the user's values as given: JC_EINVAL is bad input (EXIT_USAGE), the rest EXIT_FAIL */
-    CLI_INPUTS_CHECKED, /* values already checked, or made by the tool: every failure is EXIT_FAIL */
-    CLI_INPUTS_VIDEO    /* a tracked video: one the library cannot read or follow is bad input (EXIT_USAGE) */
-} cli_Inputs;
-/* The exit status of a library status (JC_OK, JC_E*): the one place where
- * they become exit statuses. JC_OK is EXIT_OK; JC_ESTOPPED after a stop
- * signal is cli_stop_status(); any other failure as inputs says. Prints
- * nothing: the caller has said what failed. */
-int cli_exit_status(int jc_status, cli_Inputs inputs);
-
 /* Blocks the stop signals (while a record and the thing it records change
  * together, or around starting a child); release restores the old mask. */
 void cli_signals_hold(sigset_t *old);

@@ -18,8 +18,6 @@
 #define _GNU_SOURCE /* syscall(SYS_getdents64): directory listing that is async-signal-safe */
 #include "process.h"
 
-#include <jumpcyl/jumpcyl.h> /* the library's statuses, for cli_exit_status */
-
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -118,14 +116,6 @@ void cli_signals_install(void)
 int cli_stop_requested(void) { return stop_signal; }
 
 int cli_stop_status(void) { return 128 + stop_signal; }
-
-int cli_exit_status(int jc_status, cli_Inputs inputs)
-{
-    if (jc_status == JC_OK) return EXIT_OK;
-    if (jc_status == JC_ESTOPPED && cli_stop_requested()) return cli_stop_status();
-    if (inputs == CLI_INPUTS_VIDEO || (inputs == CLI_INPUTS_GIVEN && jc_status == JC_EINVAL)) return EXIT_USAGE;
-    return EXIT_FAIL;
-}
 
 const char *cli_signal_name(int sig)
 {
