@@ -64,10 +64,10 @@ static int own_take(int opt, const char *arg, void *ctx)
 {
     (void)arg;
     int *taken = ctx;
-    if (opt == 'h') return -1;
+    if (opt == 'h') return EXIT_OK; /* help printed: the command ends */
     if (opt == 'j' || opt == 'c') {
         ++*taken;
-        return 0;
+        return CLI_GO_ON;
     }
     return EXIT_USAGE;
 }
@@ -78,8 +78,8 @@ static void check_command_line(int argc, char **argv, int simulate)
     cli_SimArgs sim;
     int taken = 0;
     const int st = cli_parse_args(argc, argv, own, simulate ? 3 : 2, own_take, &taken, &sa, simulate ? &sim : NULL);
-    FUZZ_CHECK(st == 0 || st == -1 || st == EXIT_USAGE || st == EXIT_FAIL);
-    if (st != 0) return;
+    FUZZ_CHECK(st == CLI_GO_ON || st == EXIT_OK || st == EXIT_USAGE || st == EXIT_FAIL);
+    if (st != CLI_GO_ON) return;
     char err[512];
     jc_Setup setup;
     if (cli_setup_build(&sa, &setup, err, sizeof err) == 0) FUZZ_CHECK(jc_setup_validate(&setup, err, sizeof err) == JC_OK);

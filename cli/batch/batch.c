@@ -146,9 +146,9 @@ int cli_batch_take(const char *cmd, cli_BatchArgs *a, int opt, const char *arg)
     case 'o': return cli_take_once(cmd, &a->output, "output", arg);
     case 't': return cli_take_once(cmd, &a->threads, "threads", arg);
     case 's': return cli_take_once(cmd, &a->shard, "shard", arg);
-    case 'r': a->resume = 1; return 0;
-    case 'q': a->quiet = 1; return 0;
-    default: return 1;
+    case 'r': a->resume = 1; return CLI_GO_ON;
+    case 'q': a->quiet = 1; return CLI_GO_ON;
+    default: return EXIT_USAGE; /* not one of them (getopt passes none such) */
     }
 }
 
@@ -462,9 +462,10 @@ static int run_here(taker *t, long hi)
     char err[256];
     const int st = jc_study_run(&t->j->def, t->next, hi - t->next, &cb, err, sizeof err);
     if (t->write_failed) return EXIT_FAIL;
-    if (st == JC_OK || (st == JC_ESTOPPED && cli_stop_requested())) return EXIT_OK;
-    cli_error("%s: %s", t->j->b->cmd, err);
-    return EXIT_FAIL;
+    if (st == JC_ESTOPPED && cli_stop_requested()) return EXIT_OK; /* the cases not taken tell the caller */
+    const int rc = cli_exit_status(st, CLI_INPUTS_CHECKED);
+    if (rc != EXIT_OK) cli_error("%s: %s", t->j->b->cmd, err);
+    return rc;
 }
 
 #ifdef JC_HAVE_MPI
@@ -541,9 +542,10 @@ int cli_batch_run(const cli_Batch *b)
     job j = {b, *b->study, "", b->output != NULL || b->consume_rows};
     j.def.threads = b->threads;
     char err[256];
-    if (jc_study_check(&j.def, err, sizeof err) != JC_OK) {
+    const int checked = jc_study_check(&j.def, err, sizeof err);
+    if (checked != JC_OK) {
         cli_error("%s: %s", b->cmd, err);
-        return EXIT_FAIL;
+        return cli_exit_status(checked, CLI_INPUTS_CHECKED);
     }
     jc_study_header(&j.def, j.header, sizeof j.header);
     long lo, hi, done = 0;

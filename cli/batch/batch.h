@@ -130,7 +130,8 @@ typedef struct {
 #define CLI_BATCH_OPTIONS                                                                                  \
     {"output", required_argument, 0, 'o'}, {"threads", required_argument, 0, 't'},                        \
         {"shard", required_argument, 0, 's'}, {"resume", no_argument, 0, 'r'}, {"quiet", no_argument, 0, 'q'}
-/* Takes one of them: 0 when taken, EXIT_USAGE after a message, 1 if opt is not one. */
+/* A command's take for them: CLI_GO_ON when taken, EXIT_USAGE after a
+ * message (or for an opt that is not one of them). */
 int cli_batch_take(const char *cmd, cli_BatchArgs *a, int opt, const char *arg);
 /* Their values into a new job (every other field zero): EXIT_OK, or
  * EXIT_USAGE after a message. */

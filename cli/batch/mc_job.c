@@ -144,10 +144,10 @@ int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double inclin
     int st = cli_mc_job_init(&job, cmd, &args, NULL, 0, NULL, 0, 0, seed);
     if (st != EXIT_OK) return st;
     jc_Tally t;
-    if (jc_tally_init(&t, samples) != JC_OK) {
+    if ((st = jc_tally_init(&t, samples)) != JC_OK) {
         jc_tally_free(&t);
         cli_error("%s: out of memory", cmd);
-        return EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_CHECKED);
     }
     const jc_SimOptions sim = jc_default_sim_options();
     jc_StudyDef def;
@@ -159,15 +159,9 @@ int cli_mc_liftoff_stats(const char *cmd, const cli_SetupArgs *sa, double inclin
     if (c.invalid > 0)
         cli_error("%s: %ld case(s) are not valid setups (first: case %ld)", cmd, c.invalid, c.first_invalid);
     if (c.failed > 0) cli_error("%s: %ld case(s) failed numerically", cmd, c.failed);
-    if (run == JC_OK) {
-        jc_stats_compute(t.liftoff_x_m, t.liftoffs, t.none, t.invalid, JC_MC_LIFTOFF_GAP_M, out);
-        st = EXIT_OK;
-    } else if (run == JC_ESTOPPED && cli_stop_requested()) {
-        st = cli_stop_status();
-    } else {
-        cli_error("%s: %s", cmd, err);
-        st = EXIT_FAIL;
-    }
+    st = cli_exit_status(run, CLI_INPUTS_CHECKED);
+    if (st == EXIT_OK) jc_stats_compute(t.liftoff_x_m, t.liftoffs, t.none, t.invalid, JC_MC_LIFTOFF_GAP_M, out);
+    else if (st == EXIT_FAIL) cli_error("%s: %s", cmd, err);
     if (counts) {
         *counts = t;
         counts->liftoff_x_m = counts->hop_m = NULL;

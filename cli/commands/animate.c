@@ -129,7 +129,7 @@ static int parse_positive(const char *name, const char *text, double max, double
         cli_error("animate: --%s '%s' is out of range (allowed: a number > 0 and <= %g)", name, text, max);
         return EXIT_USAGE;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 static int check_args(const animate_args *a, animate_opts *o)
@@ -169,7 +169,7 @@ static int check_args(const animate_args *a, animate_opts *o)
         }
         o->camera = CAMERA_FOLLOW;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 static int build_inputs(cli_RunInputs *in, animate_opts *o)
@@ -180,7 +180,7 @@ static int build_inputs(cli_RunInputs *in, animate_opts *o)
         return EXIT_USAGE;
     }
     const int rc = cli_run_inputs_build("animate", in);
-    if (rc == 0) in->sim.sample_dt_s = 1.0 / (o->fps * o->slowmo);
+    if (rc == EXIT_OK) in->sim.sample_dt_s = 1.0 / (o->fps * o->slowmo);
     return rc;
 }
 
@@ -407,7 +407,7 @@ static int check_length(const jc_Model *model, const jc_SimOptions *sim, const a
     film_Watch w = {NAN};
     const jc_Recorder rec = {&w, watch_event, NULL};
     const int st = cli_simulate_stream(model, &probe_opts, &rec, &probe, "animate");
-    if (st != JC_OK) return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
+    if (st != JC_OK) return cli_exit_status(st, CLI_INPUTS_CHECKED);
     *film_end = film_end_s(&probe, &w, o->t_max_given);
     const double frames = motion_frames(*film_end, o) + hold_frames(o);
     if (frames > o->max_frames) {
@@ -424,7 +424,7 @@ static int check_length(const jc_Model *model, const jc_SimOptions *sim, const a
            "picture held %g s\n", frames, frames / o->fps, o->fps, *film_end, why, jc_termination_name(probe.termination),
            probe.final_state.t_s, FILM_HOLD_S);
     fflush(stdout);
-    return 0;
+    return EXIT_OK;
 }
 
 static int animate_run(const jc_Model *model, const jc_Run *run, const animate_opts *o)
@@ -454,19 +454,19 @@ int cmd_animate(int argc, char **argv)
     int st = cli_run_inputs_parse(argc, argv, &command, &a, &in);
     if (st != CLI_GO_ON) return st;
     animate_opts o;
-    if ((st = check_args(&a, &o)) != 0 || (st = build_inputs(&in, &o)) != 0) return st;
+    if ((st = check_args(&a, &o)) != EXIT_OK || (st = build_inputs(&in, &o)) != EXIT_OK) return st;
     /* The target is checked before the work: a read-only file is refused at once. */
     if ((o.format == VID_FRAMES ? cli_check_output_dir(o.output) : cli_output_check_target(o.output)) != 0)
         return EXIT_FAIL;
     jc_Run run;
     double film_end = 0;
-    if ((st = check_length(&in.model, &in.sim, &o, &film_end)) != 0) return st;
+    if ((st = check_length(&in.model, &in.sim, &o, &film_end)) != EXIT_OK) return st;
     /* The film's run stops where the film does: the same run up to there. */
     in.sim.t_max_s = fmin(in.sim.t_max_s, film_end);
     in.sim.max_samples = (int)fmin(1e8, (double)o.max_frames + in.sim.max_events + 16.0);
     if ((st = cli_simulate(&in.model, &in.sim, &run, "animate")) != JC_OK) {
         jc_run_free(&run);
-        return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_CHECKED);
     }
     st = animate_run(&in.model, &run, &o);
     jc_run_free(&run);

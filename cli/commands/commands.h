@@ -56,22 +56,23 @@ typedef struct {
     double hop_sigmas_k; /* --hop-sigmas's K, when given */
 } cli_TrackArgs;
 
-/* 0 when it took the option, EXIT_USAGE after a message, 1 when the option is not one of these. */
+/* A command's take for these options: CLI_GO_ON when it took the option,
+ * EXIT_USAGE after a message (or for an option that is not one of these). */
 int cli_track_args_take(const char *cmd, cli_TrackArgs *a, int opt, const char *arg);
 /* The help of the reading options; with window 1, those of compare and fit too. */
 void cli_track_args_help(int window);
 /* Checks the reading options (--axes, --hop-sigmas) and keeps their values;
- * 0 or EXIT_USAGE after a one-line message. */
+ * EXIT_OK or EXIT_USAGE after a one-line message. */
 int cli_track_args_check_reading(const char *cmd, cli_TrackArgs *a);
 /* Checks the options before any work (the reading options, the window, the
- * mark's angle, the figure's name and target, gnuplot); 0 or the exit
- * status after a one-line message. */
+ * mark's angle, the figure's name and target, gnuplot); EXIT_OK or the
+ * exit status after a one-line message. */
 int cli_track_args_check(const char *cmd, cli_TrackArgs *a);
 /* Reads the track for the setup's radius and g, with the incline given
  * (--incline, or an experiment file's) or the video's; a's reading options
- * checked first (either check above). 0, or the exit
- * status after a one-line message (EXIT_USAGE for a file that cannot be
- * read or an incline the video refuses). */
+ * checked first (either check above). EXIT_OK, or the exit status after a
+ * one-line message (EXIT_USAGE for a file that cannot be read or an
+ * incline the video refuses). */
 int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *a, const cli_SetupArgs *sa,
                         const jc_Setup *setup, jc_Track *t);
 /* As cli_track_args_load, then what compare and fit need (the centre, the
@@ -95,10 +96,10 @@ int cli_track_fine_path(const jc_Setup *setup, const jc_Track *t, const jc_State
  * model values (the mark's angle, not G's), mark radius, sigma, threshold
  * and title; this sets the radius, samples the model's fine path from start
  * to the last frame shown (in the video's frame when frame is not NULL),
- * draws the figure to out and frees the path. EXIT_OK or an exit status after a
- * message, or CLI_TRACK_FIGURE_NO_PATH when the path could not be made. */
-#define CLI_TRACK_FIGURE_NO_PATH (-1)
-int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_State *start,
-                          const jc_TrackFitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv);
+ * draws the figure to out and frees the path. EXIT_OK, or an exit status
+ * after a message: "CMD: no_path" when the path could not be made. */
+int cli_track_figure_draw(const char *cmd, const char *no_path, cli_TrackFigure *f, const jc_Setup *setup,
+                          const jc_State *start, const jc_TrackFitFrame *frame, const jc_SimOptions *o, const char *out,
+                          int argc, char **argv);
 
 #endif

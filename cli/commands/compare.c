@@ -19,11 +19,7 @@ static void help(void)
     puts("  -h, --help          this help\n");
 }
 
-static int take(int opt, const char *arg, void *ctx)
-{
-    const int rc = cli_track_args_take("compare", ctx, opt, arg);
-    return rc == 1 ? EXIT_USAGE : rc;
-}
+static int take(int opt, const char *arg, void *ctx) { return cli_track_args_take("compare", ctx, opt, arg); }
 
 static const struct option own[] = {CLI_TRACK_ARG_OPTIONS, {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
@@ -87,10 +83,8 @@ static int figure(const char *out, const jc_Setup *setup, const jc_Model *m, con
     f.hop_threshold_m = t->hop_threshold_m;
     snprintf(f.title, sizeof f.title, "jumpcyl compare: %.4g° incline; path residuals RMS %.2f mm (%.2f σ)",
              cli_deg(t->incline_rad), c->rms_path_m * 1e3, c->rms_path_m / t->sigma_m);
-    const int rc = cli_track_figure_draw("compare", &f, setup, &c->launch.start, NULL, o, out, argc, argv);
-    if (rc != CLI_TRACK_FIGURE_NO_PATH) return rc;
-    cli_error("compare: out of memory for the figure's path");
-    return EXIT_FAIL;
+    return cli_track_figure_draw("compare", "out of memory for the figure's path", &f, setup, &c->launch.start, NULL, o,
+                                 out, argc, argv);
 }
 
 int cmd_compare(int argc, char **argv)
@@ -101,12 +95,12 @@ int cmd_compare(int argc, char **argv)
     cli_SimArgs sim_args;
     int st = cli_command_parse(argc, argv, &command, &a, &sa, &sim_args);
     if (st != CLI_GO_ON) return st;
-    if ((st = cli_track_args_check("compare", &a)) != 0) return st;
+    if ((st = cli_track_args_check("compare", &a)) != EXIT_OK) return st;
     jc_Setup setup;
     jc_SimOptions opts;
-    if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
+    if ((st = cli_build_inputs("compare", &sa, &sim_args, &setup, &opts, NULL)) != EXIT_OK) return st;
     jc_Track t;
-    if ((st = cli_track_args_load_for_model("compare", &a, &sa, &setup, &t)) != 0) return st;
+    if ((st = cli_track_args_load_for_model("compare", &a, &sa, &setup, &t)) != EXIT_OK) return st;
     /* The setup the runs use, its ramp without their margin uphill: printed,
      * and its body for the report and the figure (built once: a failure is
      * an error, not a setup left unprinted). */
@@ -114,17 +108,13 @@ int cmd_compare(int argc, char **argv)
     shown.ramp_length_m -= JC_TRACK_RAMP_MARGIN_M;
     jc_Model model;
     char err[512];
-    if (jc_model_init(&model, &shown, err, sizeof err) != JC_OK) {
-        cli_error("compare: %s", err);
-        jc_track_free(&t);
-        return EXIT_USAGE;
-    }
     jc_TrackCompare c;
-    if (jc_track_compare(&setup, &t, &opts, a.from_setup_start ? JC_TRACK_START_SETUP : JC_TRACK_START_TRACKED, a.from_s,
-                         a.to_s, a.mark_angle_rad, &c, err, sizeof err) != 0) {
+    if ((st = jc_model_init(&model, &shown, err, sizeof err)) != JC_OK ||
+        (st = jc_track_compare(&setup, &t, &opts, a.from_setup_start ? JC_TRACK_START_SETUP : JC_TRACK_START_TRACKED,
+                               a.from_s, a.to_s, a.mark_angle_rad, &c, err, sizeof err)) != JC_OK) {
         cli_error("compare: %s", err);
         jc_track_free(&t);
-        return EXIT_USAGE;
+        return cli_exit_status(st, CLI_INPUTS_VIDEO);
     }
     cli_track_print_head(a.track, &t, c.first, c.count);
     cli_print_setup(stdout, &model, 1);

@@ -202,7 +202,7 @@ static int make_job(const design_opts *o, const cli_SetupArgs *sa, const cli_Sim
         return EXIT_USAGE;
     }
     int st = cli_design_free_param(o->free, sa, &job->param);
-    if (st == EXIT_OK && (st = cli_batch_build_inputs("design", sa, sim_args, &job->nominal, &job->sim, NULL)) != 0)
+    if (st == EXIT_OK && (st = cli_batch_build_inputs("design", sa, sim_args, &job->nominal, &job->sim, NULL)) != EXIT_OK)
         return st;
     char err[512];
     if (st == EXIT_OK && (cli_setup_base(sa, &job->base, err, sizeof err) != 0 ||

@@ -64,8 +64,6 @@ static void help(void)
 static int take(int opt, const char *arg, void *ctx)
 {
     fit_opts *o = ctx;
-    const int rc = cli_track_args_take("fit", &o->track, opt, arg);
-    if (rc != 1) return rc;
     switch (opt) {
     case 'f': return cli_take_once("fit", &o->free_list, "free", arg);
     case 'l': return cli_take_once("fit", &o->loss, "loss", arg);
@@ -73,9 +71,9 @@ static int take(int opt, const char *arg, void *ctx)
     case 's': return cli_take_once("fit", &o->sigma, "sigma", arg);
     case 'n': return cli_take_once("fit", &o->starts, "starts", arg);
     case 'r': return cli_take_once("fit", &o->seed, "seed", arg);
-    case 'a': o->allow_misfit = 1; return 0;
-    case 'H': o->hold_start = 1; return 0;
-    default: return EXIT_USAGE;
+    case 'a': o->allow_misfit = 1; return CLI_GO_ON;
+    case 'H': o->hold_start = 1; return CLI_GO_ON;
+    default: return cli_track_args_take("fit", &o->track, opt, arg);
     }
 }
 
@@ -98,7 +96,7 @@ static int whole(const char *text, const char *name, double lo, double hi, doubl
         cli_error("fit: --%s '%s' (allowed: a whole number from %.0f to %.0f)", name, text, lo, hi);
         return EXIT_USAGE;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 /* The names the setup's body allows, comma-separated, for messages. */
@@ -183,14 +181,14 @@ static int check(const fit_opts *o, const jc_Setup *setup, jc_TrackFitOptions *f
     }
     double v;
     if (o->max_iter) {
-        if (whole(o->max_iter, "max-iter", 1, MAX_MAX_ITER, &v) != 0) return EXIT_USAGE;
+        if (whole(o->max_iter, "max-iter", 1, MAX_MAX_ITER, &v) != EXIT_OK) return EXIT_USAGE;
         fo->max_iter = (int)v;
     }
     if (o->starts) {
-        if (whole(o->starts, "starts", 1, MAX_STARTS, &v) != 0) return EXIT_USAGE;
+        if (whole(o->starts, "starts", 1, MAX_STARTS, &v) != EXIT_OK) return EXIT_USAGE;
         fo->starts = (int)v;
     }
-    if (o->seed && cli_parse_seed("fit", o->seed, &fo->seed) != 0) return EXIT_USAGE;
+    if (o->seed && cli_parse_seed("fit", o->seed, &fo->seed) != EXIT_OK) return EXIT_USAGE;
     if (o->sigma && (cli_parse_quantity(o->sigma, Q_LENGTH, &fo->sigma_m, err, sizeof err) != 0 ||
                      !(fo->sigma_m > 0.0 && fo->sigma_m <= 1.0))) {
         cli_error("fit: --sigma '%s' (allowed: a length in (0, 1] m, e.g. 1mm)", o->sigma);
@@ -201,7 +199,7 @@ static int check(const fit_opts *o, const jc_Setup *setup, jc_TrackFitOptions *f
     fo->to_s = o->track.to_s;
     fo->mark_angle_rad = o->track.mark_angle_rad;
     fo->start = o->track.from_setup_start ? JC_TRACK_START_SETUP : JC_TRACK_START_TRACKED;
-    return 0;
+    return EXIT_OK;
 }
 
 static void name_of(const jc_TrackFitResult *r, int k, char *buf, size_t len)
@@ -351,39 +349,43 @@ static void report(const char *file, const jc_Track *t, const jc_TrackFitResult 
     printf("\n\nVerdict: %s\n", r->verdict);
 }
 
+/* The figure's frames: the track's, and the fitted model's at them (x, y, th). */
+static void figure_frames(cli_TrackFigure *f, const jc_Track *t, const jc_TrackFitResult *r, const double *x,
+                          const double *y, const double *th)
+{
+    memset(f, 0, sizeof *f);
+    f->track = t;
+    f->first = r->first;
+    f->count = r->frames;
+    f->sim_x = x;
+    f->sim_y = y;
+    f->sim_theta = th;
+    f->mark_radius_m = r->mark_radius_m;
+    f->sigma_m = r->sigma_m;
+    f->hop_threshold_m = t->hop_threshold_m;
+    snprintf(f->title, sizeof f->title, "jumpcyl fit: μ_s = %.4g, μ_k = %.4g, e = %.4g; χ²/dof = %.3g%s",
+             r->setup.mu_static, r->setup.mu_kinetic, r->setup.restitution, r->chi2_dof,
+             r->misfit ? " (the model does not describe the video)" : "");
+}
+
 static int figure(const char *out, const jc_Track *t, const jc_TrackFitResult *r, const jc_SimOptions *o, int argc,
                   char **argv)
 {
+    static const char no_path[] = "the fitted model's path for the figure failed";
     const size_t n = (size_t)r->frames;
     double *x = malloc(n * sizeof *x), *y = malloc(n * sizeof *y), *th = malloc(n * sizeof *th);
-    cli_TrackFigure f;
-    memset(&f, 0, sizeof f);
     char err[256];
-    int rc = x && y && th ? 0 : -1;
     /* The fitted model at the frames, in the video's frame, the mark's angle. */
-    if (rc == 0 && jc_track_model_path(&r->setup, t, &r->start, &r->frame, o, t->t_s + r->first, r->frames, x, y, th,
-                                       err, sizeof err) != JC_OK)
-        rc = -1;
-    if (rc == 0) {
-        f.track = t;
-        f.first = r->first;
-        f.count = r->frames;
-        f.sim_x = x;
-        f.sim_y = y;
-        f.sim_theta = th;
-        f.mark_radius_m = r->mark_radius_m;
-        f.sigma_m = r->sigma_m;
-        f.hop_threshold_m = t->hop_threshold_m;
-        snprintf(f.title, sizeof f.title, "jumpcyl fit: μ_s = %.4g, μ_k = %.4g, e = %.4g; χ²/dof = %.3g%s",
-                 r->setup.mu_static, r->setup.mu_kinetic, r->setup.restitution, r->chi2_dof,
-                 r->misfit ? " (the model does not describe the video)" : "");
-        rc = cli_track_figure_draw("fit", &f, &r->setup, &r->start, &r->frame, o, out, argc, argv);
+    const int have = x && y && th &&
+                     jc_track_model_path(&r->setup, t, &r->start, &r->frame, o, t->t_s + r->first, r->frames, x, y, th,
+                                         err, sizeof err) == JC_OK;
+    int rc = EXIT_FAIL;
+    if (have) {
+        cli_TrackFigure f;
+        figure_frames(&f, t, r, x, y, th);
+        rc = cli_track_figure_draw("fit", no_path, &f, &r->setup, &r->start, &r->frame, o, out, argc, argv);
     } else {
-        rc = CLI_TRACK_FIGURE_NO_PATH;
-    }
-    if (rc == CLI_TRACK_FIGURE_NO_PATH) {
-        cli_error("fit: the fitted model's path for the figure failed");
-        rc = EXIT_FAIL;
+        cli_error("fit: %s", no_path);
     }
     free(x);
     free(y);
@@ -410,14 +412,14 @@ int cmd_fit(int argc, char **argv)
     cli_SimArgs sim_args;
     int st = cli_command_parse(argc, argv, &command, &o, &sa, &sim_args);
     if (st != CLI_GO_ON) return st;
-    if ((st = cli_track_args_check("fit", &o.track)) != 0) return st;
+    if ((st = cli_track_args_check("fit", &o.track)) != EXIT_OK) return st;
     jc_Setup setup;
     jc_SimOptions opts;
-    if ((st = cli_build_inputs("fit", &sa, &sim_args, &setup, &opts, NULL)) != 0) return st;
+    if ((st = cli_build_inputs("fit", &sa, &sim_args, &setup, &opts, NULL)) != EXIT_OK) return st;
     jc_TrackFitOptions fo;
-    if ((st = check(&o, &setup, &fo)) != 0) return st;
+    if ((st = check(&o, &setup, &fo)) != EXIT_OK) return st;
     jc_Track t;
-    if ((st = cli_track_args_load_for_model("fit", &o.track, &sa, &setup, &t)) != 0) return st;
+    if ((st = cli_track_args_load_for_model("fit", &o.track, &sa, &setup, &t)) != EXIT_OK) return st;
     char err[512];
     jc_TrackFitResult r;
     cli_Progress progress;
@@ -426,14 +428,10 @@ int cmd_fit(int argc, char **argv)
     fo.progress_ctx = &progress;
     const int fitted = jc_track_fit(&setup, &t, &fo, &opts, &r, err, sizeof err);
     cli_progress_end(&progress);
-    if (fitted == JC_ESTOPPED) { /* a stop signal: no report */
+    if (fitted != JC_OK) { /* stopped by a signal: no message, no report */
+        if (fitted != JC_ESTOPPED) cli_error("fit: %s", err);
         jc_track_free(&t);
-        return cli_stop_status();
-    }
-    if (fitted != 0) {
-        cli_error("fit: %s", err);
-        jc_track_free(&t);
-        return EXIT_USAGE;
+        return cli_exit_status(fitted, CLI_INPUTS_VIDEO);
     }
     report(o.track.track, &t, &r, &fo);
     st = o.track.output ? figure(o.track.output, &t, &r, &opts, argc, argv) : EXIT_OK;

@@ -60,10 +60,9 @@ static int take(int opt, const char *arg, void *ctx)
     if (opt == 'y') return cli_take_once("map", &o->y, "y", arg);
     if (opt == 'k') {
         o->keep_script = 1;
-        return 0;
+        return CLI_GO_ON;
     }
-    const int st = cli_batch_take("map", &o->batch, opt, arg);
-    return st == 1 ? EXIT_USAGE : st;
+    return cli_batch_take("map", &o->batch, opt, arg);
 }
 
 static const struct option own[] = {{"x", required_argument, 0, 'x'},
@@ -572,7 +571,7 @@ int cmd_map(int argc, char **argv)
     memset(&job, 0, sizeof job);
     jc_Setup fixed;
     jc_SimOptions sim;
-    if ((st = cli_batch_build_inputs("map", &sa, &sim_args, &fixed, &sim, NULL)) != 0) return st;
+    if ((st = cli_batch_build_inputs("map", &sa, &sim_args, &fixed, &sim, NULL)) != EXIT_OK) return st;
     char err[512];
     if (cli_setup_base(&sa, &job.base, err, sizeof err) != 0 || cli_setup_values(&sa, &job.values, err, sizeof err) != 0) {
         cli_error("map: %s", err);

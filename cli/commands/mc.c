@@ -60,9 +60,9 @@ static int take(int opt, const char *arg, void *ctx)
     case 'n': return cli_take_once("mc", &o->samples, "samples", arg);
     case 'S': return cli_take_once("mc", &o->seed, "seed", arg);
     case 'g': return cli_take_once("mc", &o->gap, "region-gap", arg);
-    case 'D': o->no_defaults = 1; return 0;
+    case 'D': o->no_defaults = 1; return CLI_GO_ON;
     case 'f': return cli_take_once("mc", &o->summarize, "summarize", arg);
-    case 'j': o->json = 1; return 0;
+    case 'j': o->json = 1; return CLI_GO_ON;
     case 'z':
     case 'u': {
         const char **list = opt == 'z' ? o->sigma : o->range;
@@ -73,12 +73,9 @@ static int take(int opt, const char *arg, void *ctx)
             return EXIT_USAGE;
         }
         list[(*n)++] = arg;
-        return 0;
+        return CLI_GO_ON;
     }
-    default: {
-        const int st = cli_batch_take("mc", &o->batch, opt, arg);
-        return st == 1 ? EXIT_USAGE : st;
-    }
+    default: return cli_batch_take("mc", &o->batch, opt, arg);
     }
 }
 
@@ -105,7 +102,7 @@ static int parse_numbers(const mc_opts *o, long *samples, uint64_t *seed, double
             return EXIT_USAGE;
         }
     }
-    if (o->seed && cli_parse_seed("mc", o->seed, seed) != 0) return EXIT_USAGE;
+    if (o->seed && cli_parse_seed("mc", o->seed, seed) != EXIT_OK) return EXIT_USAGE;
     char msg[256];
     if (o->gap && (cli_parse_quantity(o->gap, Q_LENGTH, gap, msg, sizeof msg) != 0 || !(*gap > 0))) {
         cli_error("mc: --region-gap '%s' is not valid (allowed: a length > 0, e.g. 2cm)", o->gap);
@@ -230,7 +227,7 @@ static int summarize(const mc_opts *o, double gap)
     jc_Tally t;
     long rows = 0, line_no = 1;
     memset(&t, 0, sizeof t);
-    if (st == EXIT_OK && jc_tally_init(&t, 1 << 16) != JC_OK) st = EXIT_FAIL;
+    if (st == EXIT_OK) st = cli_exit_status(jc_tally_init(&t, 1 << 16), CLI_INPUTS_CHECKED);
     while (st == EXIT_OK && (n = getline(&line, &cap, f)) > 0) {
         ++line_no;
         cli_CaseResult r;
@@ -241,9 +238,8 @@ static int summarize(const mc_opts *o, double gap)
             break;
         }
         /* the tally grows: a merged file has no stated size */
-        if (jc_tally_add(&t, &r.outcome) != JC_OK) {
+        if ((st = cli_exit_status(jc_tally_add(&t, &r.outcome), CLI_INPUTS_CHECKED)) != EXIT_OK) {
             cli_error("mc: --summarize: out of memory after %ld rows", rows);
-            st = EXIT_FAIL;
             break;
         }
         ++rows;
@@ -278,15 +274,15 @@ int cmd_mc(int argc, char **argv)
     jc_Setup setup;
     jc_SimOptions sim;
     jc_Model model;
-    if ((st = cli_batch_build_inputs("mc", &in.args, &in.sim_args, &setup, &sim, &model)) != 0) return st;
+    if ((st = cli_batch_build_inputs("mc", &in.args, &in.sim_args, &setup, &sim, &model)) != EXIT_OK) return st;
     cli_McJob job;
-    if ((st = cli_mc_job_init(&job, "mc", &in.args, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != 0)
+    if ((st = cli_mc_job_init(&job, "mc", &in.args, o.sigma, o.n_sigma, o.range, o.n_range, o.no_defaults, seed)) != EXIT_OK)
         return st;
     jc_Tally tally;
-    if (jc_tally_init(&tally, samples) != JC_OK) {
+    if ((st = jc_tally_init(&tally, samples)) != JC_OK) {
         cli_error("mc: out of memory for %ld samples", samples);
         jc_tally_free(&tally);
-        return EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_CHECKED);
     }
     jc_StudyDef study;
     cli_mc_study(&study, &job, samples, &sim);

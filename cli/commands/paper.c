@@ -77,15 +77,12 @@ static int inside(double x, const jc_PaperTableRow *t)
     return fabs(x - t->measured_x_m) <= t->measured_error_m;
 }
 
-/* compute_rows' status when SIGINT or SIGTERM asked to stop: the rows
- * counted are complete, the one under way is dropped. */
-#define STOPPED (-1)
-
 /* The full model's first lift-off and hops for a setup. Runs are where the
- * time goes (27 of them): a stop request is honoured between them. */
+ * time goes (27 of them): a stop request is honoured between them. A
+ * library status, JC_ESTOPPED after a stop signal. */
 static int run_full(const jc_Setup *s, full_result *out, char *err, size_t err_len)
 {
-    if (cli_stop_requested()) return STOPPED;
+    if (cli_stop_requested()) return JC_ESTOPPED;
     *out = (full_result){0};
     jc_Model m;
     int st = jc_model_init(&m, s, err, err_len);
@@ -122,11 +119,13 @@ static int run_uncertainty(const cli_SetupArgs *sa, paper_row *r, char *err, siz
     const int st = cli_mc_liftoff_stats("paper", sa, r->table.incline_deg, CLI_PAPER_MC_SAMPLES, CLI_PAPER_MC_SEED,
                                         &r->mc, &r->mc_counts);
     if (st == EXIT_OK) return JC_OK;
-    if (cli_stop_requested()) return STOPPED;
+    if (cli_stop_requested()) return JC_ESTOPPED;
     snprintf(err, err_len, "the Monte Carlo runs failed");
     return JC_ENUMERIC;
 }
 
+/* The table's rows; *count of them are complete. A library status:
+ * JC_ESTOPPED when a stop signal came (the row under way is dropped). */
 static int compute_rows(const jc_Setup *base, const cli_SetupArgs *sa, paper_row *rows, int *count, char *err,
                         size_t err_len)
 {
@@ -135,7 +134,7 @@ static int compute_rows(const jc_Setup *base, const cli_SetupArgs *sa, paper_row
     if (n > ROWS_MAX) n = ROWS_MAX;
     for (int i = 0; i < n; ++i) {
         *count = i;
-        if (cli_stop_requested()) return STOPPED;
+        if (cli_stop_requested()) return JC_ESTOPPED;
         jc_Setup s = *base;
         s.incline_rad = table[i].incline_deg * CLI_PI / 180.0;
         paper_row *r = &rows[i];
@@ -532,17 +531,19 @@ int cmd_paper(int argc, char **argv)
         return EXIT_USAGE;
     }
     jc_Setup setup;
-    if ((st = cli_build_inputs("paper", &sa, NULL, &setup, NULL, NULL)) != 0) return st;
+    if ((st = cli_build_inputs("paper", &sa, NULL, &setup, NULL, NULL)) != EXIT_OK) return st;
     char err[512];
     paper_row rows[ROWS_MAX];
     int n = 0;
     /* A signal stops between runs (signals.c); the rows complete by then are printed. */
-    if ((st = compute_rows(&setup, &sa, rows, &n, err, sizeof err)) != JC_OK && st != STOPPED) {
+    st = compute_rows(&setup, &sa, rows, &n, err, sizeof err);
+    const int stopped = st == JC_ESTOPPED;
+    if (st != JC_OK && !stopped) {
         cli_error("paper: %s", err);
-        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_GIVEN);
     }
-    const int rc = n > 0 ? print_rows(rows, n, json, st == STOPPED) : EXIT_OK;
-    if (st != STOPPED) return rc;
+    const int rc = n > 0 ? print_rows(rows, n, json, stopped) : EXIT_OK;
+    if (!stopped) return rc;
     cli_error("paper: stopped by %s; %d complete row(s) printed", cli_signal_name(cli_stop_requested()), n);
     return rc == EXIT_OK ? cli_stop_status() : rc;
 }

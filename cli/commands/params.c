@@ -72,7 +72,7 @@ static int take(int opt, const char *arg, void *ctx)
     (void)arg;
     if (opt != 'j') return EXIT_USAGE;
     *(int *)ctx = 1;
-    return 0;
+    return CLI_GO_ON;
 }
 
 int cmd_params(int argc, char **argv)
@@ -88,7 +88,7 @@ int cmd_params(int argc, char **argv)
             help();
             return EXIT_OK;
         }
-        if (c != 'j' || take(c, optarg, &json) != 0) {
+        if (c != 'j' || take(c, optarg, &json) != CLI_GO_ON) {
             cli_error("params: unknown option '%s' (see 'jumpcyl params --help')", argv[optind - 1]);
             return EXIT_USAGE;
         }

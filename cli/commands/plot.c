@@ -77,7 +77,7 @@ static int take(int opt, const char *arg, void *ctx)
     plot_opts *o = ctx;
     if (opt == 'w') return cli_take_once("plot", &o->what, "what", arg);
     if (opt == 'o') return cli_take_once("plot", &o->output, "output", arg);
-    if (opt == 'k') { o->keep_script = 1; return 0; }
+    if (opt == 'k') { o->keep_script = 1; return CLI_GO_ON; }
     if (opt == 'm') return cli_take_once("plot", &o->max_samples, "max-samples", arg);
     return EXIT_USAGE;
 }
@@ -119,7 +119,7 @@ static int check_opts(const plot_opts *o, const plot_kind **kind, fig_Format *fo
         else cli_error("plot: --output '%s' has no extension (allowed extensions: .png, .svg, .pdf)", o->output);
         return EXIT_USAGE;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 static void write_overview(FILE *gp, const fig_Data *d)
@@ -261,10 +261,10 @@ int cmd_plot(int argc, char **argv)
     if (st != CLI_GO_ON) return st;
     const plot_kind *kind;
     fig_Format format;
-    if ((st = check_opts(&o, &kind, &format)) != 0) return st;
+    if ((st = check_opts(&o, &kind, &format)) != EXIT_OK) return st;
     fig_Data d;
     memset(&d, 0, sizeof d);
-    if ((st = cli_run_inputs_build("plot", &in)) != 0) return st;
+    if ((st = cli_run_inputs_build("plot", &in)) != EXIT_OK) return st;
     double max_samples = DEFAULT_MAX_SAMPLES;
     if (o.max_samples) {
         char msg[256];

@@ -127,20 +127,20 @@ int cmd_predict(int argc, char **argv)
     if (st != CLI_GO_ON) return st;
 
     jc_Model model;
-    if ((st = cli_build_model("predict", &sa, NULL, NULL, &model)) != 0) return st;
+    if ((st = cli_build_model("predict", &sa, NULL, NULL, &model)) != EXIT_OK) return st;
     char err[512];
     jc_PaperResult paper;
     jc_RollingResult rolling;
     if ((st = jc_paper_solve(&model, &paper, err, sizeof err)) != JC_OK ||
         (st = jc_rolling_predict(&model, &rolling, err, sizeof err)) != JC_OK) {
         cli_error("predict: %s", err);
-        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_GIVEN);
     }
     const jc_SimOptions sim = jc_default_sim_options();
     jc_Run run;
-    if (cli_simulate(&model, &sim, &run, "predict") != JC_OK) {
+    if ((st = cli_simulate(&model, &sim, &run, "predict")) != JC_OK) {
         jc_run_free(&run);
-        return EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_CHECKED);
     }
     int rc;
     if (json) {

@@ -29,8 +29,8 @@ static void help(void)
 static int take(int opt, const char *arg, void *ctx)
 {
     simulate_opts *o = ctx;
-    if (opt == 'j') { o->json = 1; return 0; }
-    if (opt == 'c') { o->csv = arg; return 0; }
+    if (opt == 'j') { o->json = 1; return CLI_GO_ON; }
+    if (opt == 'c') { o->csv = arg; return CLI_GO_ON; }
     return EXIT_USAGE;
 }
 
@@ -39,6 +39,14 @@ static const struct option own[] = {{"json", no_argument, 0, 'j'},
                                     {"csv", required_argument, 0, 'c'},
                                     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
+
+/* The first write that failed, which stops the run: where, and why (the
+ * errno, gone once the stream's buffer is dropped). */
+typedef enum { WRITES_OK, FAILED_STDOUT, FAILED_CSV, FAILED_JSON_MEMORY } write_target;
+typedef struct {
+    write_target where;
+    int err; /* the errno of a failed write to standard output or the CSV */
+} write_failure;
 
 /* Everything simulate writes while the run goes on: events to the table
  * or the JSON document on standard output, samples to the CSV. Nothing is
@@ -49,19 +57,32 @@ typedef struct {
     cli_Output *csv;     /* NULL without --csv */
     jc_RunSummary sum;
     int events;
-    int write_failed;    /* standard output or the CSV refused a write */
-    int csv_errno;       /* why the CSV did */
-    int out_errno;       /* why standard output did */
+    write_failure failed;
 } sim_stream;
 
-/* Notes the first failed write to standard output, with its reason, which
- * is gone once the buffer is dropped. */
+/* Records a failure, unless an earlier one is recorded. */
+static void note_failure(sim_stream *st, write_target where, int err)
+{
+    if (st->failed.where == WRITES_OK) st->failed = (write_failure){where, err};
+}
+
+/* A failed write to standard output, noted while its reason is known. */
 static void check_stdout(sim_stream *st)
 {
-    if (ferror(stdout) && !st->out_errno) {
-        st->out_errno = errno ? errno : EIO;
-        st->write_failed = 1;
-    }
+    if (ferror(stdout)) note_failure(st, FAILED_STDOUT, errno ? errno : EIO);
+}
+
+/* The recorder's answer: a failed write stops the run at once instead of
+ * computing for nothing. */
+static int go_on(const sim_stream *st) { return st->failed.where == WRITES_OK ? JC_OK : JC_ESTOPPED; }
+
+static void report_failure(const sim_stream *st)
+{
+    const write_failure *f = &st->failed;
+    if (f->where == FAILED_CSV)
+        cli_error("cannot write %s: %s", st->csv->is_stdout ? "standard output" : st->csv->target, strerror(f->err));
+    else if (f->where == FAILED_STDOUT) cli_error("cannot write standard output: %s", strerror(f->err));
+    else if (f->where == FAILED_JSON_MEMORY) cli_error("simulate: out of memory for the JSON document");
 }
 
 /* The trajectory CSV: the library's sample columns (jc_sample_column_info),
@@ -83,12 +104,8 @@ static int on_sample(void *ctx, const jc_Sample *p)
     size_t n = (size_t)jc_sample_format_row(p, row, sizeof row - 1);
     row[n++] = '\n';
     fwrite(row, 1, n, f);
-    /* A full disk stops the run at once instead of computing for nothing. */
-    if (ferror(f) && !st->csv_errno) {
-        st->csv_errno = errno ? errno : EIO; /* fprintf's reason: ENOSPC, EFBIG */
-        st->write_failed = 1;
-    }
-    return st->write_failed ? JC_ESTOPPED : JC_OK;
+    if (ferror(f)) note_failure(st, FAILED_CSV, errno ? errno : EIO); /* fwrite's reason: ENOSPC, EFBIG */
+    return go_on(st);
 }
 
 static void print_event(const jc_Model *m, int i, const jc_Event *e)
@@ -184,7 +201,54 @@ static int on_event(void *ctx, const jc_Event *e)
     jc_summary_add(&st->sum, e, st->events);
     st->events++;
     check_stdout(st);
-    return st->write_failed ? JC_ESTOPPED : JC_OK;
+    return go_on(st);
+}
+
+/* The CSV opened and its header written: EXIT_OK, or EXIT_FAIL after a message. */
+static int csv_open(cli_Output *csv, const char *name)
+{
+    if (cli_output_begin(csv, name, 1) != 0) return EXIT_FAIL;
+    csv_header(csv->f);
+    /* A device that takes nothing (/dev/full) fails here, before the
+     * table starts on standard output. */
+    if (csv->in_place && fflush(csv->f) != 0) {
+        cli_error("cannot write %s: %s", csv->is_stdout ? "standard output" : name, strerror(errno));
+        cli_output_abort(csv);
+        return EXIT_FAIL;
+    }
+    return EXIT_OK;
+}
+
+/* A run that did not end well (st, a library status): the failed write
+ * said (the CSV's even after a stop signal), the CSV dropped. The exit status. */
+static int run_failed(const sim_stream *out, int st)
+{
+    if (out->failed.where == FAILED_CSV) report_failure(out);
+    if (out->csv) cli_output_abort(out->csv);
+    if (cli_stop_requested()) return cli_stop_status();
+    if (out->failed.where != FAILED_CSV) report_failure(out);
+    return cli_exit_status(st, CLI_INPUTS_CHECKED);
+}
+
+/* The table's or the document's end after a run that ended well. The exit status. */
+static int run_done(sim_stream *out, const jc_Run *run, const cli_RunInputs *in, const char *csv_name)
+{
+    warn_energy_gain(&in->model, run);
+    if (out->json) {
+        cli_sim_json_end(stdout, &in->model, run, &out->sum);
+    } else if (out->text) {
+        print_tail(&in->model, run, &out->sum);
+        if (csv_name) printf("Trajectory: %d samples written to %s\n", run->sample_count, csv_name);
+    }
+    check_stdout(out);
+    if (out->failed.where != WRITES_OK) {
+        report_failure(out);
+        return EXIT_FAIL;
+    }
+    if (run->termination == JC_END_SAMPLE_LIMIT)
+        cli_error("simulate: the run stopped at the sample limit (%d samples); raise --sample-dt or lower --t-max",
+                  in->sim.max_samples);
+    return cli_stdout_finish();
 }
 
 int cmd_simulate(int argc, char **argv)
@@ -193,57 +257,25 @@ int cmd_simulate(int argc, char **argv)
     cli_RunInputs in;
     int st = cli_run_inputs_parse(argc, argv, &command, &o, &in);
     if (st != CLI_GO_ON) return st;
-    if ((st = cli_run_inputs_build("simulate", &in)) != 0) return st;
+    if ((st = cli_run_inputs_build("simulate", &in)) != EXIT_OK) return st;
     if (o.csv && o.json && strcmp(o.csv, "-") == 0) {
         cli_error("simulate: --csv - and --json would both write to standard output; give --csv a file");
         return EXIT_USAGE;
     }
     cli_Output csv;
     memset(&csv, 0, sizeof csv);
-    sim_stream out = {&in.model, o.json, !o.json, o.csv ? &csv : NULL, {0}, 0, 0, 0, 0};
+    sim_stream out = {&in.model, o.json, !o.json, o.csv ? &csv : NULL, {0}, 0, {WRITES_OK, 0}};
     jc_summary_init(&out.sum);
-    if (o.csv) {
-        if (cli_output_begin(&csv, o.csv, 1) != 0) return EXIT_FAIL;
-        if (csv.is_stdout) out.text = 0; /* standard output carries the CSV alone */
-        csv_header(csv.f);
-        /* A device that takes nothing (/dev/full) fails here, before the
-         * table starts on standard output. */
-        if (csv.in_place && fflush(csv.f) != 0) {
-            cli_error("cannot write %s: %s", csv.is_stdout ? "standard output" : o.csv, strerror(errno));
-            cli_output_abort(&csv);
-            return EXIT_FAIL;
-        }
-    }
-    if (out.json && cli_sim_json_begin(stdout, &in.model) != 0) out.write_failed = 1;
+    if (o.csv && (st = csv_open(&csv, o.csv)) != EXIT_OK) return st;
+    if (csv.is_stdout) out.text = 0; /* standard output carries the CSV alone */
+    const int json_failed = out.json && cli_sim_json_begin(stdout, &in.model) != 0;
     if (out.text) print_head(&in.model, &in.sim);
     check_stdout(&out);
+    if (json_failed) note_failure(&out, FAILED_JSON_MEMORY, 0); /* unless standard output failed */
     const jc_Recorder rec = {&out, on_event, o.csv ? on_sample : NULL};
     jc_Run run;
-    st = out.write_failed ? JC_ESTOPPED : cli_simulate_stream(&in.model, &in.sim, &rec, &run, "simulate");
+    st = go_on(&out) != JC_OK ? JC_ESTOPPED : cli_simulate_stream(&in.model, &in.sim, &rec, &run, "simulate");
     if (st == JC_OK && o.csv && cli_output_commit(&csv, CLI_CHECK_WRITES) != 0) return EXIT_FAIL;
-    if (st != JC_OK) {
-        if (out.csv_errno)
-            cli_error("cannot write %s: %s", csv.is_stdout ? "standard output" : o.csv, strerror(out.csv_errno));
-        if (o.csv) cli_output_abort(&csv);
-        if (cli_stop_requested()) return cli_stop_status();
-        if (out.out_errno) cli_error("cannot write standard output: %s", strerror(out.out_errno));
-        else if (out.write_failed && !out.csv_errno) cli_error("simulate: out of memory for the JSON document");
-        return EXIT_FAIL;
-    }
-    warn_energy_gain(&in.model, &run);
-    if (out.json) {
-        cli_sim_json_end(stdout, &in.model, &run, &out.sum);
-    } else if (out.text) {
-        print_tail(&in.model, &run, &out.sum);
-        if (o.csv) printf("Trajectory: %d samples written to %s\n", run.sample_count, o.csv);
-    }
-    check_stdout(&out);
-    if (out.out_errno) {
-        cli_error("cannot write standard output: %s", strerror(out.out_errno));
-        return EXIT_FAIL;
-    }
-    if (run.termination == JC_END_SAMPLE_LIMIT)
-        cli_error("simulate: the run stopped at the sample limit (%d samples); raise --sample-dt or lower --t-max",
-                  in.sim.max_samples);
-    return cli_stdout_finish();
+    if (st != JC_OK) return run_failed(&out, st);
+    return run_done(&out, &run, &in, o.csv);
 }

@@ -48,10 +48,9 @@ static int take(int opt, const char *arg, void *ctx)
             return EXIT_USAGE;
         }
         o->vary[o->vary_count++] = arg;
-        return 0;
+        return CLI_GO_ON;
     }
-    const int st = cli_batch_take("sweep", &o->batch, opt, arg);
-    return st == 1 ? EXIT_USAGE : st;
+    return cli_batch_take("sweep", &o->batch, opt, arg);
 }
 
 static const struct option own[] = {{"vary", required_argument, 0, 'v'}, CLI_BATCH_OPTIONS,
@@ -117,7 +116,7 @@ int cmd_sweep(int argc, char **argv)
     sweep_job job;
     memset(&job, 0, sizeof job);
     jc_SimOptions sim;
-    if ((st = cli_batch_build_inputs("sweep", &in.args, &in.sim_args, &job.base, &sim, NULL)) != 0) return st;
+    if ((st = cli_batch_build_inputs("sweep", &in.args, &in.sim_args, &job.base, &sim, NULL)) != EXIT_OK) return st;
     char err[512];
     if (cli_setup_base(&in.args, &job.base, err, sizeof err) != 0 ||
         cli_setup_values(&in.args, &job.values, err, sizeof err) != 0) {

@@ -40,11 +40,9 @@ static void help(void)
 static int take(int opt, const char *arg, void *ctx)
 {
     track_opts *o = ctx;
-    const int rc = cli_track_args_take("track", &o->read, opt, arg);
-    if (rc != 1) return rc;
     if (opt == 'v') return cli_take_once("track", &o->csv, "csv", arg);
     if (opt == 'j') return cli_take_once("track", &o->json, "json", arg);
-    return EXIT_USAGE;
+    return cli_track_args_take("track", &o->read, opt, arg);
 }
 
 static const struct option own[] = {CLI_TRACK_READ_OPTIONS,
@@ -117,8 +115,8 @@ static int take_file(int *argc, char **argv, int *help, const char **file, const
     return unknown;
 }
 
-/* One file, not two, and none only for --help: 0, or EXIT_USAGE after a
- * message. */
+/* One file, not two, and none only for --help: EXIT_OK, or EXIT_USAGE after
+ * a message. */
 static int one_file(const char *file, const char *extra, int help)
 {
     if (extra) {
@@ -129,7 +127,7 @@ static int one_file(const char *file, const char *extra, int help)
         cli_error("track: which file? 'jumpcyl track FILE' (see 'jumpcyl track --help')");
         return EXIT_USAGE;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 static cJSON *num(double v) { return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateNull(); }
@@ -387,7 +385,7 @@ int cmd_track(int argc, char **argv)
     /* An unknown option is reported first (by the parser): its value may
      * have been taken for a file ("--from 1"). */
     const int unknown = take_file(&n, args, &want_help, &file, &extra);
-    if (!unknown && one_file(file, extra, want_help) != 0) {
+    if (!unknown && one_file(file, extra, want_help) != EXIT_OK) {
         free(args);
         return EXIT_USAGE;
     }
@@ -397,9 +395,9 @@ int cmd_track(int argc, char **argv)
     int st = cli_command_parse(n, args, &command, &o, &sa, NULL);
     free(args);
     if (st != CLI_GO_ON) return st;
-    if ((st = one_file(file, extra, 0)) != 0) return st;
+    if ((st = one_file(file, extra, 0)) != EXIT_OK) return st;
     jc_Setup setup;
-    if ((st = cli_build_inputs("track", &sa, NULL, &setup, NULL, NULL)) != 0) return st;
+    if ((st = cli_build_inputs("track", &sa, NULL, &setup, NULL, NULL)) != EXIT_OK) return st;
     if ((o.csv && strcmp(o.csv, "-") == 0) || (o.json && strcmp(o.json, "-") == 0)) {
         cli_error("track: --csv and --json write files; the report goes to standard output");
         return EXIT_USAGE;
@@ -408,9 +406,9 @@ int cmd_track(int argc, char **argv)
         cli_error("track: --csv and --json name the same file");
         return EXIT_USAGE;
     }
-    if ((st = cli_track_args_check_reading("track", &o.read)) != 0) return st;
+    if ((st = cli_track_args_check_reading("track", &o.read)) != EXIT_OK) return st;
     jc_Track t;
-    if ((st = cli_track_args_load("track", file, &o.read, &sa, &setup, &t)) != 0) return st;
+    if ((st = cli_track_args_load("track", file, &o.read, &sa, &setup, &t)) != EXIT_OK) return st;
     if (o.csv && t.centre_source == JC_TRACK_CENTRE_NONE) {
         cli_error("track: --csv needs the centre's path, which is %s", t.note[JC_TRACK_Q_CENTRE].text);
         jc_track_free(&t);

@@ -20,9 +20,9 @@ int cli_track_args_take(const char *cmd, cli_TrackArgs *a, int opt, const char *
     case CLI_TRACK_OPT_OUTPUT: return cli_take_once(cmd, &a->output, "output", arg);
     case CLI_TRACK_OPT_MARK_ANGLE: return cli_take_once(cmd, &a->mark_angle, "mark-angle", arg);
     case CLI_TRACK_OPT_HOP_SIGMAS: return cli_take_once(cmd, &a->hop_sigmas, "hop-sigmas", arg);
-    case CLI_TRACK_OPT_SETUP_START: a->from_setup_start = 1; return 0;
-    case CLI_TRACK_OPT_FIT_TILT: a->fit_tilt = 1; return 0;
-    default: return 1; /* not one of these */
+    case CLI_TRACK_OPT_SETUP_START: a->from_setup_start = 1; return CLI_GO_ON;
+    case CLI_TRACK_OPT_FIT_TILT: a->fit_tilt = 1; return CLI_GO_ON;
+    default: return EXIT_USAGE; /* not one of these (getopt passes none such) */
     }
 }
 
@@ -67,13 +67,13 @@ static int parse_time(const char *cmd, const char *name, const char *text, doubl
     char err[256];
     if (!text) {
         *out = NAN;
-        return 0;
+        return EXIT_OK;
     }
     if (cli_parse_quantity(text, Q_TIME, out, err, sizeof err) != 0 || !(*out >= 0.0 && *out <= 1e6)) {
         cli_error("%s: --%s '%s' is not a time from 0 to 1e6 s", cmd, name, text);
         return EXIT_USAGE;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 int cli_track_args_check_reading(const char *cmd, cli_TrackArgs *a)
@@ -91,7 +91,7 @@ int cli_track_args_check_reading(const char *cmd, cli_TrackArgs *a)
         }
         a->hop_sigmas_k = k;
     }
-    return 0;
+    return EXIT_OK;
 }
 
 int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
@@ -103,9 +103,9 @@ int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
         return EXIT_USAGE;
     }
     int rc = cli_track_args_check_reading(cmd, a);
-    if (rc == 0) rc = parse_time(cmd, "from", a->from, &a->from_s);
-    if (rc == 0) rc = parse_time(cmd, "to", a->to, &a->to_s);
-    if (rc != 0) return rc;
+    if (rc == EXIT_OK) rc = parse_time(cmd, "from", a->from, &a->from_s);
+    if (rc == EXIT_OK) rc = parse_time(cmd, "to", a->to, &a->to_s);
+    if (rc != EXIT_OK) return rc;
     if (!isnan(a->from_s) && !isnan(a->to_s) && !(a->from_s < a->to_s)) {
         cli_error("%s: --from %g s is not before --to %g s", cmd, a->from_s, a->to_s);
         return EXIT_USAGE;
@@ -133,7 +133,7 @@ int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
             return EXIT_FAIL;
         }
     }
-    return 0;
+    return EXIT_OK;
 }
 
 /* Whether the incline was given: --incline, or an experiment file's key. */
@@ -162,26 +162,24 @@ int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *
     opt.axes = a->axes && strcmp(a->axes, "incline") == 0 ? JC_TRACK_AXES_INCLINE : JC_TRACK_AXES_LEVEL;
     if (a->hop_sigmas) opt.hop_sigmas = a->hop_sigmas_k;
     char err[1024];
-    if (jc_track_read_file(path, &opt, t, err, sizeof err) != 0) {
-        cli_error("%s: %s", cmd, err);
-        return EXIT_USAGE;
-    }
-    return 0;
+    const int st = jc_track_read_file(path, &opt, t, err, sizeof err);
+    if (st != JC_OK) cli_error("%s: %s", cmd, err);
+    return cli_exit_status(st, CLI_INPUTS_VIDEO);
 }
 
 int cli_track_args_load_for_model(const char *cmd, const cli_TrackArgs *a, const cli_SetupArgs *sa, jc_Setup *setup,
                                   jc_Track *t)
 {
     int rc = cli_track_args_load(cmd, a->track, a, sa, setup, t);
-    if (rc != 0) return rc;
+    if (rc != EXIT_OK) return rc;
     char err[1024];
-    if (jc_track_require(a->track, t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, sizeof err) != 0) {
+    if ((rc = jc_track_require(a->track, t, JC_TRACK_NEED_CENTRE | JC_TRACK_NEED_INCLINE, err, sizeof err)) != JC_OK) {
         jc_track_free(t);
         cli_error("%s: %s", cmd, err);
-        return EXIT_USAGE;
+        return cli_exit_status(rc, CLI_INPUTS_VIDEO);
     }
     setup->incline_rad = t->incline_rad;
-    return 0;
+    return EXIT_OK;
 }
 
 const char *const cli_track_centre_sources[JC_TRACK_CENTRE_FROM_MARK + 1] = {"none", "tracked", "recovered from the mark"};
@@ -214,14 +212,15 @@ int cli_track_fine_path(const jc_Setup *setup, const jc_Track *t, const jc_State
     return jc_track_model_path(setup, t, start, frame, o, *pt, *n, *px, *py, NULL, err, sizeof err) == JC_OK ? 0 : -1;
 }
 
-int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *setup, const jc_State *start,
-                          const jc_TrackFitFrame *frame, const jc_SimOptions *o, const char *out, int argc, char **argv)
+int cli_track_figure_draw(const char *cmd, const char *no_path, cli_TrackFigure *f, const jc_Setup *setup,
+                          const jc_State *start, const jc_TrackFitFrame *frame, const jc_SimOptions *o, const char *out,
+                          int argc, char **argv)
 {
     const jc_Track *t = f->track;
     double *pt = NULL, *px = NULL, *py = NULL;
-    int rc = cli_track_fine_path(setup, t, start, frame, o, t->t_s[f->first + f->count - 1], &pt, &px, &py,
-                                 &f->path_n);
-    if (rc == 0) {
+    int rc = EXIT_FAIL;
+    if (cli_track_fine_path(setup, t, start, frame, o, t->t_s[f->first + f->count - 1], &pt, &px, &py, &f->path_n) ==
+        0) {
         f->path_t = pt;
         f->path_x = px;
         f->path_y = py;
@@ -231,7 +230,7 @@ int cli_track_figure_draw(const char *cmd, cli_TrackFigure *f, const jc_Setup *s
         rc = cli_track_figure(cmd, f, out, cmdline);
         f->path_t = f->path_x = f->path_y = NULL;
     } else {
-        rc = CLI_TRACK_FIGURE_NO_PATH;
+        cli_error("%s: %s", cmd, no_path);
     }
     free(pt);
     free(px);

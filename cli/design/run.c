@@ -35,8 +35,7 @@ int cli_design_run(const cli_DesignJob *job, jc_DesignResult *r)
     char err[512];
     const int st = jc_design_run(&def, r, err, sizeof err);
     cli_progress_end(&line);
-    if (st == JC_OK) return EXIT_OK;
-    if (st == JC_ESTOPPED && cli_stop_requested()) return cli_stop_status();
-    cli_error("%s", err);
-    return EXIT_FAIL;
+    const int rc = cli_exit_status(st, CLI_INPUTS_CHECKED);
+    if (rc == EXIT_FAIL) cli_error("%s", err);
+    return rc;
 }

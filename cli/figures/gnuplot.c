@@ -184,18 +184,18 @@ int fig_render(const char *cmd, const char *work, fig_Format f, const char *outp
     cli_Progress progress;
     snprintf(label, sizeof label, "%s: gnuplot is rendering", cmd);
     cli_progress_begin(&progress, label);
-    const int st = cli_run_program(argv, work, log_path, cli_progress_tick, &progress);
+    int status;
+    const cli_RunEnd end = cli_run_program(argv, work, log_path, cli_progress_tick, &progress, &status);
     cli_progress_end(&progress);
-    if (st == CLI_RUN_STOPPED) return cli_stop_status();
-    if (st == CLI_RUN_EFBIG) {
+    if (end == CLI_RUN_STOPPED) return cli_stop_status();
+    if (end == CLI_RUN_EFBIG) {
         cli_error("cannot write %s: %s (gnuplot's scratch copy in %s)", output, strerror(EFBIG), work);
         return EXIT_FAIL;
     }
-    if (st != 0) {
-        if (st > 0) {
-            cli_error("%s: gnuplot failed (exit status %d) making %s:", cmd, st, output);
-            cli_print_log_tail(log_path);
-        }
+    if (end == CLI_RUN_FAILED) return EXIT_FAIL;
+    if (status != 0) {
+        cli_error("%s: gnuplot failed (exit status %d) making %s:", cmd, status, output);
+        cli_print_log_tail(log_path);
         return EXIT_FAIL;
     }
     /* gnuplot exits 0 after a failed write (a full disk): the file itself

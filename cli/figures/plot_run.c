@@ -53,7 +53,7 @@ static int simulate(fig_Data *d, const jc_SimOptions *o, int dt_given, double ma
     jc_Run probe;
     opts.sample_dt_s = 0.0;
     const int st = cli_simulate_probe(d->model, &opts, &probe, "plot");
-    if (st != JC_OK) return st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
+    if (st != JC_OK) return cli_exit_status(st, CLI_INPUTS_CHECKED);
     const double t_end = probe.final_state.t_s;
     opts.sample_dt_s = dt_given ? o->sample_dt_s : fmax(t_end / RUN_TARGET_SAMPLES, RUN_MIN_DT_S);
     const double samples = floor(t_end / opts.sample_dt_s) + 2.0 + probe.event_count;
@@ -68,7 +68,7 @@ static int simulate(fig_Data *d, const jc_SimOptions *o, int dt_given, double ma
     const int run_st = cli_simulate(d->model, &opts, &d->run, "plot");
     if (run_st != JC_OK) {
         jc_run_free(&d->run);
-        return run_st == JC_ESTOPPED ? cli_stop_status() : EXIT_FAIL;
+        return cli_exit_status(run_st, CLI_INPUTS_CHECKED);
     }
     d->have_run = 1;
     return EXIT_OK;

@@ -114,18 +114,20 @@ int vid_assemble(const char *work, double fps, const char *output, vid_Format f)
      * place only when ffmpeg succeeded and it is not empty. */
     cli_Progress progress;
     cli_progress_begin(&progress, "animate: ffmpeg is encoding");
-    const int st = cli_run_program(cmd.argv, NULL, log_path, cli_progress_tick, &progress);
+    int status;
+    const cli_RunEnd end = cli_run_program(cmd.argv, NULL, log_path, cli_progress_tick, &progress, &status);
     cli_progress_end(&progress);
-    if (st == CLI_RUN_STOPPED) return cli_stop_status();
-    if (st == CLI_RUN_EFBIG) {
+    if (end == CLI_RUN_STOPPED) return cli_stop_status();
+    if (end == CLI_RUN_EFBIG) {
         cli_error("cannot write %s: %s (ffmpeg's scratch copy in %s)", output, strerror(EFBIG), work);
         return EXIT_FAIL;
     }
+    if (end == CLI_RUN_FAILED) return EXIT_FAIL;
     char why[128];
-    if (st != 0 || cli_output_verify(film, CLI_CHECK_NONEMPTY, why, sizeof why) != 0) {
-        if (st > 0) cli_error("animate: ffmpeg failed (exit status %d) making %s:", st, output);
-        else if (st == 0) cli_error("cannot write %s: ffmpeg's film is %s", output, why);
-        if (st >= 0) cli_print_log_tail(log_path);
+    if (status != 0 || cli_output_verify(film, CLI_CHECK_NONEMPTY, why, sizeof why) != 0) {
+        if (status != 0) cli_error("animate: ffmpeg failed (exit status %d) making %s:", status, output);
+        else cli_error("cannot write %s: ffmpeg's film is %s", output, why);
+        cli_print_log_tail(log_path);
         return EXIT_FAIL;
     }
     cli_Output o;

@@ -317,7 +317,9 @@ static void part_key(parser *p, const char *key, const char *value)
     else parse_value(p, key, value, part_quantities[k], field[k]);
 }
 
-/* inih's handler: one "key = value" line of the current section. */
+/* inih's handler: one "key = value" line of the current section. It
+ * answers 1 (inih's "go on") always: the first error is kept in p and
+ * the rest of the file is read without effect. */
 static int on_pair(void *user, const char *section, const char *key_text, const char *value)
 {
     (void)section; /* the reader tracks sections itself, with their lines */

@@ -87,9 +87,17 @@ typedef struct {
 #include <jumpcyl/study.h>
 typedef jc_ParamValues cli_SetupValues;
 
-/* If opt is a setup option's val, records it and returns 1; 0 otherwise;
- * -1 with a message on a repeated option or too many parts. */
-int cli_setup_take(cli_SetupArgs *args, int opt, const char *optarg_text, char *err, size_t err_len);
+/* What cli_setup_take and cli_sim_take did with an option. They print
+ * nothing (the web page shares them): a refusal's message is in err. */
+typedef enum {
+    CLI_OPTION_REFUSED = -1, /* one of theirs, refused: repeated, or too many parts */
+    CLI_OPTION_NOT_OURS = 0, /* not one of theirs: the caller's to take */
+    CLI_OPTION_TAKEN = 1     /* recorded */
+} cli_OptionTake;
+/* A setup option (opt: its getopt val) recorded. */
+cli_OptionTake cli_setup_take(cli_SetupArgs *args, int opt, const char *optarg_text, char *err, size_t err_len);
+/* The setup's builders below print nothing: each returns 0, or -1 with a
+ * one-line message in err. */
 /* Builds and validates the setup: cli_setup_base, then cli_setup_apply
  * (options.c). */
 int cli_setup_build(const cli_SetupArgs *args, jc_Setup *out, char *err, size_t err_len);
@@ -122,11 +130,18 @@ void cli_setup_help(FILE *out);
 /* Builds an option table: command options followed by the setup options. */
 void cli_merge_options(struct option *dst, int dst_cap, const struct option *cmd, int cmd_count);
 
-/* Parses a command's arguments: its own options (handled by own_take, which
- * returns 0 when it took the option, -1 to stop with exit 0 (help printed),
- * or EXIT_USAGE after a message) and the setup options. Returns -1 for help
- * or --dump-config printed (exit 0), EXIT_USAGE after a message, or 0 to go
- * on. Commands call it through cli_command_parse. */
+/* The answer of a step that reads the command line (an option's take, the
+ * parse) when the command goes on. Any other answer is the exit status the
+ * command returns at once: EXIT_OK after --help or --dump-config printed
+ * what was asked, EXIT_USAGE after a one-line message. Not an exit status
+ * (they are >= 0); docs/architecture.md, "Return values". */
+#define CLI_GO_ON (-1)
+
+/* Parses a command's arguments: its own options (handled by own_take: for
+ * option opt with its value arg, CLI_GO_ON when it took it, or the exit
+ * status) and the setup options. CLI_GO_ON, or the exit status (EXIT_OK
+ * when --dump-config printed the setup). Commands call it through
+ * cli_command_parse. */
 typedef int (*cli_own_take_fn)(int opt, const char *arg, void *ctx);
 struct cli_SimArgs_s;
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
@@ -134,22 +149,21 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
                    struct cli_SimArgs_s *sim_args);
 
 /* A command's own options: the table (with {"help", no_argument, 0, 'h'}),
- * take for each of them but --help, and the command's part of the help. */
+ * take for each of them but --help (CLI_GO_ON, or the exit status), and the
+ * command's part of the help. */
 typedef struct {
     const struct option *own;
     int own_count;
     cli_own_take_fn take;
     void (*help)(void);
 } cli_Command;
-/* cli_command_parse's answer when the command goes on to run. */
-#define CLI_GO_ON (-1)
 /* cli_parse_args for a command: --help prints its help, then the shared
  * options' (the simulation options' too when sim_args is not NULL).
  * CLI_GO_ON, or the exit status: EXIT_OK after --help or --dump-config. */
 int cli_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_SetupArgs *setup_args,
                       struct cli_SimArgs_s *sim_args);
 /* cli_command_parse for a command whose one own option is --json (paper,
- * predict); *json is set when it is given. */
+ * predict); *json is set when it is given. CLI_GO_ON, or the exit status. */
 int cli_json_command_parse(int argc, char **argv, void (*help)(void), int *json, cli_SetupArgs *setup_args);
 
 /* Simulator options (--t-max, --sample-dt, ...), for commands that simulate. */
@@ -159,19 +173,21 @@ extern const struct option cli_sim_options[CLI_SIM_OPTION_COUNT];
 typedef struct cli_SimArgs_s {
     const char *value[CLI_SIM_OPTION_COUNT];
 } cli_SimArgs;
-int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len);
+/* A simulation option recorded, as cli_setup_take. */
+cli_OptionTake cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len);
+/* The simulation options built and checked: 0, or -1 with a one-line message in err. */
 int cli_sim_build(const cli_SimArgs *args, jc_SimOptions *out, char *err, size_t err_len);
 /* Whether a simulation option (by long name) was given. */
 int cli_sim_given(const cli_SimArgs *args, const char *long_name);
 /* A command's inputs, built and checked: the setup, the simulation options
  * (when sim_args is not NULL) and the model (when model is not NULL). On a
  * bad value prints "CMD: message" and returns the exit status (EXIT_USAGE
- * for a value out of range); 0 when all is well. */
+ * for a value out of range); EXIT_OK when all is well. */
 int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_Setup *setup,
                      jc_SimOptions *sim, jc_Model *model);
 /* cli_build_inputs for a command that needs no jc_Setup of its own (the
  * model holds it): the model, and the simulation options when sim_args and
- * sim are not NULL. */
+ * sim are not NULL. The exit status, as cli_build_inputs. */
 int cli_build_model(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_SimOptions *sim,
                     jc_Model *model);
 /* The shared inputs of a command that runs one simulation (simulate, plot,
@@ -183,14 +199,16 @@ typedef struct {
     jc_SimOptions sim;
     jc_Model model;
 } cli_RunInputs;
-/* cli_command_parse into in's options. */
+/* cli_command_parse into in's options: CLI_GO_ON, or the exit status. */
 int cli_run_inputs_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_RunInputs *in);
-/* cli_build_model from in's options into in's model and simulation options. */
+/* cli_build_model from in's options into in's model and simulation
+ * options: EXIT_OK, or the exit status after a message. */
 int cli_run_inputs_build(const char *cmd, cli_RunInputs *in);
-/* A single-valued option: stores arg in *slot, or refuses a second value. */
+/* A single-valued option's take: stores arg in *slot and returns
+ * CLI_GO_ON, or refuses a second value (EXIT_USAGE after a message). */
 int cli_take_once(const char *cmd, const char **slot, const char *name, const char *arg);
 /* A --seed value: a whole number from 0 to 2^64 - 1, no sign (mc, fit).
- * 0, or EXIT_USAGE after a one-line message. */
+ * EXIT_OK, or EXIT_USAGE after a one-line message. */
 int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed);
 void cli_sim_help(FILE *out);
 /* The help of the shared options: simulation options (with_sim) and setup options. */

@@ -162,10 +162,10 @@ int cli_build_inputs(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs
     const int st = model ? jc_model_init(model, setup, err, sizeof err) : JC_OK;
     if (st != JC_OK) {
         cli_error("%s: %s", cmd, err);
-        return st == JC_EINVAL ? EXIT_USAGE : EXIT_FAIL;
+        return cli_exit_status(st, CLI_INPUTS_GIVEN);
     }
     note_bare_units(cmd, sa);
-    return 0;
+    return EXIT_OK;
 }
 
 int cli_build_model(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim_args, jc_SimOptions *sim,
@@ -192,7 +192,7 @@ int cli_take_once(const char *cmd, const char **slot, const char *name, const ch
         return EXIT_USAGE;
     }
     *slot = arg;
-    return 0;
+    return CLI_GO_ON;
 }
 
 int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed)
@@ -208,20 +208,20 @@ int cli_parse_seed(const char *cmd, const char *text, uint64_t *seed)
         return EXIT_USAGE;
     }
     *seed = (uint64_t)s;
-    return 0;
+    return EXIT_OK;
 }
 
 /* --dump-config: the setup (and simulation options, when the command has
  * them) is built and checked as for a run, then printed instead of run.
- * Returns -1 (done, exit 0) or an exit status. */
+ * The exit status: EXIT_OK when it is printed. */
 static int dump_config(const char *cmd, const cli_SetupArgs *sa, const cli_SimArgs *sim)
 {
     jc_Setup setup;
     jc_SimOptions opts;
     const int rc = cli_build_inputs(cmd, sa, sim, &setup, &opts, NULL);
-    if (rc != 0) return rc;
+    if (rc != EXIT_OK) return rc;
     cli_config_write(stdout, &setup);
-    return cli_stdout_finish() == EXIT_OK ? -1 : EXIT_FAIL;
+    return cli_stdout_finish();
 }
 
 /* Options a command takes many times, each adding one item. */
@@ -231,6 +231,59 @@ static int is_repeatable(const char *name)
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
         if (strcmp(name, names[i]) == 0) return 1;
     return 0;
+}
+
+/* What the parse knows while it goes through argv. */
+typedef struct {
+    char **argv;
+    const struct option *own;
+    int own_count;
+    unsigned own_seen; /* the command's own options given so far, by index */
+    cli_own_take_fn own_take;
+    void *ctx;
+    cli_SetupArgs *setup_args;
+    cli_SimArgs *sim_args;
+} parse_state;
+
+/* A setup or simulation option; CLI_OPTION_REFUSED after the message. */
+static cli_OptionTake take_shared(const parse_state *p, int c)
+{
+    char msg[512];
+    cli_OptionTake took = cli_setup_take(p->setup_args, c, optarg, msg, sizeof msg);
+    if (took == CLI_OPTION_NOT_OURS && p->sim_args) took = cli_sim_take(p->sim_args, c, optarg, msg, sizeof msg);
+    if (took == CLI_OPTION_REFUSED) cli_error("%s", msg);
+    return took;
+}
+
+/* A command's own option, which counts once as the setup options do
+ * (unless repeatable), then its take. CLI_GO_ON, or the exit status. */
+static int take_own(parse_state *p, int c)
+{
+    for (int i = 0; i < p->own_count && i < 32; ++i) {
+        if (p->own[i].val != c || c == 'h' || is_repeatable(p->own[i].name)) continue;
+        if (p->own_seen & (1u << i)) {
+            cli_error("%s: --%s given twice", p->argv[0], p->own[i].name);
+            return EXIT_USAGE;
+        }
+        p->own_seen |= 1u << i;
+    }
+    return p->own_take(c, optarg, p->ctx);
+}
+
+/* One option getopt_long returned. CLI_GO_ON, or the exit status. */
+static int take_option(parse_state *p, int c)
+{
+    if (c == '?') {
+        unknown_option(p->argv, optind);
+        return EXIT_USAGE;
+    }
+    if (c == ':') {
+        cli_error("%s: option '%s' needs a value", p->argv[0], p->argv[optind - 1]);
+        return EXIT_USAGE;
+    }
+    const cli_OptionTake shared = take_shared(p, c);
+    if (shared == CLI_OPTION_REFUSED) return EXIT_USAGE;
+    return shared == CLI_OPTION_TAKEN ? CLI_GO_ON : take_own(p, c);
 }
 
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
@@ -243,49 +296,19 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
     cli_merge_options(all, (int)(sizeof all / sizeof all[0]), cmd, n);
     *setup_args = (cli_SetupArgs){0};
     if (sim_args) *sim_args = (cli_SimArgs){0};
+    parse_state p = {argv, own, own_count, 0, own_take, ctx, setup_args, sim_args};
     optind = 0; /* glibc: a full restart, also of a scan left inside "-hh" (tests, fuzzing) */
     opterr = 0;
     int c;
-    unsigned own_seen = 0;
     while ((c = getopt_long(argc, argv, ":h", all, NULL)) != -1) {
-        char msg[512];
-        if (c == '?') {
-            unknown_option(argv, optind);
-            return EXIT_USAGE;
-        }
-        if (c == ':') {
-            cli_error("%s: option '%s' needs a value", argv[0], argv[optind - 1]);
-            return EXIT_USAGE;
-        }
-        int took = cli_setup_take(setup_args, c, optarg, msg, sizeof msg);
-        if (took < 0) {
-            cli_error("%s", msg);
-            return EXIT_USAGE;
-        }
-        if (took > 0) continue;
-        if (sim_args && (took = cli_sim_take(sim_args, c, optarg, msg, sizeof msg)) != 0) {
-            if (took > 0) continue;
-            cli_error("%s", msg);
-            return EXIT_USAGE;
-        }
-        /* A command's own option counts once, as the setup options do. */
-        for (int i = 0; i < own_count && i < 32; ++i) {
-            if (own[i].val != c || c == 'h' || is_repeatable(own[i].name)) continue;
-            if (own_seen & (1u << i)) {
-                cli_error("%s: --%s given twice", argv[0], own[i].name);
-                return EXIT_USAGE;
-            }
-            own_seen |= 1u << i;
-        }
-        int r = own_take(c, optarg, ctx);
-        if (r != 0) return r;
+        const int st = take_option(&p, c);
+        if (st != CLI_GO_ON) return st;
     }
     if (optind < argc) {
         cli_error("%s: unexpected argument '%s' (see 'jumpcyl %s --help')", argv[0], argv[optind], argv[0]);
         return EXIT_USAGE;
     }
-    if (setup_args->dump_config) return dump_config(argv[0], setup_args, sim_args);
-    return 0;
+    return setup_args->dump_config ? dump_config(argv[0], setup_args, sim_args) : CLI_GO_ON;
 }
 
 /* A command's take, with --help answered the same way for every command. */
@@ -301,16 +324,14 @@ static int take_or_help(int opt, const char *arg, void *p)
     if (opt != 'h') return t->cmd->take(opt, arg, t->ctx);
     t->cmd->help();
     cli_options_help(stdout, t->with_sim);
-    return -1;
+    return EXIT_OK;
 }
 
 int cli_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_SetupArgs *setup_args,
                       cli_SimArgs *sim_args)
 {
     command_take t = {cmd, ctx, sim_args != NULL};
-    const int st = cli_parse_args(argc, argv, cmd->own, cmd->own_count, take_or_help, &t, setup_args, sim_args);
-    if (st < 0) return EXIT_OK; /* --help or --dump-config printed what was asked */
-    return st ? st : CLI_GO_ON;
+    return cli_parse_args(argc, argv, cmd->own, cmd->own_count, take_or_help, &t, setup_args, sim_args);
 }
 
 static int take_json(int opt, const char *arg, void *ctx)
@@ -318,7 +339,7 @@ static int take_json(int opt, const char *arg, void *ctx)
     (void)arg;
     if (opt != 'j') return EXIT_USAGE;
     *(int *)ctx = 1;
-    return 0;
+    return CLI_GO_ON;
 }
 
 int cli_json_command_parse(int argc, char **argv, void (*help)(void), int *json, cli_SetupArgs *setup_args)

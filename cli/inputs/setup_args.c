@@ -29,36 +29,36 @@ int cli_setup_option_table(struct option *dst, int cap)
     return n;
 }
 
-/* An option's value, stored once: 1, or -1 with a message when it comes again. */
-static int take_value(const char **slot, const char *name, const char *text, char *err, size_t err_len)
+/* An option's value, stored once: refused with a message when it comes again. */
+static cli_OptionTake take_value(const char **slot, const char *name, const char *text, char *err, size_t err_len)
 {
     if (*slot) {
         snprintf(err, err_len, "--%s given twice ('%s' and '%s')", name, *slot, text);
-        return -1;
+        return CLI_OPTION_REFUSED;
     }
     *slot = text;
-    return 1;
+    return CLI_OPTION_TAKEN;
 }
 
-int cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, size_t err_len)
+cli_OptionTake cli_setup_take(cli_SetupArgs *args, int opt, const char *text, char *err, size_t err_len)
 {
     const int i = opt - B;
-    if (i < 0 || i >= CLI_OPT_PARAMS + jc_param_count()) return 0;
+    if (i < 0 || i >= CLI_OPT_PARAMS + jc_param_count()) return CLI_OPTION_NOT_OURS;
     if (i == CLI_OPT_PART) {
         if (args->part_count >= JC_MAX_PARTS) {
             snprintf(err, err_len, "--part: too many parts (allowed: at most %d)", JC_MAX_PARTS);
-            return -1;
+            return CLI_OPTION_REFUSED;
         }
         args->part_text[args->part_count++] = text;
-        return 1;
+        return CLI_OPTION_TAKEN;
     }
     if (i == CLI_OPT_DUMP_CONFIG) {
         if (args->dump_config) {
             snprintf(err, err_len, "--dump-config given twice");
-            return -1;
+            return CLI_OPTION_REFUSED;
         }
         args->dump_config = 1;
-        return 1;
+        return CLI_OPTION_TAKEN;
     }
     if (i == CLI_OPT_PRESET) return take_value(&args->preset, "preset", text, err, err_len);
     if (i == CLI_OPT_CONFIG) return take_value(&args->config, "config", text, err, err_len);
@@ -285,10 +285,10 @@ const struct option cli_sim_options[CLI_SIM_OPTION_COUNT] = {
     {"contact-height", required_argument, 0, SB + S_CONTACT_HEIGHT},
 };
 
-int cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len)
+cli_OptionTake cli_sim_take(cli_SimArgs *args, int opt, const char *text, char *err, size_t err_len)
 {
     const int i = opt - SB;
-    if (i < 0 || i >= CLI_SIM_OPTION_COUNT) return 0;
+    if (i < 0 || i >= CLI_SIM_OPTION_COUNT) return CLI_OPTION_NOT_OURS;
     return take_value(&args->value[i], cli_sim_options[i].name, text, err, err_len);
 }
 

@@ -48,7 +48,19 @@ int cli_sim_json_begin(FILE *out, const jc_Model *m); /* 0, or -1 (a write or me
 int cli_sim_json_event(FILE *out, const jc_Event *e, int index);
 int cli_sim_json_end(FILE *out, const jc_Model *m, const jc_Run *run, const jc_RunSummary *sum);
 
-/* ---- record.c: the simulation, stopped by a signal ---- */
+/* ---- record.c: the simulation, stopped by a signal; library statuses as exit statuses ---- */
+
+/* What a library call was given, which decides whose fault its failure is. */
+typedef enum {
+    CLI_INPUTS_GIVEN,   /* the user's values as given: JC_EINVAL is bad input (EXIT_USAGE), the rest EXIT_FAIL */
+    CLI_INPUTS_CHECKED, /* values already checked, or made by the tool: every failure is EXIT_FAIL */
+    CLI_INPUTS_VIDEO    /* a tracked video: one the library cannot read or follow is bad input (EXIT_USAGE) */
+} cli_Inputs;
+/* The exit status of a library status (JC_OK, JC_E*): the one place where
+ * they become exit statuses. JC_OK is EXIT_OK; JC_ESTOPPED after a stop
+ * signal is cli_stop_status(); any other failure as inputs says. Prints
+ * nothing: the caller has said what failed. */
+int cli_exit_status(int jc_status, cli_Inputs inputs);
 
 /* Runs the full model into run's arrays; prints the library's message on
  * failure (nothing for a stop by a signal). Returns a status (JC_OK, ...,

@@ -1,6 +1,7 @@
 /* The simulation as the commands run it: through a recorder that also
  * watches for a stop signal, so that a long run behind a plot, a film or a
- * streamed table stops at the next event or sample after Ctrl-C. */
+ * streamed table stops at the next event or sample after Ctrl-C. And the
+ * library's statuses as the commands' exit statuses (cli_exit_status). */
 #include "outputs.h"
 
 typedef struct {
@@ -51,4 +52,12 @@ int cli_simulate(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const c
 int cli_simulate_probe(const jc_Model *m, const jc_SimOptions *o, jc_Run *run, const char *cmd)
 {
     return cli_simulate_stream(m, o, NULL, run, cmd);
+}
+
+int cli_exit_status(int jc_status, cli_Inputs inputs)
+{
+    if (jc_status == JC_OK) return EXIT_OK;
+    if (jc_status == JC_ESTOPPED && cli_stop_requested()) return cli_stop_status();
+    if (inputs == CLI_INPUTS_VIDEO || (inputs == CLI_INPUTS_GIVEN && jc_status == JC_EINVAL)) return EXIT_USAGE;
+    return EXIT_FAIL;
 }

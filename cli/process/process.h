@@ -10,7 +10,10 @@
 #include <stddef.h>
 #include <sys/types.h>
 
-/* Exit statuses. */
+/* Exit statuses: what cmd_* returns, and every function of the tool whose
+ * comment says "an exit status" (docs/architecture.md, "Return values").
+ * EXIT_OK there always means "it went well"; a stop signal's status is
+ * cli_stop_status(). */
 enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_MISFIT = 3 /* fit: the model does not describe the video */ };
 
 #define CLI_PATH_MAX 4096
@@ -58,16 +61,19 @@ void cli_tmpdir_untrack(int slot);
 int cli_find_program(const char *name, char *path, size_t len);
 /* Called about every 10 ms while a child runs (a progress line's redraw). */
 typedef void (*cli_WaitTick)(void *ctx);
+/* How a child program's run ended. */
+typedef enum {
+    CLI_RUN_EXITED,  /* it exited: its exit status is in *exit_status */
+    CLI_RUN_FAILED,  /* it could not start, or a signal killed it: the message is printed */
+    CLI_RUN_STOPPED, /* a stop signal came: the child was ended and reaped; no message */
+    CLI_RUN_EFBIG    /* a write of the child crossed the file size limit (ulimit -f); no message */
+} cli_RunEnd;
 /* Runs argv (argv[0] looked up in $PATH) in the directory cwd (NULL: ours)
  * with stdin from /dev/null and stdout and stderr appended to log_path
  * (NULL: inherited), waits for it, calling tick(ctx) meanwhile (tick may be
- * NULL). Returns its exit status; -1 after a message if it could not start
- * or was killed by a signal; CLI_RUN_STOPPED (no message) when a stop
- * signal came (the child was ended and reaped); CLI_RUN_EFBIG when a write
- * of the child crossed the file size limit (ulimit -f). */
-#define CLI_RUN_STOPPED (-2)
-#define CLI_RUN_EFBIG (-3)
-int cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_WaitTick tick, void *ctx);
+ * NULL). */
+cli_RunEnd cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_WaitTick tick, void *ctx,
+                           int *exit_status);
 /* Copies the last lines of a program's log to stderr, indented. */
 void cli_print_log_tail(const char *log_path);
 

@@ -88,12 +88,34 @@ static int wait_child(pid_t pid, int *status, cli_WaitTick tick, void *ctx)
     }
 }
 
-int cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_WaitTick tick, void *ctx)
+/* The started child's end, waited for. */
+static cli_RunEnd child_end(const char *name, pid_t pid, cli_WaitTick tick, void *ctx, int *exit_status)
 {
+    int status = 0;
+    const int waited = wait_child(pid, &status, tick, ctx);
+    cli_child_set(0);
+    if (waited != 0) {
+        cli_error("waiting for %s: %s", name, strerror(errno));
+        return CLI_RUN_FAILED;
+    }
+    if (cli_stop_requested()) return CLI_RUN_STOPPED;
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ) return CLI_RUN_EFBIG;
+    if (WIFSIGNALED(status)) {
+        cli_error("%s was killed by signal %d", name, WTERMSIG(status));
+        return CLI_RUN_FAILED;
+    }
+    *exit_status = WEXITSTATUS(status);
+    return CLI_RUN_EXITED;
+}
+
+cli_RunEnd cli_run_program(char *const argv[], const char *cwd, const char *log_path, cli_WaitTick tick, void *ctx,
+                           int *exit_status)
+{
+    *exit_status = -1;
     posix_spawn_file_actions_t fa;
     if (setup_actions(&fa, cwd, log_path) != 0) {
         cli_error("cannot start %s: out of memory", argv[0]);
-        return -1;
+        return CLI_RUN_FAILED;
     }
     /* The child starts with no signal blocked; ours stay blocked until its
      * pid is recorded, so that a signal cannot miss it. */
@@ -104,7 +126,7 @@ int cli_run_program(char *const argv[], const char *cwd, const char *log_path, c
         posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK) != 0) {
         posix_spawn_file_actions_destroy(&fa);
         cli_error("cannot start %s: out of memory", argv[0]);
-        return -1;
+        return CLI_RUN_FAILED;
     }
     cli_signals_hold(&old);
     pid_t pid;
@@ -116,22 +138,9 @@ int cli_run_program(char *const argv[], const char *cwd, const char *log_path, c
     if (rc == ECANCELED) return CLI_RUN_STOPPED;
     if (rc != 0) {
         cli_error("cannot start %s: %s", argv[0], strerror(rc));
-        return -1;
+        return CLI_RUN_FAILED;
     }
-    int status = 0;
-    const int waited = wait_child(pid, &status, tick, ctx);
-    cli_child_set(0);
-    if (waited != 0) {
-        cli_error("waiting for %s: %s", argv[0], strerror(errno));
-        return -1;
-    }
-    if (cli_stop_requested()) return CLI_RUN_STOPPED;
-    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ) return CLI_RUN_EFBIG;
-    if (WIFSIGNALED(status)) {
-        cli_error("%s was killed by signal %d", argv[0], WTERMSIG(status));
-        return -1;
-    }
-    return WEXITSTATUS(status);
+    return child_end(argv[0], pid, tick, ctx, exit_status);
 }
 
 void cli_print_log_tail(const char *log_path)
