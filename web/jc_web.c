@@ -78,7 +78,8 @@ static int take_member(request_args *a, const cJSON *it, char *slot, char *err, 
     for (int i = 0; i < CLI_SIM_OPTION_COUNT; ++i)
         if (strcmp(key, cli_sim_options[i].name) == 0) {
             const char *text = web_value_text(it, key, slot, err, err_len);
-            return !text || cli_sim_take(&a->sim, cli_sim_options[i].val, text, err, err_len) < 0 ? -1 : 0;
+            if (!text) return -1;
+            return cli_sim_take(&a->sim, cli_sim_options[i].val, text, err, err_len) == CLI_OPTION_REFUSED ? -1 : 0;
         }
     if (strcmp(key, "sample-format") == 0) { /* the page's own: "json" (default) or "binary" */
         const int json = cJSON_IsString(it) && strcmp(it->valuestring, "json") == 0;
@@ -107,12 +108,12 @@ static int take_member(request_args *a, const cJSON *it, char *slot, char *err, 
                 snprintf(err, err_len, "'part' must be a string or an array of strings (\"rod:mass=32.1g,offset=5.5cm\")");
                 return -1;
             }
-            if (cli_setup_take(&a->setup, val, p->valuestring, err, err_len) < 0) return -1;
+            if (cli_setup_take(&a->setup, val, p->valuestring, err, err_len) == CLI_OPTION_REFUSED) return -1;
         }
         return 0;
     }
     const char *text = web_value_text(it, key, slot, err, err_len);
-    return !text || cli_setup_take(&a->setup, val, text, err, err_len) < 0 ? -1 : 0;
+    return !text || cli_setup_take(&a->setup, val, text, err, err_len) == CLI_OPTION_REFUSED ? -1 : 0;
 }
 
 int web_read_inputs(const cJSON *req, web_Inputs *in, char *err, size_t err_len)
