@@ -7,7 +7,8 @@
  * against values worked by hand; the default spreads against the paper's
  * tolerances in SI; the design search's root against a bisection made
  * here, its sensitivity against a difference quotient, its edges against
- * runs on either side. */
+ * runs on either side; the design's default ranges against values worked
+ * here from the paper's cylinder, and the rows it refuses. */
 #include "test.h"
 
 #include <jumpcyl/jumpcyl.h>
@@ -708,6 +709,136 @@ static int test_design_stop_and_bad_input(void)
     return 0;
 }
 
+/* ---- design's free parameter and default range ---- */
+
+/* def over setup base (fixed empty) with free row name, its range by default. */
+static int default_range(const char *name, const jc_Setup *base, const jc_ParamValues *fixed, jc_DesignDef *d,
+                         const char **rule, char *err, size_t err_len)
+{
+    memset(d, 0, sizeof *d);
+    d->base = *base;
+    if (fixed) d->fixed = *fixed;
+    d->free_id = id_of(name);
+    d->lo = d->hi = -1.0; /* untouched unless JC_OK */
+    return jc_design_default_range(d, rule, err, err_len);
+}
+
+/* The ranges of their own, worked here from the paper's cylinder as it
+ * prints it: r = 10 cm, a disc of 34.2 g filling the rim, a rod of 32.1 g
+ * of radius 0.475 cm at 5.5 cm. */
+static int test_design_default_ranges_of_their_own(void)
+{
+    const jc_Setup paper = jc_paper_setup();
+    const double r = 0.10, disc_kg = 0.0342, rod_r = 0.00475, rod_offset = 0.055;
+    const struct {
+        const char *name;
+        double lo, hi;
+        const char *rule;
+    } own[] = {
+        {"rod-offset", 0.01 * r, r - rod_r, "1 % of r to the rim less the rod's radius"},
+        {"rod-mass", 0.01 * disc_kg, 5 * disc_kg, "1 % to 5 times the rest of the body's mass"},
+        {"theta0", -PI, PI, "a whole turn"},
+        {"incline", 1 * DEG, 85 * DEG, "1 to 85 deg"},
+        {"radius", 1.01 * (rod_offset + rod_r), 3 * r, "just outside the off-centre parts to 3 times r"},
+    };
+    for (size_t k = 0; k < sizeof own / sizeof own[0]; ++k) {
+        jc_DesignDef d;
+        const char *rule = ""; /* stays empty unless written */
+        char err[256];
+        ENSURE_OK(default_range(own[k].name, &paper, NULL, &d, &rule, err, sizeof err), err);
+        const int near = fabs(d.lo - own[k].lo) <= 1e-15 * fabs(own[k].lo) &&
+                         fabs(d.hi - own[k].hi) <= 1e-15 * fabs(own[k].hi);
+        ENSURE_MSG(near, "%s: %.17g .. %.17g, worked %.17g .. %.17g", own[k].name, d.lo, d.hi, own[k].lo, own[k].hi);
+        ENSURE_MSG(strcmp(rule, own[k].rule) == 0, "%s: '%s'", own[k].name, rule);
+        ENSURE_OK(jc_design_free_check(d.free_id, &paper, NULL, err, sizeof err), err);
+    }
+    return 0;
+}
+
+/* The other rows: the typical span, an end that is no valid setup moved in
+ * to within 1e-9 of the span of the edge of validity. */
+static int test_design_default_typical_spans(void)
+{
+    const jc_Setup paper = jc_paper_setup();
+    jc_DesignDef d;
+    const char *rule = "";
+    char err[256];
+    const jc_ParamInfo *in = jc_param_info(id_of("omega0"));
+    ENSURE_OK(default_range("omega0", &paper, NULL, &d, &rule, err, sizeof err), err);
+    ENSURE(d.lo == in->typical_min && d.hi == in->typical_max && strcmp(rule, JC_DESIGN_RANGE_TYPICAL) == 0);
+    /* mu-k at most mu-s: the paper's 0.5 (its nominal value, exactly), then mu-s 0.8 given. */
+    in = jc_param_info(id_of("mu-k"));
+    const double span = in->typical_max - in->typical_min;
+    ENSURE_OK(default_range("mu-k", &paper, NULL, &d, &rule, err, sizeof err), err);
+    ENSURE(d.lo == in->typical_min && d.hi == 0.5);
+    ENSURE(strcmp(rule, JC_DESIGN_RANGE_TYPICAL ", cut to valid setups") == 0);
+    jc_ParamValues fixed;
+    memset(&fixed, 0, sizeof fixed);
+    fixed.given[id_of("mu-s")] = 1;
+    fixed.value[id_of("mu-s")] = 0.8;
+    ENSURE_OK(default_range("mu-k", &paper, &fixed, &d, &rule, err, sizeof err), err);
+    ENSURE_MSG(d.hi <= 0.8 && d.hi >= 0.8 - 1e-9 * span, "hi %.17g", d.hi);
+    /* air-density with drag: above 0 (an open edge), within 1e-9 of the span. */
+    in = jc_param_info(id_of("air-density"));
+    memset(&fixed, 0, sizeof fixed);
+    fixed.given[id_of("drag-coefficient")] = 1;
+    fixed.value[id_of("drag-coefficient")] = 1.0;
+    ENSURE_OK(default_range("air-density", &paper, &fixed, &d, &rule, err, sizeof err), err);
+    ENSURE_MSG(d.lo > 0 && d.lo <= 1e-9 * (in->typical_max - in->typical_min) && d.hi == in->typical_max,
+               "%.17g .. %.17g", d.lo, d.hi);
+    /* Without drag every density is valid: the span as it is. */
+    ENSURE_OK(default_range("air-density", &paper, NULL, &d, &rule, err, sizeof err), err);
+    ENSURE(d.lo == in->typical_min && strcmp(rule, JC_DESIGN_RANGE_TYPICAL) == 0);
+    return 0;
+}
+
+/* The rows design refuses, and setups without a default range. */
+static int test_design_refused_rows(void)
+{
+    const jc_Setup paper = jc_paper_setup();
+    char err[256];
+    const char *rule = "";
+    jc_DesignDef d;
+    const char *refused[] = {"restitution", "ramp-length", "paper-d", "impact-law"};
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; ++k) {
+        char head[64];
+        snprintf(head, sizeof head, "%s: ", refused[k]);
+        ENSURE(jc_design_free_check(id_of(refused[k]), NULL, NULL, err, sizeof err) == JC_EINVAL);
+        ENSURE_MSG(strncmp(err, head, strlen(head)) == 0 && strchr(err, '\n') == NULL, "%s", err);
+        ENSURE(default_range(refused[k], &paper, NULL, &d, &rule, err, sizeof err) == JC_EINVAL);
+        ENSURE(d.lo == -1.0 && d.hi == -1.0);
+    }
+    ENSURE(jc_design_free_check(-1, NULL, NULL, err, sizeof err) == JC_EINVAL);
+    ENSURE(jc_design_free_check(jc_param_count(), NULL, NULL, err, sizeof err) == JC_EINVAL);
+    /* Every other numeric row is free (a row added to the table too). */
+    for (int id = 0; id < jc_param_count(); ++id) {
+        int is_refused = jc_param_info(id)->quantity == JC_Q_NAME;
+        for (size_t k = 0; k < sizeof refused / sizeof refused[0]; ++k)
+            is_refused |= strcmp(jc_param_info(id)->name, refused[k]) == 0;
+        ENSURE_MSG((jc_design_free_check(id, NULL, NULL, NULL, 0) == JC_OK) == !is_refused, "%s",
+                   jc_param_info(id)->name);
+    }
+    /* A hoop has no rod to move or weigh. */
+    jc_Setup hoop;
+    ENSURE_OK(jc_preset_setup("hoop", &hoop, err, sizeof err), err);
+    ENSURE(jc_design_free_check(id_of("rod-offset"), NULL, NULL, err, sizeof err) == JC_OK);
+    ENSURE(jc_design_free_check(id_of("rod-offset"), &hoop, NULL, err, sizeof err) == JC_EINVAL);
+    ENSURE_MSG(strstr(err, "rod-offset needs a body with a rod part"), "%s", err);
+    ENSURE(default_range("rod-mass", &hoop, NULL, &d, &rule, err, sizeof err) == JC_EINVAL && d.lo == -1.0);
+    /* radius over a body given part by part. */
+    jc_ParamValues parts;
+    memset(&parts, 0, sizeof parts);
+    parts.parts_given = 1;
+    ENSURE(jc_design_free_check(id_of("radius"), NULL, &parts, err, sizeof err) == JC_EINVAL);
+    ENSURE(jc_design_free_check(id_of("rod-offset"), &paper, &parts, err, sizeof err) == JC_OK);
+    /* mu-s = mu-k = 0: mu-k has no valid value but 0, so no range. */
+    jc_Setup still = paper;
+    ENSURE_OK(jc_param_set(&still, id_of("mu"), 0.0, err, sizeof err), err);
+    ENSURE(default_range("mu-k", &still, NULL, &d, &rule, err, sizeof err) == JC_EINVAL);
+    ENSURE_MSG(strcmp(err, "mu-k: no default range around its value") == 0 && d.lo == -1.0, "%s", err);
+    return 0;
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -723,5 +854,8 @@ int main(void)
     RUN_TEST(test_design_smooth_branch);
     RUN_TEST(test_design_edges);
     RUN_TEST(test_design_stop_and_bad_input);
+    RUN_TEST(test_design_default_ranges_of_their_own);
+    RUN_TEST(test_design_default_typical_spans);
+    RUN_TEST(test_design_refused_rows);
     TEST_MAIN_END();
 }

@@ -26,22 +26,18 @@ typedef struct {
 
 /* ---- free.c: the parameter --free NAME chooses ---- */
 
-/* Why design cannot free parameter id, one line, or NULL when it can: it
- * frees every numeric row of the parameter table but those that never move
- * the first lift-off (restitution, ramp-length, paper-d). */
-const char *cli_design_not_free(int id);
-/* The names of the rows design can free (refused: of those it cannot), in
- * the table's order, ", " between them, cut to fit len. */
+/* The names of the rows design can free (refused: of those it cannot,
+ * jc_design_free_check), in the table's order, ", " between them, cut to
+ * fit len. */
 void cli_design_free_names(int refused, char *buf, size_t len);
 /* --free NAME against the setup options given (not the free one itself, nor
  * one that sets what it sets): its id, column and unit into p. EXIT_OK, or
  * EXIT_USAGE after a message. */
 int cli_design_free_param(const char *name, const cli_SetupArgs *sa, cli_Param *p);
-/* The default range into job->lo, hi, for the nominal body (job->nominal):
- * the rows that need one have their own (rod-offset, rod-mass, theta0,
- * incline, radius); the others their typical span within their range, its
- * ends moved in to valid setups. note says which. EXIT_OK, or EXIT_USAGE
- * after a message (a body without the part the row sets). */
+/* The library's default range (jc_design_default_range) into job->lo, hi,
+ * over job->base and job->values; note says which ("the default: ...").
+ * EXIT_OK, or EXIT_USAGE after a message (a body without the part the row
+ * sets). */
 int cli_design_default_range(cli_DesignJob *job, char *note, size_t note_len);
 
 /* ---- run.c: the library's search ---- */

@@ -289,7 +289,7 @@ JC_API void jc_tally_free(jc_Tally *t);
 
 /* ------------------------------------------------------------------------ */
 /* Design: the values of one parameter that put the first lift-off at X      */
-/* (src/study/design.c, design_scan.c, design_solve.c)                       */
+/* (src/study/design.c, design_scan.c, design_solve.c, design_range.c)       */
 /* ------------------------------------------------------------------------ */
 
 /* The first lift-off x(p) is a discontinuous function of most parameters:
@@ -384,6 +384,33 @@ JC_API void jc_design_free(jc_DesignResult *r);
 /* The union of the lift-off branches' ranges, merged and sorted: at most cap
  * intervals [lo[k], hi[k]]; returns their count. */
 JC_API int jc_design_reachable(const jc_DesignResult *r, double *lo, double *hi, int cap);
+
+/* The free parameter (src/study/design_range.c). Design frees every numeric
+ * row of the parameter table but those that never move the first lift-off
+ * (restitution, ramp-length, paper-d): JC_OK, or JC_EINVAL with
+ * "NAME: why" (no such id, a row of names, one of those three). With fixed
+ * (base may be NULL), radius over a body given part by part is refused
+ * too (it moves only the rim there). With base: the setup of base and fixed
+ * without the free value must be valid and have the part the row sets
+ * (else jc_param_get's message: rod-offset of a hoop). */
+JC_API int jc_design_free_check(int free_id, const jc_Setup *base, const jc_ParamValues *fixed, char *err,
+                                size_t err_len);
+/* The rule of a default range that is the row's typical span: *rule starts
+ * with these words. */
+#define JC_DESIGN_RANGE_TYPICAL "its typical span"
+/* The default range of def->free_id over def->base and def->fixed (without
+ * the free value) into def->lo, def->hi: for rod-offset 1 % of r to the rim
+ * less the rod's radius, rod-mass 1 % to 5 times the rest of the body's
+ * mass, theta0 a whole turn, incline 1 to 85 deg, radius just outside the
+ * parts that do not fill the rim to 3 r; for every other row its typical
+ * span (jc_ParamInfo typical_min .. typical_max) within its range, an end
+ * that is no valid setup with the other values moved in by bisection
+ * towards the nominal value, to 1e-9 of the span. *rule (rule may be NULL):
+ * those words, constant text ("1 to 85 deg"; JC_DESIGN_RANGE_TYPICAL, with
+ * ", cut to valid setups" when an end moved). JC_OK, or JC_EINVAL with a
+ * message: jc_design_free_check's, or "NAME: no default range around its
+ * value" (no valid value but the nominal one). */
+JC_API int jc_design_default_range(jc_DesignDef *def, const char **rule, char *err, size_t err_len);
 
 #ifdef __cplusplus
 }

@@ -432,24 +432,15 @@ def design(setup=None, jump_at=None, free=None, range=None, points=1000, threads
     """The values of one parameter (free) that put the first lift-off at
     jump_at, branch by branch (jc_design_run): a dict with the keys of design
     --json (target_x_m, free, branches, discontinuities, reachable_m,
-    solutions with their sensitivities dX/dp). range=(lo, hi): the free
-    parameter's range (numbers SI, strings with units); by default the
-    table's typical span."""
+    solutions with their sensitivities dX/dp). free: a row design can free
+    (jc_design_free_check: not restitution, ramp_length, paper_d or a row of
+    names). range=(lo, hi): its range (numbers SI, strings with units); by
+    default the library's (jc_design_default_range), as the tool's."""
     setup = as_setup(setup)
     p = param(free)
-    if p.choices:
-        raise ValueError("free %s: a name, not a number" % p.python_name)
     target = to_si(param("radius"), jump_at) if jump_at is not None else None
     if target is None or not target > 0:
         raise ValueError("jump_at: %r (allowed: a length > 0, e.g. '1.2m')" % (jump_at,))
-    if range is None:
-        lo, hi = p.typical_min, p.typical_max
-    else:
-        if isinstance(range, str):
-            range = range.split(":")
-        lo, hi = (to_si(p, v) for v in range)
-    if not lo < hi:
-        raise ValueError("range %s: needs lo < hi" % p.python_name)
     d = ffi.new("jc_DesignDef *")
     base, fixed = setup.study_base()
     d.base = base[0]
@@ -458,13 +449,24 @@ def design(setup=None, jump_at=None, free=None, range=None, points=1000, threads
     for pid in related:
         d.fixed.given[pid] = 0
     d.free_id = p.id
+    err = err_buf()
+    check(lib.jc_design_free_check(p.id, ffi.addressof(d[0], "base"), ffi.addressof(d[0], "fixed"), err, len(err)),
+          err, "free")
+    if range is None:
+        check(lib.jc_design_default_range(d, ffi.NULL, err, len(err)), err, "free")
+        lo, hi = d.lo, d.hi
+    else:
+        if isinstance(range, str):
+            range = range.split(":")
+        lo, hi = (to_si(p, v) for v in range)
+    if not lo < hi:
+        raise ValueError("range %s: needs lo < hi" % p.python_name)
     d.lo, d.hi = lo, hi
     d.target_x_m = target
     d.points = int(points)
     d.threads = 0 if threads is None else int(threads)
     d.sim = _batch_sim(options)[0]
     res = ffi.gc(ffi.new("jc_DesignResult *"), lib.jc_design_free)
-    err = err_buf()
     ctx = _Ctx("design", progress)
     st = run_with_ctx(ctx, lambda h: lib.jcpy_design_run(d, res, h, 1, err, len(err)))
     if st != lib.JC_OK:

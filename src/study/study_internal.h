@@ -4,15 +4,17 @@
  * (case.c); the run on OpenMP threads (run.c); the default spreads
  * (defaults.c); statistics and the tally (stats.c); the design search:
  * its runs, scan, edges and branches (design_scan.c), its roots
- * (design_solve.c), the whole (design.c); thread counts and the wall
- * clock (threads.c).
+ * (design_solve.c), the whole (design.c), the free parameter and its
+ * default range (design_range.c); thread counts and the wall clock
+ * (threads.c).
  *
  * Calls run one way, no file calling back into one that calls it:
  *   run.c -> case.c, outcome.c, threads.c;
  *   case.c -> outcome.c, threads.c, ../random.c, ../param_values.c;
  *   outcome.c -> number.c; defaults.c and stats.c call no file of these;
  *   design.c -> design_scan.c, design_solve.c, threads.c;
- *   design_solve.c -> design_scan.c -> outcome.c, threads.c, ../param_values.c. */
+ *   design_solve.c -> design_scan.c -> outcome.c, threads.c, ../param_values.c;
+ *   design_range.c -> ../param_values.c. */
 #ifndef JUMPCYL_STUDY_INTERNAL_H
 #define JUMPCYL_STUDY_INTERNAL_H
 

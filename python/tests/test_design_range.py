@@ -1,0 +1,58 @@
+"""design without a range: the library's default range
+(jc_design_default_range), the one the tool searches, and so the tool's
+solutions; the rows design refuses (jc_design_free_check)."""
+import json
+
+import pytest
+
+import jumpcyl as jc
+from conftest import tool
+
+# The tool's JSON prints 15 significant digits where they read back to
+# within one part in 2^52 (cJSON), so its numbers are compared to this
+# relative tolerance, not bit for bit.
+REL = 1e-15
+
+
+def close(a, b):
+    return abs(a - b) <= REL * max(abs(a), abs(b))
+
+
+def tool_design(tmp_path, setup, jump_at, free):
+    out = tmp_path / "design.json"
+    tool("design", "--jump-at", jump_at, "--free", free, "--json", str(out), *setup.cli_args())
+    return json.loads(out.read_text())
+
+
+@pytest.mark.parametrize("free, jump_at", [("rod_offset", "1.2m"), ("mu_k", "1.3m")])
+def test_default_range_and_solutions_are_the_tools(tmp_path, free, jump_at):
+    s = jc.Setup(preset="paper")
+    d = jc.design(s, jump_at=jump_at, free=free)
+    ref = tool_design(tmp_path, s, jump_at, free.replace("_", "-"))
+    assert d["free"]["name"] == ref["free"]["name"]
+    assert close(d["free"]["lo"], ref["free"]["lo"]) and close(d["free"]["hi"], ref["free"]["hi"]), (d["free"],
+                                                                                                     ref["free"])
+    assert d["solutions"] and len(d["solutions"]) == len(ref["solutions"]), (d["solutions"], ref["solutions"])
+    for mine, theirs in zip(d["solutions"], ref["solutions"]):
+        assert close(mine["value"], theirs["value"]) and close(mine["x_m"], theirs["x_m"]), (mine, theirs)
+        assert mine["branch"] == theirs["branch"]
+
+
+def test_default_ranges_from_the_body():
+    s = jc.Setup(preset="paper")
+    r, rod_r = s.get("radius"), s.get("rod_radius")
+    d = jc.design(s, jump_at="1.2m", free="rod_offset", points=10)
+    # 1 % of r to the rim less the rod's radius: 0.1 cm to 9.525 cm.
+    assert d["free"]["lo"] == 0.01 * r and d["free"]["hi"] == r - rod_r
+    # mu-k's typical span cut to valid setups: up to mu-s, to 1e-9 of the span.
+    d = jc.design(s, jump_at="1.3m", free="mu_k", points=10)
+    info = next(p for p in jc.params() if p.name == "mu-k")
+    span = info.typical_max - info.typical_min
+    assert d["free"]["lo"] == info.typical_min and s.mu_s - 1e-9 * span <= d["free"]["hi"] <= s.mu_s
+
+
+@pytest.mark.parametrize("free, setup", [("restitution", {}), ("impact_law", {}), ("paper_d", {}),
+                                         ("rod_offset", {"preset": "hoop"})])
+def test_refused_rows(free, setup):
+    with pytest.raises(ValueError, match="free: "):
+        jc.design(jc.Setup(**setup), jump_at="1m", free=free, range=("0.1", "0.2"))
