@@ -15,7 +15,7 @@ DEB_PACKAGES := cmake make gcc pkgconf libgsl-dev libcjson-dev libinih-dev libca
 # make test-mpi: the optional MPI build; make install: the man page.
 FUZZ_PACKAGES     := clang libclang-rt-14-dev
 VALGRIND_PACKAGES := valgrind
-LINT_PACKAGES     := cppcheck
+LINT_PACKAGES     := cppcheck python3
 MPI_PACKAGES      := libopenmpi-dev openmpi-bin
 INSTALL_PACKAGES  := help2man
 # make python, make test-python: the Python package (docs/python.md), built
@@ -41,7 +41,8 @@ all: build
 
 help:
 	@echo "make run        install missing packages, build, run 'jumpcyl paper' (the paper's Table 1),"
-	@echo "                write out/overview-{15,30,45}.png and the film out/jump-45.gif"
+	@echo "                write the figures out/overview-{15,30,45}.png, out/trajectory-{15,30,45,hoop}.png"
+	@echo "                and the films out/jump-45.gif, out/hoop.gif"
 	@echo "make test       install missing packages, build, run the test suite (ctest), and the web"
 	@echo "                tests when Chromium and a built page are there"
 	@echo "make web        the page in out/web/ (WebAssembly, Emscripten); make test-web-all: its tests"
@@ -78,7 +79,7 @@ need = missing=""; \
 
 deps:
 	@$(call need,$(DEB_PACKAGES))
-deps-fuzz: deps-fuzz
+deps-fuzz: deps
 	@$(call need,$(FUZZ_PACKAGES))
 deps-valgrind: deps
 	@$(call need,$(VALGRIND_PACKAGES))
