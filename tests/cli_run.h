@@ -23,6 +23,11 @@
 #define CLI_RUN_MAX_ARGS 64
 /* As stdout_path: the tool starts with standard output closed. */
 #define CLI_RUN_CLOSED "(closed)"
+/* As stdout_path: standard output is a pipe whose reader has gone
+ * (`jumpcyl paper | head -1` once head has exited); the second also with
+ * SIGPIPE ignored, as a caller may leave it. */
+#define CLI_RUN_READER_GONE "(reader gone)"
+#define CLI_RUN_READER_GONE_SIGPIPE_IGNORED "(reader gone, SIGPIPE ignored)"
 
 typedef struct {
     int status; /* exit status; -1 if it ended by a signal */
@@ -78,7 +83,13 @@ static inline void cli_run_child(const char *const *args, const char *out_path, 
     const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ};
     for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; ++i) signal(sigs[i], SIG_DFL);
     const int closed = strcmp(out_path, CLI_RUN_CLOSED) == 0;
-    const int out = closed ? -1 : open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int ignored = strcmp(out_path, CLI_RUN_READER_GONE_SIGPIPE_IGNORED) == 0;
+    const int gone = ignored || strcmp(out_path, CLI_RUN_READER_GONE) == 0;
+    int reader_gone[2] = {-1, -1};
+    if (gone && pipe(reader_gone) != 0) _exit(126);
+    if (gone) close(reader_gone[0]);
+    if (ignored) signal(SIGPIPE, SIG_IGN);
+    const int out = closed ? -1 : gone ? reader_gone[1] : open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     const int err = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     if ((!closed && (out < 0 || dup2(out, 1) < 0)) || err < 0 || dup2(err, 2) < 0) _exit(126);
     if (closed) close(1);
@@ -93,7 +104,7 @@ static inline void cli_run_child(const char *const *args, const char *out_path, 
 }
 
 /* Starts "jumpcyl ARGS" (args NULL-terminated). stdout_path NULL captures
- * standard output. Returns the child's pid (for cli_run_wait), -1 on failure. */
+ * standard output (or CLI_RUN_CLOSED, CLI_RUN_READER_GONE...). Returns the child's pid (for cli_run_wait), -1 on failure. */
 static inline pid_t cli_run_start(const char *const *args, const char *stdout_path, char *out_tmp, char *err_tmp)
 {
     strcpy(out_tmp, "/tmp/jc_cli_out_XXXXXX");

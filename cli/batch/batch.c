@@ -362,8 +362,10 @@ static int rows_flush(const cli_Batch *b, rows_file *w, int final)
         bad = fsync(fileno(w->f)) != 0;
         w->last_sync_s = cli_now_s();
     }
-    if (bad) cli_error("%s: cannot write %s: %s", b->cmd, w->opened ? b->output : w->to_stdout ? "standard output" : w->part,
-                       strerror(errno ? errno : EIO));
+    const int err = errno ? errno : EIO;
+    if (bad && !(w->to_stdout && cli_pipe_closed(err)))
+        cli_error("%s: cannot write %s: %s", b->cmd, w->opened ? b->output : w->to_stdout ? "standard output" : w->part,
+                  strerror(err));
     return bad ? -1 : 0;
 }
 

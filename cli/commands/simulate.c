@@ -76,9 +76,13 @@ static void check_stdout(sim_stream *st)
  * computing for nothing. */
 static int go_on(const sim_stream *st) { return st->failed.where == WRITES_OK ? JC_OK : JC_ESTOPPED; }
 
+/* Said on standard error, but not a closed pipe's: its reader went away
+ * (cli_pipe_closed), and the command ends quietly. */
 static void report_failure(const sim_stream *st)
 {
     const write_failure *f = &st->failed;
+    if ((f->where == FAILED_STDOUT || (f->where == FAILED_CSV && st->csv->is_stdout)) && cli_pipe_closed(f->err))
+        return;
     if (f->where == FAILED_CSV)
         cli_error("cannot write %s: %s", st->csv->is_stdout ? "standard output" : st->csv->target, strerror(f->err));
     else if (f->where == FAILED_STDOUT) cli_error("cannot write standard output: %s", strerror(f->err));
@@ -212,9 +216,11 @@ static int csv_open(cli_Output *csv, const char *name)
     /* A device that takes nothing (/dev/full) fails here, before the
      * table starts on standard output. */
     if (csv->in_place && fflush(csv->f) != 0) {
-        cli_error("cannot write %s: %s", csv->is_stdout ? "standard output" : name, strerror(errno));
+        const int err = errno;
+        if (!(csv->is_stdout && cli_pipe_closed(err)))
+            cli_error("cannot write %s: %s", csv->is_stdout ? "standard output" : name, strerror(err));
         cli_output_abort(csv);
-        return EXIT_FAIL;
+        return cli_stop_requested() ? cli_stop_status() : EXIT_FAIL;
     }
     return EXIT_OK;
 }
@@ -243,7 +249,7 @@ static int run_done(sim_stream *out, const jc_Run *run, const cli_RunInputs *in,
     check_stdout(out);
     if (out->failed.where != WRITES_OK) {
         report_failure(out);
-        return EXIT_FAIL;
+        return cli_stop_requested() ? cli_stop_status() : EXIT_FAIL;
     }
     if (run->termination == JC_END_SAMPLE_LIMIT)
         cli_error("simulate: the run stopped at the sample limit (%d samples); raise --sample-dt or lower --t-max",

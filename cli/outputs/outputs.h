@@ -38,7 +38,8 @@ struct cJSON *cli_json_setup(const jc_Model *m);
 struct cJSON *cli_json_params(void);
 struct cJSON *cli_json_event(const jc_Event *e);
 struct cJSON *cli_json_energy(const jc_EnergyReport *e);
-/* Prints the document on stdout and frees it; EXIT_FAIL if that fails. */
+/* Prints the document on stdout and frees it; EXIT_FAIL if that fails
+ * (after a message, but none for a closed pipe). */
 int cli_json_print(struct cJSON *doc);
 
 /* ---- sim_json.c: `simulate --json`, whole or streamed (the same text) ---- */
@@ -137,9 +138,11 @@ int cli_output_verify(const char *path, cli_Check check, char *why, size_t why_l
 void cli_safe_name(const char *name, char *out, size_t len);
 
 /* Standard output flushed and closed at exit: EXIT_OK, or EXIT_FAIL after a
- * message (a full disk, a closed descriptor). */
+ * message (a full disk, a closed descriptor); quietly the stop status when
+ * its reader went away (cli_pipe_closed). */
 int cli_stdout_close(void);
-/* Flushes standard output: EXIT_OK, or EXIT_FAIL after a message. */
+/* Flushes standard output: EXIT_OK, or EXIT_FAIL after a message; quietly
+ * the stop status when its reader went away. */
 int cli_stdout_finish(void);
 
 /* ---- progress.c: "frame 120/264, ETA 3 s" on stderr ---- */

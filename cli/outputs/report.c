@@ -1,6 +1,7 @@
 /* Output helpers shared by the commands. */
 #include "outputs.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <string.h>
@@ -187,13 +188,13 @@ int cli_json_print(cJSON *doc)
         cli_error("could not format the JSON output (out of memory)");
         return EXIT_FAIL;
     }
-    int ok = puts(text) >= 0;
+    const int ok = puts(text) >= 0 && fflush(stdout) == 0;
+    const int err = errno;
     free(text);
-    if (!ok || fflush(stdout) != 0) {
-        cli_error("could not write to standard output");
-        return EXIT_FAIL;
-    }
-    return EXIT_OK;
+    if (ok) return EXIT_OK;
+    /* A reader that went away is not told (main.c returns SIGPIPE's status). */
+    if (err != EPIPE) cli_error("cannot write standard output: %s", strerror(err));
+    return EXIT_FAIL;
 }
 
 cJSON *cli_json_event(const jc_Event *e)

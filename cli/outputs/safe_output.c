@@ -238,7 +238,8 @@ int cli_output_finish(cli_Output *o, cli_Check check)
         o->f = NULL;
     }
     if (bad) {
-        cli_error("cannot write %s: %s", o->is_stdout ? "standard output" : o->target, strerror(err));
+        if (!(o->is_stdout && cli_pipe_closed(err)))
+            cli_error("cannot write %s: %s", o->is_stdout ? "standard output" : o->target, strerror(err));
         cli_output_abort(o);
         return -1;
     }
@@ -290,6 +291,15 @@ void cli_safe_name(const char *name, char *out, size_t len)
     out[n] = '\0';
 }
 
+/* A write to standard output failed with err: EXIT_FAIL after a message,
+ * but quietly for a closed pipe (cli_pipe_closed), whose stop status main.c
+ * returns after SIGPIPE. */
+static int stdout_failed(int err)
+{
+    if (!cli_pipe_closed(err)) cli_error("cannot write standard output: %s", strerror(err));
+    return cli_stop_requested() ? cli_stop_status() : EXIT_FAIL;
+}
+
 int cli_stdout_finish(void)
 {
     int err = EIO;
@@ -298,17 +308,13 @@ int cli_stdout_finish(void)
         bad = 1;
         err = errno;
     }
-    if (bad) cli_error("cannot write standard output: %s", strerror(err));
-    return bad ? EXIT_FAIL : EXIT_OK;
+    return bad ? stdout_failed(err) : EXIT_OK;
 }
 
 int cli_stdout_close(void)
 {
     int rc = cli_stdout_finish();
     /* The close reports what the flush could not (a descriptor closed by the caller). */
-    if (fclose(stdout) != 0 && rc == EXIT_OK) {
-        cli_error("cannot write standard output: %s", strerror(errno));
-        rc = EXIT_FAIL;
-    }
+    if (fclose(stdout) != 0 && rc == EXIT_OK) rc = stdout_failed(errno);
     return rc;
 }

@@ -38,6 +38,11 @@ void cli_signals_install(void);
 int cli_stop_requested(void); /* the signal number, 0 if none */
 int cli_stop_status(void);    /* 128 + the signal number: 130 SIGINT, 143 SIGTERM */
 const char *cli_signal_name(int sig);
+/* Whether a write that failed with err (errno) went to a pipe whose reader
+ * went away: the stop is SIGPIPE, or err is EPIPE (where the caller ignores
+ * SIGPIPE). Nobody reads the rest, so such a failure of standard output is
+ * not reported: the command ends quietly, with 128 + SIGPIPE after the signal. */
+int cli_pipe_closed(int err);
 /* Blocks the stop signals (while a record and the thing it records change
  * together, or around starting a child); release restores the old mask. */
 void cli_signals_hold(sigset_t *old);

@@ -10,6 +10,12 @@
  * process at once, after killing the child (SIGKILL) and removing the
  * temporary files and scratch directories recorded here.
  *
+ * SIGPIPE is how a reader that went away shows (`jumpcyl paper | head -1`):
+ * the command stops as for the others but says nothing, as the signal ends
+ * any other Unix tool quietly (cli_pipe_closed). A closed pipe raises it
+ * again on every later write; that is the write failing, not a second
+ * request to stop, so it never ends the process at once.
+ *
  * SIGXFSZ (a file grew past `ulimit -f`): caught and otherwise ignored, so
  * that the write fails with EFBIG and is reported as "File too large".
  *
@@ -75,6 +81,10 @@ static void on_signal(int sig)
         errno = saved;
         return;
     }
+    if (sig == SIGPIPE && stop_signal) {
+        errno = saved;
+        return;
+    }
     const pid_t child = (pid_t)child_pid;
     if (child > 0) kill(child, SIGTERM);
     if (!stop_signal) {
@@ -116,6 +126,8 @@ void cli_signals_install(void)
 int cli_stop_requested(void) { return stop_signal; }
 
 int cli_stop_status(void) { return 128 + stop_signal; }
+
+int cli_pipe_closed(int err) { return stop_signal == SIGPIPE || err == EPIPE; }
 
 const char *cli_signal_name(int sig)
 {
