@@ -52,6 +52,16 @@ static const bad_case cases[] = {
     {A("simulate", "--csv"), 2, "--csv", NO_CSV, NULL, 0, NULL},
     {A("frobnicate"), 2, "frobnicate", NO_CSV, NULL, 0, NULL},
     {A("paper", "--incline", "20"), 2, "--incline", NO_CSV, NULL, 0, NULL},
+    /* The paper measured its own cylinder only: no comparison for another body. */
+    {A("paper", "--preset", "hoop"), 2, "--preset hoop gives a body other than the paper's cylinder", NO_CSV, NULL,
+     0, NULL},
+    {A("--preset", "disc", "--json"), 2, "--preset disc gives a body other", NO_CSV, NULL, 0, NULL},
+    {A("paper", "--rod-offset", "4cm"), 2, "--rod-offset 4cm gives a body other", NO_CSV, NULL, 0, NULL},
+    {A("paper", "--part", "disc:mass=66.3g"), 2, "--part disc:mass=66.3g gives", NO_CSV, NULL, 0, NULL},
+    {A("paper", "--config", "@case.ini"), 2, "case.ini gives a body other", NO_CSV, "[body]\nradius = 12 cm\n", 0,
+     NULL},
+    {A("plot", "--what", "paper-uncertainty", "--preset", "hoop", "--output", "@fig.png"), 2,
+     "--what paper-uncertainty: --preset hoop gives a body other", NO_CSV, NULL, 0, NULL},
     /* ---- numbers and units ---- */
     {SIM("--radius", "10furlongs"), 2, "furlongs", CSV, NULL, 0, NULL},
     {SIM("--mu", "nan"), 2, "'nan'", CSV, NULL, 0, NULL},

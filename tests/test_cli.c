@@ -338,6 +338,11 @@ static int test_notes(void)
     r = run("paper");
     ENSURE(r.status == 0 && !strstr(r.out, "model ignores"));
     cli_result_free(&r);
+    /* The paper's own body, given option by option, is still the body it
+     * measured (another is refused: tests/test_bad_input.c). */
+    r = run("paper --preset paper --rod-offset 5.5cm --radius 0.1 --mu 0.3");
+    ENSURE_MSG(r.status == 0 && strstr(r.out, "Measured jump position"), "stderr: %s", r.err);
+    cli_result_free(&r);
     return 0;
 }
 

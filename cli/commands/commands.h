@@ -24,6 +24,14 @@ int cmd_compare(int argc, char **argv);  /* compare.c: a tracked video against t
 int cmd_fit(int argc, char **argv);      /* fit.c: setup values fitted to a tracked video */
 int cmd_params(int argc, char **argv);   /* params.c: the parameter table */
 
+/* paper.c: EXIT_OK when the setup's body is the paper's cylinder, the only body
+ * whose jump sites the paper measured (cli_is_paper_body); otherwise
+ * EXIT_USAGE after a one-line message naming the option that made another
+ * body and the command to use for it instead. what: "" or the kind of
+ * output, "--what paper-uncertainty: ". */
+int cli_paper_body_only(const char *cmd, const char *what, const char *instead, const cli_SetupArgs *sa,
+                        const jc_Setup *s);
+
 /* ---- track_input.c: what track, compare and fit share on the command
  * line: the track file and how to read it (names, axes, the incline given
  * or the video's, the hop threshold), the time window, the mark's angle,

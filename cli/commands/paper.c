@@ -52,7 +52,9 @@ static void help(void)
          "model (slip onset and the N = 0 diagnostic), the full model (first lift-off, hops,\n"
          "largest hop, and how the lift-off moves with friction from 0.3 to 1.0), the full\n"
          "model with air drag (C_d 0.6), and the measurement with its error bar.\n"
-         "Setup options change the paper's setup for every row; the incline is the table's.\n"
+         "Setup options change the paper's setup for every row; the incline is the table's, and\n"
+         "the body stays the paper's cylinder, the only one it measured (for another body:\n"
+         "jumpcyl predict).\n"
          "\n"
          "  --json      machine-readable output: rows[], each with incline_deg, printed,\n"
          "              paper_model, rolling, full, drag, measured; angles theta in rad,\n"
@@ -520,6 +522,40 @@ static int print_rows(const paper_row *rows, int n, int json, int stopped)
     return cli_stdout_finish();
 }
 
+/* The option, as given, that made the body another one than the paper's:
+ * the preset, the experiment file, a part, or a body parameter. */
+static void body_option(const cli_SetupArgs *sa, char *out, size_t len)
+{
+    if (sa->preset && strcmp(sa->preset, "paper") != 0) {
+        snprintf(out, len, "--preset %s", sa->preset);
+        return;
+    }
+    if (sa->part_count > 0) {
+        snprintf(out, len, "--part %s", sa->part_text[0]);
+        return;
+    }
+    for (int id = 0; id < jc_param_count(); ++id)
+        if ((jc_param_info(id)->flags & JC_PARAM_BODY) && sa->value[id]) {
+            snprintf(out, len, "--%s %s", jc_param_info(id)->name, sa->value[id]);
+            return;
+        }
+    if (sa->config) snprintf(out, len, "--config %s", sa->config);
+    else snprintf(out, len, "the setup options");
+}
+
+int cli_paper_body_only(const char *cmd, const char *what, const char *instead, const cli_SetupArgs *sa,
+                        const jc_Setup *s)
+{
+    if (cli_is_paper_body(&s->body)) return EXIT_OK;
+    char option[256];
+    body_option(sa, option, sizeof option);
+    cli_error("%s: %s%s gives a body other than the paper's cylinder, the only one its Table 1 measured "
+              "(options that keep the body, such as --mu or --paper-d, may change); for this body use "
+              "'jumpcyl %s --incline 15' (30, 45)",
+              cmd, what, option, instead);
+    return EXIT_USAGE;
+}
+
 int cmd_paper(int argc, char **argv)
 {
     int json = 0;
@@ -532,6 +568,7 @@ int cmd_paper(int argc, char **argv)
     }
     jc_Setup setup;
     if ((st = cli_build_inputs("paper", &sa, NULL, &setup, NULL, NULL)) != EXIT_OK) return st;
+    if ((st = cli_paper_body_only("paper", "", "predict", &sa, &setup)) != EXIT_OK) return st;
     char err[512];
     paper_row rows[ROWS_MAX];
     int n = 0;

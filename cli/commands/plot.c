@@ -36,7 +36,8 @@ static const plot_kind kinds[] = {
      "paper-criterion, forces, gap, energy on one page, zoomed on the lift-off and hops", 2, 2},
     {"paper-uncertainty", NEED_UNCERTAINTY, fig_uncertainty_panels,
      "the paper's three inclines: printed jump site, the full model's first lift-off\n"
-     "                      with its 95 % band (Monte Carlo of the inputs' uncertainties), measured", 3, 1},
+     "                      with its 95 % band (Monte Carlo of the inputs' uncertainties), measured;\n"
+     "                      the paper's cylinder only (the body it measured)", 3, 1},
 };
 #define KIND_COUNT (int)(sizeof kinds / sizeof kinds[0])
 #define KIND_NAMES "paper-criterion, forces, gap, energy, trajectory, overview, paper-uncertainty"
@@ -291,6 +292,9 @@ int cmd_plot(int argc, char **argv)
         cli_error("plot: --what %s shows the table's inclines (15, 30, 45 deg); leave out --incline", kind->name);
         return EXIT_USAGE;
     }
+    if ((kind->needs & NEED_UNCERTAINTY) &&
+        (st = cli_paper_body_only("plot", "--what paper-uncertainty: ", "mc", &in.args, &in.model.setup)) != EXIT_OK)
+        return st;
     jc_Stats sites[FIG_TABLE_ROWS_MAX];
     if ((kind->needs & NEED_UNCERTAINTY) && (st = site_spreads(&in.args, sites, &d)) != EXIT_OK) return st;
     d.model = &in.model;
