@@ -14,14 +14,7 @@ echo "passed: the installed tool runs without LD_LIBRARY_PATH"
 
 man=$root/share/man/man1/jumpcyl.1
 [ -f "$man" ] || fail "no man page"
-page=$(MANWIDTH=100 man -l "$man" 2> /dev/null) || fail "man -l failed"
-for cmd in paper predict simulate plot animate sweep mc map presets params; do
-  printf '%s\n' "$page" | grep -q "jumpcyl $cmd" || printf '%s\n' "$page" | grep -qx "   $cmd" ||
-    fail "the man page lacks the command $cmd"
-done
-printf '%s\n' "$page" | grep -q -- "--vary NAME=START:STOP:STEP" || fail "the man page lacks sweep's options"
-printf '%s\n' "$page" | grep -q "^PARAMETERS" || fail "the man page lacks the parameter table"
-echo "passed: man -l renders the page with every command's options"
+sh "$(dirname "$0")/test_manpage.sh" "$man" "$tool" || fail "the installed man page"
 
 comp=$root/share/bash-completion/completions/jumpcyl
 [ -f "$comp" ] || fail "no bash completion"
