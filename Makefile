@@ -9,8 +9,9 @@ CMAKE_ARGS ?=
 # Debian packages that building, running and `make test` need (`make run`
 # and `make test` install only these). Each developer tool comes with the
 # target that uses it (DEV_PACKAGES below).
+# (python3: the docs' examples, tests/docs/check_examples.py.)
 DEB_PACKAGES := cmake make gcc pkgconf libgsl-dev libcjson-dev libinih-dev libcairo2-dev librandom123-dev \
-                libxml2-dev gnuplot-nox ffmpeg
+                libxml2-dev gnuplot-nox ffmpeg python3
 # make fuzz: clang and its libFuzzer runtime; make test-valgrind; make lint;
 # make test-mpi: the optional MPI build; make install: the man page.
 FUZZ_PACKAGES     := clang libclang-rt-14-dev
@@ -35,7 +36,7 @@ LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/te
 
 .PHONY: all deps configure build run test asan test-asan bench install-check clean help
 .PHONY: test-valgrind fuzz lint lint-layers test-mpi install deps-fuzz deps-valgrind deps-lint deps-mpi deps-install
-.PHONY: python test-python deps-python notebook deps-notebook
+.PHONY: python test-python deps-python notebook deps-notebook docs-examples
 
 all: build
 
@@ -53,6 +54,8 @@ help:
 	@echo "make lint       cppcheck on the sources, zero findings (lint/cppcheck-suppressions.txt), and"
 	@echo "                the layering check (lint/layers.py: no loops, no call or include upwards)"
 	@echo "make bench      build and run the benchmarks"
+	@echo "make docs-examples  run every '\$$ jumpcyl ...' example of README.md and docs/*.md and write"
+	@echo "                what it prints into the docs (the test docs_examples checks them)"
 	@echo "make python     the Python package (python/, docs/python.md) in $(BUILD)/python-venv;"
 	@echo "                make test-python: its tests (make test runs them when Python is there);"
 	@echo "                make notebook: examples/jumpcyl.ipynb executed into $(BUILD)/notebook/"
@@ -174,6 +177,13 @@ bench: build
 	@py_us=$$(python/venv.sh $(BUILD) >/dev/null 2>&1 && $(BUILD)/python-venv/bin/python -P python/bench_simulate.py); \
 	JC_BENCH_PYTHON_US="$$py_us" ./$(BUILD)/bench/jumpcyl_bench ./$(BUILD)/jumpcyl \
 	  $$(test -x $(MPI_BUILD)/jumpcyl && echo ./$(MPI_BUILD)/jumpcyl)
+
+# The docs' examples: every block of README.md and docs/*.md that starts
+# with `$ jumpcyl ...` run, and what it prints written into it, the slow
+# ones too (tests/docs/check_examples.py; the test docs_examples compares
+# them). Typed numbers drift; these are regenerated.
+docs-examples: build
+	python3 tests/docs/check_examples.py $(BUILD)/jumpcyl --update --slow
 
 # The Python package built against this build's library and installed into
 # $(BUILD)/python-venv (python/venv.sh): $(BUILD)/python-venv/bin/python -c 'import jumpcyl'.
