@@ -40,11 +40,11 @@ list(TRANSFORM JC_TRACK_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 # options as text, built without files (setup_args.c; the command line's
 # parsing and --config are options.c's, which the page does not compile),
 # units (units.c), the experiment-file writer (the page's download), the
-# JSON of a run (sim_json.c, report.c), Table 1's row (paper_row.c) and the
-# tool's one-line errors (error.c). Nothing in them calls outside them and
+# JSON of a run (sim_json.c, report.c) with its exact numbers (json_text.c),
+# Table 1's row (paper_row.c) and the tool's one-line errors (error.c). Nothing in them calls outside them and
 # the library: the page links them whole (tests: web_link). The native
 # tool builds each into its folder's library (CMakeLists.txt: jc_cli_shared).
 set(JC_TOOL_SHARED_SOURCES
   cli/inputs/setup_args.c cli/inputs/units.c cli/inputs/config_write.c
-  cli/outputs/report.c cli/outputs/sim_json.c cli/figures/paper_row.c cli/process/error.c)
+  cli/outputs/report.c cli/outputs/json_text.c cli/outputs/sim_json.c cli/figures/paper_row.c cli/process/error.c)
 list(TRANSFORM JC_TOOL_SHARED_SOURCES PREPEND "${JC_SOURCE_ROOT}/")

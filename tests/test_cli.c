@@ -13,7 +13,9 @@
 
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
-/* cJSON prints doubles so that they read back exactly; 1e-15 allows for nothing more. */
+/* The tool writes every double of its JSON so that it reads back to the same
+ * double (cli_json_text); 1e-15 allows for a setup built here with another
+ * rounding of the tool's units (55 * 1e-3 for "55mm"), and nothing more. */
 #define JSON_TOL 1e-15
 
 static const char *cli_path;

@@ -1,6 +1,6 @@
 /* `simulate --json` streams its document (cli_sim_json_begin/event/end) so
  * that memory does not grow with the run; the text must be the one the
- * in-memory document (cli_sim_json_doc, printed by cJSON) gives, byte for
+ * in-memory document (cli_sim_json_doc, printed by cli_json_text) gives, byte for
  * byte, on runs with no events, a few, and thousands, with and without
  * lift-offs. */
 #include "test.h"
@@ -24,7 +24,7 @@ static int compare(const jc_Setup *s, int max_events, int min_events)
     ENSURE_OK(jc_simulate(&m, &o, &run, err, sizeof err), err);
     /* In memory, as simulate printed it before it streamed. */
     cJSON *doc = cli_sim_json_doc(&m, &run);
-    char *whole = cJSON_Print(doc);
+    char *whole = cli_json_text(doc, 1);
     cJSON_Delete(doc);
     /* Streamed. */
     char *streamed = NULL;

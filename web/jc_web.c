@@ -8,9 +8,10 @@
  * options are collected with cli_setup_take / cli_sim_take and built with
  * cli_setup_from_options / cli_sim_build (cli/inputs/setup_args.c,
  * units.c: the command line's options without its files), the document is
- * cli_sim_json_doc's (cli/outputs/sim_json.c, report.c). The page and the
- * tool cannot disagree on a setup or on a field. The page reads no file:
- * 'config' is refused.
+ * cli_sim_json_doc's (cli/outputs/sim_json.c, report.c), printed with the
+ * tool's exact numbers (cli_json_text, cli/outputs/json_text.c). The page
+ * and the tool cannot disagree on a setup or on a field. The page reads no
+ * file: 'config' is refused.
  *
  * jc_web_params gives the library's parameter table (what `jumpcyl params
  * --json` prints), from which the page makes its controls. Sweeps and the
@@ -186,11 +187,11 @@ static void put(text_buf *b, const char *s, size_t n)
     b->text[b->len] = '\0';
 }
 
-/* %.17g: always reads back to the same double, with one printf. cJSON's
- * way (%.15g, read back, %.17g if that differs) costs two or three calls,
- * and printf of a double is what dominates the answer's time in wasm
- * (musl): the samples printed this way take half the time. null for NaN
- * and infinities. */
+/* %.17g: reads back to the same double, as every number of the answer
+ * does, with one printf. The rest of the answer has the shortest such form
+ * (cli_json_number: up to three printf and strtod calls each), which in
+ * wasm (musl) takes four to five times as long for the sample columns,
+ * where the answer's time goes. null for NaN and infinities. */
 static void put_number(text_buf *b, double v)
 {
     char tmp[32];
@@ -375,14 +376,14 @@ char *web_error(const char *msg)
     cJSON *doc = cJSON_CreateObject();
     cJSON_AddFalseToObject(doc, "ok");
     cJSON_AddStringToObject(doc, "error", line);
-    char *text = doc ? cJSON_PrintUnformatted(doc) : NULL;
+    char *text = cli_json_text(doc, 0);
     cJSON_Delete(doc);
     return text;
 }
 
 char *web_print(cJSON *doc)
 {
-    char *text = doc ? cJSON_PrintUnformatted(doc) : NULL;
+    char *text = cli_json_text(doc, 0);
     cJSON_Delete(doc);
     return text ? text : web_error("out of memory for the answer");
 }

@@ -65,7 +65,8 @@ int web_read_inputs(const cJSON *req, web_Inputs *in, char *err, size_t err_len)
 const char *web_value_text(const cJSON *v, const char *key, char *slot, char *err, size_t err_len);
 /* {"ok": false, "error": msg}, the message on one line. */
 char *web_error(const char *msg);
-/* doc printed and deleted; the out-of-memory error when it cannot be. */
+/* doc printed (cli_json_text: every number exact) and deleted; the
+ * out-of-memory error when it cannot be. */
 char *web_print(cJSON *doc);
 
 #endif

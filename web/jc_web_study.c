@@ -13,6 +13,8 @@
  */
 #include "jc_web.h"
 
+#include "outputs.h" /* cli_json_number */
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -60,9 +62,16 @@ static cJSON *parse_request(const char *json, const char *const *keys, char *err
     return req;
 }
 
-/* A member as it was written, for messages (cut to fit). */
+/* A member as it was written, for messages (cut to fit): a number as the
+ * answers write numbers (cli_json_number), every digit that tells it. */
 static void shown(const cJSON *v, char *buf, size_t len)
 {
+    if (cJSON_IsNumber(v)) {
+        char number[CLI_JSON_NUMBER_MAX];
+        cli_json_number(v->valuedouble, number);
+        snprintf(buf, len, "%s", number);
+        return;
+    }
     char *text = cJSON_PrintUnformatted(v);
     snprintf(buf, len, "%.40s", text ? text : "?");
     free(text);

@@ -352,7 +352,7 @@ static int write_outputs(const track_opts *o, const char *file, const jc_Track *
     }
     if (ok && o->json) {
         cJSON *doc = track_json(file, t);
-        char *text = doc ? cJSON_Print(doc) : NULL;
+        char *text = cli_json_text(doc, 1);
         cJSON_Delete(doc);
         if (!text) {
             cli_error("track: out of memory for the JSON document");

@@ -255,7 +255,7 @@ static cJSON *design_json(const cli_DesignJob *job, const jc_DesignResult *r, cl
 int cli_design_write_json(const cli_DesignJob *job, const jc_DesignResult *r, const char *path)
 {
     cJSON *doc = design_json(job, r, cli_design_units(job));
-    char *text = doc ? cJSON_Print(doc) : NULL;
+    char *text = cli_json_text(doc, 1);
     cJSON_Delete(doc);
     if (!text) {
         cli_error("design: out of memory for the JSON document");

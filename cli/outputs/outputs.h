@@ -1,7 +1,8 @@
 /* What the tool writes (cli/outputs/): the setup line and JSON helpers
- * (report.c), `simulate --json` (sim_json.c), the simulation as commands
- * run it, stopped by a signal (record.c), every output file written whole
- * or not at all (safe_output.c), and progress on long work (progress.c).
+ * (report.c), JSON text with exact numbers (json_text.c), `simulate
+ * --json` (sim_json.c), the simulation as commands run it, stopped by a
+ * signal (record.c), every output file written whole or not at all
+ * (safe_output.c), and progress on long work (progress.c).
  * Below it only the process layer (process.h) and the library. */
 #ifndef JUMPCYL_OUTPUTS_H
 #define JUMPCYL_OUTPUTS_H
@@ -38,9 +39,25 @@ struct cJSON *cli_json_setup(const jc_Model *m);
 struct cJSON *cli_json_params(void);
 struct cJSON *cli_json_event(const jc_Event *e);
 struct cJSON *cli_json_energy(const jc_EnergyReport *e);
-/* Prints the document on stdout and frees it; EXIT_FAIL if that fails
- * (after a message, but none for a closed pipe). */
+/* Prints the document on stdout (cli_json_text) and frees it; EXIT_FAIL if
+ * that fails (after a message, but none for a closed pipe). */
 int cli_json_print(struct cJSON *doc);
+
+/* ---- json_text.c: JSON text whose numbers read back bit for bit ---- */
+
+#define CLI_JSON_NUMBER_MAX 32
+/* v as JSON: the shortest of its %.15g, %.16g and %.17g forms that reads
+ * back to v bit for bit (-0 as "-0"; of equal lengths the fewer digits),
+ * with '.' for the decimal point; "null" for NaN and infinities (JSON has
+ * none), as cJSON writes them. Returns the length. */
+int cli_json_number(double v, char out[CLI_JSON_NUMBER_MAX]);
+/* doc printed by cJSON, formatted (cJSON_Print) or not
+ * (cJSON_PrintUnformatted), with every number as cli_json_number writes
+ * it: the number nodes of doc become raw nodes holding that text, so print
+ * doc once, then delete it. Every JSON document the tool and the page
+ * write is printed here. NULL for a NULL doc or when memory ran out; free
+ * the text with free. */
+char *cli_json_text(struct cJSON *doc, int formatted);
 
 /* ---- sim_json.c: `simulate --json`, whole or streamed (the same text) ---- */
 

@@ -182,7 +182,7 @@ cJSON *cli_json_params(void)
 
 int cli_json_print(cJSON *doc)
 {
-    char *text = doc ? cJSON_Print(doc) : NULL;
+    char *text = cli_json_text(doc, 1);
     cJSON_Delete(doc);
     if (!text) {
         cli_error("could not format the JSON output (out of memory)");

@@ -2,8 +2,9 @@
  * held in memory) and the same text written piece by piece as the events
  * arrive (cli_sim_json_begin/event/end), so that a run of millions of
  * events needs no more memory than one event. The pieces are printed by
- * cJSON itself and re-indented to their depth in the document, so the two
- * texts are identical byte for byte (tests/test_sim_json.c). */
+ * cJSON itself (with exact numbers, cli_json_text) and re-indented to
+ * their depth in the document, so the two texts are identical byte for
+ * byte (tests/test_sim_json.c). */
 #include "outputs.h"
 
 #include <cjson/cJSON.h>
@@ -47,8 +48,9 @@ cJSON *cli_sim_json_doc(const jc_Model *m, const jc_Run *run)
     return doc;
 }
 
-/* Writes text (a cJSON_Print) from skip bytes on, dropping drop bytes at its
- * end, with tabs tabs after each line break: its depth in the document. */
+/* Writes text (cli_json_text's, formatted) from skip bytes on, dropping
+ * drop bytes at its end, with tabs tabs after each line break: its depth in
+ * the document. */
 static int put_indented(FILE *out, char *text, size_t skip, size_t drop, int tabs)
 {
     if (!text) return -1;
@@ -64,7 +66,7 @@ static int put_indented(FILE *out, char *text, size_t skip, size_t drop, int tab
 
 static int print_piece(FILE *out, cJSON *item, size_t skip, size_t drop, int tabs)
 {
-    char *text = item ? cJSON_Print(item) : NULL;
+    char *text = cli_json_text(item, 1);
     cJSON_Delete(item);
     return put_indented(out, text, skip, drop, tabs);
 }

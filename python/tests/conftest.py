@@ -1,16 +1,14 @@
-"""Shared helpers: the tool to compare with, and the tool's JSON number form."""
+"""Shared helpers: the tool to compare with, and an exact comparison with its JSON."""
 import json
-import math
 import os
+import struct
 import subprocess
-import sys
 
 import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, os.pardir, os.pardir))
 TOOL = os.environ.get("JUMPCYL_TOOL", os.path.join(REPO, "build", "jumpcyl"))
-DBL_EPSILON = sys.float_info.epsilon
 
 
 def tool(*args, check=True):
@@ -24,34 +22,35 @@ def tool(*args, check=True):
 
 
 def tool_json(*args):
-    return json.loads(tool(*args).stdout)
+    """The tool's JSON output parsed, every number as a float (so that "-0"
+    keeps its sign): the tool writes each double so that it reads back to
+    the same double."""
+    return json.loads(tool(*args).stdout, parse_int=float)
 
 
-def cjson_number_text(d):
-    """A double as cJSON 1.7 prints it (print_number): null for NaN and
-    infinities, %d when it equals its int conversion, else %1.15g when that
-    reads back within DBL_EPSILON relative, else %1.17g."""
-    if not math.isfinite(d):
-        return "null"
-    vi = 2147483647 if d >= 2147483647 else -2147483648 if d <= -2147483648 else int(d)
-    if d == float(vi):
-        return "%d" % vi
-    s = "%1.15g" % d
-    t = float(s)
-    if not abs(t - d) <= max(abs(t), abs(d)) * DBL_EPSILON:
-        s = "%1.17g" % d
-    return s
+def _bits(x):
+    return struct.pack("<d", float(x))
 
 
-def as_tool_prints(x):
-    """A Python document with every number replaced by the value the tool's
-    JSON text of it reads back to: comparing with == then compares the texts."""
-    if isinstance(x, dict):
-        return {k: as_tool_prints(v) for k, v in x.items()}
-    if isinstance(x, list):
-        return [as_tool_prints(v) for v in x]
-    if isinstance(x, bool) or x is None or isinstance(x, str):
-        return x
-    if isinstance(x, (int, float)):
-        return json.loads(cjson_number_text(float(x)))
-    raise TypeError(type(x))
+def assert_same(ours, tools, where="$"):
+    """ours (the package's) is tools (the tool's JSON, from tool_json)
+    exactly: the same members and items, the same strings and booleans,
+    None where the tool wrote null, and every number the same double bit for
+    bit (struct-packed: -0 is not 0)."""
+    if isinstance(tools, dict):
+        assert isinstance(ours, dict), "%s: %r, the tool has an object" % (where, ours)
+        assert sorted(ours) == sorted(tools), "%s: members %s, the tool's %s" % (where, sorted(ours), sorted(tools))
+        for k in tools:
+            assert_same(ours[k], tools[k], "%s.%s" % (where, k))
+    elif isinstance(tools, list):
+        assert isinstance(ours, (list, tuple)), "%s: %r, the tool has an array" % (where, ours)
+        assert len(ours) == len(tools), "%s: %d items, the tool's %d" % (where, len(ours), len(tools))
+        for i, (a, b) in enumerate(zip(ours, tools)):
+            assert_same(a, b, "%s[%d]" % (where, i))
+    elif isinstance(tools, float):
+        assert isinstance(ours, (int, float)) and not isinstance(ours, bool), \
+            "%s: %r, the tool has the number %r" % (where, ours, tools)
+        assert _bits(ours) == _bits(tools), "%s: %r (%s), the tool's %r (%s)" % (
+            where, ours, float(ours).hex(), tools, tools.hex())
+    else:  # str, bool, None
+        assert type(ours) is type(tools) and ours == tools, "%s: %r, the tool's %r" % (where, ours, tools)

@@ -6,22 +6,15 @@ import json
 import pytest
 
 import jumpcyl as jc
-from conftest import tool
-
-# The tool's JSON prints 15 significant digits where they read back to
-# within one part in 2^52 (cJSON), so its numbers are compared to this
-# relative tolerance, not bit for bit.
-REL = 1e-15
-
-
-def close(a, b):
-    return abs(a - b) <= REL * max(abs(a), abs(b))
+from conftest import tool, assert_same
 
 
 def tool_design(tmp_path, setup, jump_at, free):
+    """design --json FILE parsed as tool_json parses (every number a float,
+    the same double the tool computed)."""
     out = tmp_path / "design.json"
     tool("design", "--jump-at", jump_at, "--free", free, "--json", str(out), *setup.cli_args())
-    return json.loads(out.read_text())
+    return json.loads(out.read_text(), parse_int=float)
 
 
 @pytest.mark.parametrize("free, jump_at", [("rod_offset", "1.2m"), ("mu_k", "1.3m")])
@@ -29,12 +22,14 @@ def test_default_range_and_solutions_are_the_tools(tmp_path, free, jump_at):
     s = jc.Setup(preset="paper")
     d = jc.design(s, jump_at=jump_at, free=free)
     ref = tool_design(tmp_path, s, jump_at, free.replace("_", "-"))
+    # Bit for bit: the tool's JSON numbers read back to its doubles.
     assert d["free"]["name"] == ref["free"]["name"]
-    assert close(d["free"]["lo"], ref["free"]["lo"]) and close(d["free"]["hi"], ref["free"]["hi"]), (d["free"],
-                                                                                                     ref["free"])
+    assert_same(d["free"]["lo"], ref["free"]["lo"], "free.lo")
+    assert_same(d["free"]["hi"], ref["free"]["hi"], "free.hi")
     assert d["solutions"] and len(d["solutions"]) == len(ref["solutions"]), (d["solutions"], ref["solutions"])
-    for mine, theirs in zip(d["solutions"], ref["solutions"]):
-        assert close(mine["value"], theirs["value"]) and close(mine["x_m"], theirs["x_m"]), (mine, theirs)
+    for k, (mine, theirs) in enumerate(zip(d["solutions"], ref["solutions"])):
+        assert_same(mine["value"], theirs["value"], "solutions[%d].value" % k)
+        assert_same(mine["x_m"], theirs["x_m"], "solutions[%d].x_m" % k)
         assert mine["branch"] == theirs["branch"]
 
 

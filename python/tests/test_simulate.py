@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import jumpcyl as jc
-from conftest import tool, tool_json, as_tool_prints
+from conftest import tool, tool_json, assert_same
 
 PRESETS = list(jc.presets())
 # Every preset as it is, and the paper's three inclines (Table 1).
@@ -18,12 +18,11 @@ def test_simulate_json_equals_the_tool(preset, values):
     s = jc.Setup(preset=preset, **values)
     run = jc.simulate(s)
     ref = tool_json("simulate", "--json", *s.cli_args())
-    doc = run.to_dict()
-    # Python keeps every double; the tool prints 15 or 17 digits (cJSON):
-    # printed the tool's way, every number reads back to the tool's.
-    assert as_tool_prints(doc) == ref
-    assert as_tool_prints(run.summary) == ref["summary"]
-    assert [as_tool_prints(e.to_dict()) for e in run.events] == ref["events"]
+    # The tool writes every double so that it reads back bit for bit: the
+    # package's doubles are the tool's, compared exactly.
+    assert_same(run.summary, ref["summary"], "summary")
+    assert_same([e.to_dict() for e in run.events], ref["events"], "events")
+    assert_same(run.to_dict(), ref)
     assert run.termination == ref["termination"]
     assert len(ref["events"]) > 0
 
@@ -31,7 +30,7 @@ def test_simulate_json_equals_the_tool(preset, values):
 @pytest.mark.parametrize("preset,values", CASES, ids=IDS)
 def test_predict_equals_the_tool(preset, values):
     s = jc.Setup(preset=preset, **values)
-    assert as_tool_prints(jc.predict(s)) == tool_json("predict", "--json", *s.cli_args())
+    assert_same(jc.predict(s), tool_json("predict", "--json", *s.cli_args()))
 
 
 def test_liftoff_of_the_paper_at_30_degrees():
@@ -73,7 +72,7 @@ def test_options_as_the_tool():
     s = jc.Setup(preset="paper")
     run = jc.simulate(s, t_max="0.5s", max_events=3)
     ref = tool_json("simulate", "--json", "--t-max", "0.5s", "--max-events", "3", *s.cli_args())
-    assert as_tool_prints(run.to_dict()) == ref
+    assert_same(run.to_dict(), ref)
     assert run.t_end <= 0.5
 
 

@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 
 import jumpcyl as jc
-from conftest import tool, tool_json, as_tool_prints
+from conftest import tool, tool_json, assert_same
 
 INCLINES = ["%ddeg" % a for a in range(10, 61, 10)]
 MUS = ["0.3", "0.5", "1.0"]
@@ -72,7 +72,7 @@ def test_mc_rows_and_summary_are_the_tool(tmp_path, threads):
                     "restitution=0.2:0.5", "--json", "--output", str(out), "--threads", str(threads), "--quiet",
                     *s.cli_args())
     pd.testing.assert_frame_equal(r.rows, tool_rows(out), check_exact=True)
-    assert as_tool_prints(r.summary) == ref
+    assert_same(r.summary, ref)
     assert r.summary["valid"] == 300
     # The median of the first lift-offs, recomputed here from the rows.
     x = r.rows["first_liftoff_x_m"].dropna().to_numpy()
