@@ -28,13 +28,6 @@ function(roff_text out text)
   set(${out} "${text}" PARENT_SCOPE)
 endfunction()
 
-# An option's name as roff: bold, with \- so that it copies as a minus.
-function(roff_option out text)
-  roff_text(text "${text}")
-  string(REPLACE "-" "\\-" text "${text}")
-  set(${out} "${text}" PARENT_SCOPE)
-endfunction()
-
 # Splits a command's --help at the shared sets: its own part, and the two
 # sets (empty when it has none).
 function(split_help text own_out sim_out setup_out)
