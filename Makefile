@@ -34,7 +34,7 @@ LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/te
                 tests/fit/test_fit_cli.c tests/fit/test_fit_stats.c tests/fit/make_track.c tests/fit/test_fit_api.c \
                 tests/test_study.c examples/mc_example.c
 
-.PHONY: all deps configure build run test asan test-asan bench install-check clean help
+.PHONY: all deps configure build run test test-long asan test-asan bench install-check clean help
 .PHONY: test-valgrind fuzz lint lint-layers test-mpi install deps-fuzz deps-valgrind deps-lint deps-mpi deps-install
 .PHONY: python test-python deps-python notebook deps-notebook docs-examples
 
@@ -44,10 +44,11 @@ help:
 	@echo "make run        install missing packages, build, run 'jumpcyl paper' (the paper's Table 1),"
 	@echo "                write the figures out/overview-{15,30,45}.png, out/trajectory-{15,30,45,hoop}.png"
 	@echo "                and the films out/jump-45.gif, out/hoop.gif"
-	@echo "make test       install missing packages, build, run the test suite (ctest), and the web"
-	@echo "                tests when Chromium and a built page are there"
+	@echo "make test       install missing packages, build, run the test suite (ctest) but its long"
+	@echo "                cases, and the web tests when Chromium and a built page are there"
+	@echo "make test-long  the long cases make test leaves out (ctest label long; CI runs both)"
 	@echo "make web        the page in out/web/ (WebAssembly, Emscripten); make test-web-all: its tests"
-	@echo "make test-asan  the test suite built with AddressSanitizer + UndefinedBehaviorSanitizer"
+	@echo "make test-asan  the test suite but its long cases, built with AddressSanitizer + UBSan"
 	@echo "make test-valgrind  the CLI tests with every run of the tool under valgrind"
 	@echo "make fuzz       build the libFuzzer targets (clang) and run each FUZZ_SECONDS=$(FUZZ_SECONDS) s"
 	@echo "make test-mpi   the MPI build (-DJUMPCYL_MPI=ON): sweep and mc under mpirun -n 2 equal one process"
@@ -116,15 +117,28 @@ run: build
 	@./$(BUILD)/jumpcyl animate --incline 45 --size 640x360 --fps 25 --slowmo 6 --output out/jump-45.gif
 	@./$(BUILD)/jumpcyl animate --preset hoop --size 640x360 --fps 25 --slowmo 6 --output out/hoop.gif
 
+# The test suite without its long cases (ctest label "long") and the
+# valgrind runs (label "valgrind", make test-valgrind): about a minute on 2
+# idle cores (docs/performance.md), a line as each test ends.
 test: build
-	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -LE valgrind
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -LE '^(valgrind|long)$$'
 	@$(MAKE) --no-print-directory test-web-present
 
+# The long cases make test leaves out (tests/CMakeLists.txt: the fit's
+# coverage over 200 videos, the hoop's example fit, the full-size film's
+# signals, the docs' slow examples); CI runs both.
+test-long: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L '^long$$' --no-tests=error
+
+# The sanitizer build's tests but the long ones: those repeat code paths
+# the others run under the sanitizers too (the full-size film's signals,
+# the hoop's example fit, the docs' slow examples; the fit's coverage runs
+# there as 24 trials, not long).
 test-asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DJC_SANITIZE=ON -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+	  ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS) -LE '^long$$'
 
 asan: test-asan
 

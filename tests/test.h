@@ -1,8 +1,9 @@
 /*
  * A tiny test runner in the style of Box2D's tests: a test is a function
  * `static int test_x(void)` that returns 0 on success; ENSURE* print what
- * failed and return 1 from the test. RUN_TEST counts, TEST_MAIN_END prints
- * "N passed, N failed" and gives the process its exit status.
+ * failed and return 1 from the test. RUN_TEST counts and prints each test's
+ * time, TEST_MAIN_END prints "N passed, N failed" and gives the process its
+ * exit status.
  */
 #ifndef JC_TEST_H
 #define JC_TEST_H
@@ -10,7 +11,9 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 static int jc_test_passed_count, jc_test_failed_count;
 
@@ -74,14 +77,67 @@ static inline double test_uniform(uint64_t *state, double lo, double hi)
     return lo + (hi - lo) * (double)(x >> 11) * (1.0 / 9007199254740992.0);
 }
 
+/* Which tests of an executable run (tests/CMakeLists.txt splits a long
+ * executable into several ctest tests this way): JC_TESTS, names of test
+ * functions separated by spaces or commas, runs only those; JC_TESTS_SKIP
+ * runs all but those. A name in either that the executable does not have
+ * fails the run, so that a renamed test cannot drop out unseen. */
+static int jc_test_named_seen_count;
+
+/* Whether name is a word of the list (spaces or commas between words). */
+static inline int jc_test_listed(const char *list, const char *name)
+{
+    const size_t n = strlen(name);
+    for (const char *p = list; p && *p;) {
+        p += strspn(p, " ,");
+        const size_t len = strcspn(p, " ,");
+        if (len == n && strncmp(p, name, n) == 0) return 1;
+        p += len;
+    }
+    return 0;
+}
+
+/* The number of words of a list. */
+static inline int jc_test_list_count(const char *list)
+{
+    int count = 0;
+    for (const char *p = list; p && *p;) {
+        p += strspn(p, " ,");
+        const size_t len = strcspn(p, " ,");
+        count += len > 0;
+        p += len;
+    }
+    return count;
+}
+
+/* Whether the test named name runs; counts the names listed that were seen. */
+static inline int jc_test_selected(const char *name)
+{
+    const char *only = getenv("JC_TESTS"), *skip = getenv("JC_TESTS_SKIP");
+    const int in_only = jc_test_listed(only, name), in_skip = jc_test_listed(skip, name);
+    jc_test_named_seen_count += in_only + in_skip;
+    if (in_skip) return 0;
+    return !only || !*only || in_only;
+}
+
+/* Seconds on a steady enough clock (C11 timespec_get), for the time each test takes. */
+static inline double jc_test_now_s(void)
+{
+    struct timespec t;
+    if (timespec_get(&t, TIME_UTC) != TIME_UTC) return 0.0;
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
 #define RUN_TEST(fn)                                                                    \
     do {                                                                                \
+        if (!jc_test_selected(#fn)) break;                                              \
+        const double run_test_t0_ = jc_test_now_s();                                    \
         if ((fn)() == 0) {                                                              \
             ++jc_test_passed_count;                                                     \
-            printf("passed: %s\n", #fn);                                                \
+            printf("passed: %s (%.2f s)\n", #fn, jc_test_now_s() - run_test_t0_);       \
         } else {                                                                        \
             ++jc_test_failed_count;                                                     \
-            printf("FAILED: %s\n", #fn);                                                \
+            printf("FAILED: %s (%.2f s)\n", #fn, jc_test_now_s() - run_test_t0_);       \
         }                                                                               \
         fflush(stdout);                                                                 \
     } while (0)
@@ -89,6 +145,18 @@ static inline double test_uniform(uint64_t *state, double lo, double hi)
 /* The last statement of main(). */
 #define TEST_MAIN_END()                                                                 \
     do {                                                                                \
+        const int tme_named_ = jc_test_list_count(getenv("JC_TESTS")) +                 \
+                               jc_test_list_count(getenv("JC_TESTS_SKIP"));             \
+        if (jc_test_named_seen_count != tme_named_) {                                   \
+            ++jc_test_failed_count;                                                     \
+            printf("FAILED: JC_TESTS '%s' or JC_TESTS_SKIP '%s' names a test this "     \
+                   "executable does not have\n", getenv("JC_TESTS") ? getenv("JC_TESTS") : "", \
+                   getenv("JC_TESTS_SKIP") ? getenv("JC_TESTS_SKIP") : "");             \
+        }                                                                               \
+        if (jc_test_passed_count + jc_test_failed_count == 0) {                         \
+            ++jc_test_failed_count;                                                     \
+            printf("FAILED: no test ran\n");                                            \
+        }                                                                               \
         printf("%d passed, %d failed\n", jc_test_passed_count, jc_test_failed_count);   \
         return jc_test_failed_count != 0;                                               \
     } while (0)

@@ -485,11 +485,20 @@ static int test_signals_while_gnuplot_runs(void)
     return each_stop_signal("gnuplot", "fig.png", args);
 }
 
-static int test_signals_while_ffmpeg_runs(void)
+/* ffmpeg starts once every frame is drawn, and the signal goes as soon as
+ * it runs. A small film (278 frames of 160x90) keeps ffmpeg busy for about
+ * a second; the full-size one (1280x720: ffmpeg for about 20 s, but the
+ * frames take 20 s of CPU to draw, for each of the five signals) is in the
+ * long tests (ctest label "long", make test-long). */
+static int signals_while_ffmpeg_runs(const char *size)
 {
-    const char *args[] = {"animate", "--incline", "45", "--size", "1280x720", NULL};
+    const char *args[] = {"animate", "--incline", "45", "--size", size, NULL};
     return each_stop_signal("ffmpeg", "film.mp4", args);
 }
+
+static int test_signals_while_ffmpeg_runs(void) { return signals_while_ffmpeg_runs("160x90"); }
+
+static int test_signals_while_ffmpeg_runs_full_size(void) { return signals_while_ffmpeg_runs("1280x720"); }
 
 /* A long simulation behind a plot (its first run, which keeps nothing). */
 static int test_signal_while_simulating(void)
@@ -755,6 +764,7 @@ int main(int argc, char **argv)
         RUN_TEST(test_file_size_limit);
         RUN_TEST(test_signals_while_gnuplot_runs);
         RUN_TEST(test_signals_while_ffmpeg_runs);
+        RUN_TEST(test_signals_while_ffmpeg_runs_full_size);
         RUN_TEST(test_signal_while_simulating);
         RUN_TEST(test_second_signal);
         RUN_TEST(test_long_run_memory);

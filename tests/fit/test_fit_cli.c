@@ -361,10 +361,11 @@ static int test_noise_free_compare_tool(void)
 
 /* The sample experiments of examples/tracker (docs/tracker.md; the
  * directory in JC_EXAMPLES_DIR), fitted as the docs fit them: exit 0, the
- * verdict good, the known values within 3 of their sigma. */
+ * verdict good, the known values within 3 of their sigma. The examples
+ * numbered in `which` (0 to 3, in the order of runs[] below). */
 static const char *examples_dir;
 
-static int test_examples(void)
+static int check_examples(const int *which, int count)
 {
     /* ctest sets it (tests/fit/CMakeLists.txt): unset, the examples would
      * go untested and the test pass all the same. */
@@ -384,7 +385,8 @@ static int test_examples(void)
     const char *names[4][2] = {{"mu_k", "restitution"}, {"mu_k", "restitution"}, {NULL, NULL}, {"mu_k", "restitution"}};
     const double known[4][2] = {{0.4, 0.3}, {0.5, 0.3}, {0, 0}, {0.4, 0.3}};
     int bad = 0;
-    for (int k = 0; k < 4; ++k) {
+    for (int i = 0; i < count; ++i) {
+        const int k = which[i];
         cli_result r = cli_run(runs[k]);
         int ok = r.status == 0 && r.out && strstr(r.out, "the model describes this video");
         if (k == 2) ok = ok && strstr(r.out, "mu_k: the residuals do not change with it");
@@ -408,6 +410,20 @@ static int test_examples(void)
     }
     ENSURE(bad == 0);
     return 0;
+}
+
+static int test_examples(void)
+{
+    static const int which[] = {0, 2, 3};
+    return check_examples(which, 3);
+}
+
+/* The hoop on a floor with mu_s free: a fit of about 15 s (its profile of
+ * mu_s), one of the long tests (tests/CMakeLists.txt). */
+static int test_example_hoop_floor(void)
+{
+    static const int which[] = {1};
+    return check_examples(which, 1);
 }
 
 static double now_s(void)
@@ -457,6 +473,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_wrong_body);
     RUN_TEST(test_bad_options);
     RUN_TEST(test_examples);
+    RUN_TEST(test_example_hoop_floor);
     RUN_TEST(test_stop_signal);
     TEST_MAIN_END();
 }
