@@ -461,8 +461,9 @@ int cmd_animate(int argc, char **argv)
     jc_Run run;
     double film_end = 0;
     if ((st = check_length(&in.model, &in.sim, &o, &film_end)) != EXIT_OK) return st;
-    /* The film's run stops where the film does: the same run up to there. */
-    in.sim.t_max_s = fmin(in.sim.t_max_s, film_end);
+    /* The film's run stops where the film does: the same run up to there
+     * (a run that ends at its start, at rest, needs no limit). */
+    if (film_end > 0.0) in.sim.t_max_s = fmin(in.sim.t_max_s, film_end);
     in.sim.max_samples = (int)fmin(1e8, (double)o.max_frames + in.sim.max_events + 16.0);
     if ((st = cli_simulate(&in.model, &in.sim, &run, "animate")) != JC_OK) {
         jc_run_free(&run);

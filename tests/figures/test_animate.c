@@ -158,6 +158,31 @@ static int test_film_ends_with_motion(void)
     return 0;
 }
 
+/* A body at rest in equilibrium at the start (the paper's cylinder on a
+ * floor, its mass straight above the centre) is filmed as one still
+ * picture and the hold: the run ends at t = 0, and the film's time limit
+ * is not set to that 0. */
+static int test_film_of_rest(void)
+{
+    jc_Setup s = jc_paper_setup();
+    s.incline_rad = 0.0;
+    jc_Model m;
+    char err[256], out[1100], args[2048];
+    ENSURE(jc_model_init(&m, &s, err, sizeof err) == JC_OK);
+    const jc_SimOptions o = jc_default_sim_options();
+    jc_Run run;
+    ENSURE(jc_simulate(&m, &o, &run, err, sizeof err) == JC_OK);
+    const int at_rest = run.termination == JC_END_REST && run.final_state.t_s == 0.0;
+    jc_run_free(&run);
+    ENSURE(at_rest);
+    snprintf(out, sizeof out, "%s/rest/", dir);
+    snprintf(args, sizeof args, "animate --incline 0 --size 160x90 --fps 10 --slowmo 2 --output '%s'", out);
+    ENSURE(run_ok(args));
+    const int want = 1 + (int)ceil(HOLD_S * 10 - 1e-9);
+    ENSURE_MSG(fig_count_entries(out) == want, "%d frames, want %d", fig_count_entries(out), want);
+    return 0;
+}
+
 static int test_bad_input(void)
 {
     if (usage_error("--camera xyz", "--camera 'xyz' is not a camera (allowed: fixed, follow)")) return 1;
@@ -184,6 +209,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_follow_camera);
     RUN_TEST(test_missing_ffmpeg);
     RUN_TEST(test_film_ends_with_motion);
+    RUN_TEST(test_film_of_rest);
     RUN_TEST(test_bad_input);
     fig_main_end(dir);
     TEST_MAIN_END();
