@@ -24,6 +24,19 @@ int jc_paper_table(const jc_PaperTableRow **rows)
     return (int)(sizeof paper_table / sizeof paper_table[0]);
 }
 
+int jc_paper_body_is(const jc_BodyDef *body)
+{
+    const jc_BodyDef p = jc_paper_setup().body;
+    if (body->radius_m != p.radius_m || body->part_count != p.part_count) return 0;
+    for (int i = 0; i < p.part_count; ++i) {
+        const jc_Part *a = &body->parts[i], *b = &p.parts[i];
+        if (a->kind != b->kind || a->mass_kg != b->mass_kg || a->offset_m != b->offset_m ||
+            a->angle_rad != b->angle_rad || a->radius_m != b->radius_m)
+            return 0;
+    }
+    return 1;
+}
+
 double jc_paper_lhs(const jc_Model *m, double th)
 {
     const double M = m->body.mass_kg, r = m->body.radius_m, M1 = m->body.disc_mass_kg;

@@ -831,6 +831,23 @@ static int test_design_refused_rows(void)
     parts.parts_given = 1;
     ENSURE(jc_design_free_check(id_of("radius"), NULL, &parts, err, sizeof err) == JC_EINVAL);
     ENSURE(jc_design_free_check(id_of("rod-offset"), &paper, &parts, err, sizeof err) == JC_OK);
+    /* A value given for the free row, or for a row that sets it (mu sets
+     * mu-s and mu-k) or that it sets, would be replaced by the search's. */
+    jc_ParamValues given;
+    memset(&given, 0, sizeof given);
+    given.given[id_of("rod-offset")] = 1;
+    ENSURE(jc_design_free_check(id_of("rod-offset"), &paper, &given, err, sizeof err) == JC_EINVAL);
+    ENSURE_MSG(strstr(err, "rod-offset: given a value and free"), "%s", err);
+    ENSURE(jc_design_free_check(id_of("mu-s"), &paper, &given, err, sizeof err) == JC_OK);
+    memset(&given, 0, sizeof given);
+    given.given[id_of("mu")] = 1;
+    ENSURE(jc_design_free_check(id_of("mu-k"), NULL, &given, err, sizeof err) == JC_EINVAL);
+    ENSURE_MSG(strstr(err, "mu-k: mu is given too, and mu sets mu-k"), "%s", err);
+    memset(&given, 0, sizeof given);
+    given.given[id_of("mu-s")] = 1;
+    ENSURE(jc_design_free_check(id_of("mu"), NULL, &given, err, sizeof err) == JC_EINVAL);
+    ENSURE_MSG(strstr(err, "mu: mu-s is given too, and mu sets mu-s"), "%s", err);
+    ENSURE(jc_design_free_check(id_of("radius"), NULL, &given, err, sizeof err) == JC_OK);
     /* mu-s = mu-k = 0: mu-k has no valid value but 0, so no range. */
     jc_Setup still = paper;
     ENSURE_OK(jc_param_set(&still, id_of("mu"), 0.0, err, sizeof err), err);

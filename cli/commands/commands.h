@@ -25,7 +25,7 @@ int cmd_fit(int argc, char **argv);      /* fit.c: setup values fitted to a trac
 int cmd_params(int argc, char **argv);   /* params.c: the parameter table */
 
 /* paper.c: EXIT_OK when the setup's body is the paper's cylinder, the only body
- * whose jump sites the paper measured (cli_is_paper_body); otherwise
+ * whose jump sites the paper measured (jc_paper_body_is); otherwise
  * EXIT_USAGE after a one-line message naming the option that made another
  * body and the command to use for it instead. what: "" or the kind of
  * output, "--what paper-uncertainty: ". */

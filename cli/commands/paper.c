@@ -546,7 +546,7 @@ static void body_option(const cli_SetupArgs *sa, char *out, size_t len)
 int cli_paper_body_only(const char *cmd, const char *what, const char *instead, const cli_SetupArgs *sa,
                         const jc_Setup *s)
 {
-    if (cli_is_paper_body(&s->body)) return EXIT_OK;
+    if (jc_paper_body_is(&s->body)) return EXIT_OK;
     char option[256];
     body_option(sa, option, sizeof option);
     cli_error("%s: %s%s gives a body other than the paper's cylinder, the only one its Table 1 measured "

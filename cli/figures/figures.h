@@ -22,9 +22,6 @@
  * table's inclines (friction, restitution and the start may differ, as the
  * paper's model has none of them); NULL for any other setup. */
 const jc_PaperTableRow *cli_paper_row(const jc_Setup *s);
-/* Whether the body is the paper's cylinder (rim and parts exactly the
- * 'paper' preset's), the only body whose jump sites the paper measured. */
-int cli_is_paper_body(const jc_BodyDef *body);
 
 typedef enum { FIG_PNG, FIG_SVG, FIG_PDF } fig_Format;
 

@@ -342,6 +342,10 @@ typedef struct {
 /* The rows of Table 1 (15, 30, 45 degrees); returns their count. */
 JC_API int jc_paper_table(const jc_PaperTableRow **rows);
 
+/* 1 if body is the paper's cylinder (jc_paper_setup's body, part by part,
+ * exactly), the only body whose jump sites Table 1 measured; 0 otherwise. */
+JC_API int jc_paper_body_is(const jc_BodyDef *body);
+
 /* Both sides of Eq. 9: th'^2/g (Eqs. 1, 5, 6) and cos(alpha)/(d cos th).
  * The model always starts at th = 0 at rest, as the paper assumes. */
 JC_API double jc_paper_lhs(const jc_Model *model, double theta_rad);

@@ -390,7 +390,9 @@ JC_API int jc_design_reachable(const jc_DesignResult *r, double *lo, double *hi,
  * (restitution, ramp-length, paper-d): JC_OK, or JC_EINVAL with
  * "NAME: why" (no such id, a row of names, one of those three). With fixed
  * (base may be NULL), radius over a body given part by part is refused
- * too (it moves only the rim there). With base: the setup of base and fixed
+ * too (it moves only the rim there), and so is a value given for the free
+ * row or for a row that sets it or that it sets (mu for mu-s): the search
+ * would replace it. With base: the setup of base and fixed
  * without the free value must be valid and have the part the row sets
  * (else jc_param_get's message: rod-offset of a hoop). */
 JC_API int jc_design_free_check(int free_id, const jc_Setup *base, const jc_ParamValues *fixed, char *err,

@@ -99,8 +99,15 @@ def paper_table(setup=None):
     values, Eq. 9, the exact rolling model, the full model with friction,
     drag, Newton's impacts and a Monte Carlo of the paper's tolerances, and
     the measurement: a dict with the keys of `jumpcyl paper --json`. setup:
-    the paper's by default; its incline is the table's."""
+    the paper's by default; its incline is the table's. Its body must be
+    the paper's cylinder (jc_paper_body_is), the only one the table measured:
+    for another body, use predict or simulate on each incline."""
     setup = as_setup(setup)
+    sp = setup._ptr()
+    if not lib.jc_paper_body_is(ffi.addressof(sp[0], "body")):
+        raise ValueError("paper_table: the setup's body is not the paper's cylinder, the only one its Table 1 "
+                         "measured (settings that keep the body, such as mu or paper_d, may change); for this body "
+                         "use jc.predict(setup.replace(incline='15deg')) (30, 45)")
     rows, first_model = [], None
     for t in table_rows():
         row, m = _row(setup, t)

@@ -156,9 +156,6 @@ def _study(kind, setup, sim, threads):
 def _drop_fixed(d, p):
     """The study varies p: the setup's own value of p (and of a shortcut or
     the rows it sets) gives way, as if the setup had not given it."""
-    related = {p.id} | {param(q).id for q in p.sets} | {q.id for q in params() if p.name in q.sets}
-    for pid in related:
-        d.fixed.given[pid] = 0
 
 
 def _batch_sim(options):
@@ -445,9 +442,6 @@ def design(setup=None, jump_at=None, free=None, range=None, points=1000, threads
     base, fixed = setup.study_base()
     d.base = base[0]
     d.fixed = fixed[0]
-    related = {p.id} | {param(q).id for q in p.sets} | {q.id for q in params() if p.name in q.sets}
-    for pid in related:
-        d.fixed.given[pid] = 0
     d.free_id = p.id
     err = err_buf()
     check(lib.jc_design_free_check(p.id, ffi.addressof(d[0], "base"), ffi.addressof(d[0], "fixed"), err, len(err)),

@@ -51,3 +51,11 @@ def test_default_ranges_from_the_body():
 def test_refused_rows(free, setup):
     with pytest.raises(ValueError, match="free: "):
         jc.design(jc.Setup(**setup), jump_at="1m", free=free, range=("0.1", "0.2"))
+
+
+@pytest.mark.parametrize("given, free", [({"rod_offset": "3cm"}, "rod_offset"), ({"mu": 0.5}, "mu_s"),
+                                         ({"mu_k": 0.4}, "mu")])
+def test_a_given_value_of_the_free_row_is_refused(given, free):
+    # The tool refuses the same (design: --rod-offset and --free rod-offset both given).
+    with pytest.raises(ValueError, match="give one"):
+        jc.design(jc.Setup(preset="paper", **given), jump_at="1.2m", free=free, points=10)

@@ -39,8 +39,37 @@ static int nominal_of(int free_id, const jc_Setup *base, const jc_ParamValues *f
     return jc_param_values_apply(&v, out, NULL, err, err_len);
 }
 
+/* Whether name is one of the blank-separated names of list. */
+static int in_list(const char *list, const char *name)
+{
+    const size_t n = strlen(name);
+    for (const char *s = list; s && *s; s += strcspn(s, " "), s += strspn(s, " "))
+        if (strncmp(s, name, n) == 0 && (s[n] == ' ' || s[n] == '\0')) return 1;
+    return 0;
+}
+
+/* A value given for the free row, or for a row that sets it or that it
+ * sets (mu and mu-s), would be silently replaced by the search's: refused. */
+static int clash_check(const jc_ParamInfo *in, int free_id, const jc_ParamValues *fixed, char *err, size_t err_len)
+{
+    if (!fixed) return JC_OK;
+    if (fixed->given[free_id])
+        return jc_fail(err, err_len, JC_EINVAL, "%s: given a value and free; give one (a range bounds the search)",
+                       in->name);
+    for (int id = 0; id < jc_param_count(); ++id) {
+        const jc_ParamInfo *g = jc_param_info(id);
+        if (id == free_id || !fixed->given[id] || !(in_list(in->sets, g->name) || in_list(g->sets, in->name)))
+            continue;
+        const int given_sets = in_list(g->sets, in->name);
+        return jc_fail(err, err_len, JC_EINVAL, "%s: %s is given too, and %s sets %s; give one", in->name, g->name,
+                       given_sets ? g->name : in->name, given_sets ? in->name : g->name);
+    }
+    return JC_OK;
+}
+
 int jc_design_free_check(int free_id, const jc_Setup *base, const jc_ParamValues *fixed, char *err, size_t err_len)
 {
+    int st;
     const jc_ParamInfo *in = jc_param_info(free_id);
     if (!in)
         return jc_fail(err, err_len, JC_EINVAL, "no parameter number %d (allowed: 0 to %d)", free_id,
@@ -56,6 +85,7 @@ int jc_design_free_check(int free_id, const jc_Setup *base, const jc_ParamValues
     if (fixed && fixed->parts_given && strcmp(in->name, "radius") == 0)
         return jc_fail(err, err_len, JC_EINVAL,
                        "radius: the body is given part by part (allowed: the radius of a preset body)");
+    if ((st = clash_check(in, free_id, fixed, err, err_len)) != JC_OK) return st;
     if (!base) return JC_OK;
     jc_Setup nominal;
     char why[256];
