@@ -73,13 +73,27 @@ static void print_side(const jc_DesignPoint *s)
     else printf("  %s", outcome_words(s->kind));
 }
 
-static void print_edges(const cli_DesignJob *job, const jc_DesignResult *r, cli_DesignUnits u)
+/* The first lift-offs between the two sides of a leap, a to b, that no
+ * branch reaches (lo, hi: the reachable ranges, sorted and merged). */
+static void print_gap(double a, double b, const double *lo, const double *hi, int n)
+{
+    int parts = 0;
+    for (int k = 0; k <= n && a < b; ++k) {
+        const double end = k < n ? fmin(b, lo[k]) : b;
+        if (end > a) printf("%s %.4f - %.4f cm", parts++ ? "," : "   (gap", a * 100, end * 100);
+        if (k < n) a = fmax(a, hi[k]);
+    }
+    printf("%s", parts ? ")" : "   (reached on other branches: no gap)");
+}
+
+static void print_edges(const cli_DesignJob *job, const jc_DesignResult *r, cli_DesignUnits u, const double *lo,
+                        const double *hi, int n)
 {
     if (r->edge_count == 0) {
         printf("\nNo discontinuity: the first lift-off is continuous over the whole range.\n");
         return;
     }
-    printf("\nDiscontinuities (each located to %.2g%s; first lift-offs between the two sides are gaps there):\n",
+    printf("\nDiscontinuities (each located to %.2g%s; first lift-offs between the two sides that no branch reaches are gaps):\n",
            r->edge_width * u.per_si, u.unit);
     for (int k = 0; k < r->edge_count; ++k) {
         const jc_DesignEdge *e = &r->edges[k];
@@ -88,7 +102,7 @@ static void print_edges(const cli_DesignJob *job, const jc_DesignResult *r, cli_
         printf("  ->");
         print_side(&e->hi);
         if (e->lo.kind == JC_CASE_LIFTOFF && e->hi.kind == JC_CASE_LIFTOFF)
-            printf("   (gap %.4f - %.4f cm)", fmin(e->lo.x_m, e->hi.x_m) * 100, fmax(e->lo.x_m, e->hi.x_m) * 100);
+            print_gap(fmin(e->lo.x_m, e->hi.x_m), fmax(e->lo.x_m, e->hi.x_m), lo, hi, n);
         putchar('\n');
     }
 }
@@ -146,9 +160,9 @@ void cli_design_print(const cli_DesignJob *job, const jc_DesignResult *r, const 
     printf("Search: %ld scan points, %ld runs of the model in all, %.2f s on %d thread%s\n", r->scan_count,
            r->evaluations, r->seconds, r->threads_used, r->threads_used == 1 ? "" : "s");
     print_branches(job, r, u);
-    print_edges(job, r, u);
     double lo[REACHABLE_MAX], hi[REACHABLE_MAX];
     const int n = jc_design_reachable(r, lo, hi, REACHABLE_MAX);
+    print_edges(job, r, u, lo, hi, n);
     printf("\nReachable first lift-offs:");
     for (int k = 0; k < n; ++k) printf("%s %.4f - %.4f cm", k ? "," : "", lo[k] * 100, hi[k] * 100);
     printf("%s\n", n ? "" : " none (nothing lifts off on the ramp)");

@@ -382,7 +382,9 @@ typedef struct {
 JC_API int jc_design_run(const jc_DesignDef *def, jc_DesignResult *out, char *err, size_t err_len);
 JC_API void jc_design_free(jc_DesignResult *r);
 /* The union of the lift-off branches' ranges, merged and sorted: at most cap
- * intervals [lo[k], hi[k]]; returns their count. */
+ * intervals [lo[k], hi[k]]; returns their count. Ranges less than
+ * JC_DESIGN_JUMP_M apart are merged (the two ends of a whole turn of theta0
+ * are one setup, computed from -pi and pi). */
 JC_API int jc_design_reachable(const jc_DesignResult *r, double *lo, double *hi, int cap);
 
 /* The free parameter (src/study/design_range.c). Design frees every numeric

@@ -301,7 +301,7 @@ int jc_design_reachable(const jc_DesignResult *r, double *lo, double *hi, int ca
     qsort(iv, (size_t)n, sizeof *iv, interval_order);
     int m = 0;
     for (int k = 0; k < n; ++k) {
-        if (m > 0 && iv[k][0] <= hi[m - 1]) {
+        if (m > 0 && iv[k][0] <= hi[m - 1] + JC_DESIGN_JUMP_M) { /* closer is no leap (study.h) */
             hi[m - 1] = fmax(hi[m - 1], iv[k][1]);
         } else if (m < cap) {
             lo[m] = iv[k][0];

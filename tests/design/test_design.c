@@ -14,7 +14,8 @@ static const char *cli;
 static char dir[1024];
 
 #define VERIFY_M 1e-6
-#define DEG (3.14159265358979323846 / 180.0)
+#define PI 3.14159265358979323846
+#define DEG (PI / 180.0)
 
 /* ---- the library, independently of the tool ---- */
 
@@ -197,6 +198,33 @@ static int test_gap_at_20_deg(void)
     free(text);
     ENSURE_MSG(n == 0, "%d solutions inside the gap", n);
     ENSURE(said);
+    return 0;
+}
+
+/* theta0 over a whole turn: -180 and 180 deg are one start, so the two
+ * branches that meet there reach one range of first lift-offs, and the leap
+ * at -13.19 deg (65.13 -> 121.21 cm) is no gap: the values between are
+ * reached on the other side of the turn. */
+static int test_theta0_turn_has_no_gap(void)
+{
+    const double x_minus = liftoff_at("theta0", -PI, 30), x_plus = liftoff_at("theta0", PI, 30);
+    ENSURE_NEAR(x_minus, x_plus, 1e-6);
+    char *text = NULL;
+    cJSON *doc = design_json("--free theta0 --incline 30 --jump-at 1.00m", &text);
+    ENSURE(doc && text);
+    const cJSON *reach = cJSON_GetObjectItemCaseSensitive(doc, "reachable_m");
+    const int ranges = cJSON_GetArraySize(reach);
+    const double lo = cJSON_GetArrayItem(cJSON_GetArrayItem(reach, 0), 0)->valuedouble;
+    const double hi = cJSON_GetArrayItem(cJSON_GetArrayItem(reach, 0), 1)->valuedouble;
+    const cJSON *leap = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(doc, "discontinuities"), 0);
+    const double a = leap ? num(cJSON_GetObjectItemCaseSensitive(leap, "below"), "x_m") : NAN;
+    const double b = leap ? num(cJSON_GetObjectItemCaseSensitive(leap, "above"), "x_m") : NAN;
+    cJSON_Delete(doc);
+    const int no_gap = strstr(text, "no gap") != NULL && strstr(text, "(gap") == NULL;
+    free(text);
+    ENSURE_MSG(ranges == 1, "%d reachable ranges", ranges);
+    ENSURE_MSG(lo <= fmin(a, b) && fmax(a, b) <= hi, "leap %g -> %g m outside %g - %g m", a, b, lo, hi);
+    ENSURE(no_gap);
     return 0;
 }
 
@@ -446,6 +474,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_answers_jump_at_x);
     RUN_TEST(test_issue_example);
     RUN_TEST(test_gap_at_20_deg);
+    RUN_TEST(test_theta0_turn_has_no_gap);
     RUN_TEST(test_near_edge_not_edge);
     RUN_TEST(test_edge_limit_not_listed);
     RUN_TEST(test_several_solutions);
