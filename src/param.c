@@ -147,6 +147,16 @@ int jc_param_find(const char *name)
     return -1;
 }
 
+int jc_param_sets(int shortcut_id, int id)
+{
+    if (shortcut_id < 0 || shortcut_id >= ROW_COUNT || id < 0 || id >= ROW_COUNT || shortcut_id == id) return 0;
+    const char *name = rows[id].info.name;
+    const size_t n = strlen(name);
+    for (const char *s = rows[shortcut_id].info.sets; s && *s; s += strcspn(s, " "), s += strspn(s, " "))
+        if (strncmp(s, name, n) == 0 && (s[n] == ' ' || s[n] == '\0')) return 1;
+    return 0;
+}
+
 /* The index of the body's first part of a kind, -1 if it has none. */
 static int first_part(const jc_BodyDef *b, jc_PartKind kind)
 {

@@ -371,6 +371,35 @@ static int test_semantics(void)
     return 0;
 }
 
+/* jc_param_sets against the table's words, split here with strtok: mu sets
+ * mu-s and mu-k and nothing else does; no row sets itself; ids out of range
+ * set nothing. */
+static int test_shortcuts(void)
+{
+    const int mu = jc_param_find("mu"), mu_s = jc_param_find("mu-s"), mu_k = jc_param_find("mu-k");
+    ENSURE(mu >= 0 && mu_s >= 0 && mu_k >= 0);
+    ENSURE(jc_param_sets(mu, mu_s) && jc_param_sets(mu, mu_k));
+    ENSURE(!jc_param_sets(mu_s, mu) && !jc_param_sets(mu, mu) && !jc_param_sets(-1, mu_s) &&
+           !jc_param_sets(mu, jc_param_count()));
+    int pairs = 0;
+    for (int a = 0; a < jc_param_count(); ++a)
+        for (int b = 0; b < jc_param_count(); ++b) {
+            int listed = 0;
+            const char *sets = jc_param_info(a)->sets;
+            if (sets && a != b) {
+                char copy[256];
+                snprintf(copy, sizeof copy, "%s", sets);
+                for (char *w = strtok(copy, " "); w; w = strtok(NULL, " "))
+                    listed |= strcmp(w, jc_param_info(b)->name) == 0;
+            }
+            ENSURE_MSG(jc_param_sets(a, b) == listed, "%s sets %s: %d", jc_param_info(a)->name,
+                       jc_param_info(b)->name, jc_param_sets(a, b));
+            pairs += listed;
+        }
+    ENSURE_MSG(pairs >= 2, "%d pairs", pairs);
+    return 0;
+}
+
 int main(void)
 {
     RUN_TEST(test_table_is_whole);
@@ -380,5 +409,6 @@ int main(void)
     RUN_TEST(test_format_reads_back);
     RUN_TEST(test_range_ends);
     RUN_TEST(test_semantics);
+    RUN_TEST(test_shortcuts);
     TEST_MAIN_END();
 }

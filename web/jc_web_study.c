@@ -119,20 +119,8 @@ static int setup_member(const cJSON *req, web_Inputs *in, char *err, size_t err_
  * has taken over (cli/batch/mc_job.c, user_owns). */
 static int given(const jc_ParamValues *v, int id)
 {
-    if (v->given[id]) return 1;
-    const char *s = jc_param_info(id)->sets;
-    while (s && *s) {
-        char name[40];
-        const size_t len = strcspn(s, " ");
-        if (len > 0 && len < sizeof name) {
-            memcpy(name, s, len);
-            name[len] = '\0';
-            const int set = jc_param_find(name);
-            if (set >= 0 && v->given[set]) return 1;
-        }
-        s += len;
-        s += strspn(s, " ");
-    }
+    for (int set = 0; set < jc_param_count(); ++set)
+        if (v->given[set] && (set == id || jc_param_sets(id, set))) return 1;
     return 0;
 }
 
@@ -140,20 +128,8 @@ static int given(const jc_ParamValues *v, int id)
  * (mu: mu-s and mu-k). */
 static void drop(jc_ParamValues *v, int id)
 {
-    v->given[id] = 0;
-    const char *s = jc_param_info(id)->sets;
-    while (s && *s) {
-        char name[40];
-        const size_t len = strcspn(s, " ");
-        if (len > 0 && len < sizeof name) {
-            memcpy(name, s, len);
-            name[len] = '\0';
-            const int set = jc_param_find(name);
-            if (set >= 0) v->given[set] = 0;
-        }
-        s += len;
-        s += strspn(s, " ");
-    }
+    for (int set = 0; set < jc_param_count(); ++set)
+        if (set == id || jc_param_sets(id, set)) v->given[set] = 0;
 }
 
 /* The display unit's value of one SI unit's worth: the row's unit (deg, cm,

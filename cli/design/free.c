@@ -25,23 +25,11 @@ void cli_design_free_names(int refused, char *buf, size_t len)
     }
 }
 
-/* Whether name is one of the blank-separated names of list. */
-static int in_list(const char *list, const char *name)
-{
-    const size_t n = strlen(name);
-    for (const char *s = list; s && *s; s += strcspn(s, " "), s += strspn(s, " "))
-        if (strncmp(s, name, n) == 0 && (s[n] == ' ' || s[n] == '\0')) return 1;
-    return 0;
-}
-
 /* A setup option given that sets what the free one sets (mu and mu-s). */
 static int clashing_option(int free_id, const cli_SetupArgs *sa)
 {
-    const jc_ParamInfo *f = jc_param_info(free_id);
-    for (int id = 0; id < jc_param_count(); ++id) {
-        const jc_ParamInfo *g = jc_param_info(id);
-        if (id != free_id && sa->value[id] && (in_list(f->sets, g->name) || in_list(g->sets, f->name))) return id;
-    }
+    for (int id = 0; id < jc_param_count(); ++id)
+        if (sa->value[id] && (jc_param_sets(free_id, id) || jc_param_sets(id, free_id))) return id;
     return -1;
 }
 
@@ -69,7 +57,7 @@ int cli_design_free_param(const char *name, const cli_SetupArgs *sa, cli_Param *
     const int clash = clashing_option(id, sa);
     if (clash >= 0) {
         const char *given = jc_param_info(clash)->name;
-        const int given_sets = in_list(jc_param_info(clash)->sets, name);
+        const int given_sets = jc_param_sets(clash, id);
         cli_error("design: --%s and --free %s both given: %s sets %s too; give one", given, name,
                   given_sets ? given : name, given_sets ? name : given);
         return EXIT_USAGE;

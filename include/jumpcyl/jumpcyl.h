@@ -265,6 +265,9 @@ JC_API int jc_param_count(void);
 JC_API const jc_ParamInfo *jc_param_info(int id);
 /* A parameter's id by name, -1 if none; "mu-k" and "mu_k" are the same name. */
 JC_API int jc_param_find(const char *name);
+/* 1 if row shortcut_id is a shortcut that sets row id (mu sets mu-s and
+ * mu-k: its info's sets), else 0 (ids out of range included). */
+JC_API int jc_param_sets(int shortcut_id, int id);
 /* Sets a parameter in a setup: value_si in SI (a name's index for
  * JC_Q_NAME). JC_EINVAL with a one-line message, the setup unchanged, for
  * a value outside the row's range (NaN and infinities included) or a body

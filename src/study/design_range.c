@@ -39,15 +39,6 @@ static int nominal_of(int free_id, const jc_Setup *base, const jc_ParamValues *f
     return jc_param_values_apply(&v, out, NULL, err, err_len);
 }
 
-/* Whether name is one of the blank-separated names of list. */
-static int in_list(const char *list, const char *name)
-{
-    const size_t n = strlen(name);
-    for (const char *s = list; s && *s; s += strcspn(s, " "), s += strspn(s, " "))
-        if (strncmp(s, name, n) == 0 && (s[n] == ' ' || s[n] == '\0')) return 1;
-    return 0;
-}
-
 /* A value given for the free row, or for a row that sets it or that it
  * sets (mu and mu-s), would be silently replaced by the search's: refused. */
 static int clash_check(const jc_ParamInfo *in, int free_id, const jc_ParamValues *fixed, char *err, size_t err_len)
@@ -58,9 +49,8 @@ static int clash_check(const jc_ParamInfo *in, int free_id, const jc_ParamValues
                        in->name);
     for (int id = 0; id < jc_param_count(); ++id) {
         const jc_ParamInfo *g = jc_param_info(id);
-        if (id == free_id || !fixed->given[id] || !(in_list(in->sets, g->name) || in_list(g->sets, in->name)))
-            continue;
-        const int given_sets = in_list(g->sets, in->name);
+        const int given_sets = jc_param_sets(id, free_id);
+        if (!fixed->given[id] || !(given_sets || jc_param_sets(free_id, id))) continue;
         return jc_fail(err, err_len, JC_EINVAL, "%s: %s is given too, and %s sets %s; give one", in->name, g->name,
                        given_sets ? g->name : in->name, given_sets ? in->name : g->name);
     }
