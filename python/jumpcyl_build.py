@@ -106,8 +106,8 @@ def _constants(macros):
 # column table, jc_sample_value) and a study row collector that keeps each
 # case's CSV row and outcome while the study runs without the GIL; its
 # progress callback is Python's (it checks for Ctrl-C).
-HELPERS_CDEF = """
-void jcpy_sample_matrix(const jc_Sample *samples, int n, double *out);
+# The row collector, declared to cffi and defined in C from this one text.
+ROWS_STRUCT = """\
 typedef struct {
     char *csv; size_t csv_len, csv_cap;
     jc_CaseOutcome *outcomes; double *values; long count, cap; int nvalues;
@@ -115,7 +115,11 @@ typedef struct {
     int keep_outcomes; int failed;
     void *pyctx;
 } jcpy_Rows;
-int jcpy_rows_init(jcpy_Rows *r, long expected, int nvalues, int keep_outcomes, jc_Tally *tally);
+"""
+
+HELPERS_CDEF = """
+void jcpy_sample_matrix(const jc_Sample *samples, int n, double *out);
+""" + ROWS_STRUCT + """int jcpy_rows_init(jcpy_Rows *r, long expected, int nvalues, int keep_outcomes, jc_Tally *tally);
 void jcpy_rows_free(jcpy_Rows *r);
 int jcpy_study_run(const jc_StudyDef *def, long first, long count, jcpy_Rows *rows, int with_progress,
                    char *err, size_t err_len);
@@ -154,14 +158,7 @@ void jcpy_sample_matrix(const jc_Sample *samples, int n, double *out)
         for (int c = 0; c < cols; ++c) out[(size_t)i * (size_t)cols + (size_t)c] = jc_sample_value(&samples[i], c);
 }
 
-typedef struct {
-    char *csv; size_t csv_len, csv_cap;
-    jc_CaseOutcome *outcomes; double *values; long count, cap; int nvalues;
-    jc_Tally *tally;
-    int keep_outcomes; int failed;
-    void *pyctx;
-} jcpy_Rows;
-
+""" + ROWS_STRUCT + """
 int jcpy_rows_init(jcpy_Rows *r, long expected, int nvalues, int keep_outcomes, jc_Tally *tally)
 {
     memset(r, 0, sizeof *r);

@@ -70,37 +70,31 @@ def _onerror(exception, exc_value, traceback):
     return 1
 
 
-@ffi.def_extern(onerror=_onerror)
-def _jcpy_study_progress(pyctx, done, count):
+def _tick(pyctx, *args):
+    """The context's tick(*args): 0 to go on, 1 to stop, the exception kept
+    for run_with_ctx (a call: a pending Ctrl-C is raised here)."""
     ctx = ffi.from_handle(pyctx)
     try:
-        ctx.tick(done, count)  # a call: a pending Ctrl-C is raised here
+        ctx.tick(*args)
     except BaseException as e:
         ctx.exc = e
         return 1
     return 0
+
+
+@ffi.def_extern(onerror=_onerror)
+def _jcpy_study_progress(pyctx, done, count):
+    return _tick(pyctx, done, count)
 
 
 @ffi.def_extern(onerror=_onerror)
 def _jcpy_design_progress(pyctx, p):
-    ctx = ffi.from_handle(pyctx)
-    try:
-        ctx.tick(p.done, p.total, "design: " + text(p.stage))
-    except BaseException as e:
-        ctx.exc = e
-        return 1
-    return 0
+    return _tick(pyctx, p.done, p.total, "design: " + text(p.stage))
 
 
 @ffi.def_extern(onerror=_onerror)
 def _jcpy_fit_progress(pyctx, p):
-    ctx = ffi.from_handle(pyctx)
-    try:
-        ctx.tick(int(1000 * p.fraction), 1000, "fit: " + text(p.stage))
-    except BaseException as e:
-        ctx.exc = e
-        return 1
-    return 0
+    return _tick(pyctx, int(1000 * p.fraction), 1000, "fit: " + text(p.stage))
 
 
 def run_with_ctx(ctx, call):
