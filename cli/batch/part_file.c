@@ -294,20 +294,24 @@ static void part_close(cli_PartFile *p)
     p->len = p->cap = 0;
 }
 
-/* A whole buffer at the file's end; 0, or -1 with errno. */
-static int write_all(int fd, const char *buf, size_t len)
+/* A whole buffer at the file's end; 0, or -1 with errno (*done: the bytes
+ * written before the failure; may be NULL). */
+static int write_all(int fd, const char *buf, size_t len, size_t *done)
 {
-    while (len > 0) {
-        const ssize_t w = write(fd, buf, len);
+    size_t at = 0;
+    int rc = 0;
+    while (at < len) {
+        const ssize_t w = write(fd, buf + at, len - at);
         if (w < 0 && errno == EINTR) continue;
         if (w <= 0) {
             if (w == 0) errno = EIO;
-            return -1;
+            rc = -1;
+            break;
         }
-        buf += w;
-        len -= (size_t)w;
+        at += (size_t)w;
     }
-    return 0;
+    if (done) *done = at;
+    return rc;
 }
 
 /* A new FILE.part: EXIT_OK, or an exit status after a message. */
@@ -434,7 +438,7 @@ int cli_part_begin(cli_PartFile *p, const char *cmd, const char *output, int wan
     size_t n = 0;
     if (!p->job_line_done) n += (size_t)snprintf(head, sizeof head, "%s", rd->job_line);
     if (!p->header_done && rd->csv_header) n += (size_t)snprintf(head + n, sizeof head - n, "%s", rd->csv_header);
-    if (n > 0 && (write_all(p->fd, head, n) != 0 || fsync(p->fd) != 0)) {
+    if (n > 0 && (write_all(p->fd, head, n, NULL) != 0 || fsync(p->fd) != 0)) {
         const int err = errno;
         if (ftruncate(p->fd, p->end) != 0) { /* nothing more to do: the message below says it */
         }
@@ -493,8 +497,18 @@ static void write_failed(cli_PartFile *p, const char *cmd, int err, off_t keep, 
 int cli_part_flush(cli_PartFile *p, const char *cmd, int final)
 {
     if (p->fd < 0) return 0;
-    if (p->len > 0 && write_all(p->fd, p->buf, p->len) != 0) {
-        write_failed(p, cmd, errno, p->end, p->rows);
+    size_t written = 0;
+    if (p->len > 0 && write_all(p->fd, p->buf, p->len, &written) != 0) {
+        /* The rows that reached the file whole are kept; a row cut short is cut off. */
+        const int err = errno;
+        size_t whole = 0;
+        long rows = 0;
+        for (size_t i = 0; i < written; ++i)
+            if (p->buf[i] == '\n') {
+                whole = i + 1;
+                ++rows;
+            }
+        write_failed(p, cmd, err, p->end + (off_t)whole, p->rows + rows);
         return -1;
     }
     p->end += (off_t)p->len;
