@@ -198,7 +198,9 @@ void cli_batch_help(void)
          "                  arrays: --shard $SLURM_ARRAY_TASK_ID/N); only part 1 has the header,\n"
          "                  so 'cat' of the parts in order is the whole job's file\n"
          "  --resume        continue an unfinished job from FILE.part (rows are kept there,\n"
-         "                  fsynced every second, until the job completes and it becomes FILE)\n"
+         "                  fsynced every second, until the job completes and they become FILE;\n"
+         "                  only this job's own FILE.part is taken: each row's checksum is\n"
+         "                  checked and 1 % of them computed again)\n"
          "  --quiet         no progress line (it is only shown on a terminal anyway)\n"
          "Under mpirun (a build with -DJUMPCYL_MPI=ON) the processes share the cases and\n"
          "rank 0 writes them in order: the same file as one process.");
