@@ -630,7 +630,14 @@ int cli_batch_run(const cli_Batch *b)
     cli_progress_end(&t.progress);
     const long next = t.next;
     const int complete = rc == EXIT_OK && next >= hi;
-    if (writer && rows_close(b, &w, complete) != 0 && rc == EXIT_OK) rc = EXIT_FAIL;
+    if (writer && rows_close(b, &w, complete) != 0 && rc == EXIT_OK) {
+        rc = EXIT_FAIL;
+        if (cli_stop_requested()) { /* between the last row and FILE: every row is kept */
+            cli_error("%s: stopped before %s was written; all %ld cases are kept in %s: run the same command with "
+                      "--resume to finish", b->cmd, b->output, hi - lo, w.part.path);
+            rc = cli_stop_status();
+        }
+    }
     if (writer && !complete && w.part.path[0] && cli_stop_requested() && !t.write_failed)
         cli_error("%s: stopped after %ld of %ld cases; they are kept in %s: run the same command with --resume to "
                   "continue",
