@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #ifdef JC_HAVE_MPI
@@ -28,7 +29,6 @@
  * large): a block takes a few tens of milliseconds, so a stop is honoured
  * quickly and rows reach the file steadily. */
 #define BLOCK_CASES_PER_THREAD 256
-#define FSYNC_PERIOD_S 1.0
 #define HEADER_MAX (2 * JC_STUDY_ROW_MAX)
 
 /* ---- processes (MPI) ---- */
@@ -198,7 +198,9 @@ void cli_batch_help(void)
          "                  arrays: --shard $SLURM_ARRAY_TASK_ID/N); only part 1 has the header,\n"
          "                  so 'cat' of the parts in order is the whole job's file\n"
          "  --resume        continue an unfinished job from FILE.part (rows are kept there,\n"
-         "                  fsynced every second, until the job completes and it becomes FILE)\n"
+         "                  fsynced every second, until the job completes and they become FILE;\n"
+         "                  only this job's own FILE.part is taken: each row's checksum is\n"
+         "                  checked and 1 % of them computed again)\n"
          "  --quiet         no progress line (it is only shown on a terminal anyway)\n"
          "Under mpirun (a build with -DJUMPCYL_MPI=ON) the processes share the cases and\n"
          "rank 0 writes them in order: the same file as one process.");
@@ -217,11 +219,10 @@ typedef struct {
 } job;
 
 typedef struct {
-    FILE *f;
-    int to_stdout;   /* written in place: "-", or a device or FIFO (no FILE.part, no rename) */
+    FILE *f;         /* in place: "-", or a device or FIFO (no FILE.part) */
+    int to_stdout;   /* written in place */
     int opened;      /* a device or FIFO we opened (closed at the end) */
-    char part[CLI_PATH_MAX];
-    double last_sync_s;
+    cli_PartFile part; /* FILE.part, when part.fd >= 0 */
 } rows_file;
 
 /* Whether the row's inputs (the text between the index and the outcome)
@@ -237,53 +238,127 @@ static int row_matches(const job *j, long index, const char *line, size_t len)
     return (size_t)n + 1 <= len && memcmp(head, line, (size_t)n + 1) == 0;
 }
 
-/* Reads the rows FILE.part holds, checks that they are this job's, hands
- * them to the consumer and cuts off a last line left half written. The
- * number of complete rows, or -1 after a message. */
-static long resume_rows(const job *j, FILE *f, const char *part, long lo, long hi)
+/* A kept row read back on --resume: this case's inputs, handed to the consumer. */
+static int resumed_row(void *ctx, long index, const char *line, size_t len, const cli_CaseResult *r)
+{
+    const job *j = ctx;
+    if (!row_matches(j, index, line, len)) return -1;
+    if (j->b->consume) {
+        char row[JC_STUDY_ROW_MAX + 1];
+        memcpy(row, line, len);
+        row[len] = '\n';
+        row[len + 1 < sizeof row ? len + 1 : len] = '\0';
+        j->b->consume(j->b->consume_ctx, index, &r->outcome, row, (int)len + 1);
+    }
+    return 0;
+}
+
+/* Rows computed again on --resume: 1 % of the kept rows, at least 3 (all
+ * when fewer), one drawn in each of as many equal stretches of the file. */
+#define RECHECK_PERCENT 1
+#define RECHECK_MIN 3
+
+typedef struct {
+    const job *j;
+    long lo;          /* the first kept row's case */
+    long k, rows;     /* stretches; kept rows */
+    uint64_t seed;
+    long next;        /* the next stretch */
+    long pick;        /* the row chosen in it */
+    long bad_line;    /* the first row that differs (its 0-based row), -1 if none */
+} recheck;
+
+/* The row chosen in stretch s. */
+static long recheck_pick(const recheck *c, long s)
+{
+    const long a = (long)((long double)c->rows * s / c->k), z = (long)((long double)c->rows * (s + 1) / c->k);
+    const long at = a + (long)(jc_random_uniform(c->seed, (uint64_t)s, 0) * (double)(z - a));
+    return at < z ? at : z - 1;
+}
+
+typedef struct {
+    char csv[JC_STUDY_ROW_MAX];
+    int len;
+} one_row;
+
+static int one_row_take(void *ctx, const jc_StudyRow *row)
+{
+    one_row *o = ctx;
+    o->len = row->csv ? row->csv_len : 0;
+    if (row->csv) memcpy(o->csv, row->csv, (size_t)row->csv_len);
+    return 0;
+}
+
+static int recheck_row(void *ctx, long i, const char *line, size_t len)
+{
+    recheck *c = ctx;
+    if (c->next >= c->k || i != c->pick) return 0;
+    one_row o = {.len = 0};
+    const jc_StudyCallbacks cb = {one_row_take, NULL, &o, 1};
+    char err[256];
+    jc_StudyDef one = c->j->def;
+    one.threads = 1;
+    const int st = jc_study_run(&one, c->lo + i, 1, &cb, err, sizeof err);
+    if (st != JC_OK || (size_t)o.len != len + 1 || memcmp(o.csv, line, len) != 0) {
+        c->bad_line = i;
+        return 1;
+    }
+    if (++c->next < c->k) c->pick = recheck_pick(c, c->next);
+    return 0;
+}
+
+/* Some kept rows computed again and compared: EXIT_OK, or EXIT_USAGE after
+ * a message naming the row that differs. */
+static int recheck_rows(const job *j, rows_file *w, long lo, long rows, long *rechecked, uint64_t *seed_out)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_REALTIME, &now);
+    recheck c = {j, lo, 0, rows, 0, 0, 0, -1};
+    c.seed = ((uint64_t)now.tv_sec * 1000000007ULL) ^ (uint64_t)now.tv_nsec ^ ((uint64_t)getpid() << 40);
+    c.k = rows * RECHECK_PERCENT / 100 + (rows % (100 / RECHECK_PERCENT) != 0);
+    if (c.k < RECHECK_MIN) c.k = RECHECK_MIN;
+    if (c.k > rows) c.k = rows;
+    *rechecked = c.k;
+    *seed_out = c.seed;
+    if (c.k == 0) return EXIT_OK;
+    c.pick = recheck_pick(&c, 0);
+    const int st = cli_part_each_row(&w->part, j->b->shard.k == 1, recheck_row, &c);
+    if (st < 0) {
+        cli_error("%s: cannot read %s: %s", j->b->cmd, w->part.path, strerror(errno));
+        return EXIT_FAIL;
+    }
+    if (c.bad_line >= 0) {
+        cli_error("%s: %s: row %ld (case %ld), computed again, differs from the row kept there (rows chosen with "
+                  "seed %llu); it is left as it is: remove it to start again",
+                  j->b->cmd, w->part.path, c.bad_line + 1, lo + c.bad_line, (unsigned long long)c.seed);
+        return EXIT_USAGE;
+    }
+    return EXIT_OK;
+}
+
+/* FILE.part: created, or read, checked and continued (--resume). EXIT_OK
+ * or an exit status after a message. */
+static int part_open(const job *j, rows_file *w, long lo, long hi, long *done)
 {
     const cli_Batch *b = j->b;
-    char *line = NULL;
-    size_t cap = 0;
-    long rows = 0, line_no = 0;
-    off_t good_end = 0;
-    ssize_t n;
-    int bad = 0;
-    const int want_header = b->shard.k == 1;
-    while ((n = getline(&line, &cap, f)) > 0) {
-        ++line_no;
-        if (line[n - 1] != '\n') break; /* half written when the job stopped: rewritten below */
-        if (want_header && line_no == 1) {
-            if (strcmp(line, j->header) != 0) {
-                cli_error("%s: %s: its header is not this job's (other --vary, --sigma or --range options?); "
-                          "remove it to start again",
-                          b->cmd, part);
-                bad = 1;
-                break;
-            }
-        } else {
-            cli_CaseResult r;
-            const long index = lo + rows;
-            if (index >= hi || cli_case_from_row(line, (size_t)n - 1, j->def.param_count, &r) != 0 ||
-                !row_matches(j, index, line, (size_t)n)) {
-                cli_error("%s: %s: line %ld is not case %ld of this job; remove the file to start again", b->cmd,
-                          part, line_no, index);
-                bad = 1;
-                break;
-            }
-            if (b->consume) b->consume(b->consume_ctx, index, &r.outcome, line, (int)n);
-            ++rows;
-        }
-        good_end += (off_t)n;
+    const uint64_t hash = cli_part_job_hash(&j->def, lo, hi);
+    char job_line[256];
+    cli_part_job_line(b->cmd, hash, lo, hi, job_line, sizeof job_line);
+    const cli_PartReader rd = {job_line, b->shard.k == 1 ? j->header : NULL, hash, j->def.param_count, lo, hi - lo,
+                               resumed_row, (void *)j};
+    int st = cli_part_begin(&w->part, b->cmd, b->output, b->resume, &rd, done);
+    if (st != EXIT_OK || *done == 0) return st;
+    long rechecked = 0;
+    uint64_t seed = 0;
+    st = recheck_rows(j, w, lo, *done, &rechecked, &seed);
+    if (st != EXIT_OK) {
+        cli_part_end(&w->part, b->cmd, b->output, 0, 0);
+        return st;
     }
-    free(line);
-    if (bad) return -1;
-    if (ferror(f) || ftruncate(fileno(f), good_end) != 0 || fseeko(f, good_end, SEEK_SET) != 0) {
-        cli_error("%s: cannot read or cut %s: %s", b->cmd, part, strerror(errno));
-        return -1;
-    }
-    if (want_header && good_end == 0) return 0; /* not even the header: start afresh */
-    return rows;
+    fprintf(stderr, "%s: resuming after %ld finished cases in %s (%ld of them, chosen with seed %llu, computed again: "
+                    "the same)\n",
+            b->cmd, *done, w->part.path, rechecked, (unsigned long long)seed);
+    return EXIT_OK;
 }
 
 /* Opens the rows' file; *done receives the rows already there (resume).
@@ -292,6 +367,7 @@ static int rows_open(const job *j, rows_file *w, long lo, long hi, long *done)
 {
     const cli_Batch *b = j->b;
     memset(w, 0, sizeof *w);
+    w->part.fd = -1;
     *done = 0;
     struct stat target;
     if (!b->output) return EXIT_OK;
@@ -318,37 +394,10 @@ static int rows_open(const job *j, rows_file *w, long lo, long hi, long *done)
         w->to_stdout = w->opened = 1;
     } else {
         if (cli_output_check_target(b->output) != 0) return EXIT_FAIL;
-        if (snprintf(w->part, sizeof w->part, "%s.part", b->output) >= (int)sizeof w->part) {
-            cli_error("%s: --output '%s': the name is too long", b->cmd, b->output);
-            return EXIT_USAGE;
-        }
         if (cli_check_output_dir(b->output) != 0) return EXIT_FAIL;
-        struct stat st;
-        const int exists = stat(w->part, &st) == 0;
-        if (exists && !b->resume) {
-            cli_error("%s: %s holds the rows of an unfinished job: continue it with --resume, or remove it", b->cmd,
-                      w->part);
-            return EXIT_USAGE;
-        }
-        w->f = fopen(w->part, exists ? "r+" : "w");
-        if (!w->f) {
-            cli_error("%s: cannot open %s: %s", b->cmd, w->part, strerror(errno));
-            return EXIT_FAIL;
-        }
-        if (exists) {
-            const long rows = resume_rows(j, w->f, w->part, lo, hi);
-            if (rows < 0) {
-                fclose(w->f);
-                w->f = NULL;
-                return EXIT_USAGE;
-            }
-            *done = rows;
-            if (cli_batch_is_writer() && rows > 0)
-                fprintf(stderr, "%s: resuming after %ld finished cases in %s\n", b->cmd, rows, w->part);
-        }
+        return part_open(j, w, lo, hi, done);
     }
-    if (b->shard.k == 1 && (w->to_stdout || ftello(w->f) == 0)) fputs(j->header, w->f);
-    w->last_sync_s = cli_now_s();
+    if (b->shard.k == 1) fputs(j->header, w->f);
     return EXIT_OK;
 }
 
@@ -356,38 +405,26 @@ static int rows_open(const job *j, rows_file *w, long lo, long hi, long *done)
  * (always when final). 0, or -1 after a message. */
 static int rows_flush(const cli_Batch *b, rows_file *w, int final)
 {
+    if (w->part.fd >= 0) return cli_part_flush(&w->part, b->cmd, final);
     if (!w->f) return 0;
     int bad = fflush(w->f) != 0 || ferror(w->f);
-    if (!bad && !w->to_stdout && (final || cli_now_s() - w->last_sync_s >= FSYNC_PERIOD_S)) {
-        bad = fsync(fileno(w->f)) != 0;
-        w->last_sync_s = cli_now_s();
-    }
     const int err = errno ? errno : EIO;
     if (bad && !(w->to_stdout && cli_pipe_closed(err)))
-        cli_error("%s: cannot write %s: %s", b->cmd, w->opened ? b->output : w->to_stdout ? "standard output" : w->part,
-                  strerror(err));
+        cli_error("%s: cannot write %s: %s", b->cmd, w->opened ? b->output : "standard output", strerror(err));
     return bad ? -1 : 0;
 }
 
-/* Closes the file; when the job is complete FILE.part becomes FILE. */
+/* Closes the file; when the job is complete FILE.part's rows become FILE. */
 static int rows_close(const cli_Batch *b, rows_file *w, int complete)
 {
+    if (w->part.fd >= 0) return cli_part_end(&w->part, b->cmd, b->output, complete, b->shard.k == 1);
     if (w->opened) {
         const int bad = fclose(w->f) != 0;
         w->f = NULL;
         if (bad) cli_error("%s: cannot write %s: %s", b->cmd, b->output, strerror(errno));
         return bad ? -1 : 0;
     }
-    if (!w->f || w->to_stdout) return 0;
-    int bad = fflush(w->f) != 0 || fsync(fileno(w->f)) != 0;
-    bad |= fclose(w->f) != 0;
-    w->f = NULL;
-    if (!bad && complete) {
-        bad = rename(w->part, b->output) != 0;
-        if (!bad) cli_sync_dir(b->output);
-    }
-    if (bad) cli_error("%s: cannot finish %s: %s", b->cmd, complete ? b->output : w->part, strerror(errno));
-    return bad ? -1 : 0;
+    return 0;
 }
 
 /* ---- computing ---- */
@@ -415,7 +452,13 @@ static void take_case(taker *t, long index, const jc_CaseOutcome *o, const char 
     if (b->consume) b->consume(b->consume_ctx, index, o, row, row_len);
     if (o->kind == JC_CASE_INVALID && t->notes.invalid++ == 0) t->notes.first_invalid = index;
     t->notes.failed += o->kind == JC_CASE_FAILED;
-    if (t->w->f && row) fwrite(row, 1, (size_t)row_len, t->w->f);
+    if (t->w->part.fd >= 0 && row) {
+        if (!t->write_failed && cli_part_add(&t->w->part, row, row_len) != 0) {
+            cli_error("%s: out of memory for the rows; %ld rows kept in %s: run again with --resume", b->cmd,
+                      t->w->part.rows, t->w->part.path);
+            t->write_failed = 1;
+        }
+    } else if (t->w->f && row) fwrite(row, 1, (size_t)row_len, t->w->f);
     t->next = index + 1;
 }
 
@@ -423,7 +466,7 @@ static void take_case(taker *t, long index, const jc_CaseOutcome *o, const char 
  * rows cannot be written. */
 static int block_done(taker *t, long hi)
 {
-    if (rows_flush(t->j->b, t->w, t->next == hi) != 0) {
+    if (t->write_failed || rows_flush(t->j->b, t->w, t->next == hi) != 0) {
         t->write_failed = 1;
         return -1;
     }
@@ -559,7 +602,10 @@ int cli_batch_run(const cli_Batch *b)
     }
     rows_file w;
     int rc = writer ? rows_open(&j, &w, lo, hi, &done) : EXIT_OK;
-    if (!writer) memset(&w, 0, sizeof w);
+    if (!writer) {
+        memset(&w, 0, sizeof w);
+        w.part.fd = -1;
+    }
     rc = (int)share_long(rc);
     if (rc != EXIT_OK) return rc;
     done = share_long(done);
@@ -584,11 +630,18 @@ int cli_batch_run(const cli_Batch *b)
     cli_progress_end(&t.progress);
     const long next = t.next;
     const int complete = rc == EXIT_OK && next >= hi;
-    if (writer && rows_close(b, &w, complete) != 0 && rc == EXIT_OK) rc = EXIT_FAIL;
-    if (writer && !complete && w.part[0] && cli_stop_requested())
+    if (writer && rows_close(b, &w, complete) != 0 && rc == EXIT_OK) {
+        rc = EXIT_FAIL;
+        if (cli_stop_requested()) { /* between the last row and FILE: every row is kept */
+            cli_error("%s: stopped before %s was written; all %ld cases are kept in %s: run the same command with "
+                      "--resume to finish", b->cmd, b->output, hi - lo, w.part.path);
+            rc = cli_stop_status();
+        }
+    }
+    if (writer && !complete && w.part.path[0] && cli_stop_requested() && !t.write_failed)
         cli_error("%s: stopped after %ld of %ld cases; they are kept in %s: run the same command with --resume to "
                   "continue",
-                  b->cmd, next - lo, hi - lo, w.part);
+                  b->cmd, next - lo, hi - lo, w.part.path);
     if (writer && t.notes.invalid > 0)
         cli_error("%s: %ld case(s) are not valid setups (first: case %ld)%s", b->cmd, t.notes.invalid,
                   t.notes.first_invalid, b->output ? "; their rows say invalid_setup" : "");

@@ -12,6 +12,8 @@
 
 #include <jumpcyl/study.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <sys/types.h>
 
 /* ---- params.c: the varied or sampled setup options ---- */
 
@@ -80,6 +82,82 @@ typedef struct {
 /* The result of a row read back from a file (for --resume and mc
  * --summarize): 0, or -1 if the line is not a row of input_columns inputs. */
 int cli_case_from_row(const char *line, size_t len, int input_columns, cli_CaseResult *r);
+
+/* ---- part_file.c: FILE.part, the rows of an unfinished job ---- */
+
+/* What a job's FILE.part must hold, for cli_part_read. */
+typedef struct {
+    const char *job_line;   /* the first line (cli_part_job_line), '\n' included */
+    const char *csv_header; /* the rows' header expected next, or NULL (a shard past the first has none) */
+    uint64_t job;           /* the job's hash (cli_part_job_hash): each row's checksum is keyed by it */
+    int input_columns;
+    long first, count;      /* the rows are cases first, first + 1, ..., at most count of them */
+    /* Each row whose checksum holds (line: its text, no checksum, no '\n'):
+     * 0 to take it, nonzero when it is not that case's. May be NULL. */
+    int (*row)(void *ctx, long index, const char *line, size_t len, const cli_CaseResult *r);
+    void *ctx;
+} cli_PartReader;
+
+typedef struct {
+    long rows;      /* whole rows read and taken */
+    off_t good_end; /* the bytes up to the last whole line (a last line cut short is not counted) */
+    int header_done;
+} cli_PartRead;
+
+/* The hash of what decides a job's rows: the tool's version, the study
+ * (kind, base setup, fixed values, parameters and their values or spreads,
+ * samples and seed, simulation options) and the cases [lo, hi) it keeps. */
+uint64_t cli_part_job_hash(const jc_StudyDef *def, long lo, long hi);
+/* A row's checksum, keyed by the job's hash (row: no '\n'). */
+uint64_t cli_part_row_sum(uint64_t job, const char *row, size_t len);
+/* "jumpcyl-part 1 CMD version V job HASH cases LO-LAST\n"; its length. */
+int cli_part_job_line(const char *cmd, uint64_t job, long lo, long hi, char *out, size_t len);
+/* Reads a FILE.part from its start: 0 when it is this job's (out: its
+ * whole rows, each checked, and where they end), 1 when it holds nothing of
+ * value (empty, or this job's first line cut short), -1 when it is not this
+ * job's file or a row is refused (err: why, naming the line). Reads at most
+ * a row's length at a time, whatever the file. */
+int cli_part_read(FILE *f, const cli_PartReader *rd, cli_PartRead *out, char *err, size_t err_len);
+
+typedef struct {
+    int fd;                  /* open and locked (flock) from begin to end; -1 when closed */
+    char path[CLI_PATH_MAX]; /* FILE.part */
+    uint64_t job;
+    off_t end, synced_end;   /* the end of the last whole row written, and synced */
+    long rows, synced_rows;  /* the rows there */
+    char *buf;               /* rows not yet written, with their checksums */
+    size_t len, cap;
+    long pending;            /* rows in buf */
+    double last_sync_s;
+    int created, job_line_done, header_done;
+} cli_PartFile;
+
+/* FILE.part of output: created (O_EXCL, O_NOFOLLOW), or with want_resume
+ * opened (O_NOFOLLOW; a regular file of one link owned by the user) and
+ * read with rd (*done: its rows); locked in either case; the job line and
+ * header written. EXIT_OK, or an exit status after a message: another job
+ * holds it, it is another job's or not this tool's (left untouched), a row
+ * is refused. */
+int cli_part_begin(cli_PartFile *p, const char *cmd, const char *output, int want_resume, const cli_PartReader *rd,
+                   long *done);
+/* A row ('\n'-terminated) into the buffer of the next write; 0, or -1 when memory runs out. */
+int cli_part_add(cli_PartFile *p, const char *row, int row_len);
+/* The buffered rows written at once, fsynced when the last sync is a
+ * second old (always when final). 0; or -1 after a message, the file cut
+ * back to its last whole row ("no space left; N rows kept in FILE.part;
+ * free space and run again with --resume"). */
+int cli_part_flush(cli_PartFile *p, const char *cmd, int final);
+/* fn on each kept row of an open FILE.part (i from 0; row: its text, no
+ * checksum, no '\n') until fn returns nonzero. 0, or -1 (errno) when it
+ * cannot be read. */
+int cli_part_each_row(cli_PartFile *p, int has_header, int (*fn)(void *ctx, long i, const char *row, size_t len),
+                      void *ctx);
+/* complete: the rows (without the job line and the checksums) become
+ * output, written as every output is (the mode of the file it replaces
+ * kept), and FILE.part is removed. Then the file is closed and unlocked.
+ * 0, or -1 after a message (FILE.part kept). has_header: the rows' file
+ * has a header line. */
+int cli_part_end(cli_PartFile *p, const char *cmd, const char *output, int complete, int has_header);
 
 /* ---- batch.c: the job ---- */
 
