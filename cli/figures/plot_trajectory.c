@@ -553,7 +553,7 @@ static fig_Frame frame_in(fig_Box region, fig_Box box, double top_px, double bot
 
 typedef struct {
     fig_Frame main, ramp, closeup;
-    int closeup_shown;
+    int ramp_shown, closeup_shown;
     int key_rows;
     int title_lines[3]; /* main, ramp, close-up */
 } fig_Layout;
@@ -775,8 +775,10 @@ static void make_titles(const fig_Data *d, const jc_Sample *apex, fig_Layout *l,
 /* The page split for the main panel's box: the main panel on top (the rest
  * below it) or on the left (the rest to its right), whichever draws it at
  * the larger scale; its room sized to its box. */
-static fig_Box main_region(fig_Box box, double top_px, double bottom_px, int *on_top)
+static fig_Box main_region(fig_Box box, double top_px, double bottom_px, int alone, int *on_top)
 {
+    *on_top = 1;
+    if (alone) return (fig_Box){0, PAGE_W_PX, 0, PAGE_H_PX - PAGE_TITLE_PX};
     const double H = PAGE_H_PX - PAGE_TITLE_PX, bw = fmax(box_w(box), 1e-9), bh = fmax(box_h(box), 1e-9);
     const double side_w = MARGIN_L_PX + MARGIN_R_PX, side_h = top_px + bottom_px;
     /* On top: the full width, as tall as the box needs, within 35-62 %. */
@@ -838,6 +840,10 @@ static void side_frames(fig_Layout *l, int on_top, fig_Box ramp_box, fig_Box clo
                                 : (fig_Box){l->main.region.hi_X, PAGE_W_PX, 0, PAGE_H_PX - PAGE_TITLE_PX};
     const double tr = title_px(l->title_lines[1]), tc = title_px(l->title_lines[2]);
     fig_Box rr = rest, rc = rest;
+    if (!l->ramp_shown) {
+        if (l->closeup_shown) l->closeup = frame_in(rc, close_box, tc, MARGIN_B_PX, 1);
+        return;
+    }
     if (l->closeup_shown && on_top) {
         const double want = box_w(ramp_box) * (box_h(rest) - tr - MARGIN_B_PX) / fmax(box_h(ramp_box), 1e-9);
         const double w = fmin(fmax(want + MARGIN_L_PX + MARGIN_R_PX, 0.35 * PAGE_W_PX), 0.65 * PAGE_W_PX);
@@ -857,7 +863,8 @@ static void set_frame(FILE *gp, const fig_Frame *f)
 {
     fprintf(gp,
             "# To scale: the plot area (page fractions) and the ranges have the same cm per pixel on\n"
-            "# both axes (%.4g px per cm).\n"
+            "# both axes (%.4g px per cm); size ratio -1 keeps it so if the margins are changed.\n"
+            "set size ratio -1\n"
             "set lmargin at screen %.5f\nset rmargin at screen %.5f\nset bmargin at screen %.5f\nset tmargin at screen %.5f\n"
             "set xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\n",
             px_per_cm(f), f->area.lo_X / PAGE_W_PX, f->area.hi_X / PAGE_W_PX, f->area.lo_Y / PAGE_H_PX,
@@ -1105,6 +1112,23 @@ static int key_entries(const jc_Model *m)
     return n;
 }
 
+/* The main panel's frame for its box, with room below for the key: as
+ * many rows as the plot area's width needs (gnuplot fills a row across
+ * it). */
+static void main_frame(fig_Layout *l, fig_Box box, int entries, int alone, int *on_top)
+{
+    const double top = title_px(l->title_lines[0]);
+    l->key_rows = 1;
+    for (int k = 0; k < 3; ++k) {
+        const double bottom = MARGIN_B_PX + l->key_rows * KEY_ROW_PX + 8;
+        l->main = frame_in(main_region(box, top, bottom, alone, on_top), box, top, bottom, 0);
+        const int cols = (int)fmax(1, floor(box_w(l->main.area) / KEY_ENTRY_PX));
+        const int rows = (entries + cols - 1) / cols;
+        if (rows == l->key_rows) break;
+        l->key_rows = rows;
+    }
+}
+
 /* The layout: the main panel's box grown until its labels fit in it. */
 static void lay_out(const fig_Data *d, const fig_Path *path, double t_lo, double t_hi, const fig_Outline *o, int n,
                     fig_Box *labels, fig_Layout *l, fig_Titles *t, const jc_Sample *apex, double sep_cm)
@@ -1122,20 +1146,19 @@ static void lay_out(const fig_Data *d, const fig_Path *path, double t_lo, double
     l->title_lines[1] = l->title_lines[2] = 1;
     for (int round = 0; round < LAYOUT_ROUNDS; ++round) {
         int on_top;
-        l->key_rows = 1;
-        const double top = title_px(l->title_lines[0]);
-        fig_Box region = main_region(box, top, MARGIN_B_PX + KEY_ROW_PX, &on_top);
-        l->key_rows = (int)ceil(key_entries(m) * KEY_ENTRY_PX / (box_w(region) - MARGIN_L_PX - MARGIN_R_PX));
-        if (l->key_rows < 1) l->key_rows = 1;
-        const double bottom = MARGIN_B_PX + l->key_rows * KEY_ROW_PX + 8;
-        region = main_region(box, top, bottom, &on_top);
-        l->main = frame_in(region, box, top, bottom, 0);
-        const double s = px_per_cm(&l->main);
-        l->closeup_shown = apex && 100 * apex->gap_m * s < CLOSEUP_GAP_PX;
+        /* The whole ramp adds nothing when the main panel shows nearly all of it. */
+        const double tol = 0.03 * fmax(box_w(ramp), box_h(ramp));
+        l->ramp_shown = !(box.lo_X <= ramp.lo_X + tol && box.hi_X >= ramp.hi_X - tol && box.lo_Y <= ramp.lo_Y + tol &&
+                          box.hi_Y >= ramp.hi_Y - tol);
+        l->closeup_shown = apex != NULL;
+        main_frame(l, box, key_entries(m), !l->ramp_shown && !l->closeup_shown, &on_top);
+        l->closeup_shown = apex && 100 * apex->gap_m * px_per_cm(&l->main) < CLOSEUP_GAP_PX;
+        if (!l->ramp_shown && !l->closeup_shown) main_frame(l, box, key_entries(m), 1, &on_top);
         side_frames(l, on_top, ramp, close);
         if (l->closeup_shown) {
             const fig_Box v = l->closeup.view;
             l->closeup_shown = box_w(v) < 0.5 * box_w(l->main.view) && box_h(v) < 0.5 * box_h(l->main.view);
+            if (!l->ramp_shown && !l->closeup_shown) main_frame(l, box, key_entries(m), 1, &on_top);
             side_frames(l, on_top, ramp, close);
         }
         /* The titles' lines set the frames' room, the frames the titles' widths. */
@@ -1146,6 +1169,7 @@ static void lay_out(const fig_Data *d, const fig_Path *path, double t_lo, double
         make_titles(d, l->closeup_shown ? apex : NULL, l, t, sep_cm);
         const int outside = place_outline_labels(d, path, &l->main, t_lo, t_hi, o, n, labels);
         if (outside == 0 && round > 0) break;
+        const double s = px_per_cm(&l->main);
         for (int i = 0; i < n; ++i) {
             const fig_Box b = labels[i];
             const double pad = 8;
@@ -1183,7 +1207,7 @@ void fig_trajectory_panels(FILE *gp, const fig_Data *d)
     fig_body_caption(d->model, body, sizeof body);
     fprintf(gp, "\nset multiplot title \"jumpcyl trajectory: %s; %s\" font F_TITLE\n", caption, body);
     main_panel(gp, d, &l, t.main, o, n, labels, t_lo, t_hi);
-    ramp_panel(gp, d, &l, t.ramp);
+    if (l.ramp_shown) ramp_panel(gp, d, &l, t.ramp);
     if (l.closeup_shown) closeup_panel(gp, d, &l, t.closeup, &apex);
     fputs("\nunset multiplot\n", gp);
     if (path.s != d->run.samples) free(path.s);
