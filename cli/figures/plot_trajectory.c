@@ -638,13 +638,14 @@ static fig_Box beside(fig_Pt c, double dist, double ang, double w, double h)
 
 /* The place of a w x h px label next to a mark (centre c, radius r_px):
  * the nearest clear box, trying sides from the preferred angle outwards and
- * rings further out; a box inside the area first, else one outside it
- * (the caller widens the view), else the preferred place. */
+ * rings further out: within 75 degrees of it inside the area, then outside
+ * it (the caller widens the view), then on any side; else the preferred
+ * place. */
 static fig_Box place_label(const fig_Obstacles *o, fig_Pt c, double r_px, double prefer, double w, double h)
 {
-    for (int inside = 1; inside >= 0; --inside)
-        for (int ring = 0; ring < 8; ++ring)
-            for (int k = 0; k < 24; ++k) {
+    for (int pass = 0; pass < 4; ++pass)
+        for (int ring = 0, inside = pass % 2 == 0, sides = pass < 2 ? 10 : 24; ring < 8; ++ring)
+            for (int k = 0; k < sides; ++k) {
                 const double ang = prefer + (k % 2 ? -1 : 1) * ((k + 1) / 2) * (PI / 12);
                 const fig_Box b = beside(c, r_px + LABEL_PAD_PX + 2 + ring * 0.7 * h, ang, w, h);
                 if (clear_of(o, b, inside)) return b;
