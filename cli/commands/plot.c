@@ -165,7 +165,7 @@ static int write_script(fig_Data *d, const plot_kind *kind, fig_Format format, c
     if (kind->needs & NEED_CRITERION) rc = fig_criterion_prepare(d);
     d->zoom_wanted = overview;
     if (rc == EXIT_OK && (kind->needs & NEED_RUN)) rc = fig_run_prepare(d, sim, dt_given, max_samples);
-    if (rc == EXIT_OK && (kind->needs & NEED_TRAJECTORY)) rc = fig_trajectory_prepare(d);
+    if (rc == EXIT_OK && (kind->needs & NEED_TRAJECTORY)) rc = fig_trajectory_prepare(d, sim);
     if (rc == EXIT_OK && (kind->needs & NEED_UNCERTAINTY)) rc = fig_uncertainty_prepare(d);
     if (rc == EXIT_OK && overview) write_overview(gp, d);
     else if (rc == EXIT_OK) kind->panel(gp, d);

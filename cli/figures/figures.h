@@ -69,6 +69,10 @@ typedef struct {
     int zoomed;
     double zoom_x_lo_cm, zoom_x_hi_cm; /* centre's distance down the incline */
     double zoom_t_lo_s, zoom_t_hi_s;
+
+    /* trajectory (plot_trajectory.c): the run's options, to sample its
+     * flights again densely */
+    jc_SimOptions sim;
 } fig_Data;
 
 /* ---- gnuplot.c: formats, the shared style, running gnuplot ---- */
@@ -136,10 +140,12 @@ int fig_event_flies(const jc_Event *e);
 void fig_zoom_caption(const fig_Data *d, char *out, size_t len);
 
 /* ---- plot_trajectory.c: the body's path to scale in the laboratory frame ---- */
-/* Writes the trajectory's data blocks (after fig_run_prepare). */
-int fig_trajectory_prepare(fig_Data *d);
-/* Its panels: a main one zoomed on the lift-off and the hops, the whole
- * ramp with the zoom marked, and a close-up of the first flight's gap. */
+/* Keeps the run's options o (its flights are sampled again densely, with
+ * them) and writes the ramp's data block (after fig_run_prepare). */
+int fig_trajectory_prepare(fig_Data *d, const jc_SimOptions *o);
+/* Its data blocks and panels: a main one zoomed on the lift-off and the
+ * hops, the whole ramp with the main panel's view marked, and a close-up of
+ * the first flight's gap when the main panel shows it too thin to read. */
 void fig_trajectory_panels(FILE *gp, const fig_Data *d);
 
 /* ---- plot_panels.c: the three panels drawn from a run ---- */
