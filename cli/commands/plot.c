@@ -31,7 +31,7 @@ static const plot_kind kinds[] = {
     {"energy", NEED_RUN, fig_energy_panel, "kinetic, potential, friction and impact losses, their sum", 1, 1},
     {"trajectory", NEED_RUN | NEED_TRAJECTORY, fig_trajectory_panels,
      "the body's path to scale: centre, parts, centre of mass, outlines at the events;\n"
-     "                      zoomed on the lift-off and hops, the whole ramp, the first flight's gap", 2, 2},
+     "                      zoomed on the lift-off and hops; the whole ramp and the first flight's gap\n                      when the zoom leaves them out or too small to see", 2, 2},
     {"overview", NEED_CRITERION | NEED_RUN, NULL,
      "paper-criterion, forces, gap, energy on one page, zoomed on the lift-off and hops", 2, 2},
     {"paper-uncertainty", NEED_UNCERTAINTY, fig_uncertainty_panels,
