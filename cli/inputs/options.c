@@ -64,9 +64,10 @@ static void help_item(FILE *out, const char *head, const char *text)
 void cli_setup_help(FILE *out)
 {
     fputs("Setup options (a plain number is SI, angles are degrees; a number may carry a unit:\n"
-          "10cm, 34.2g, 15deg, 0.3rad, 9.78m/s2, 120rpm). Without --preset or --part the setup\n"
-          "is the 'paper' preset on a 30 deg incline. 'jumpcyl params' lists every parameter\n"
-          "with its unit, range, each preset's value and its experiment-file key.\n",
+          "10cm, 34.2g, 15deg, 0.3rad, 9.78m/s2, 120rpm, and the forms the figures print: 15\u00b0,\n"
+          "9.78m/s\u00b2). Without --preset or --part the setup is the 'paper' preset on a 30 deg\n"
+          "incline. 'jumpcyl params' lists every parameter with its unit, range, each preset's\n"
+          "value and its experiment-file key.\n",
           out);
     help_item(out, "--preset NAME", "built-in setup: paper, hoop, rocking-hoop, disc ('jumpcyl presets')");
     help_item(out, "--config FILE",
