@@ -3,7 +3,9 @@
 # the values that have names: presets, figure kinds, files, and from the
 # parameter table ('jumpcyl params'): the choices of a name-valued parameter
 # (--impact-law) and the parameter names of sweep --vary, mc --sigma/--range,
-# map --x/--y and design --free.
+# map --x/--y (numeric ones) and design --free (those design --help lists),
+# and fit --free's names as fit --help lists them. Every output option takes a
+# FILE (- is standard output): files are offered.
 _jumpcyl()
 {
     local cur prev cmd words
@@ -30,7 +32,9 @@ _jumpcyl()
                 *) return ;;
             esac
             if [[ $cur != *=* ]]; then
-                COMPREPLY=($(compgen -S = -W "$("${COMP_WORDS[0]}" params 2>/dev/null | awk '/^[a-z][a-z0-9-]*  / {print $1}')" -- "$cur"))
+                # a map axis is numeric: not the name-valued rows ("impact-law  name: ...")
+                COMPREPLY=($(compgen -S = -W "$("${COMP_WORDS[0]}" params 2>/dev/null |
+                    awk -v axis="$([ "$cmd" = map ] && echo 1)" '/^[a-z][a-z0-9-]*  / && !(axis && $2 == "name:") {print $1}')" -- "$cur"))
                 compopt -o nospace 2>/dev/null
             fi
             return ;;
@@ -46,11 +50,12 @@ _jumpcyl()
                          on {gsub(/,/, " "); print}')" -- "$cur"))
                 return
             fi
+            [ "$cmd" = fit ] || return
             # the names fit --help lists under --free, from "): " to "(those its parts have)";
             # the list's earlier names kept before the one completed
             COMPREPLY=($(compgen -P "${cur%"${cur##*,}"}" -W "$("${COMP_WORDS[0]}" fit --help 2>/dev/null |
                 awk '/^  --free / {on = 1; sub(/.*\): /, "")} on {s = s " " $0} on && /\(those/ {exit}
-                     END {sub(/\(those.*/, "", s); gsub(/and the body.s:/, "", s); gsub(/,/, " ", s); print s}')" \
+                     END {sub(/\(those.*/, "", s); gsub(/and the +body.s:/, "", s); gsub(/,/, " ", s); print s}')" \
                 -- "${cur##*,}"))
             return ;;
         --track)
@@ -59,10 +64,7 @@ _jumpcyl()
         --axes)
             COMPREPLY=($(compgen -W "level incline" -- "$cur"))
             return ;;
-        --json)
-            # a file only for track; elsewhere --json takes no value
-            if [ "$cmd" = track ]; then COMPREPLY=($(compgen -f -- "$cur")); return; fi ;;
-        --output|--config|--csv|--summarize)
+        --output|--config|--csv|--json|--figure|--summarize)
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
     esac

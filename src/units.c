@@ -175,8 +175,19 @@ static const char *unit_text(const char *after_number)
     return after_number + 1;
 }
 
+/* The forms the tool prints in figures and titles (UTF-8: "30°", "9.78
+ * m/s²"), read as the ASCII units they stand for. Not units of their own:
+ * the lists above, which jc_quantity_unit enumerates, stay ASCII. */
+static const struct {
+    const char *printed, *ascii;
+} printed_forms[] = {{"\u00b0", "deg"},          {"\u00b0/s", "deg/s"},      {"m/s\u00b2", "m/s2"},
+                     {"cm/s\u00b2", "cm/s2"},    {"kg/m\u00b3", "kg/m3"},    {"g/cm\u00b3", "g/cm3"},
+                     {"N m s\u00b2", "N m s2"},  {"kg m\u00b2", "kg m2"}};
+
 static const unit *find_unit(jc_Quantity q, const char *name)
 {
+    for (size_t k = 0; k < sizeof printed_forms / sizeof printed_forms[0]; ++k)
+        if (strcmp(name, printed_forms[k].printed) == 0) name = printed_forms[k].ascii;
     for (const unit *u = units_of(q); u->name; ++u)
         if (strcmp(name, u->name) == 0) return u;
     return NULL;

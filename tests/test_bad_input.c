@@ -43,7 +43,7 @@ typedef struct {
 static const bad_case cases[] = {
     /* ---- options ---- */
     {SIM("--bogus"), 2, "--bogus", CSV, NULL, 0, NULL},
-    {SIM("--json=1"), 2, "--json=1", CSV, NULL, 0, NULL},
+    {SIM("--help=1"), 2, "option '--help' takes no value", CSV, NULL, 0, NULL},
     {SIM("stray"), 2, "stray", CSV, NULL, 0, NULL},
     {SIM("--radius", "10cm", "--radius", "12cm"), 2, "twice", CSV, NULL, 0, NULL},
     {SIM("--mu", "0.5", "--mu-s", "0.4"), 2, "--mu", CSV, NULL, 0, NULL},

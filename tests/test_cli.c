@@ -241,6 +241,115 @@ static int test_units(void)
     return check_predict("--mu 0.4 --part disc:mass=34.2g --part rod:mass=32.1g,offset=55mm,radius=4.75mm", &s);
 }
 
+/* The units the tool itself prints (UTF-8) read as their ASCII forms,
+ * and exactly: the same setup to the last bit. */
+static int test_printed_units(void)
+{
+    if (same_json("predict --json --incline 30\u00b0", "predict --json --incline 30deg")) return 1;
+    if (same_json("predict --json --incline '30 \u00b0'", "predict --json --incline 30deg")) return 1;
+    if (same_json("predict --json --g 9.81m/s\u00b2", "predict --json --g 9.81m/s2")) return 1;
+    if (same_json("predict --json --g 981cm/s\u00b2", "predict --json --g 981cm/s2")) return 1;
+    if (same_json("predict --json --air-density 1.2kg/m\u00b3", "predict --json --air-density 1.2kg/m3")) return 1;
+    if (same_json("predict --json --omega0 90\u00b0/s", "predict --json --omega0 90deg/s")) return 1;
+    if (same_json("predict --json --spin-drag '1e-6 N m s\u00b2'", "predict --json --spin-drag 1e-6")) return 1;
+    /* 30 deg, compared with the library: pi/6 as the tool reads degrees */
+    jc_Setup s = jc_paper_setup();
+    s.incline_rad = 30.0 * DEG;
+    return check_predict("--incline 30\u00b0", &s);
+}
+
+/* A one-line message on standard error, exit 2, holding each of want. */
+static int hint(const char *args, const char *want1, const char *want2)
+{
+    cli_result r = run(args);
+    const int ok = r.status == 2 && cli_one_line(r.err) && strstr(r.err, want1) && (!want2 || strstr(r.err, want2));
+    if (!ok) fprintf(stderr, "'jumpcyl %s': status %d, stderr '%s'\n", args, r.status, r.err ? r.err : "?");
+    cli_result_free(&r);
+    ENSURE_MSG(ok, "jumpcyl %s: no '%s' in its message", args, want1);
+    return 0;
+}
+
+/* What a user who mistypes is told. */
+static int test_hints(void)
+{
+    /* a unit given as a word of its own */
+    if (hint("predict --radius 10 cm", "write --radius 10cm", "predict: ")) return 1;
+    if (hint("simulate --mu 0.4 --incline 30 deg", "write --incline 30deg", NULL)) return 1;
+    if (hint("design --jump-at 1.2 m --free rod-offset", "write --jump-at 1.2m", NULL)) return 1;
+    if (hint("predict --mu 0.4 stray", "unexpected argument 'stray'", NULL)) return 1;
+    /* an unknown option: the nearest of the command's own */
+    if (hint("simulate --inclne 30", "did you mean --incline?", "simulate: ")) return 1;
+    if (hint("predict --radis 10cm", "did you mean --radius?", NULL)) return 1;
+    if (hint("sweep --varry incline=10:20:5 --output -", "did you mean --vary?", NULL)) return 1;
+    if (hint("mc --sigmas rod-offset=1mm", "did you mean --sigma?", NULL)) return 1;
+    if (hint("predict --rod 3cm", "--rod-mass, --rod-offset, --rod-radius", NULL)) return 1;
+    {
+        cli_result r = run("predict --xyzzy");
+        const int far = r.status == 2 && r.err && !strstr(r.err, "did you mean");
+        cli_result_free(&r);
+        ENSURE_MSG(far, "predict --xyzzy: a guess for an option that is like none");
+    }
+    /* a repeated setup option names its command, as every other error */
+    if (hint("predict --incline 30 --incline 40", "predict: --incline given twice", NULL)) return 1;
+    if (hint("simulate --mu 0.3 --mu 0.4", "simulate: --mu given twice", NULL)) return 1;
+    /* a value given to a flag */
+    if (hint("sweep --quiet=1 --vary incline=10:20:5 --output -", "option '--quiet' takes no value", NULL)) return 1;
+    return 0;
+}
+
+/* Whether two runs print the same standard output, both exit 0. */
+static int same_output(const char *a, const char *b)
+{
+    cli_result x = run(a), y = run(b);
+    const int same = x.status == 0 && y.status == 0 && x.out && y.out && strcmp(x.out, y.out) == 0;
+    if (!same) fprintf(stderr, "'%s' (status %d) and '%s' (status %d) differ\n", a, x.status, b, y.status);
+    cli_result_free(&x);
+    cli_result_free(&y);
+    ENSURE_MSG(same, "'%s' and '%s' differ", a, b);
+    return 0;
+}
+
+/* One spelling, the options' (mu-k, rod-offset), in every list of names,
+ * and the other (mu_k) read the same wherever a name is taken. */
+static int test_names(void)
+{
+    char a[512], b[512];
+    snprintf(a, sizeof a, "fit --track '%s/tracker/incline.trk' --free mu-k,restitution --seed 1 --starts 4",
+             JC_EXAMPLES_DIR);
+    snprintf(b, sizeof b, "fit --track '%s/tracker/incline.trk' --free mu_k,Restitution --seed 1 --starts 4",
+             JC_EXAMPLES_DIR);
+    if (same_output(a, b)) return 1;
+    cli_result r = run(a);
+    ENSURE(r.status == 0 && r.out);
+    /* the report names the values as the options do */
+    const int spelled = strstr(r.out, "\n  mu-k ") && strstr(r.out, "restitution") && !strstr(r.out, "mu_k ");
+    cli_result_free(&r);
+    ENSURE_MSG(spelled, "fit's report does not name mu-k as the option does");
+    snprintf(a, sizeof a, "fit --track '%s/tracker/incline.trk' --free mu_q", JC_EXAMPLES_DIR);
+    r = run(a);
+    const int allowed = r.err && strstr(r.err, "allowed: mu-s, mu-k, restitution, theta0") != NULL;
+    cli_result_free(&r);
+    ENSURE_MSG(allowed, "fit's refusal does not list the names in the options' spelling");
+    r = run("fit --help");
+    ENSURE(r.out && strstr(r.out, "mu-s, mu-k") && !strstr(r.out, "mu_s, mu_k") && strstr(r.out, "rod-offset"));
+    cli_result_free(&r);
+    /* --vary (map's --x and --y read theirs as --vary does), --sigma, --range, design --free */
+    if (same_output("sweep --vary mu_k=0.3,0.4 --output - --quiet", "sweep --vary mu-k=0.3,0.4 --output - --quiet"))
+        return 1;
+    if (same_output("mc --samples 10 --seed 2 --no-defaults --sigma rod_offset=1mm --range mu_k=0.3:0.5 --threads 1 "
+                    "--quiet --json",
+                    "mc --samples 10 --seed 2 --no-defaults --sigma rod-offset=1mm --range mu-k=0.3:0.5 --threads 1 "
+                    "--quiet --json"))
+        return 1;
+    cli_result d1 = run("design --jump-at 1.3m --free mu_k --points 40 --threads 1 --csv -");
+    cli_result d2 = run("design --jump-at 1.3m --free mu-k --points 40 --threads 1 --csv -");
+    const int same_design = d1.status == 0 && d2.status == 0 && d1.out && d2.out && strcmp(d1.out, d2.out) == 0;
+    cli_result_free(&d1);
+    cli_result_free(&d2);
+    ENSURE_MSG(same_design, "design --free mu_k and --free mu-k differ");
+    return 0;
+}
+
 typedef struct {
     const char *args;
     const char *token; /* the bad value, which the message must name */
@@ -391,6 +500,9 @@ int main(int argc, char **argv)
     RUN_TEST(test_no_negative_zeros);
     RUN_TEST(test_paper_json);
     RUN_TEST(test_units);
+    RUN_TEST(test_printed_units);
+    RUN_TEST(test_hints);
+    RUN_TEST(test_names);
     RUN_TEST(test_bad_input_exit_2);
     RUN_TEST(test_help_and_version);
     TEST_MAIN_END();

@@ -138,6 +138,7 @@ static int check_args(const animate_args *a, animate_opts *o)
         cli_error("animate: --output FILE is required (.gif, .mp4, or a directory for PNG frames)");
         return EXIT_USAGE;
     }
+    if (cli_output_file_only("animate", "output", a->output, "a film or its frames") != 0) return EXIT_USAGE;
     o->output = a->output;
     if (vid_format_from_path(a->output, &o->format) != 0) {
         cli_error("animate: --output '%s': unknown format '.%s' (allowed: .gif, .mp4, or a directory: a name "

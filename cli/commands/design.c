@@ -59,8 +59,10 @@ static void help(void)
          "                  ('jumpcyl params'), its ends moved in to valid setups (mu-k <= mu-s)\n"
          "  --points N      scan points over the range (default 1000; 10 to 200000)\n"
          "  --threads N     threads (default: every core; the answer does not depend on it)\n"
-         "  --json FILE     the branches, discontinuities, reachable ranges and solutions (SI)\n"
-         "  --csv FILE      every scanned and located point: value, first_liftoff_x_m, outcome, point\n"
+         "  --json FILE     the branches, discontinuities, reachable ranges and solutions (SI);\n"
+         "                  - (or no FILE) is standard output, in place of the text\n"
+         "  --csv FILE      every scanned and located point: value, first_liftoff_x_m, outcome, point;\n"
+         "                  - is standard output, in place of the text\n"
          "  --figure FILE   the first lift-off against the option, X and the solutions marked\n"
          "                  (gnuplot; .png, .svg or .pdf)\n"
          "  -h, --help      this help\n"
@@ -89,7 +91,7 @@ static int take(int opt, const char *arg, void *ctx)
 static const struct option own[] = {
     {"jump-at", required_argument, 0, 'x'}, {"free", required_argument, 0, 'f'},
     {"range", required_argument, 0, 'r'},   {"points", required_argument, 0, 'n'},
-    {"threads", required_argument, 0, 't'}, {"json", required_argument, 0, 'j'},
+    {"threads", required_argument, 0, 't'}, CLI_JSON_OPTION('j'),               
     {"csv", required_argument, 0, 'c'},     {"figure", required_argument, 0, 'g'},
     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
@@ -175,14 +177,21 @@ static int parse_rest(const design_opts *o, cli_DesignJob *job)
         cli_error("design: %s", msg);
         return EXIT_USAGE;
     }
+    if (cli_output_file_only("design", "figure", o->figure, "a figure") != 0) return EXIT_USAGE;
     fig_Format f;
     if (o->figure && fig_format_from_path(o->figure, &f) != 0) {
         cli_error("design: --figure '%s': unknown format (allowed extensions: .png, .svg, .pdf)", o->figure);
         return EXIT_USAGE;
     }
+    if (o->json && o->csv && strcmp(o->json, o->csv) == 0) {
+        cli_error(strcmp(o->json, "-") == 0
+                      ? "design: --json - and --csv - would both write to standard output; give one of them a file"
+                      : "design: --json and --csv name the same file");
+        return EXIT_USAGE;
+    }
     const char *files[3] = {o->json, o->csv, o->figure};
     for (int k = 0; k < 3; ++k)
-        if (files[k] && cli_output_check_target(files[k]) != 0) return EXIT_FAIL;
+        if (files[k] && strcmp(files[k], "-") != 0 && cli_output_check_target(files[k]) != 0) return EXIT_FAIL;
     if (o->figure) {
         char gnuplot[CLI_PATH_MAX];
         if (cli_find_program("gnuplot", gnuplot, sizeof gnuplot) != 0) {
@@ -236,7 +245,9 @@ int cmd_design(int argc, char **argv)
     if ((st = make_job(&o, &sa, &sim_args, &job, note, sizeof note)) != EXIT_OK) return st;
     jc_DesignResult r;
     st = cli_design_run(&job, &r);
-    if (st == EXIT_OK) cli_design_print(&job, &r, note);
+    /* standard output carries a document given "-" alone */
+    const int text = !(o.json && strcmp(o.json, "-") == 0) && !(o.csv && strcmp(o.csv, "-") == 0);
+    if (st == EXIT_OK && text) cli_design_print(&job, &r, note);
     if (st == EXIT_OK && o.json) st = cli_design_write_json(&job, &r, o.json);
     if (st == EXIT_OK && o.csv) st = cli_design_write_csv(&job, &r, o.csv);
     if (st == EXIT_OK && o.figure) {
@@ -244,7 +255,7 @@ int cmd_design(int argc, char **argv)
         fig_command_line(argc, argv, cmdline, sizeof cmdline);
         st = cli_design_figure(&job, &r, o.figure, cmdline);
     }
-    if (st == EXIT_OK) {
+    if (st == EXIT_OK && text) {
         if (o.json) printf("JSON: %s\n", o.json);
         if (o.csv) printf("CSV: %s\n", o.csv);
         if (o.figure) printf("Figure: %s\n", o.figure);

@@ -35,14 +35,15 @@ static void help(void)
          "model describes the video (chi2/dof at most 3, no long runs of same-sign residuals, the\n"
          "same hops). Exit 3 when it does not, unless --allow-misfit (docs/tracker.md).\n"
          "\n"
-         "  --free LIST         comma-separated values to fit (- or _): mu_s, mu_k, restitution,\n"
-         "                      mark_angle, theta0, omega0, x0, tilt, surface, and the body's:\n"
-         "                      disc_mass, hoop_mass, rod_mass, rod_offset, point_mass, point_offset\n"
-         "                      (those its parts have); at most 9, each kept in its physical range\n"
-         "                      (0 <= mu_k <= mu_s <= 2, 0 <= e <= 1, offsets inside the rim). The\n"
-         "                      start (x0, theta0, omega0 at the first frame of the free motion) and\n"
-         "                      the video frame's tilt and surface are always fitted with them; a\n"
-         "                      start value named here is fitted even with --hold-start\n"
+         "  --free LIST         comma-separated values to fit (mu_k for mu-k will do): mu-s, mu-k,\n"
+         "                      restitution, mark-angle, theta0, omega0, x0, tilt, surface, and the\n"
+         "                      body's: disc-mass, hoop-mass, rod-mass, rod-offset, point-mass,\n"
+         "                      point-offset (those its parts have); at most 9, each kept in its\n"
+         "                      physical range (0 <= mu-k <= mu-s <= 2, 0 <= e <= 1, offsets inside\n"
+         "                      the rim). The start (x0, theta0, omega0 at the first frame of the\n"
+         "                      free motion) and the video frame's tilt and surface are always\n"
+         "                      fitted with them; a start value named here is fitted even with\n"
+         "                      --hold-start\n"
          "  --hold-start        hold the start instead, at the state fitted to the first 0.4 s with\n"
          "                      the setup's values\n"
          "  --loss KIND         linear (default), huber or cauchy: robust, by reweighting\n"
@@ -99,6 +100,15 @@ static int whole(const char *text, const char *name, double lo, double hi, doubl
     return EXIT_OK;
 }
 
+/* A value's name as the options spell it ("mu-k", "rod-offset"): the
+ * library's name ("mu_k", the Python package's key) with '-' for '_'. */
+static void fit_name(const jc_Setup *s, jc_TrackFitParam p, char *buf, size_t len)
+{
+    jc_fit_param_name(s, p, buf, len);
+    for (char *c = buf; *c; ++c)
+        if (*c == '_') *c = '-';
+}
+
 /* The names the setup's body allows, comma-separated, for messages. */
 static void allowed_names(const jc_Setup *s, char *buf, size_t len)
 {
@@ -108,12 +118,12 @@ static void allowed_names(const jc_Setup *s, char *buf, size_t len)
     buf[0] = '\0';
     for (int k = 0; k < n && k < (int)(sizeof p / sizeof p[0]) && used < len; ++k) {
         char name[48];
-        jc_fit_param_name(s, p[k], name, sizeof name);
+        fit_name(s, p[k], name, sizeof name);
         used += (size_t)snprintf(buf + used, len - used, "%s%s", k ? ", " : "", name);
     }
 }
 
-/* --free's comma-separated names ("mu_k,restitution,rod-offset") into out;
+/* --free's comma-separated names ("mu-k,restitution,rod_offset") into out;
  * 0, or -1 with a one-line message naming the bad entry and what is
  * allowed. */
 static int parse_free(const char *text, const jc_Setup *s, jc_TrackFitParam *out, int *count, char *err,
@@ -205,7 +215,7 @@ static int check(const fit_opts *o, const jc_Setup *setup, jc_TrackFitOptions *f
 static void name_of(const jc_TrackFitResult *r, int k, char *buf, size_t len)
 {
     char base[48];
-    jc_fit_param_name(&r->setup, r->param[k], base, sizeof base);
+    fit_name(&r->setup, r->param[k], base, sizeof base);
     const jc_TrackFitKind kind = r->param[k].kind;
     snprintf(buf, len, "%s%s", base,
              !r->start_value[k] ? "" : kind == JC_FIT_TILT || kind == JC_FIT_SURFACE ? " (frame)" : " (start)");
@@ -283,7 +293,7 @@ static void print_minima(const jc_TrackFitResult *r)
            "chi2");
     for (int k = 0; k < r->count; ++k) {
         char nm[48];
-        jc_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
+        fit_name(&r->setup, r->param[k], nm, sizeof nm);
         printf(" %12.12s", nm);
     }
     putchar('\n');
@@ -300,14 +310,14 @@ static void print_correlations(const jc_TrackFitResult *r)
     for (int k = 0; k < r->count; ++k) {
         if (r->flag[k] != JC_FIT_DETERMINED) continue;
         char nm[48];
-        jc_fit_param_name(&r->setup, r->param[k], nm, sizeof nm);
+        fit_name(&r->setup, r->param[k], nm, sizeof nm);
         printf(" %12.12s", nm);
     }
     putchar('\n');
     for (int i = 0; i < r->count; ++i) {
         if (r->flag[i] != JC_FIT_DETERMINED) continue;
         char nm[48];
-        jc_fit_param_name(&r->setup, r->param[i], nm, sizeof nm);
+        fit_name(&r->setup, r->param[i], nm, sizeof nm);
         printf("  %-14.14s", nm);
         for (int j = 0; j < r->count; ++j)
             if (r->flag[j] == JC_FIT_DETERMINED) printf(" %12.3f", cli_shown(r->corr[i][j], 3));

@@ -40,7 +40,7 @@ static void help(void)
          "                  values per axis and at most 1000000 cells in all\n"
          "  --output FILE   the figure, written whole or not at all\n"
          "  --keep-script   keep beside the figure the gnuplot script STEM.gp (the map's data\n"
-         "                  inside; 'gnuplot STEM.gp' in that directory renders it again) and\n"
+         "                  inside; 'gnuplot ./STEM.gp' in that directory renders it again) and\n"
          "                  STEM.csv, the cases' rows, the same as 'jumpcyl sweep --vary Y\n"
          "                  --vary X' writes (STEM: FILE without its extension)\n"
          "  --threads N     threads (default: every core; the map does not depend on it)\n"
@@ -382,6 +382,7 @@ static int check_output(const map_opts *o, map_files *files)
         cli_error("map: --output FILE is required (allowed extensions: .png, .svg, .pdf)");
         return EXIT_USAGE;
     }
+    if (cli_output_file_only("map", "output", files->output, "a figure") != 0) return EXIT_USAGE;
     if (fig_format_from_path(files->output, &files->format) != 0) {
         const char *ext = cli_path_ext(files->output);
         if (*ext)
@@ -534,7 +535,9 @@ static int run(const cli_Batch *options, map_job *job, const jc_Setup *fixed, co
         st = make_figure(&m, files, cmdline);
         if (st == EXIT_OK) {
             printf("Figure: %s\n", files->output);
-            if (files->keep) printf("Script: %s (its data inside)\nRows: %s\n", files->gp_path, files->csv_path);
+            if (files->keep)
+                printf("Script: %s%s (its data inside)\nRows: %s\n", cli_gnuplot_load_prefix(files->gp_path),
+                       files->gp_path, files->csv_path);
         }
     }
     if (cli_stop_requested() && cli_batch_is_writer())

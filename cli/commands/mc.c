@@ -19,7 +19,8 @@
 typedef struct {
     const char *samples, *seed, *gap, *summarize;
     const char *sigma[CLI_PARAM_MAX], *range[CLI_PARAM_MAX];
-    int n_sigma, n_range, no_defaults, json;
+    int n_sigma, n_range, no_defaults;
+    const char *json; /* its file, "-" for standard output; NULL: none */
     cli_BatchArgs batch;
 } mc_opts;
 
@@ -27,7 +28,7 @@ static void help(void)
 {
     puts("Usage: jumpcyl mc [SETUP OPTIONS] [SIMULATION OPTIONS] [--samples N] [--seed S]\n"
          "                  [--sigma NAME=VALUE ...] [--range NAME=LO:HI ...] [--no-defaults]\n"
-         "                  [--output FILE.csv] [--threads N] [--shard K/N] [--resume] [--json]\n"
+         "                  [--output FILE.csv] [--threads N] [--shard K/N] [--resume] [--json FILE]\n"
          "Monte Carlo propagation of input uncertainties through the full model: the\n"
          "distribution of the first lift-off and of the largest hop.\n"
          "\n"
@@ -43,8 +44,10 @@ static void help(void)
          "                  restitution, which it did not measure, are uniform (mu 0.3..1.0,\n"
          "                  restitution 0.1..0.6); an option set on the line keeps its value\n"
          "  --region-gap LEN  lift-offs further apart than this are separate regions (default 2cm)\n"
-         "  --json          the summary as JSON\n"
-         "  --output FILE   also keep every sample's row (its drawn values and outcome, as sweep)\n"
+         "  --json FILE     the summary as JSON into FILE (- or no FILE: standard output, in\n"
+         "                  place of the text)\n"
+         "  --output FILE   also keep every sample's row (its drawn values and outcome, as sweep);\n"
+         "                  - is standard output, which then carries the rows alone\n"
          "  --summarize FILE  the summary of rows kept earlier (shards put together with cat),\n"
          "                  without running anything");
     cli_batch_help();
@@ -63,7 +66,7 @@ static int take(int opt, const char *arg, void *ctx)
     case 'g': return cli_take_once("mc", &o->gap, "region-gap", arg);
     case 'D': o->no_defaults = 1; return CLI_GO_ON;
     case 'f': return cli_take_once("mc", &o->summarize, "summarize", arg);
-    case 'j': o->json = 1; return CLI_GO_ON;
+    case 'j': o->json = arg; return CLI_GO_ON;
     case 'z':
     case 'u': {
         const char **list = opt == 'z' ? o->sigma : o->range;
@@ -84,7 +87,7 @@ static const struct option own[] = {
     {"samples", required_argument, 0, 'n'}, {"seed", required_argument, 0, 'S'},
     {"sigma", required_argument, 0, 'z'},   {"range", required_argument, 0, 'u'},
     {"no-defaults", no_argument, 0, 'D'},   {"region-gap", required_argument, 0, 'g'},
-    {"json", no_argument, 0, 'j'},          {"summarize", required_argument, 0, 'f'}, CLI_BATCH_OPTIONS,
+    CLI_JSON_OPTION('j'),                   {"summarize", required_argument, 0, 'f'}, CLI_BATCH_OPTIONS,
     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
@@ -169,7 +172,17 @@ static cJSON *json_stats(const jc_Stats *s, long total)
     return o;
 }
 
-static int report(const cli_McJob *job, jc_Tally *t, long samples, double gap, int json, const cli_Shard *shard)
+/* Whether standard output carries something other than the text: the
+ * JSON document, or the rows (--output -). */
+static int stdout_taken(const mc_opts *o, const char *output)
+{
+    return (o->json && strcmp(o->json, "-") == 0) || (output && strcmp(output, "-") == 0);
+}
+
+/* The summary: the JSON document into json (NULL: none), then the text
+ * unless text is 0. The exit status. */
+static int report(const cli_McJob *job, jc_Tally *t, long samples, double gap, const char *json, int text,
+                  const cli_Shard *shard)
 {
     jc_Stats lift, hop;
     const long valid = t->valid;
@@ -185,8 +198,10 @@ static int report(const cli_McJob *job, jc_Tally *t, long samples, double gap, i
         cJSON *l = json_stats(&lift, valid);
         cJSON_AddItemToObject(doc, "first_liftoff_x_m", l);
         cJSON_AddItemToObject(doc, "largest_hop_m", json_stats(&hop, valid));
-        return cli_json_print(doc);
+        const int rc = cli_json_write(doc, json);
+        if (rc != EXIT_OK) return rc;
     }
+    if (!text) return EXIT_OK;
     if (shard->n > 1)
         printf("(shard %ld of %ld: these samples only; 'cat' the shards' files for the whole set)\n", shard->k,
                shard->n);
@@ -201,6 +216,7 @@ static int report(const cli_McJob *job, jc_Tally *t, long samples, double gap, i
     print_stats("position x", &lift, valid, 100.0, "cm");
     printf("Largest hop (rim above the incline; 0 without a hop):\n");
     print_stats("height", &hop, valid, 1000.0, "mm");
+    if (json) printf("JSON written to %s\n", json);
     return EXIT_OK;
 }
 
@@ -248,9 +264,10 @@ static int summarize(const mc_opts *o, double gap)
     free(line);
     fclose(f);
     if (st == EXIT_OK) {
-        if (!o->json) printf("Summary of %ld rows in %s\n", rows, o->summarize);
+        const int text = !stdout_taken(o, NULL);
+        if (text) printf("Summary of %ld rows in %s\n", rows, o->summarize);
         const cli_Shard whole = {1, 1};
-        st = report(NULL, &t, rows, gap, o->json, &whole);
+        st = report(NULL, &t, rows, gap, o->json, text, &whole);
     }
     jc_tally_free(&t);
     return st;
@@ -268,8 +285,10 @@ int cmd_mc(int argc, char **argv)
     double gap;
     if ((st = parse_numbers(&o, &samples, &seed, &gap)) != EXIT_OK) return st;
     if (o.summarize) return summarize(&o, gap);
-    if (in.job.output && strcmp(in.job.output, "-") == 0) {
-        cli_error("mc: --output - is not allowed: the summary goes to standard output; give --output FILE.csv");
+    if (in.job.output && o.json && strcmp(in.job.output, o.json) == 0) {
+        cli_error(strcmp(o.json, "-") == 0
+                      ? "mc: --output - and --json would both write to standard output; give one of them a file"
+                      : "mc: --output and --json name the same file");
         return EXIT_USAGE;
     }
     jc_Setup setup;
@@ -294,13 +313,14 @@ int cmd_mc(int argc, char **argv)
     long lo, hi;
     cli_shard_range(&in.job.shard, samples, &lo, &hi);
     if (st == EXIT_OK && cli_batch_is_writer()) {
-        if (!o.json) {
+        const int text = !stdout_taken(&o, in.job.output);
+        if (text) {
             printf("Monte Carlo: %ld samples (seed %llu) of the full model about this setup:\n", hi - lo,
                    (unsigned long long)seed);
             cli_print_setup(stdout, &model, 1);
             printf("\n");
         }
-        st = report(&job, &tally, hi - lo, gap, o.json, &in.job.shard);
+        st = report(&job, &tally, hi - lo, gap, o.json, text, &in.job.shard);
     }
     jc_tally_free(&tally);
     return st;

@@ -46,7 +46,7 @@ typedef struct {
 
 static void help(void)
 {
-    puts("Usage: jumpcyl paper [SETUP OPTIONS] [--json]\n"
+    puts("Usage: jumpcyl paper [SETUP OPTIONS] [--json FILE]\n"
          "The seed paper's Table 1 (inclines 15, 30, 45 deg) side by side: the printed values,\n"
          "the paper's Eq. 9 recomputed (first intersection and later ones), the exact rolling\n"
          "model (slip onset and the N = 0 diagnostic), the full model (first lift-off, hops,\n"
@@ -56,7 +56,8 @@ static void help(void)
          "the body stays the paper's cylinder, the only one it measured (for another body:\n"
          "jumpcyl predict).\n"
          "\n"
-         "  --json      machine-readable output: rows[], each with incline_deg, printed,\n"
+         "  --json FILE machine-readable output into FILE (- or no FILE: standard output, in\n"
+         "              place of the table): rows[], each with incline_deg, printed,\n"
          "              paper_model, rolling, full, drag, measured; angles theta in rad,\n"
          "              positions x in m\n"
          "  -h, --help  this help\n");
@@ -506,7 +507,9 @@ static cJSON *json_row(const paper_row *r)
     return o;
 }
 
-static int print_rows(const paper_row *rows, int n, int json, int stopped)
+/* The table on standard output, the JSON document into json (NULL: none;
+ * "-": standard output, in place of the table). The exit status. */
+static int print_rows(const paper_row *rows, int n, const char *json, int stopped)
 {
     if (json) {
         cJSON *doc = cJSON_CreateObject();
@@ -516,9 +519,11 @@ static int print_rows(const paper_row *rows, int n, int json, int stopped)
         cJSON *arr = cJSON_AddArrayToObject(doc, "rows");
         for (int i = 0; i < n; ++i) cJSON_AddItemToArray(arr, json_row(&rows[i]));
         if (stopped) cJSON_AddStringToObject(doc, "stopped_by", cli_signal_name(cli_stop_requested()));
-        return cli_json_print(doc);
+        const int rc = cli_json_write(doc, json);
+        if (rc != EXIT_OK || strcmp(json, "-") == 0) return rc;
     }
     print_text(rows, n);
+    if (json) printf("JSON written to %s\n", json);
     return cli_stdout_finish();
 }
 
@@ -558,7 +563,7 @@ int cli_paper_body_only(const char *cmd, const char *what, const char *instead, 
 
 int cmd_paper(int argc, char **argv)
 {
-    int json = 0;
+    const char *json = NULL;
     cli_SetupArgs sa;
     int st = cli_json_command_parse(argc, argv, help, &json, &sa);
     if (st != CLI_GO_ON) return st;

@@ -8,13 +8,14 @@
 
 static void help(void)
 {
-    puts("Usage: jumpcyl params [--json]\n"
+    puts("Usage: jumpcyl params [--json FILE]\n"
          "Every setup parameter: its option --NAME, its quantity and unit, its range, each\n"
          "preset's value, what it does and its experiment-file key ([section] key). The\n"
          "same names vary in sweep --vary, mc --sigma/--range, map --x/--y and design --free.\n"
          "\n"
-         "  --json          the table as JSON (SI values; null where a preset has no value,\n"
-         "                  e.g. rod-mass of the hoop, and for a range without an upper end)\n"
+         "  --json FILE     the table as JSON into FILE (- or no FILE: standard output, in place\n"
+         "                  of the text; SI values; null where a preset has no value, e.g.\n"
+         "                  rod-mass of the hoop, and for a range without an upper end)\n"
          "  -h, --help      this help");
 }
 
@@ -67,18 +68,10 @@ static void print_row(int id)
     putchar('\n');
 }
 
-static int take(int opt, const char *arg, void *ctx)
-{
-    (void)arg;
-    if (opt != 'j') return EXIT_USAGE;
-    *(int *)ctx = 1;
-    return CLI_GO_ON;
-}
-
 int cmd_params(int argc, char **argv)
 {
-    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
-    int json = 0;
+    static const struct option own[] = {CLI_JSON_OPTION('j'), {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+    const char *json = NULL;
     /* Its own options only: the setup options mean nothing here. */
     opterr = 0;
     optind = 0;
@@ -88,20 +81,29 @@ int cmd_params(int argc, char **argv)
             help();
             return EXIT_OK;
         }
-        if (c != 'j' || take(c, optarg, &json) != CLI_GO_ON) {
+        if (c != 'j') {
             cli_error("params: unknown option '%s' (see 'jumpcyl params --help')", argv[optind - 1]);
             return EXIT_USAGE;
         }
+        if (json) {
+            cli_error("params: --json given twice");
+            return EXIT_USAGE;
+        }
+        json = cli_output_optarg(argc, argv);
     }
     if (optind < argc) {
         cli_error("params: unexpected argument '%s' (see 'jumpcyl params --help')", argv[optind]);
         return EXIT_USAGE;
     }
-    if (json) return cli_json_print(cli_json_params());
+    if (json) {
+        const int rc = cli_json_write(cli_json_params(), json);
+        if (rc != EXIT_OK || strcmp(json, "-") == 0) return rc;
+    }
     printf("Setup parameters. Each is an option (--NAME VALUE), an experiment-file key\n"
            "([section] key) and a name for sweep --vary, mc --sigma/--range, map --x/--y and\n"
            "design --free. A plain number is SI, an angle degrees; a value may carry a unit.\n"
            "Each: its quantity and unit, range, what it does, its file key and each preset's value.\n\n");
     for (int id = 0; id < jc_param_count(); ++id) print_row(id);
+    if (json) printf("JSON written to %s\n", json);
     return EXIT_OK;
 }

@@ -64,7 +64,7 @@ static void help(void)
     puts("  --output FILE   the figure file, written whole or not at all\n"
          "  --keep-script   keep the gnuplot script STEM.gp beside the figure (STEM: FILE without\n"
          "                  its extension; the data are inside it), to restyle it: in that\n"
-         "                  directory, 'gnuplot STEM.gp' renders the figure again\n"
+         "                  directory, 'gnuplot ./STEM.gp' renders the figure again\n"
          "  --max-samples N refuse a figure of more than N samples (default 100000), estimated\n"
          "                  before the work starts\n"
          "  -h, --help      this help\n"
@@ -114,6 +114,7 @@ static int check_opts(const plot_opts *o, const plot_kind **kind, fig_Format *fo
         cli_error("plot: --output FILE is required (allowed extensions: .png, .svg, .pdf)");
         return EXIT_USAGE;
     }
+    if (cli_output_file_only("plot", "output", o->output, "a figure") != 0) return EXIT_USAGE;
     if (fig_format_from_path(o->output, format) != 0) {
         const char *ext = cli_path_ext(o->output);
         if (*ext) cli_error("plot: --output '%s': unknown format '.%s' (allowed extensions: .png, .svg, .pdf)", o->output, ext);
@@ -207,7 +208,8 @@ static int publish(const plot_opts *o, fig_Format format, const char *figure, co
     cli_output_abort(&fig);
     cli_output_abort(&kept);
     if (!ok && cli_stop_requested()) return cli_stop_status();
-    if (ok && o->keep_script) printf("Script: %s (its data inside)\n", kept_path);
+    if (ok && o->keep_script)
+        printf("Script: %s%s (its data inside)\n", cli_gnuplot_load_prefix(kept_path), kept_path);
     return ok ? EXIT_OK : EXIT_FAIL;
 }
 

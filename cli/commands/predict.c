@@ -7,11 +7,12 @@
 
 static void help(void)
 {
-    puts("Usage: jumpcyl predict [SETUP OPTIONS] [--json]\n"
+    puts("Usage: jumpcyl predict [SETUP OPTIONS] [--json FILE]\n"
          "The paper's model (its Eq. 9), the exact rolling model and the full model's first\n"
          "lift-off for one setup.\n"
          "\n"
-         "  --json      machine-readable output: paper_model.roots (rad), rolling.liftoff and\n"
+         "  --json FILE machine-readable output into FILE (- or no FILE: standard output, in\n"
+         "              place of the text): paper_model.roots (rad), rolling.liftoff and\n"
          "              rolling.slip, each null or {theta (rad), x (m), omega (rad/s),\n"
          "              normal (N), friction (N)}; full.liftoff {theta, x, t} or null, full.hops;\n"
          "              x is the centre's travel along the incline\n"
@@ -121,7 +122,7 @@ static cJSON *json_doc(const jc_Model *m, const jc_PaperResult *p, const jc_Roll
 
 int cmd_predict(int argc, char **argv)
 {
-    int json = 0;
+    const char *json = NULL;
     cli_SetupArgs sa;
     int st = cli_json_command_parse(argc, argv, help, &json, &sa);
     if (st != CLI_GO_ON) return st;
@@ -142,11 +143,10 @@ int cmd_predict(int argc, char **argv)
         jc_run_free(&run);
         return cli_exit_status(st, CLI_INPUTS_CHECKED);
     }
-    int rc;
-    if (json) {
-        rc = cli_json_print(json_doc(&model, &paper, &rolling, &run));
-    } else {
+    int rc = json ? cli_json_write(json_doc(&model, &paper, &rolling, &run), json) : EXIT_OK;
+    if (rc == EXIT_OK && !(json && strcmp(json, "-") == 0)) {
         print_text(&model, &paper, &rolling, &run);
+        if (json) printf("JSON written to %s\n", json);
         rc = cli_stdout_finish();
     }
     jc_run_free(&run);

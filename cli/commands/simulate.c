@@ -7,53 +7,55 @@
 #include <string.h>
 
 typedef struct {
-    int json;
-    const char *csv;
+    const char *json, *csv; /* their files, "-" for standard output; NULL: none */
 } simulate_opts;
 
 static void help(void)
 {
-    puts("Usage: jumpcyl simulate [SETUP OPTIONS] [SIMULATION OPTIONS] [--json] [--csv FILE]\n"
+    puts("Usage: jumpcyl simulate [SETUP OPTIONS] [SIMULATION OPTIONS] [--json FILE] [--csv FILE]\n"
          "The full motion: rolling, slipping, lift-off, flight, impacts and further hops,\n"
          "until the ramp's end or a limit. Every mode change is an event located in time.\n"
          "\n"
-         "  --json      {\"events\": [...], \"termination\": ..., \"energy\": {...}, ...};\n"
+         "  --json FILE the run as JSON into FILE (- or no FILE: standard output, in place of\n"
+         "              the table): {\"events\": [...], \"termination\": ..., \"energy\": {...}, ...};\n"
          "              each event has kind, t (s), x (m, centre along the incline from its\n"
          "              start), y (m, centre above the incline), theta (rad), omega (rad/s),\n"
          "              slip (m/s), normal and friction (N, just before); a liftoff or a\n"
          "              bounce into flight also flight_time (s), hop_height (m), landing_x (m)\n"
-         "  --csv FILE  write the trajectory (samples every --sample-dt and at every event)\n"
+         "  --csv FILE  write the trajectory (samples every --sample-dt and at every event);\n"
+         "              - is standard output, in place of the table\n"
          "  -h, --help  this help\n");
 }
 
 static int take(int opt, const char *arg, void *ctx)
 {
     simulate_opts *o = ctx;
-    if (opt == 'j') { o->json = 1; return CLI_GO_ON; }
+    if (opt == 'j') { o->json = arg; return CLI_GO_ON; }
     if (opt == 'c') { o->csv = arg; return CLI_GO_ON; }
     return EXIT_USAGE;
 }
 
 /* The command's own options; the setup and simulation options come with cli_command_parse. */
-static const struct option own[] = {{"json", no_argument, 0, 'j'},
+static const struct option own[] = {CLI_JSON_OPTION('j'),
                                     {"csv", required_argument, 0, 'c'},
                                     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
 /* The first write that failed, which stops the run: where, and why (the
  * errno, gone once the stream's buffer is dropped). */
-typedef enum { WRITES_OK, FAILED_STDOUT, FAILED_CSV, FAILED_JSON_MEMORY } write_target;
+typedef enum { WRITES_OK, FAILED_STDOUT, FAILED_CSV, FAILED_JSON, FAILED_JSON_MEMORY } write_target;
 typedef struct {
     write_target where;
-    int err; /* the errno of a failed write to standard output or the CSV */
+    int err; /* the errno of a failed write to standard output, the CSV or the JSON file */
 } write_failure;
 
 /* Everything simulate writes while the run goes on: events to the table
- * or the JSON document on standard output, samples to the CSV. Nothing is
- * kept, so memory does not grow with the run. */
+ * on standard output and to the JSON document, samples to the CSV. Nothing
+ * is kept, so memory does not grow with the run. */
 typedef struct {
     const jc_Model *model;
-    int json, text;
+    int text;
+    cli_Output *json;    /* NULL without --json */
     cli_Output *csv;     /* NULL without --csv */
     jc_RunSummary sum;
     int events;
@@ -72,6 +74,12 @@ static void check_stdout(sim_stream *st)
     if (ferror(stdout)) note_failure(st, FAILED_STDOUT, errno ? errno : EIO);
 }
 
+/* A failed write to the JSON file (standard output's is check_stdout's). */
+static void check_json(sim_stream *st)
+{
+    if (st->json && !st->json->is_stdout && ferror(st->json->f)) note_failure(st, FAILED_JSON, errno ? errno : EIO);
+}
+
 /* The recorder's answer: a failed write stops the run at once instead of
  * computing for nothing. */
 static int go_on(const sim_stream *st) { return st->failed.where == WRITES_OK ? JC_OK : JC_ESTOPPED; }
@@ -81,10 +89,9 @@ static int go_on(const sim_stream *st) { return st->failed.where == WRITES_OK ? 
 static void report_failure(const sim_stream *st)
 {
     const write_failure *f = &st->failed;
-    if ((f->where == FAILED_STDOUT || (f->where == FAILED_CSV && st->csv->is_stdout)) && cli_pipe_closed(f->err))
-        return;
-    if (f->where == FAILED_CSV)
-        cli_error("cannot write %s: %s", st->csv->is_stdout ? "standard output" : st->csv->target, strerror(f->err));
+    const cli_Output *file = f->where == FAILED_CSV ? st->csv : f->where == FAILED_JSON ? st->json : NULL;
+    if ((f->where == FAILED_STDOUT || (file && file->is_stdout)) && cli_pipe_closed(f->err)) return;
+    if (file) cli_error("cannot write %s: %s", file->is_stdout ? "standard output" : file->target, strerror(f->err));
     else if (f->where == FAILED_STDOUT) cli_error("cannot write standard output: %s", strerror(f->err));
     else if (f->where == FAILED_JSON_MEMORY) cli_error("simulate: out of memory for the JSON document");
 }
@@ -200,11 +207,12 @@ static void print_tail(const jc_Model *m, const jc_Run *run, const jc_RunSummary
 static int on_event(void *ctx, const jc_Event *e)
 {
     sim_stream *st = ctx;
-    if (st->json) cli_sim_json_event(stdout, e, st->events);
+    if (st->json) cli_sim_json_event(st->json->f, e, st->events);
     if (st->text) print_event(st->model, st->events, e);
     jc_summary_add(&st->sum, e, st->events);
     st->events++;
     check_stdout(st);
+    check_json(st);
     return go_on(st);
 }
 
@@ -225,36 +233,79 @@ static int csv_open(cli_Output *csv, const char *name)
     return EXIT_OK;
 }
 
+/* The files dropped: the CSV and the JSON file (not standard output). */
+static void abort_files(const sim_stream *out)
+{
+    if (out->csv) cli_output_abort(out->csv);
+    if (out->json) cli_output_abort(out->json);
+}
+
 /* A run that did not end well (st, a library status): the failed write
- * said (the CSV's even after a stop signal), the CSV dropped. The exit status. */
+ * said (a file's even after a stop signal), the files dropped. The exit status. */
 static int run_failed(const sim_stream *out, int st)
 {
-    if (out->failed.where == FAILED_CSV) report_failure(out);
-    if (out->csv) cli_output_abort(out->csv);
+    const int file_failed = out->failed.where == FAILED_CSV || out->failed.where == FAILED_JSON;
+    if (file_failed) report_failure(out);
+    abort_files(out);
     if (cli_stop_requested()) return cli_stop_status();
-    if (out->failed.where != FAILED_CSV) report_failure(out);
+    if (!file_failed) report_failure(out);
     return cli_exit_status(st, CLI_INPUTS_CHECKED);
 }
 
-/* The table's or the document's end after a run that ended well. The exit status. */
+/* The CSV and the JSON file, each made whole, then both published: neither
+ * or both appear. EXIT_OK, or EXIT_FAIL after a message. */
+static int publish_files(const sim_stream *out)
+{
+    cli_Output *f[2] = {out->csv, out->json && !out->json->is_stdout ? out->json : NULL};
+    int ok = 1;
+    for (int k = 0; k < 2 && ok; ++k) ok = !f[k] || cli_output_finish(f[k], CLI_CHECK_WRITES) == 0;
+    for (int k = 0; k < 2 && ok; ++k) ok = !f[k] || cli_output_publish(f[k]) == 0;
+    abort_files(out);
+    return ok ? EXIT_OK : EXIT_FAIL;
+}
+
+/* The table's or the document's end after a run that ended well, the
+ * files published. The exit status. */
 static int run_done(sim_stream *out, const jc_Run *run, const cli_RunInputs *in, const char *csv_name)
 {
     warn_energy_gain(&in->model, run);
     if (out->json) {
-        cli_sim_json_end(stdout, &in->model, run, &out->sum);
-    } else if (out->text) {
+        cli_sim_json_end(out->json->f, &in->model, run, &out->sum);
+        check_json(out);
+    }
+    if (out->failed.where == WRITES_OK && publish_files(out) != EXIT_OK)
+        return cli_stop_requested() ? cli_stop_status() : EXIT_FAIL;
+    if (out->text) {
         print_tail(&in->model, run, &out->sum);
         if (csv_name) printf("Trajectory: %d samples written to %s\n", run->sample_count, csv_name);
+        if (out->json) printf("JSON written to %s\n", out->json->target);
     }
     check_stdout(out);
     if (out->failed.where != WRITES_OK) {
         report_failure(out);
+        abort_files(out);
         return cli_stop_requested() ? cli_stop_status() : EXIT_FAIL;
     }
     if (run->termination == JC_END_SAMPLE_LIMIT)
         cli_error("simulate: the run stopped at the sample limit (%d samples); raise --sample-dt or lower --t-max",
                   in->sim.max_samples);
     return cli_stdout_finish();
+}
+
+/* --csv and --json: not both standard output, not one file. EXIT_OK or
+ * EXIT_USAGE after a message. */
+static int check_files(const simulate_opts *o)
+{
+    if (!o->csv || !o->json) return EXIT_OK;
+    if (strcmp(o->csv, "-") == 0 && strcmp(o->json, "-") == 0) {
+        cli_error("simulate: --csv - and --json would both write to standard output; give one of them a file");
+        return EXIT_USAGE;
+    }
+    if (strcmp(o->csv, o->json) == 0) {
+        cli_error("simulate: --csv and --json name the same file");
+        return EXIT_USAGE;
+    }
+    return EXIT_OK;
 }
 
 int cmd_simulate(int argc, char **argv)
@@ -264,24 +315,28 @@ int cmd_simulate(int argc, char **argv)
     int st = cli_run_inputs_parse(argc, argv, &command, &o, &in);
     if (st != CLI_GO_ON) return st;
     if ((st = cli_run_inputs_build("simulate", &in)) != EXIT_OK) return st;
-    if (o.csv && o.json && strcmp(o.csv, "-") == 0) {
-        cli_error("simulate: --csv - and --json would both write to standard output; give --csv a file");
-        return EXIT_USAGE;
-    }
-    cli_Output csv;
+    if ((st = check_files(&o)) != EXIT_OK) return st;
+    cli_Output csv, json;
     memset(&csv, 0, sizeof csv);
-    sim_stream out = {&in.model, o.json, !o.json, o.csv ? &csv : NULL, {0}, 0, {WRITES_OK, 0}};
+    memset(&json, 0, sizeof json);
+    sim_stream out = {&in.model, 1, NULL, o.csv ? &csv : NULL, {0}, 0, {WRITES_OK, 0}};
     jc_summary_init(&out.sum);
     if (o.csv && (st = csv_open(&csv, o.csv)) != EXIT_OK) return st;
-    if (csv.is_stdout) out.text = 0; /* standard output carries the CSV alone */
-    const int json_failed = out.json && cli_sim_json_begin(stdout, &in.model) != 0;
+    if (o.json && cli_output_begin(&json, o.json, 1) != 0) {
+        cli_output_abort(&csv);
+        return EXIT_FAIL;
+    }
+    if (o.json) out.json = &json;
+    /* standard output carries the CSV or the document alone */
+    if (csv.is_stdout || json.is_stdout) out.text = 0;
+    const int json_failed = out.json && cli_sim_json_begin(json.f, &in.model) != 0;
     if (out.text) print_head(&in.model, &in.sim);
     check_stdout(&out);
-    if (json_failed) note_failure(&out, FAILED_JSON_MEMORY, 0); /* unless standard output failed */
+    check_json(&out);
+    if (json_failed) note_failure(&out, FAILED_JSON_MEMORY, 0); /* unless a write failed */
     const jc_Recorder rec = {&out, on_event, o.csv ? on_sample : NULL};
     jc_Run run;
     st = go_on(&out) != JC_OK ? JC_ESTOPPED : cli_simulate_stream(&in.model, &in.sim, &rec, &run, "simulate");
-    if (st == JC_OK && o.csv && cli_output_commit(&csv, CLI_CHECK_WRITES) != 0) return EXIT_FAIL;
     if (st != JC_OK) return run_failed(&out, st);
     return run_done(&out, &run, &in, o.csv);
 }

@@ -34,6 +34,8 @@ static void help(void)
          "                      theta_rad,omega_radps,contact,airborne (needs the centre;\n"
          "                      height_m empty when the surface is not known)\n"
          "  --json FILE         the report and the frames as JSON\n"
+         "                      (--csv and --json: - is standard output, in place of the report;\n"
+         "                      --json alone is --json -)\n"
          "  -h, --help          this help\n");
 }
 
@@ -47,7 +49,7 @@ static int take(int opt, const char *arg, void *ctx)
 
 static const struct option own[] = {CLI_TRACK_READ_OPTIONS,
                                     {"csv", required_argument, 0, 'v'},
-                                    {"json", required_argument, 0, 'j'},
+                                    CLI_JSON_OPTION('j'),
                                     {"help", no_argument, 0, 'h'}};
 static const cli_Command command = {own, (int)(sizeof own / sizeof own[0]), take, help};
 
@@ -71,11 +73,13 @@ static int long_match(const char *text)
     return matches == 1 ? found : -1;
 }
 
-/* Whether the option written as text takes the next argument as its value. */
-static int takes_next(const char *text)
+/* Whether the option written as text takes next (NULL: none), the next
+ * argument, as its value: an output option's FILE only when one follows. */
+static int takes_next(const char *text, const char *next)
 {
     if (strncmp(text, "--", 2) != 0 || strchr(text, '=')) return 0;
-    return long_match(text) == required_argument;
+    const int has_arg = long_match(text);
+    return has_arg == required_argument || (has_arg == optional_argument && cli_output_value_follows(next));
 }
 
 /* Whether the option written as text is one the parser refuses (the only
@@ -104,7 +108,7 @@ static int take_file(int *argc, char **argv, int *help, const char **file, const
         if (a[0] == '-' && a[1]) {
             unknown |= is_unknown(a);
             argv[out++] = argv[i];
-            if (takes_next(a) && i + 1 < *argc) argv[out++] = argv[++i];
+            if (i + 1 < *argc && takes_next(a, argv[i + 1])) argv[out++] = argv[++i];
             continue;
         }
         if (!*file) *file = a;
@@ -340,8 +344,8 @@ static int write_outputs(const track_opts *o, const char *file, const jc_Track *
     cli_Output csv, json;
     memset(&csv, 0, sizeof csv);
     memset(&json, 0, sizeof json);
-    if (o->csv && cli_output_begin(&csv, o->csv, 0) != 0) return EXIT_FAIL;
-    if (o->json && cli_output_begin(&json, o->json, 0) != 0) {
+    if (o->csv && cli_output_begin(&csv, o->csv, 1) != 0) return EXIT_FAIL;
+    if (o->json && cli_output_begin(&json, o->json, 1) != 0) {
         cli_output_abort(&csv);
         return EXIT_FAIL;
     }
@@ -398,12 +402,10 @@ int cmd_track(int argc, char **argv)
     if ((st = one_file(file, extra, 0)) != EXIT_OK) return st;
     jc_Setup setup;
     if ((st = cli_build_inputs("track", &sa, NULL, &setup, NULL, NULL)) != EXIT_OK) return st;
-    if ((o.csv && strcmp(o.csv, "-") == 0) || (o.json && strcmp(o.json, "-") == 0)) {
-        cli_error("track: --csv and --json write files; the report goes to standard output");
-        return EXIT_USAGE;
-    }
     if (o.csv && o.json && strcmp(o.csv, o.json) == 0) {
-        cli_error("track: --csv and --json name the same file");
+        cli_error(strcmp(o.csv, "-") == 0
+                      ? "track: --csv - and --json - would both write to standard output; give one of them a file"
+                      : "track: --csv and --json name the same file");
         return EXIT_USAGE;
     }
     if ((st = cli_track_args_check_reading("track", &o.read)) != EXIT_OK) return st;
@@ -415,7 +417,9 @@ int cmd_track(int argc, char **argv)
         return EXIT_USAGE;
     }
     st = write_outputs(&o, file, &t);
-    if (st == EXIT_OK) {
+    /* standard output carries a file given "-" alone */
+    const int text = !(o.csv && strcmp(o.csv, "-") == 0) && !(o.json && strcmp(o.json, "-") == 0);
+    if (st == EXIT_OK && text) {
         print_report(file, &t);
         if (o.csv) printf("CSV: %ld frames written to %s\n", t.n, o.csv);
         if (o.json) printf("JSON written to %s\n", o.json);

@@ -118,6 +118,7 @@ int cli_track_args_check(const char *cmd, cli_TrackArgs *a)
             return EXIT_USAGE;
         }
     }
+    if (cli_output_file_only(cmd, "output", a->output, "a figure") != 0) return EXIT_USAGE;
     if (a->output) {
         const char *ext = cli_path_ext(a->output);
         if (strcasecmp(ext, "png") != 0 && strcasecmp(ext, "svg") != 0 && strcasecmp(ext, "pdf") != 0) {

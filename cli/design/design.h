@@ -62,7 +62,7 @@ typedef struct {
 cli_DesignUnits cli_design_units(const cli_DesignJob *job);
 void cli_design_print(const cli_DesignJob *job, const jc_DesignResult *r, const char *range_note);
 /* --json FILE, --csv FILE: EXIT_OK or EXIT_FAIL after a message; the file is
- * written whole or not at all. */
+ * written whole or not at all ("-": standard output). */
 int cli_design_write_json(const cli_DesignJob *job, const jc_DesignResult *r, const char *path);
 int cli_design_write_csv(const cli_DesignJob *job, const jc_DesignResult *r, const char *path);
 

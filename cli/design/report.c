@@ -276,7 +276,7 @@ int cli_design_write_json(const cli_DesignJob *job, const jc_DesignResult *r, co
         return EXIT_FAIL;
     }
     cli_Output o;
-    int rc = cli_output_begin(&o, path, 0) == 0 ? EXIT_OK : EXIT_FAIL;
+    int rc = cli_output_begin(&o, path, 1) == 0 ? EXIT_OK : EXIT_FAIL;
     if (rc == EXIT_OK) {
         fputs(text, o.f);
         fputc('\n', o.f);
@@ -317,7 +317,7 @@ int cli_design_write_csv(const cli_DesignJob *job, const jc_DesignResult *r, con
         rows[m++] = (csv_row){{r->solutions[k].p, JC_CASE_LIFTOFF, r->solutions[k].x_m}, "solution"};
     qsort(rows, (size_t)m, sizeof *rows, row_order);
     cli_Output o;
-    if (cli_output_begin(&o, path, 0) != 0) {
+    if (cli_output_begin(&o, path, 1) != 0) {
         free(rows);
         return EXIT_FAIL;
     }

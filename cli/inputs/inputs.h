@@ -162,9 +162,24 @@ typedef struct {
  * CLI_GO_ON, or the exit status: EXIT_OK after --help or --dump-config. */
 int cli_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, cli_SetupArgs *setup_args,
                       struct cli_SimArgs_s *sim_args);
+/* Output options. Every option that names an output file takes FILE, and
+ * "-" is standard output (docs/cli.md, "Output files"); an output that
+ * cannot go there (a figure, a film) refuses "-". --json alone, followed by
+ * another option or by nothing, is --json - (what it was before it took a
+ * FILE): such an option is optional_argument in the getopt table, and the
+ * parse hands its take "-" or the FILE that follows ("--json out.json",
+ * "--json=out.json"). A word that starts with '-' is taken for an option,
+ * not a FILE: "--json=-x.json" or "--json ./-x.json". */
+#define CLI_JSON_OPTION(val) {"json", optional_argument, 0, (val)}
+/* Whether next, the word after such an option (NULL: none), is its FILE. */
+int cli_output_value_follows(const char *next);
+/* The value of such an option getopt_long has just returned: optarg
+ * ("--json=FILE"), the FILE that follows (optind moves past it), or "-". */
+const char *cli_output_optarg(int argc, char **argv);
 /* cli_command_parse for a command whose one own option is --json (paper,
- * predict); *json is set when it is given. CLI_GO_ON, or the exit status. */
-int cli_json_command_parse(int argc, char **argv, void (*help)(void), int *json, cli_SetupArgs *setup_args);
+ * predict); *json is set to its FILE ("-": standard output) when it is
+ * given. CLI_GO_ON, or the exit status. */
+int cli_json_command_parse(int argc, char **argv, void (*help)(void), const char **json, cli_SetupArgs *setup_args);
 
 /* Simulator options (--t-max, --sample-dt, ...), for commands that simulate. */
 #define CLI_SIM_OPTION_COUNT 7

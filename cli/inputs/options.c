@@ -64,9 +64,10 @@ static void help_item(FILE *out, const char *head, const char *text)
 void cli_setup_help(FILE *out)
 {
     fputs("Setup options (a plain number is SI, angles are degrees; a number may carry a unit:\n"
-          "10cm, 34.2g, 15deg, 0.3rad, 9.78m/s2, 120rpm). Without --preset or --part the setup\n"
-          "is the 'paper' preset on a 30 deg incline. 'jumpcyl params' lists every parameter\n"
-          "with its unit, range, each preset's value and its experiment-file key.\n",
+          "10cm, 34.2g, 15deg, 0.3rad, 9.78m/s2, 120rpm, and the forms the figures print: 15\u00b0,\n"
+          "9.78m/s\u00b2). Without --preset or --part the setup is the 'paper' preset on a 30 deg\n"
+          "incline. 'jumpcyl params' lists every parameter with its unit, range, each preset's\n"
+          "value and its experiment-file key.\n",
           out);
     help_item(out, "--preset NAME", "built-in setup: paper, hoop, rocking-hoop, disc ('jumpcyl presets')");
     help_item(out, "--config FILE",
@@ -118,16 +119,108 @@ int cli_setup_build(const cli_SetupArgs *a, jc_Setup *s, char *err, size_t err_l
     return cli_setup_base(a, s, err, err_len) != 0 ? -1 : cli_setup_apply(a, s, err, err_len);
 }
 
-/* getopt's '?': an unknown option, or a value given to a flag ("--json=1"). */
-static void unknown_option(char **argv, int next)
+/* The edit distance of a and b (their first 63 bytes): insertions,
+ * deletions and substitutions, each 1. */
+static int edit_distance(const char *a, const char *b)
+{
+    int row[64];
+    const int n = (int)strnlen(b, 63), m = (int)strnlen(a, 63);
+    for (int j = 0; j <= n; ++j) row[j] = j;
+    for (int i = 1; i <= m; ++i) {
+        int diag = row[0];
+        row[0] = i;
+        for (int j = 1; j <= n; ++j) {
+            const int up = row[j];
+            const int sub = diag + (a[i - 1] != b[j - 1]);
+            row[j] = sub < up + 1 ? sub : up + 1;
+            if (row[j - 1] + 1 < row[j]) row[j] = row[j - 1] + 1;
+            diag = up;
+        }
+    }
+    return row[n];
+}
+
+/* "; did you mean --incline?" for a long option the table does not have:
+ * the options it begins (an ambiguous abbreviation, up to 4 named), else
+ * the nearest by edit distance when it is near (at most 2, or a third of
+ * its length); "" when none is. */
+static void option_hint(const struct option *all, const char *given, char *out, size_t len)
+{
+    char name[64];
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(given, "="), given);
+    const size_t n = strlen(name);
+    int starts = 0, best = -1, best_d = 1 << 20;
+    size_t used = (size_t)snprintf(out, len, "; did you mean ");
+    for (int i = 0; all[i].name; ++i) {
+        if (n > 0 && strncmp(all[i].name, name, n) == 0) {
+            if (starts < 4 && used < len)
+                used += (size_t)snprintf(out + used, len - used, "%s--%s", starts ? ", " : "", all[i].name);
+            ++starts;
+        }
+        const int d = edit_distance(name, all[i].name);
+        if (d < best_d) {
+            best_d = d;
+            best = i;
+        }
+    }
+    if (starts > 1) {
+        if (used < len) snprintf(out + used, len - used, "%s?", starts > 4 ? ", ..." : "");
+        return;
+    }
+    const int near = best_d <= 2 || best_d * 3 <= (int)n;
+    if (best >= 0 && near && n > 0) snprintf(out, len, "; did you mean --%s?", all[best].name);
+    else out[0] = '\0';
+}
+
+/* getopt's '?': an unknown or ambiguous option, or a value given to a flag
+ * ("--quiet=1"). getopt leaves optind past a long option; an unknown short
+ * one is named by optopt. */
+static void unknown_option(char **argv, int next, const struct option *all)
 {
     const char *arg = argv[next - 1];
-    if (optopt && strncmp(arg, "--", 2) == 0)
-        cli_error("%s: option '%s' takes no value (see 'jumpcyl %s --help')", argv[0], arg, argv[0]);
-    else if (optopt > 0 && optopt < 128)
+    const int is_long = strncmp(arg, "--", 2) == 0 && arg[2];
+    if (optopt && is_long && strchr(arg, '=')) {
+        cli_error("%s: option '%.*s' takes no value (see 'jumpcyl %s --help')", argv[0], (int)strcspn(arg, "="), arg,
+                  argv[0]);
+    } else if (optopt > 0 && optopt < 128) {
         cli_error("%s: unknown option '-%c' (see 'jumpcyl %s --help')", argv[0], optopt, argv[0]);
-    else
-        cli_error("%s: unknown option '%s' (see 'jumpcyl %s --help')", argv[0], arg, argv[0]);
+    } else {
+        char hint[256] = "";
+        if (is_long) option_hint(all, arg + 2, hint, sizeof hint);
+        cli_error("%s: unknown option '%s'%s (see 'jumpcyl %s --help')", argv[0], arg, hint, argv[0]);
+    }
+}
+
+/* "--radius 10 cm": a number, then a unit as a word of its own, which the
+ * parse finds as an unexpected argument. Whether unit is such a word after
+ * the value number: number and unit together read as a quantity. */
+static int is_unit_after(const char *number, const char *unit)
+{
+    static const cli_Quantity quantities[] = {Q_LENGTH, Q_MASS,    Q_ANGLE,   Q_ANGULAR_SPEED,
+                                              Q_ACCELERATION, Q_TIME, Q_DENSITY, Q_SPIN_DRAG};
+    char token[128];
+    double v;
+    if (snprintf(token, sizeof token, "%s%s", number, unit) >= (int)sizeof token) return 0;
+    if (cli_parse_quantity(number, Q_NUMBER, &v, NULL, 0) != 0) return 0; /* not a plain number */
+    for (size_t k = 0; k < sizeof quantities / sizeof quantities[0]; ++k)
+        if (cli_parse_quantity(token, quantities[k], &v, NULL, 0) == 0) return 1;
+    return 0;
+}
+
+/* The unexpected argument word (getopt has moved every word that is not
+ * an option or its value to the end): "write 10cm" when, in the words as
+ * given (words), it follows an option's number as its unit. */
+static void unexpected_argument(char **argv, const char *word, char *const *words, int count)
+{
+    for (int i = 2; i < count; ++i) {
+        if (words[i] != word || strncmp(words[i - 2], "--", 2) != 0 || strchr(words[i - 2], '=') ||
+            !is_unit_after(words[i - 1], word))
+            continue;
+        cli_error("%s: unexpected argument '%s': a unit goes with its number, without a blank: write %s %s%s",
+                  argv[0], word, words[i - 2], words[i - 1], word);
+        return;
+    }
+    cli_error("%s: unexpected argument '%s' (see 'jumpcyl %s --help')", argv[0], word, argv[0]);
 }
 
 /* A plain number is SI: "--radius 15" is a 15 m wheel. A length over 1 m
@@ -236,6 +329,7 @@ static int is_repeatable(const char *name)
 /* What the parse knows while it goes through argv. */
 typedef struct {
     char **argv;
+    const struct option *all; /* every option the command takes */
     const struct option *own;
     int own_count;
     unsigned own_seen; /* the command's own options given so far, by index */
@@ -246,18 +340,18 @@ typedef struct {
 } parse_state;
 
 /* A setup or simulation option; CLI_OPTION_REFUSED after the message. */
-static cli_OptionTake take_shared(const parse_state *p, int c)
+static cli_OptionTake take_shared(const parse_state *p, int c, const char *arg)
 {
     char msg[512];
-    cli_OptionTake took = cli_setup_take(p->setup_args, c, optarg, msg, sizeof msg);
-    if (took == CLI_OPTION_NOT_OURS && p->sim_args) took = cli_sim_take(p->sim_args, c, optarg, msg, sizeof msg);
-    if (took == CLI_OPTION_REFUSED) cli_error("%s", msg);
+    cli_OptionTake took = cli_setup_take(p->setup_args, c, arg, msg, sizeof msg);
+    if (took == CLI_OPTION_NOT_OURS && p->sim_args) took = cli_sim_take(p->sim_args, c, arg, msg, sizeof msg);
+    if (took == CLI_OPTION_REFUSED) cli_error("%s: %s", p->argv[0], msg);
     return took;
 }
 
 /* A command's own option, which counts once as the setup options do
  * (unless repeatable), then its take. CLI_GO_ON, or the exit status. */
-static int take_own(parse_state *p, int c)
+static int take_own(parse_state *p, int c, const char *arg)
 {
     for (int i = 0; i < p->own_count && i < 32; ++i) {
         if (p->own[i].val != c || c == 'h' || is_repeatable(p->own[i].name)) continue;
@@ -267,23 +361,23 @@ static int take_own(parse_state *p, int c)
         }
         p->own_seen |= 1u << i;
     }
-    return p->own_take(c, optarg, p->ctx);
+    return p->own_take(c, arg, p->ctx);
 }
 
 /* One option getopt_long returned. CLI_GO_ON, or the exit status. */
-static int take_option(parse_state *p, int c)
+static int take_option(parse_state *p, int c, const char *arg)
 {
     if (c == '?') {
-        unknown_option(p->argv, optind);
+        unknown_option(p->argv, optind, p->all);
         return EXIT_USAGE;
     }
     if (c == ':') {
         cli_error("%s: option '%s' needs a value", p->argv[0], p->argv[optind - 1]);
         return EXIT_USAGE;
     }
-    const cli_OptionTake shared = take_shared(p, c);
+    const cli_OptionTake shared = take_shared(p, c, arg);
     if (shared == CLI_OPTION_REFUSED) return EXIT_USAGE;
-    return shared == CLI_OPTION_TAKEN ? CLI_GO_ON : take_own(p, c);
+    return shared == CLI_OPTION_TAKEN ? CLI_GO_ON : take_own(p, c, arg);
 }
 
 int cli_parse_args(int argc, char **argv, const struct option *own, int own_count,
@@ -296,16 +390,25 @@ int cli_parse_args(int argc, char **argv, const struct option *own, int own_coun
     cli_merge_options(all, (int)(sizeof all / sizeof all[0]), cmd, n);
     *setup_args = (cli_SetupArgs){0};
     if (sim_args) *sim_args = (cli_SimArgs){0};
-    parse_state p = {argv, own, own_count, 0, own_take, ctx, setup_args, sim_args};
+    parse_state p = {argv, all, own, own_count, 0, own_take, ctx, setup_args, sim_args};
+    /* the words as given, before getopt moves them: for the hint on a unit given apart */
+    char *words[256];
+    const int count = argc < 256 ? argc : 256;
+    for (int i = 0; i < count; ++i) words[i] = argv[i];
     optind = 0; /* glibc: a full restart, also of a scan left inside "-hh" (tests, fuzzing) */
     opterr = 0;
-    int c;
-    while ((c = getopt_long(argc, argv, ":h", all, NULL)) != -1) {
-        const int st = take_option(&p, c);
+    int c, index = -1;
+    while ((c = getopt_long(argc, argv, ":h", all, &index)) != -1) {
+        /* an output option (optional_argument): its FILE, or "-" */
+        const char *arg = c != '?' && c != ':' && index >= 0 && all[index].has_arg == optional_argument
+                              ? cli_output_optarg(argc, argv)
+                              : optarg;
+        const int st = take_option(&p, c, arg);
         if (st != CLI_GO_ON) return st;
+        index = -1;
     }
     if (optind < argc) {
-        cli_error("%s: unexpected argument '%s' (see 'jumpcyl %s --help')", argv[0], argv[optind], argv[0]);
+        unexpected_argument(argv, argv[optind], words, count);
         return EXIT_USAGE;
     }
     return setup_args->dump_config ? dump_config(argv[0], setup_args, sim_args) : CLI_GO_ON;
@@ -334,17 +437,28 @@ int cli_command_parse(int argc, char **argv, const cli_Command *cmd, void *ctx, 
     return cli_parse_args(argc, argv, cmd->own, cmd->own_count, take_or_help, &t, setup_args, sim_args);
 }
 
+int cli_output_value_follows(const char *next)
+{
+    return next && (next[0] != '-' || strcmp(next, "-") == 0);
+}
+
+const char *cli_output_optarg(int argc, char **argv)
+{
+    if (optarg) return optarg;
+    if (optind < argc && cli_output_value_follows(argv[optind])) return argv[optind++];
+    return "-";
+}
+
 static int take_json(int opt, const char *arg, void *ctx)
 {
-    (void)arg;
     if (opt != 'j') return EXIT_USAGE;
-    *(int *)ctx = 1;
+    *(const char **)ctx = arg;
     return CLI_GO_ON;
 }
 
-int cli_json_command_parse(int argc, char **argv, void (*help)(void), int *json, cli_SetupArgs *setup_args)
+int cli_json_command_parse(int argc, char **argv, void (*help)(void), const char **json, cli_SetupArgs *setup_args)
 {
-    static const struct option own[] = {{"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}};
+    static const struct option own[] = {CLI_JSON_OPTION('j'), {"help", no_argument, 0, 'h'}};
     const cli_Command cmd = {own, 2, take_json, help};
     return cli_command_parse(argc, argv, &cmd, json, setup_args, NULL);
 }

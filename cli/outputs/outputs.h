@@ -26,6 +26,10 @@ void cli_print_setup(FILE *out, const jc_Model *m, int show_incline);
  * characters shown as '?', so that it stays on one line (and a comment line
  * of a script never ends in a backslash). */
 void cli_shell_word(FILE *out, const char *s);
+/* A kept script's name as gnuplot is to be given it: gnuplot reads a file
+ * argument that begins with '<' or '|' as a shell command to run, and one
+ * that begins with '-' as an option, so such a name gets "./" in front. */
+const char *cli_gnuplot_load_prefix(const char *path);
 
 /* JSON helpers (cJSON). */
 struct cJSON;
@@ -125,6 +129,10 @@ typedef struct {
  * 0, or -1 after a one-line message naming the target. allow_stdout: "-"
  * means standard output. */
 int cli_output_begin(cli_Output *o, const char *target, int allow_stdout);
+/* An output that cannot go to standard output (a figure, a film, a
+ * directory of frames): "-" refused with "CMD: --OPTION -: WHAT cannot go
+ * to standard output; ..." (-1, EXIT_USAGE's case); 0 for any other name. */
+int cli_output_file_only(const char *cmd, const char *option, const char *target, const char *what);
 /* Only the checks of cli_output_begin, for commands that work long before
  * they write (plot, animate): 0, or -1 after a message. */
 int cli_output_check_target(const char *target);
@@ -140,6 +148,11 @@ int cli_output_finish(cli_Output *o, cli_Check check);
 int cli_output_publish(cli_Output *o);
 /* Removes the temporary file; the target stays as it was. Safe to repeat. */
 void cli_output_abort(cli_Output *o);
+
+/* A JSON document into target, "-" being standard output (cli_json_print),
+ * a file written whole or not at all otherwise; frees it. EXIT_OK, or
+ * EXIT_FAIL after a message. */
+int cli_json_write(struct cJSON *doc, const char *target);
 
 /* fsync of the directory that holds path, so that a rename in it reaches the disk. */
 void cli_sync_dir(const char *path);

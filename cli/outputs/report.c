@@ -15,6 +15,11 @@ double cli_shown(double v, int decimals)
     return fabs(v) < 0.5 * pow(10.0, -decimals) ? 0.0 : v;
 }
 
+const char *cli_gnuplot_load_prefix(const char *path)
+{
+    return path[0] == '<' || path[0] == '|' || path[0] == '-' ? "./" : "";
+}
+
 void cli_shell_word(FILE *out, const char *s)
 {
     if (*s && s[strspn(s, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./:+=%,")] == '\0') {

@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "outputs.h"
 
+#include <cjson/cJSON.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -22,10 +23,25 @@ static int dir_of(const char *path, char *dir, size_t len)
     return w < 0 || (size_t)w >= len ? -1 : 0;
 }
 
+int cli_output_file_only(const char *cmd, const char *option, const char *target, const char *what)
+{
+    if (!target || strcmp(target, "-") != 0) return 0;
+    cli_error("%s: --%s -: %s cannot go to standard output; give a file name (./- for a file named '-')", cmd,
+              option, what);
+    return -1;
+}
+
 int cli_output_check_target(const char *target)
 {
     if (!target || !*target) {
         cli_error("empty output file name");
+        return -1;
+    }
+    /* "-" is standard output wherever it is allowed (cli_output_begin); a
+     * file that cannot go there is never made under that name. */
+    if (strcmp(target, "-") == 0) {
+        cli_error("cannot write '-': it means standard output, which cannot take this file; give a file name "
+                  "(./- for a file named '-')");
         return -1;
     }
     const size_t n = strlen(target);
@@ -316,5 +332,27 @@ int cli_stdout_close(void)
     int rc = cli_stdout_finish();
     /* The close reports what the flush could not (a descriptor closed by the caller). */
     if (fclose(stdout) != 0 && rc == EXIT_OK) rc = stdout_failed(errno);
+    return rc;
+}
+
+/* ---- JSON documents into a file or standard output ---- */
+
+int cli_json_write(cJSON *doc, const char *target)
+{
+    if (strcmp(target, "-") == 0) return cli_json_print(doc);
+    char *text = cli_json_text(doc, 1);
+    cJSON_Delete(doc);
+    if (!text) {
+        cli_error("could not format the JSON output (out of memory)");
+        return EXIT_FAIL;
+    }
+    cli_Output o;
+    int rc = cli_output_begin(&o, target, 0) == 0 ? EXIT_OK : EXIT_FAIL;
+    if (rc == EXIT_OK) {
+        fputs(text, o.f);
+        fputc('\n', o.f);
+        if (cli_output_commit(&o, CLI_CHECK_WRITES) != 0) rc = EXIT_FAIL;
+    }
+    free(text);
     return rc;
 }
