@@ -302,6 +302,8 @@ int cmd_plot(int argc, char **argv)
     if (kind->panel == NULL) d.caption[0] = '\0';
     char cmdline[2048];
     fig_command_line(argc, argv, cmdline, sizeof cmdline);
+    /* The trajectory keeps the whole run (its panels choose their views). */
+    d.end_after_landing = !(kind->needs & NEED_TRAJECTORY) && !cli_sim_given(&in.sim_args, "t-max");
     st = make_figure(&d, &o, kind, format, &in.sim, cli_sim_given(&in.sim_args, "sample-dt"), max_samples, cmdline);
     if (d.have_run) jc_run_free(&d.run);
     if (st == EXIT_OK) printf("Figure: %s\n", o.output);

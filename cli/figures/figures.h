@@ -69,6 +69,10 @@ typedef struct {
     /* The zoom on what matters: from before the first lift-off to after the
      * last flight's landing (plot_run.c). zoomed is 0 when nothing flies. */
     int zoom_wanted; /* set before fig_run_prepare: forces, gap, energy panels take the zoom (overview) */
+    /* Set before fig_run_prepare: a run that only reaches the default time
+     * limit (no --t-max given; a body rocking for ever) is shown to 1 s
+     * after its last landing, as animate films it. */
+    int end_after_landing;
     int zoomed;
     double zoom_x_lo_cm, zoom_x_hi_cm; /* centre's distance down the incline */
     double zoom_t_lo_s, zoom_t_hi_s;

@@ -48,12 +48,22 @@ static void two_axes(FILE *gp, const char *left, const char *left_colour, const 
             left, left_colour, right, right_colour);
 }
 
-/* Event lines across the graph and their labels hanging from the top. */
+/* Event lines across the graph and their labels hanging from the top,
+ * left or right of their lines (the events block's column 5), in one or
+ * two lines (columns 6 and 7). */
 static void plot_events(FILE *gp)
 {
-    fputs(", \\\n     EVENTS using (column(EX)):(EV_FROM):(0):(YMAX - EV_FROM) with vectors nohead lc rgb C_GREY dt EV_DT lw 1.5 title 'events', \\\n"
-          "     EVENTS using (column(EX)):(YMAX):4 with labels rotate by 90 right offset -0.9,-0.4 font F_SMALL textcolor rgb C_INK notitle",
+    fputs(", \\\n     EVENTS using (column(EX)):(EV_FROM):(0):(YMAX - EV_FROM) with vectors nohead lc rgb C_GREY dt EV_DT lw 1.5 title 'events'",
           gp);
+    static const struct {
+        const char *side;
+        int column;
+        double offset;
+    } lines[] = {{"<", 6, -2.3}, {"<", 7, -0.9}, {">", 6, 0.75}, {">", 7, 2.15}};
+    for (size_t i = 0; i < sizeof lines / sizeof lines[0]; ++i)
+        fprintf(gp, ", \\\n     EVENTS using (column(EX)):($5 %s 0 ? YMAX : NaN):%d with labels rotate by 90 right offset %g,-0.4 "
+                    "font F_SMALL textcolor rgb C_INK notitle",
+                lines[i].side, lines[i].column, lines[i].offset);
 }
 
 void fig_forces_panel(FILE *gp, const fig_Data *d)

@@ -10,8 +10,17 @@
 /* About this many samples over the run: smooth curves, files of ~1 MB. */
 #define RUN_TARGET_SAMPLES 5000.0
 #define RUN_MIN_DT_S 2e-5
-/* Labels closer than this fraction of the x range share one label. */
-#define EVENT_CLUSTER_FRACTION 0.03
+/* An event's label, rotated, takes this stretch of the axis beside its
+ * line (fractions of the axis: about one line of the labels' font on a
+ * panel 1200 px wide); events closer than EVENT_SAME_FRACTION are at one
+ * place and share a label. */
+#define EVENT_LABEL_NEAR 0.005
+#define EVENT_LABEL_ONE_LINE 0.021
+#define EVENT_LABEL_TWO_LINES 0.044
+#define EVENT_SAME_FRACTION 0.004
+/* A label longer than this (bytes) is split in two lines at a comma: it
+ * must fit in the panel's top (LABEL_HEADROOM, plot_panels.c). */
+#define EVENT_LINE_CHARS 15
 #define HOP_CLUSTER_FRACTION 0.04
 /* Longest label (bytes): a rotated label must fit in the panel's height. */
 #define LABEL_MAX 34
@@ -23,6 +32,13 @@
  * landing. */
 #define ZOOM_BEFORE_RADII 3.0
 #define ZOOM_AFTER_RADII 1.5
+/* A dip of the normal force below this fraction of M g cos a in contact is
+ * a near-miss of N = 0: the overview's zoom shows it. */
+#define NEAR_MISS_FRACTION 0.15
+/* A run that only reached the default time limit (a body rocking for ever)
+ * is shown to this much simulated time after its last landing, as animate
+ * films it. */
+#define SHOW_AFTER_LANDING_S 1.0
 
 const char *fig_event_label(jc_EventKind k)
 {
@@ -41,6 +57,36 @@ const char *fig_event_label(jc_EventKind k)
     return "event";
 }
 
+/* The time of the run's last landing (a touchdown not followed by a
+ * flight); NaN when it never landed or ends in flight. */
+static double last_landing_s(const jc_Run *run)
+{
+    double landed = NAN;
+    for (int i = 0; i < run->event_count; ++i) {
+        const jc_Event *e = &run->events[i];
+        if (e->kind == JC_EVENT_TOUCHDOWN) landed = e->state.t_s;
+        else if (fig_event_flies(e)) landed = NAN;
+    }
+    return landed;
+}
+
+/* A run that only reached the default time limit (rocking for ever) ends
+ * SHOW_AFTER_LANDING_S after its last landing when d->end_after_landing:
+ * its events (a run that keeps only them) give the time. */
+static int cut_after_landing(const fig_Data *d, jc_SimOptions *opts, double *t_end)
+{
+    jc_Run events;
+    const int st = cli_simulate(d->model, opts, &events, "plot");
+    const double landed = st == JC_OK ? last_landing_s(&events) : NAN;
+    jc_run_free(&events);
+    if (st != JC_OK) return cli_exit_status(st, CLI_INPUTS_CHECKED);
+    if (isfinite(landed) && landed + SHOW_AFTER_LANDING_S < *t_end) {
+        *t_end = landed + SHOW_AFTER_LANDING_S;
+        opts->t_max_s = *t_end;
+    }
+    return EXIT_OK;
+}
+
 /* Runs the full model. Without a given --sample-dt, a first run without
  * samples finds the duration, so that every run gets about the same number
  * of samples whatever its length. */
@@ -54,7 +100,11 @@ static int simulate(fig_Data *d, const jc_SimOptions *o, int dt_given, double ma
     opts.sample_dt_s = 0.0;
     const int st = cli_simulate_probe(d->model, &opts, &probe, "plot");
     if (st != JC_OK) return cli_exit_status(st, CLI_INPUTS_CHECKED);
-    const double t_end = probe.final_state.t_s;
+    double t_end = probe.final_state.t_s;
+    if (d->end_after_landing && probe.termination == JC_END_TIME_LIMIT) {
+        const int rc = cut_after_landing(d, &opts, &t_end);
+        if (rc != EXIT_OK) return rc;
+    }
     opts.sample_dt_s = dt_given ? o->sample_dt_s : fmax(t_end / RUN_TARGET_SAMPLES, RUN_MIN_DT_S);
     const double samples = floor(t_end / opts.sample_dt_s) + 2.0 + probe.event_count;
     if (samples > max_samples) {
@@ -221,31 +271,143 @@ void fig_event_cluster_label(const jc_Run *run, int first, int last, char *out, 
 /* Where something at (x, t) sits on the panels' horizontal axis. */
 static double axis_of(const fig_Data *d, double x_m, double t_s) { return d->time_axis ? t_s : x_m * 100; }
 
+/* An event's position on the panels' axis, as a fraction of the axis. */
+static double axis_fraction(const fig_Data *d, const jc_Event *e)
+{
+    return (axis_of(d, e->state.x_m, e->state.t_s) - d->axis_min) / fmax(d->axis_max - d->axis_min, 1e-12);
+}
+
+/* Whether the stretch [lo, hi] of the axis (fractions) can take a label:
+ * inside the axis, across no event's line other than those of events
+ * first..last, and clear of the label placed before (which ends at prev_hi). */
+static int label_fits(const fig_Data *d, double lo, double hi, int first, int last, double prev_hi)
+{
+    if (lo < 0.0 || hi > 1.0 || lo < prev_hi) return 0;
+    for (int i = 0; i < d->run.event_count; ++i) {
+        if (i >= first && i <= last) continue;
+        const double a = axis_fraction(d, &d->run.events[i]);
+        if (a >= lo && a <= hi) return 0; /* outside the axis: not drawn, never inside [lo, hi] */
+    }
+    return 1;
+}
+
+typedef struct {
+    int lead, last;          /* the events sharing the label */
+    char line[2][LABEL_MAX]; /* its lines (the second empty for one) */
+    int side;                /* -1: left of the lead's line, +1: right of the last's */
+    double lo, hi;           /* the stretch of the axis it takes (fractions) */
+} fig_EventLabel;
+
+/* The label's text, in two lines split at a comma when it is long. */
+static void label_lines(const jc_Run *run, fig_EventLabel *l)
+{
+    char text[LABEL_MAX];
+    fig_event_cluster_label(run, l->lead, l->last, text, sizeof text);
+    snprintf(l->line[0], sizeof l->line[0], "%s", text);
+    l->line[1][0] = '\0';
+    const size_t n = strlen(text);
+    if (n <= EVENT_LINE_CHARS) return;
+    size_t best = 0;
+    for (size_t i = 1; i + 1 < n; ++i)
+        if (text[i] == ',' && text[i + 1] == ' ' && (best == 0 || fabs((double)i - (double)n / 2.0) < fabs((double)best - (double)n / 2.0)))
+            best = i;
+    if (best == 0) return;
+    snprintf(l->line[0], sizeof l->line[0], "%.*s", (int)best + 1, text);
+    snprintf(l->line[1], sizeof l->line[1], "%s", text + best + 2);
+}
+
+/* Places the label left of its first line if it fits, else right of its
+ * last; -1 if neither fits. */
+static int place_label(const fig_Data *d, fig_EventLabel *l, double prev_hi)
+{
+    label_lines(&d->run, l);
+    const double width = l->line[1][0] ? EVENT_LABEL_TWO_LINES : EVENT_LABEL_ONE_LINE;
+    const double a = axis_fraction(d, &d->run.events[l->lead]), b = axis_fraction(d, &d->run.events[l->last]);
+    for (int side = -1; side <= 1; side += 2) {
+        const double lo = side < 0 ? a - EVENT_LABEL_NEAR - width : b + EVENT_LABEL_NEAR;
+        const double hi = side < 0 ? a - EVENT_LABEL_NEAR : b + EVENT_LABEL_NEAR + width;
+        if (label_fits(d, lo, hi, l->lead, l->last, prev_hi)) {
+            l->side = side;
+            l->lo = lo;
+            l->hi = hi;
+            return 0;
+        }
+    }
+    return -1;
+}
+
+/* Every event line gets its own label beside it, left or right, where the
+ * label crosses no other line and no other label; events at one place
+ * (closer than EVENT_SAME_FRACTION) share one, and events whose label fits
+ * nowhere join the label before them ("slip, stick"), until it fits.
+ * Returns the number of labels in out (at most event_count). */
+static int place_event_labels(const fig_Data *d, fig_EventLabel *out)
+{
+    const jc_Run *run = &d->run;
+    int n = 0;
+    for (int lead = 0; lead < run->event_count;) {
+        const double at = axis_fraction(d, &run->events[lead]);
+        if (at < 0.0 || at > 1.0) { /* outside the (zoomed) axis: not drawn, no label */
+            ++lead;
+            continue;
+        }
+        int last = lead;
+        while (last + 1 < run->event_count && fabs(axis_fraction(d, &run->events[last + 1]) - at) <= EVENT_SAME_FRACTION &&
+               axis_fraction(d, &run->events[last + 1]) <= 1.0)
+            ++last;
+        out[n].lead = lead;
+        out[n].last = last;
+        ++n;
+        while (place_label(d, &out[n - 1], n > 1 ? out[n - 2].hi : -INFINITY) != 0) {
+            if (n == 1) { /* the first fits nowhere: beside itself, inside the axis */
+                out[0].side = axis_fraction(d, &run->events[0]) > 2 * EVENT_LABEL_TWO_LINES ? -1 : 1;
+                out[0].hi = axis_fraction(d, &run->events[out[0].last]) + EVENT_LABEL_TWO_LINES;
+                break;
+            }
+            out[n - 2].last = out[n - 1].last;
+            --n;
+        }
+        lead = last + 1;
+    }
+    return n;
+}
+
 static int write_events(const fig_Data *d)
 {
     FILE *f = d->gp;
     fig_block_begin(f, "events");
-    fputs("# jumpcyl plot: the events of the run (jc_simulate), in time order. Events close together on\n"
-          "# the panels' axis share the label written on the first of them.\n"
-          "# columns: x_cm t_s kind label\n",
+    fputs("# jumpcyl plot: the events of the run (jc_simulate), in time order. Labels sit beside the lines:\n"
+          "# side -1, left of the line, on the first row of the events sharing it; side 1, right of the\n"
+          "# line, on the last row; line1 and line2 are the label in one or two lines (left: line2 is\n"
+          "# nearest the line, right: line1 is).\n"
+          "# columns: x_cm t_s kind label side line1 line2\n",
           f);
     const jc_Run *run = &d->run;
-    const double tol = EVENT_CLUSTER_FRACTION * fmax(d->axis_max - d->axis_min, 1e-12);
-    for (int lead = 0; lead < run->event_count;) {
-        const double at = axis_of(d, run->events[lead].state.x_m, run->events[lead].state.t_s);
-        int last = lead;
-        while (last + 1 < run->event_count &&
-               fabs(axis_of(d, run->events[last + 1].state.x_m, run->events[last + 1].state.t_s) - at) <= tol)
-            ++last;
-        char label[LABEL_MAX];
-        fig_event_cluster_label(run, lead, last, label, sizeof label);
-        for (int i = lead; i <= last; ++i) {
-            const jc_Event *e = &run->events[i];
-            fprintf(f, "%.10g %.12g %s \"%s\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind),
-                    i == lead ? label : "");
-        }
-        lead = last + 1;
+    fig_EventLabel *labels = run->event_count ? malloc(sizeof *labels * (size_t)run->event_count) : NULL;
+    if (run->event_count && !labels) {
+        cli_error("plot: out of memory");
+        return EXIT_FAIL;
     }
+    const int n = labels ? place_event_labels(d, labels) : 0;
+    int k = 0;
+    for (int i = 0; i < run->event_count; ++i) {
+        const jc_Event *e = &run->events[i];
+        while (k < n && labels[k].last < i) ++k;
+        const fig_EventLabel *l = k < n && labels[k].lead <= i ? &labels[k] : NULL;
+        if (!l || i != (l->side < 0 ? l->lead : l->last)) {
+            fprintf(f, "%.10g %.12g %s \"\" 0 \"\" \"\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind));
+            continue;
+        }
+        label_lines(run, &labels[k]);
+        char text[LABEL_MAX];
+        fig_event_cluster_label(run, l->lead, l->last, text, sizeof text);
+        /* Left: the only line nearest the line (line2); right: line1. */
+        const int two = l->line[1][0] != '\0';
+        const char *line1 = two || l->side > 0 ? l->line[0] : "", *line2 = two ? l->line[1] : l->side < 0 ? l->line[0] : "";
+        fprintf(f, "%.10g %.12g %s \"%s\" %d \"%s\" \"%s\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind),
+                text, l->side, line1, line2);
+    }
+    free(labels);
     fig_block_end(f);
     return EXIT_OK;
 }
