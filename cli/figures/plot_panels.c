@@ -114,13 +114,15 @@ void fig_path_panel(FILE *gp, const fig_Data *d)
     title(gp, d, "Hops");
     x_axis(gp, d);
     two_axes(gp, "gap between rim and incline (mm)", "C_RED", "speed of the centre (m/s)", "C_BLUE");
-    fprintf(gp, "set yrange [0:%.10g]\nset y2range [0:%.10g]\n", gap_top,
-            d->speed_max_mps > 0 ? 1.1 * d->speed_max_mps : 1.0);
+    /* Both curves stay below LABEL_HEADROOM of the height; the hops' labels
+     * are in rows above them (the hops block's label_row). */
+    fprintf(gp, "GAP_TOP = %.10g\nset yrange [0:GAP_TOP]\nset y2range [0:%.10g]\n", gap_top,
+            d->speed_max_mps > 0 ? d->speed_max_mps / LABEL_HEADROOM : 1.0);
     fprintf(gp, "plot RUN using (column(AX)):6 with filledcurves y=0 fc rgb C_RED fs transparent solid 0.25 notitle, \\\n"
                 "     RUN using (column(AX)):6 with lines lc rgb C_RED lw LW title 'gap under the rim (left axis)', \\\n"
                 "     RUN using (column(AX)):7 axes x1y2 with lines lc rgb C_BLUE lw LW title 'speed of the centre (right axis)', \\\n"
                 "     HOPS using (column(HX)):4 with points pt 9 ps 1.6*PS lc rgb C_INK title 'highest gap of each flight (%d)', \\\n"
-                "     HOPS using 7:4:6 with labels boxed offset 0,1.2 font F_SMALL textcolor rgb C_INK notitle\n",
+                "     HOPS using 7:($8 < 0 ? NaN : GAP_TOP * (0.95 - 0.075 * $8)):6 with labels font F_SMALL textcolor rgb C_INK notitle\n",
             d->hop_count);
 }
 

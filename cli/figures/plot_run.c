@@ -22,6 +22,12 @@
  * must fit in the panel's top (LABEL_HEADROOM, plot_panels.c). */
 #define EVENT_LINE_CHARS 15
 #define HOP_CLUSTER_FRACTION 0.04
+/* Hop labels: rows at the panel's top; the stretch of the axis a label
+ * takes per character and around it (fractions of the axis; the labels'
+ * font on a panel 1200 px wide). */
+#define HOP_LABEL_ROWS 4
+#define HOP_LABEL_CHAR_FRACTION 0.0115
+#define HOP_LABEL_GAP 0.015
 /* Longest label (bytes): a rotated label must fit in the panel's height. */
 #define LABEL_MAX 34
 /* Going back more than this fraction of the distance covered puts the
@@ -471,29 +477,51 @@ static void hop_label(const fig_Hop *h, int first, int last, char *out, size_t l
     }
 }
 
-/* Where a hop's label goes on the panels' axis: at its apex, but clear of
- * the graph's sides. */
-static double label_at(const fig_Data *d, const fig_Hop *h)
+/* Characters of a UTF-8 string. */
+static int utf8_chars(const char *s)
 {
-    const double margin = 0.06 * (d->axis_max - d->axis_min);
-    return fmin(fmax(axis_of(d, h->x_cm / 100, h->t_s), d->axis_min + margin), d->axis_max - margin);
+    int n = 0;
+    for (; *s; ++s) n += ((unsigned char)*s & 0xC0) != 0x80;
+    return n;
 }
 
+/* Where a hop's label goes on the panels' axis (fraction of it): centred
+ * over its apex, but inside the axis. */
+static double label_at(const fig_Data *d, const fig_Hop *h, double width)
+{
+    const double a = (axis_of(d, h->x_cm / 100, h->t_s) - d->axis_min) / fmax(d->axis_max - d->axis_min, 1e-12);
+    return fmin(fmax(a, 0.5 * width), 1.0 - 0.5 * width);
+}
+
+/* Hops close together on the axis share a label ("0.766, 0.0702 mm"); the
+ * labels sit in rows in the top of the panel, above every curve
+ * (LABEL_HEADROOM), each in the first row where it overlaps no other. */
 static void write_hop_rows(FILE *f, const fig_Data *d, const fig_Hop *h, int n)
 {
-    const double tol = HOP_CLUSTER_FRACTION * fmax(d->axis_max - d->axis_min, 1e-12);
+    double row_end[HOP_LABEL_ROWS];
+    for (int r = 0; r < HOP_LABEL_ROWS; ++r) row_end[r] = -INFINITY;
     for (int lead = 0; lead < n;) {
-        /* Grouped by where the labels go, so that two never overprint. */
-        const double at = label_at(d, &h[lead]);
+        const double apex = (axis_of(d, h[lead].x_cm / 100, h[lead].t_s) - d->axis_min) / fmax(d->axis_max - d->axis_min, 1e-12);
         int last = lead, top = lead;
-        while (last + 1 < n && fabs(label_at(d, &h[last + 1]) - at) <= tol) ++last;
+        while (last + 1 < n &&
+               fabs((axis_of(d, h[last + 1].x_cm / 100, h[last + 1].t_s) - d->axis_min) / fmax(d->axis_max - d->axis_min, 1e-12) -
+                    apex) <= HOP_CLUSTER_FRACTION)
+            ++last;
         for (int i = lead; i <= last; ++i)
             if (h[i].height_mm > h[top].height_mm) top = i;
         char label[64];
         hop_label(h, lead, last, label, sizeof label);
+        const double width = utf8_chars(label) * HOP_LABEL_CHAR_FRACTION + HOP_LABEL_GAP;
+        const double at = label_at(d, &h[top], width);
+        int row = -1; /* no label: outside the axis, or no room */
+        if (apex >= 0.0 && apex <= 1.0)
+            for (int r = 0; r < HOP_LABEL_ROWS && row < 0; ++r)
+                if (at - 0.5 * width >= row_end[r]) row = r;
+        if (row >= 0) row_end[row] = at + 0.5 * width;
+        const double at_axis = d->axis_min + at * (d->axis_max - d->axis_min);
         for (int i = lead; i <= last; ++i)
-            fprintf(f, "%.10g %.12g %.12g %.10g %.10g \"%s\" %.10g\n", h[i].x_cm, h[i].t_s, h[i].start_t_s,
-                    h[i].height_mm, h[i].flight_s, i == top ? label : "", label_at(d, &h[top]));
+            fprintf(f, "%.10g %.12g %.12g %.10g %.10g \"%s\" %.10g %d\n", h[i].x_cm, h[i].t_s, h[i].start_t_s,
+                    h[i].height_mm, h[i].flight_s, i == top && row >= 0 ? label : "", at_axis, i == top ? row : -1);
         lead = last + 1;
     }
 }
@@ -505,8 +533,9 @@ static int write_hops(fig_Data *d)
     fputs("# jumpcyl plot: every flight (a lift-off, or a bounce into flight) of the run. height: the largest\n"
           "# gap between rim and incline (jc_Event hop_height_m); x, t: the centre at the flight's highest\n"
           "# sample (its middle when too short to sample). Hops close together share the label, placed\n"
-          "# at label_at on the panels' axis (cm, or s when the panels are against time).\n"
-          "# columns: x_apex_cm t_apex_s t_start_s height_mm flight_time_s label label_at\n",
+          "# at label_at on the panels' axis (cm, or s when the panels are against time), in label_row\n"
+          "# of the rows at the panel's top (0 the highest; -1: no label on this row).\n"
+          "# columns: x_apex_cm t_apex_s t_start_s height_mm flight_time_s label label_at label_row\n",
           f);
     fig_Hop *hops = d->run.event_count ? malloc(sizeof *hops * (size_t)d->run.event_count) : NULL;
     if (d->run.event_count && !hops) {
