@@ -22,7 +22,7 @@ typedef struct {
 } plot_kind;
 
 static const plot_kind kinds[] = {
-    {"paper-criterion", NEED_CRITERION, fig_criterion_panel,
+    {"paper-criterion", NEED_CRITERION, fig_criterion_figure,
      "both sides of the paper's Eq. 9 against the rotation angle (its Figures 2-4),\n"
      "                      every intersection, the printed jump angle, the exact N = 0 condition", 1, 1},
     {"forces", NEED_RUN, fig_forces_panel, "N/(M g cos a) and |F|/N along the ramp, friction band, events", 1, 1},
@@ -139,6 +139,7 @@ static void write_overview(FILE *gp, const fig_Data *d)
     fig_forces_panel(gp, d);
     fig_path_panel(gp, d);
     fig_energy_panel(gp, d);
+    fig_criterion_inset(gp, d);
     fputs("\nunset multiplot\n", gp);
 }
 

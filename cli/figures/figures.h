@@ -74,6 +74,7 @@ typedef struct {
      * after its last landing, as animate films it. */
     int end_after_landing;
     int zoomed;
+    int zoom_from_warning; /* the zoom starts before the first slip or near-miss of N = 0 (overview) */
     double zoom_x_lo_cm, zoom_x_hi_cm; /* centre's distance down the incline */
     double zoom_t_lo_s, zoom_t_hi_s;
 } fig_Data;
@@ -117,6 +118,12 @@ void fig_body_caption(const jc_Model *m, char *out, size_t len);
 /* ---- plot_criterion.c: the paper's Eq. 9 and the exact N = 0 criterion ---- */
 int fig_criterion_prepare(fig_Data *d);
 void fig_criterion_panel(FILE *gp, const fig_Data *d);
+/* An inset on the first crossings when they are narrow (a small window or
+ * low in the graph), placed in the criterion panel drawn before (after
+ * every panel of a page: it does not take a place of the layout). */
+void fig_criterion_inset(FILE *gp, const fig_Data *d);
+/* paper-criterion on its own page: the panel and its inset. */
+void fig_criterion_figure(FILE *gp, const fig_Data *d);
 
 /* ---- plot_uncertainty.c: the paper's jump sites with the full model's band ---- */
 /* Rows of the paper's table the figure shows at most. */

@@ -41,6 +41,8 @@
 /* A dip of the normal force below this fraction of M g cos a in contact is
  * a near-miss of N = 0: the overview's zoom shows it. */
 #define NEAR_MISS_FRACTION 0.15
+/* The overview does not zoom when the zoom would show this much of the run. */
+#define ZOOM_WHOLE_FRACTION 0.9
 /* A run that only reached the default time limit (a body rocking for ever)
  * is shown to this much simulated time after its last landing, as animate
  * films it. */
@@ -572,8 +574,34 @@ static double time_forward_to(const jc_Run *run, double t_s, double x_cm)
     return NAN;
 }
 
+/* Where the first warning of a lift-off comes before time t_s (cm): the
+ * first slip, or the first near-miss of N = 0 (N below NEAR_MISS_FRACTION
+ * of M g cos a in contact); +inf if none. */
+static double first_warning_cm(const fig_Data *d, double t_s)
+{
+    const jc_Run *run = &d->run;
+    const jc_Model *m = d->model;
+    const double weight_n = m->body.mass_kg * m->setup.gravity_mps2 * m->cos_incline;
+    double at = INFINITY;
+    for (int i = 0; i < run->event_count && run->events[i].state.t_s < t_s; ++i)
+        if (run->events[i].kind == JC_EVENT_SLIP) {
+            at = run->events[i].state.x_m * 100;
+            break;
+        }
+    for (int i = 0; i < run->sample_count && run->samples[i].state.t_s < t_s; ++i) {
+        const jc_Sample *p = &run->samples[i];
+        if (p->mode != JC_MODE_FLIGHT && p->normal_N < NEAR_MISS_FRACTION * weight_n) {
+            at = fmin(at, p->state.x_m * 100);
+            break;
+        }
+    }
+    return at;
+}
+
 /* The zoom: from ZOOM_BEFORE_RADII rim radii (or 15 % of the hops' span)
- * before the first lift-off to ZOOM_AFTER_RADII radii (or 5 %) after the
+ * before what matters first — in the overview (d->zoom_wanted) the first
+ * slip or near-miss of N = 0 when they come earlier, else the first
+ * lift-off to ZOOM_AFTER_RADII radii (or 5 %) after the
  * last flight's landing, within the run. In time, the same stretch; when
  * the body never gets that far again (it rocks), a quarter of the stretch
  * after the last landing. */
@@ -593,7 +621,10 @@ static void find_zoom(fig_Data *d)
     const double start_cm = a->state.x_m * 100;
     const double end_cm = (isnan(b->landing_x_m) ? run->final_state.x_m : b->landing_x_m) * 100;
     const double span = fabs(end_cm - start_cm), t_end = b->state.t_s + b->flight_time_s;
-    d->zoom_x_lo_cm = fmax(fmin(start_cm, end_cm) - fmax(ZOOM_BEFORE_RADII * r_cm, 0.15 * span), d->x_min_cm);
+    const double warning_cm = d->zoom_wanted && !d->time_axis ? first_warning_cm(d, a->state.t_s) : INFINITY;
+    d->zoom_from_warning = warning_cm < start_cm;
+    const double from_cm = fmin(start_cm, warning_cm);
+    d->zoom_x_lo_cm = fmax(fmin(from_cm, end_cm) - fmax(ZOOM_BEFORE_RADII * r_cm, 0.15 * span), d->x_min_cm);
     d->zoom_x_hi_cm = fmin(fmax(start_cm, end_cm) + fmax(ZOOM_AFTER_RADII * r_cm, 0.05 * span), d->x_max_cm);
     int i = 0;
     while (i + 1 < run->sample_count && run->samples[i + 1].state.t_s <= a->state.t_s) ++i;
@@ -601,12 +632,17 @@ static void find_zoom(fig_Data *d)
     const double reached = time_forward_to(run, t_end, d->zoom_x_hi_cm);
     d->zoom_t_hi_s = isnan(reached) || d->time_axis ? fmin(d->t_max_s, t_end + 0.25 * (t_end - d->zoom_t_lo_s)) : reached;
     if (!(d->zoom_t_hi_s > d->zoom_t_lo_s)) d->zoom_t_hi_s = d->t_max_s;
+    /* A zoom over most of the run is none (45°: the first slip is near the start). */
+    if (d->zoom_wanted && !d->time_axis && d->zoom_x_hi_cm - d->zoom_x_lo_cm >= ZOOM_WHOLE_FRACTION * (d->x_max_cm - d->x_min_cm))
+        d->zoomed = 0;
 }
 
 void fig_zoom_caption(const fig_Data *d, char *out, size_t len)
 {
-    snprintf(out, len, "zoomed to x = %.3g–%.3g cm (t = %.3g–%.3g s), around the first lift-off and the hops",
-             d->zoom_x_lo_cm, d->zoom_x_hi_cm, d->zoom_t_lo_s, d->zoom_t_hi_s);
+    snprintf(out, len, "zoomed to x = %.3g–%.3g cm (t = %.3g–%.3g s), %s", d->zoom_x_lo_cm, d->zoom_x_hi_cm, d->zoom_t_lo_s,
+             d->zoom_t_hi_s,
+             d->zoom_from_warning ? "from the first slip or near-miss of N = 0 to the hops"
+                                  : "around the first lift-off and the hops");
 }
 
 /* Distance down the incline is the natural axis, unless the body goes back
