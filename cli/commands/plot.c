@@ -18,7 +18,7 @@ typedef struct {
     unsigned needs;
     void (*panel)(FILE *gp, const fig_Data *d); /* NULL: the overview */
     const char *help;
-    int cols, rows; /* the page, in panels */
+    double cols, rows; /* the page, in panels of 1200 x 750 px */
 } plot_kind;
 
 static const plot_kind kinds[] = {
@@ -37,7 +37,7 @@ static const plot_kind kinds[] = {
     {"paper-uncertainty", NEED_UNCERTAINTY, fig_uncertainty_panels,
      "the paper's three inclines: printed jump site, the full model's first lift-off\n"
      "                      with its 95 % band (Monte Carlo of the inputs' uncertainties), measured;\n"
-     "                      the paper's cylinder only (the body it measured)", 3, 1},
+     "                      the paper's cylinder only (the body it measured)", 1.5, 1.2},
 };
 #define KIND_COUNT (int)(sizeof kinds / sizeof kinds[0])
 #define KIND_NAMES "paper-criterion, forces, gap, energy, trajectory, overview, paper-uncertainty"

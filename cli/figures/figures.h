@@ -88,9 +88,10 @@ void fig_quote(FILE *gp, const char *s);
 /* "$name << EOD" and "EOD": a data block of the script. */
 void fig_block_begin(FILE *gp, const char *name);
 void fig_block_end(FILE *gp);
-/* The script's head: comments, terminal for a cols x rows page of panels,
- * the colours and the style block every panel applies. */
-void fig_script_begin(FILE *gp, fig_Format f, int cols, int rows, const char *default_output,
+/* The script's head: comments, terminal for a cols x rows page of panels
+ * (a panel is 1200 x 750 px; a page may hold fractions of them), the
+ * colours and the style block every panel applies. */
+void fig_script_begin(FILE *gp, fig_Format f, double cols, double rows, const char *default_output,
                       const char *command_line);
 /* Starts a panel: forgets the previous panel's settings, applies the style. */
 void fig_panel_begin(FILE *gp, const char *what);
