@@ -26,7 +26,7 @@
  * takes per character and around it (fractions of the axis; the labels'
  * font on a panel 1200 px wide). */
 #define HOP_LABEL_ROWS 4
-#define HOP_LABEL_CHAR_FRACTION 0.0115
+#define HOP_LABEL_CHAR_FRACTION 0.0125
 #define HOP_LABEL_GAP 0.015
 /* Longest label (bytes): a rotated label must fit in the panel's height. */
 #define LABEL_MAX 34
