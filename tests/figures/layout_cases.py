@@ -17,6 +17,8 @@ CASES = [
     ("overview-15", ["plot", "--incline", "15", "--what", "overview"], []),
     ("overview-30", ["plot", "--incline", "30", "--what", "overview"], []),
     ("overview-45", ["plot", "--incline", "45", "--what", "overview"], []),
+    # No lift-off, one event (the ramp's end): nothing zoomed, no inset.
+    ("overview-5", ["plot", "--incline", "5", "--what", "overview"], []),
 ]
 for _kind in ("paper-criterion", "forces", "gap", "energy"):
     for _a in ("15", "30", "45"):
