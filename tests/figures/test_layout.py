@@ -49,7 +49,8 @@ def main(argv):
             print("test_layout.py: unknown argument %s" % argv[i], file=sys.stderr)
             return 2
     if only:
-        cases = [c for c in cases + layout_cases.TRAJECTORY if c[0] in only]
+        every = {c[0]: c for c in layout_cases.CASES + layout_cases.TRAJECTORY}
+        cases = [every[n] for n in dict.fromkeys(only) if n in every]
         if len(cases) != len(set(only)):
             print("test_layout.py: no such case among %s" % only, file=sys.stderr)
             return 2
