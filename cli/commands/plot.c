@@ -18,11 +18,11 @@ typedef struct {
     unsigned needs;
     void (*panel)(FILE *gp, const fig_Data *d); /* NULL: the overview */
     const char *help;
-    int cols, rows; /* the page, in panels */
+    double cols, rows; /* the page, in panels of 1200 x 750 px */
 } plot_kind;
 
 static const plot_kind kinds[] = {
-    {"paper-criterion", NEED_CRITERION, fig_criterion_panel,
+    {"paper-criterion", NEED_CRITERION, fig_criterion_figure,
      "both sides of the paper's Eq. 9 against the rotation angle (its Figures 2-4),\n"
      "                      every intersection, the printed jump angle, the exact N = 0 condition", 1, 1},
     {"forces", NEED_RUN, fig_forces_panel, "N/(M g cos a) and |F|/N along the ramp, friction band, events", 1, 1},
@@ -37,7 +37,7 @@ static const plot_kind kinds[] = {
     {"paper-uncertainty", NEED_UNCERTAINTY, fig_uncertainty_panels,
      "the paper's three inclines: printed jump site, the full model's first lift-off\n"
      "                      with its 95 % band (Monte Carlo of the inputs' uncertainties), measured;\n"
-     "                      the paper's cylinder only (the body it measured)", 3, 1},
+     "                      the paper's cylinder only (the body it measured)", 1.5, 1.2},
 };
 #define KIND_COUNT (int)(sizeof kinds / sizeof kinds[0])
 #define KIND_NAMES "paper-criterion, forces, gap, energy, trajectory, overview, paper-uncertainty"
@@ -140,6 +140,7 @@ static void write_overview(FILE *gp, const fig_Data *d)
     fig_forces_panel(gp, d);
     fig_path_panel(gp, d);
     fig_energy_panel(gp, d);
+    fig_criterion_inset(gp, d);
     fputs("\nunset multiplot\n", gp);
 }
 
@@ -304,6 +305,8 @@ int cmd_plot(int argc, char **argv)
     if (kind->panel == NULL) d.caption[0] = '\0';
     char cmdline[2048];
     fig_command_line(argc, argv, cmdline, sizeof cmdline);
+    /* The trajectory keeps the whole run (its panels choose their views). */
+    d.end_after_landing = !(kind->needs & NEED_TRAJECTORY) && !cli_sim_given(&in.sim_args, "t-max");
     st = make_figure(&d, &o, kind, format, &in.sim, cli_sim_given(&in.sim_args, "sample-dt"), max_samples, cmdline);
     if (d.have_run) jc_run_free(&d.run);
     if (st == EXIT_OK) printf("Figure: %s\n", o.output);

@@ -66,7 +66,12 @@ typedef struct {
     /* The zoom on what matters: from before the first lift-off to after the
      * last flight's landing (plot_run.c). zoomed is 0 when nothing flies. */
     int zoom_wanted; /* set before fig_run_prepare: forces, gap, energy panels take the zoom (overview) */
+    /* Set before fig_run_prepare: a run that only reaches the default time
+     * limit (no --t-max given; a body rocking for ever) is shown to 1 s
+     * after its last landing, as animate films it. */
+    int end_after_landing;
     int zoomed;
+    int zoom_from_warning; /* the zoom starts before the first slip or near-miss of N = 0 (overview) */
     double zoom_x_lo_cm, zoom_x_hi_cm; /* centre's distance down the incline */
     double zoom_t_lo_s, zoom_t_hi_s;
 
@@ -84,9 +89,10 @@ void fig_quote(FILE *gp, const char *s);
 /* "$name << EOD" and "EOD": a data block of the script. */
 void fig_block_begin(FILE *gp, const char *name);
 void fig_block_end(FILE *gp);
-/* The script's head: comments, terminal for a cols x rows page of panels,
- * the colours and the style block every panel applies. */
-void fig_script_begin(FILE *gp, fig_Format f, int cols, int rows, const char *default_output,
+/* The script's head: comments, terminal for a cols x rows page of panels
+ * (a panel is 1200 x 750 px; a page may hold fractions of them), the
+ * colours and the style block every panel applies. */
+void fig_script_begin(FILE *gp, fig_Format f, double cols, double rows, const char *default_output,
                       const char *command_line);
 /* Starts a panel: forgets the previous panel's settings, applies the style. */
 void fig_panel_begin(FILE *gp, const char *what);
@@ -114,6 +120,12 @@ void fig_body_caption(const jc_Model *m, char *out, size_t len);
 /* ---- plot_criterion.c: the paper's Eq. 9 and the exact N = 0 criterion ---- */
 int fig_criterion_prepare(fig_Data *d);
 void fig_criterion_panel(FILE *gp, const fig_Data *d);
+/* An inset on the first crossings when they are narrow (a small window or
+ * low in the graph), placed in the criterion panel drawn before (after
+ * every panel of a page: it does not take a place of the layout). */
+void fig_criterion_inset(FILE *gp, const fig_Data *d);
+/* paper-criterion on its own page: the panel and its inset. */
+void fig_criterion_figure(FILE *gp, const fig_Data *d);
 
 /* ---- plot_uncertainty.c: the paper's jump sites with the full model's band ---- */
 /* Rows of the paper's table the figure shows at most. */

@@ -57,10 +57,10 @@ void fig_block_begin(FILE *gp, const char *name) { fprintf(gp, "$%s << EOD\n", n
 
 void fig_block_end(FILE *gp) { fputs("EOD\n", gp); }
 
-static void write_terminal(FILE *gp, fig_Format f, int cols, int rows)
+static void write_terminal(FILE *gp, fig_Format f, double cols, double rows)
 {
     const fig_TermScale *k = &term_scale[f];
-    const int w = PANEL_W_PX * cols, h = PANEL_H_PX * rows;
+    const int w = (int)lround(PANEL_W_PX * cols), h = (int)lround(PANEL_H_PX * rows);
     if (f == FIG_PNG) fprintf(gp, "set terminal pngcairo size %d,%d", w, h);
     else if (f == FIG_SVG) fprintf(gp, "set terminal svg size %d,%d dynamic", w, h);
     else fprintf(gp, "set terminal pdfcairo size %gin,%gin fontscale 1", w * PDF_INCH_PER_PX, h * PDF_INCH_PER_PX);
@@ -100,7 +100,7 @@ static const char *const style_block =
     "set title font F_TITLE\n"
     "EOS\n";
 
-void fig_script_begin(FILE *gp, fig_Format f, int cols, int rows, const char *default_output,
+void fig_script_begin(FILE *gp, fig_Format f, double cols, double rows, const char *default_output,
                       const char *command_line)
 {
     fprintf(gp, "# Made by jumpcyl %s:\n#   %s\n", jc_version(), command_line);

@@ -11,6 +11,12 @@
 /* Enough points that the steep branches of the threshold near cos th = 0 are
  * drawn smoothly over the whole ramp (about 100 per turn on the paper's). */
 #define CRIT_POINTS 4001
+/* The first crossing is narrow (the panel gets an inset on it) when its
+ * window to the next crossing is under this fraction of the axis, or it
+ * lies under this fraction of the graph's height. */
+#define INSET_NARROW_FRACTION 0.08
+#define INSET_LOW_FRACTION 0.12
+#define INSET_MIN_WIDTH_RAD 0.3
 
 static void find_printed(fig_Data *d)
 {
@@ -43,6 +49,13 @@ static void put(FILE *f, double v)
 {
     if (isfinite(v)) fprintf(f, " %.10g", v);
     else fputs(" NaN", f);
+}
+
+/* 1, 2 or 5 times a power of ten, near x: a tic step. */
+static double nice_step(double x)
+{
+    const double p = pow(10.0, floor(log10(x))), m = x / p;
+    return (m < 1.5 ? 1.0 : m < 3.5 ? 2.0 : m < 7.5 ? 5.0 : 10.0) * p;
 }
 
 static double theta_of(const fig_Data *d, int i) { return d->theta_max_rad * i / (CRIT_POINTS - 1); }
@@ -154,6 +167,78 @@ static void panel_plot(FILE *gp, const fig_Data *d)
     fputc('\n', gp);
 }
 
+/* Whether the first crossing is narrow: its window (to the next crossing)
+ * a small part of the axis, or low in the graph; the inset shows it. Its
+ * view in *lo..*hi (rad) and *ylo..*yhi (1/m). */
+static int narrow_crossing(const fig_Data *d, double *lo, double *hi, double *ylo, double *yhi)
+{
+    const jc_PaperResult *p = &d->paper;
+    if (p->first < 0) return 0;
+    const double a = p->theta_rad[p->first];
+    const double b = p->first + 1 < p->root_count ? p->theta_rad[p->first + 1] : a;
+    const double w = fmax(b - a, INSET_MIN_WIDTH_RAD);
+    const double y = jc_paper_lhs(d->model, a);
+    if (!(w < INSET_NARROW_FRACTION * d->theta_max_rad || y < INSET_LOW_FRACTION * d->crit_ymax)) return 0;
+    *lo = fmax(a - 0.6 * w, 0.0);
+    *hi = fmin(b + 0.6 * w, d->theta_max_rad);
+    double y0 = INFINITY, y1 = -INFINITY;
+    for (int i = 0; i <= 200; ++i) {
+        const double th = *lo + (*hi - *lo) * i / 200.0;
+        double el, er;
+        exact_sides(d, th, &el, &er);
+        const double v[2] = {jc_paper_lhs(d->model, th), el};
+        for (int k = 0; k < 2; ++k)
+            if (isfinite(v[k])) {
+                y0 = fmin(y0, v[k]);
+                y1 = fmax(y1, v[k]);
+            }
+    }
+    if (!(y1 > y0)) return 0;
+    *ylo = y0 - 0.2 * (y1 - y0);
+    *yhi = y1 + 0.2 * (y1 - y0);
+    return 1;
+}
+
+void fig_criterion_inset(FILE *gp, const fig_Data *d)
+{
+    double lo, hi, ylo, yhi;
+    if (!narrow_crossing(d, &lo, &hi, &ylo, &yhi)) return;
+    fig_panel_begin(gp, "paper-criterion inset (the first crossings enlarged)");
+    fputs("CRIT = '$criterion'\nROOTS = '$roots'\n"
+          "# Where the inset goes, in fractions of the criterion panel's plot area (CR_*: its screen box)\n"
+          "IN_X0 = 0.11; IN_X1 = 0.37; IN_Y0 = 0.52; IN_Y1 = 0.88\n"
+          "sx(f) = CR_X0 + f * (CR_X1 - CR_X0); sy(f) = CR_Y0 + f * (CR_Y1 - CR_Y0)\n"
+          "set lmargin at screen sx(IN_X0); set rmargin at screen sx(IN_X1)\n"
+          "set bmargin at screen sy(IN_Y0); set tmargin at screen sy(IN_Y1)\n"
+          "# An opaque background: the main panel's curves do not show through\n"
+          "set object 1 rect from screen sx(0.015), sy(0.36) to screen sx(0.39), sy(0.985) behind fc rgb 'white' \\\n"
+          "    fs solid 1.0 border lc rgb C_GREY lw 1\n"
+          "set border 15 lw 1.2 lc rgb C_INK\nset tics font F_SMALL\nset xtics 0.5 out nomirror\nset ytics out nomirror\n"
+          "set title 'enlarged: the first crossings (θ in rad)' font F_SMALL offset 0,-0.6\nunset key\n",
+          gp);
+    fprintf(gp, "set xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\nset xtics %g\nset ytics %g\n", lo, hi, ylo, yhi,
+            nice_step((hi - lo) / 3), nice_step((yhi - ylo) / 3));
+    if (isfinite(d->printed_theta_rad) && d->printed_theta_rad > lo && d->printed_theta_rad < hi)
+        fputs("set arrow 1 from PRINTED_THETA, graph 0 to PRINTED_THETA, graph 1 nohead lc rgb C_GREY dt 4 lw 2 back\n", gp);
+    if (d->rolling.liftoff.found)
+        fputs("set label 1 '' at EXACT_THETA, EXACT_Y point pt 13 ps 1.8*PS lc rgb C_GREEN front\n", gp);
+    fputs("plot CRIT using 1:3 with lines lc rgb C_BLUE lw LW, \\\n"
+          "     CRIT using 1:($4 > 0 ? $4 : NaN) with lines lc rgb C_RED lw LW, \\\n"
+          "     CRIT using 1:5 with lines lc rgb C_BLUE lw LW dt (8,5), \\\n"
+          "     CRIT using 1:($6 > 0 ? $6 : NaN) with lines lc rgb C_RED lw LW dt (8,5), \\\n"
+          "     ROOTS using 1:3 with points pt 6 ps 1.4*PS lw 2 lc rgb C_INK, \\\n"
+          "     ROOTS using 1:($4 == 1 ? $3 : NaN) with points pt 6 ps 3*PS lw 3 lc rgb C_INK\n",
+          gp);
+}
+
+void fig_criterion_figure(FILE *gp, const fig_Data *d)
+{
+    fputs("\nset multiplot   # the panel, then an inset on its first crossings when they are narrow\n", gp);
+    fig_criterion_panel(gp, d);
+    fig_criterion_inset(gp, d);
+    fputs("\nunset multiplot\n", gp);
+}
+
 void fig_criterion_panel(FILE *gp, const fig_Data *d)
 {
     const jc_Model *m = d->model;
@@ -177,4 +262,9 @@ void fig_criterion_panel(FILE *gp, const fig_Data *d)
             d->theta_max_rad, d->crit_ymax);
     panel_markers(gp, d);
     panel_plot(gp, d);
+    fputs("# The plot area on the page (fractions), for the inset\n"
+          "K = 1.0 * GPVAL_TERM_SCALE   # GPVAL_TERM_XMIN etc. are in terminal units over the scale\n"
+          "CR_X0 = K * GPVAL_TERM_XMIN / GPVAL_TERM_XSIZE; CR_X1 = K * GPVAL_TERM_XMAX / GPVAL_TERM_XSIZE\n"
+          "CR_Y0 = K * GPVAL_TERM_YMIN / GPVAL_TERM_YSIZE; CR_Y1 = K * GPVAL_TERM_YMAX / GPVAL_TERM_YSIZE\n",
+          gp);
 }

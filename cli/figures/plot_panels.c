@@ -48,12 +48,24 @@ static void two_axes(FILE *gp, const char *left, const char *left_colour, const 
             left, left_colour, right, right_colour);
 }
 
-/* Event lines across the graph and their labels hanging from the top. */
+/* Event lines across the graph and their labels hanging from the top,
+ * left or right of their lines (the events block's column 5), in one or
+ * two lines (columns 6 and 7). A label not on a side is the empty string,
+ * not a NaN position: gnuplot 5.4 crashes on a rotated label plot whose
+ * every point is undefined. */
 static void plot_events(FILE *gp)
 {
-    fputs(", \\\n     EVENTS using (column(EX)):(EV_FROM):(0):(YMAX - EV_FROM) with vectors nohead lc rgb C_GREY dt EV_DT lw 1.5 title 'events', \\\n"
-          "     EVENTS using (column(EX)):(YMAX):4 with labels rotate by 90 right offset -0.9,-0.4 font F_SMALL textcolor rgb C_INK notitle",
+    fputs(", \\\n     EVENTS using (column(EX)):(EV_FROM):(0):(YMAX - EV_FROM) with vectors nohead lc rgb C_GREY dt EV_DT lw 1.5 title 'events'",
           gp);
+    static const struct {
+        const char *side;
+        int column;
+        double offset;
+    } lines[] = {{"<", 6, -2.3}, {"<", 7, -0.9}, {">", 6, 0.75}, {">", 7, 2.15}};
+    for (size_t i = 0; i < sizeof lines / sizeof lines[0]; ++i)
+        fprintf(gp, ", \\\n     EVENTS using (column(EX)):(YMAX):($5 %s 0 ? strcol(%d) : '') with labels rotate by 90 right offset %g,-0.4 "
+                    "font F_SMALL textcolor rgb C_INK notitle",
+                lines[i].side, lines[i].column, lines[i].offset);
 }
 
 void fig_forces_panel(FILE *gp, const fig_Data *d)
@@ -104,13 +116,16 @@ void fig_path_panel(FILE *gp, const fig_Data *d)
     title(gp, d, "Hops");
     x_axis(gp, d);
     two_axes(gp, "gap between rim and incline (mm)", "C_RED", "speed of the centre (m/s)", "C_BLUE");
-    fprintf(gp, "set yrange [0:%.10g]\nset y2range [0:%.10g]\n", gap_top,
-            d->speed_max_mps > 0 ? 1.1 * d->speed_max_mps : 1.0);
+    /* Both curves stay below LABEL_HEADROOM of the height; the hops' labels
+     * are in rows above them (the hops block's label_row). */
+    fprintf(gp, "GAP_TOP = %.10g\nset yrange [0:GAP_TOP]\nset y2range [0:%.10g]\n", gap_top,
+            d->speed_max_mps > 0 ? d->speed_max_mps / LABEL_HEADROOM : 1.0);
     fprintf(gp, "plot RUN using (column(AX)):6 with filledcurves y=0 fc rgb C_RED fs transparent solid 0.25 notitle, \\\n"
                 "     RUN using (column(AX)):6 with lines lc rgb C_RED lw LW title 'gap under the rim (left axis)', \\\n"
                 "     RUN using (column(AX)):7 axes x1y2 with lines lc rgb C_BLUE lw LW title 'speed of the centre (right axis)', \\\n"
                 "     HOPS using (column(HX)):4 with points pt 9 ps 1.6*PS lc rgb C_INK title 'highest gap of each flight (%d)', \\\n"
-                "     HOPS using 7:4:6 with labels boxed offset 0,1.2 font F_SMALL textcolor rgb C_INK notitle\n",
+                "     HOPS using 7:(GAP_TOP * (0.95 - 0.075 * ($8 < 0 ? 0 : $8))):($8 < 0 ? '' : strcol(6)) with labels font F_SMALL \\\n"
+                "          textcolor rgb C_INK notitle\n",
             d->hop_count);
 }
 

@@ -10,9 +10,24 @@
 /* About this many samples over the run: smooth curves, files of ~1 MB. */
 #define RUN_TARGET_SAMPLES 5000.0
 #define RUN_MIN_DT_S 2e-5
-/* Labels closer than this fraction of the x range share one label. */
-#define EVENT_CLUSTER_FRACTION 0.03
+/* An event's label, rotated, takes this stretch of the axis beside its
+ * line (fractions of the axis: about one line of the labels' font on a
+ * panel 1200 px wide); events closer than EVENT_SAME_FRACTION are at one
+ * place and share a label. */
+#define EVENT_LABEL_NEAR 0.005
+#define EVENT_LABEL_ONE_LINE 0.021
+#define EVENT_LABEL_TWO_LINES 0.044
+#define EVENT_SAME_FRACTION 0.004
+/* A label longer than this (bytes) is split in two lines at a comma: it
+ * must fit in the panel's top (LABEL_HEADROOM, plot_panels.c). */
+#define EVENT_LINE_CHARS 15
 #define HOP_CLUSTER_FRACTION 0.04
+/* Hop labels: rows at the panel's top; the stretch of the axis a label
+ * takes per character and around it (fractions of the axis; the labels'
+ * font on a panel 1200 px wide). */
+#define HOP_LABEL_ROWS 4
+#define HOP_LABEL_CHAR_FRACTION 0.0125
+#define HOP_LABEL_GAP 0.015
 /* Longest label (bytes): a rotated label must fit in the panel's height. */
 #define LABEL_MAX 34
 /* Going back more than this fraction of the distance covered puts the
@@ -23,6 +38,15 @@
  * landing. */
 #define ZOOM_BEFORE_RADII 3.0
 #define ZOOM_AFTER_RADII 1.5
+/* A dip of the normal force below this fraction of M g cos a in contact is
+ * a near-miss of N = 0: the overview's zoom shows it. */
+#define NEAR_MISS_FRACTION 0.15
+/* The overview does not zoom when the zoom would show this much of the run. */
+#define ZOOM_WHOLE_FRACTION 0.9
+/* A run that only reached the default time limit (a body rocking for ever)
+ * is shown to this much simulated time after its last landing, as animate
+ * films it. */
+#define SHOW_AFTER_LANDING_S 1.0
 
 const char *fig_event_label(jc_EventKind k)
 {
@@ -41,6 +65,36 @@ const char *fig_event_label(jc_EventKind k)
     return "event";
 }
 
+/* The time of the run's last landing (a touchdown not followed by a
+ * flight); NaN when it never landed or ends in flight. */
+static double last_landing_s(const jc_Run *run)
+{
+    double landed = NAN;
+    for (int i = 0; i < run->event_count; ++i) {
+        const jc_Event *e = &run->events[i];
+        if (e->kind == JC_EVENT_TOUCHDOWN) landed = e->state.t_s;
+        else if (fig_event_flies(e)) landed = NAN;
+    }
+    return landed;
+}
+
+/* A run that only reached the default time limit (rocking for ever) ends
+ * SHOW_AFTER_LANDING_S after its last landing when d->end_after_landing:
+ * its events (a run that keeps only them) give the time. */
+static int cut_after_landing(const fig_Data *d, jc_SimOptions *opts, double *t_end)
+{
+    jc_Run events;
+    const int st = cli_simulate(d->model, opts, &events, "plot");
+    const double landed = st == JC_OK ? last_landing_s(&events) : NAN;
+    jc_run_free(&events);
+    if (st != JC_OK) return cli_exit_status(st, CLI_INPUTS_CHECKED);
+    if (isfinite(landed) && landed + SHOW_AFTER_LANDING_S < *t_end) {
+        *t_end = landed + SHOW_AFTER_LANDING_S;
+        opts->t_max_s = *t_end;
+    }
+    return EXIT_OK;
+}
+
 /* Runs the full model. Without a given --sample-dt, a first run without
  * samples finds the duration, so that every run gets about the same number
  * of samples whatever its length. */
@@ -54,7 +108,11 @@ static int simulate(fig_Data *d, const jc_SimOptions *o, int dt_given, double ma
     opts.sample_dt_s = 0.0;
     const int st = cli_simulate_probe(d->model, &opts, &probe, "plot");
     if (st != JC_OK) return cli_exit_status(st, CLI_INPUTS_CHECKED);
-    const double t_end = probe.final_state.t_s;
+    double t_end = probe.final_state.t_s;
+    if (d->end_after_landing && probe.termination == JC_END_TIME_LIMIT) {
+        const int rc = cut_after_landing(d, &opts, &t_end);
+        if (rc != EXIT_OK) return rc;
+    }
     opts.sample_dt_s = dt_given ? o->sample_dt_s : fmax(t_end / RUN_TARGET_SAMPLES, RUN_MIN_DT_S);
     const double samples = floor(t_end / opts.sample_dt_s) + 2.0 + probe.event_count;
     if (samples > max_samples) {
@@ -221,31 +279,143 @@ void fig_event_cluster_label(const jc_Run *run, int first, int last, char *out, 
 /* Where something at (x, t) sits on the panels' horizontal axis. */
 static double axis_of(const fig_Data *d, double x_m, double t_s) { return d->time_axis ? t_s : x_m * 100; }
 
+/* An event's position on the panels' axis, as a fraction of the axis. */
+static double axis_fraction(const fig_Data *d, const jc_Event *e)
+{
+    return (axis_of(d, e->state.x_m, e->state.t_s) - d->axis_min) / fmax(d->axis_max - d->axis_min, 1e-12);
+}
+
+/* Whether the stretch [lo, hi] of the axis (fractions) can take a label:
+ * inside the axis, across no event's line other than those of events
+ * first..last, and clear of the label placed before (which ends at prev_hi). */
+static int label_fits(const fig_Data *d, double lo, double hi, int first, int last, double prev_hi)
+{
+    if (lo < 0.0 || hi > 1.0 || lo < prev_hi) return 0;
+    for (int i = 0; i < d->run.event_count; ++i) {
+        if (i >= first && i <= last) continue;
+        const double a = axis_fraction(d, &d->run.events[i]);
+        if (a >= lo && a <= hi) return 0; /* outside the axis: not drawn, never inside [lo, hi] */
+    }
+    return 1;
+}
+
+typedef struct {
+    int lead, last;          /* the events sharing the label */
+    char line[2][LABEL_MAX]; /* its lines (the second empty for one) */
+    int side;                /* -1: left of the lead's line, +1: right of the last's */
+    double lo, hi;           /* the stretch of the axis it takes (fractions) */
+} fig_EventLabel;
+
+/* The label's text, in two lines split at a comma when it is long. */
+static void label_lines(const jc_Run *run, fig_EventLabel *l)
+{
+    char text[LABEL_MAX];
+    fig_event_cluster_label(run, l->lead, l->last, text, sizeof text);
+    snprintf(l->line[0], sizeof l->line[0], "%s", text);
+    l->line[1][0] = '\0';
+    const size_t n = strlen(text);
+    if (n <= EVENT_LINE_CHARS) return;
+    size_t best = 0;
+    for (size_t i = 1; i + 1 < n; ++i)
+        if (text[i] == ',' && text[i + 1] == ' ' && (best == 0 || fabs((double)i - (double)n / 2.0) < fabs((double)best - (double)n / 2.0)))
+            best = i;
+    if (best == 0) return;
+    snprintf(l->line[0], sizeof l->line[0], "%.*s", (int)best + 1, text);
+    snprintf(l->line[1], sizeof l->line[1], "%s", text + best + 2);
+}
+
+/* Places the label left of its first line if it fits, else right of its
+ * last; -1 if neither fits. */
+static int place_label(const fig_Data *d, fig_EventLabel *l, double prev_hi)
+{
+    label_lines(&d->run, l);
+    const double width = l->line[1][0] ? EVENT_LABEL_TWO_LINES : EVENT_LABEL_ONE_LINE;
+    const double a = axis_fraction(d, &d->run.events[l->lead]), b = axis_fraction(d, &d->run.events[l->last]);
+    for (int side = -1; side <= 1; side += 2) {
+        const double lo = side < 0 ? a - EVENT_LABEL_NEAR - width : b + EVENT_LABEL_NEAR;
+        const double hi = side < 0 ? a - EVENT_LABEL_NEAR : b + EVENT_LABEL_NEAR + width;
+        if (label_fits(d, lo, hi, l->lead, l->last, prev_hi)) {
+            l->side = side;
+            l->lo = lo;
+            l->hi = hi;
+            return 0;
+        }
+    }
+    return -1;
+}
+
+/* Every event line gets its own label beside it, left or right, where the
+ * label crosses no other line and no other label; events at one place
+ * (closer than EVENT_SAME_FRACTION) share one, and events whose label fits
+ * nowhere join the label before them ("slip, stick"), until it fits.
+ * Returns the number of labels in out (at most event_count). */
+static int place_event_labels(const fig_Data *d, fig_EventLabel *out)
+{
+    const jc_Run *run = &d->run;
+    int n = 0;
+    for (int lead = 0; lead < run->event_count;) {
+        const double at = axis_fraction(d, &run->events[lead]);
+        if (at < 0.0 || at > 1.0) { /* outside the (zoomed) axis: not drawn, no label */
+            ++lead;
+            continue;
+        }
+        int last = lead;
+        while (last + 1 < run->event_count && fabs(axis_fraction(d, &run->events[last + 1]) - at) <= EVENT_SAME_FRACTION &&
+               axis_fraction(d, &run->events[last + 1]) <= 1.0)
+            ++last;
+        out[n].lead = lead;
+        out[n].last = last;
+        ++n;
+        while (place_label(d, &out[n - 1], n > 1 ? out[n - 2].hi : -INFINITY) != 0) {
+            if (n == 1) { /* the first fits nowhere: beside itself, inside the axis */
+                out[0].side = axis_fraction(d, &run->events[0]) > 2 * EVENT_LABEL_TWO_LINES ? -1 : 1;
+                out[0].hi = axis_fraction(d, &run->events[out[0].last]) + EVENT_LABEL_TWO_LINES;
+                break;
+            }
+            out[n - 2].last = out[n - 1].last;
+            --n;
+        }
+        lead = last + 1;
+    }
+    return n;
+}
+
 static int write_events(const fig_Data *d)
 {
     FILE *f = d->gp;
     fig_block_begin(f, "events");
-    fputs("# jumpcyl plot: the events of the run (jc_simulate), in time order. Events close together on\n"
-          "# the panels' axis share the label written on the first of them.\n"
-          "# columns: x_cm t_s kind label\n",
+    fputs("# jumpcyl plot: the events of the run (jc_simulate), in time order. Labels sit beside the lines:\n"
+          "# side -1, left of the line, on the first row of the events sharing it; side 1, right of the\n"
+          "# line, on the last row; line1 and line2 are the label in one or two lines (left: line2 is\n"
+          "# nearest the line, right: line1 is).\n"
+          "# columns: x_cm t_s kind label side line1 line2\n",
           f);
     const jc_Run *run = &d->run;
-    const double tol = EVENT_CLUSTER_FRACTION * fmax(d->axis_max - d->axis_min, 1e-12);
-    for (int lead = 0; lead < run->event_count;) {
-        const double at = axis_of(d, run->events[lead].state.x_m, run->events[lead].state.t_s);
-        int last = lead;
-        while (last + 1 < run->event_count &&
-               fabs(axis_of(d, run->events[last + 1].state.x_m, run->events[last + 1].state.t_s) - at) <= tol)
-            ++last;
-        char label[LABEL_MAX];
-        fig_event_cluster_label(run, lead, last, label, sizeof label);
-        for (int i = lead; i <= last; ++i) {
-            const jc_Event *e = &run->events[i];
-            fprintf(f, "%.10g %.12g %s \"%s\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind),
-                    i == lead ? label : "");
-        }
-        lead = last + 1;
+    fig_EventLabel *labels = run->event_count ? malloc(sizeof *labels * (size_t)run->event_count) : NULL;
+    if (run->event_count && !labels) {
+        cli_error("plot: out of memory");
+        return EXIT_FAIL;
     }
+    const int n = labels ? place_event_labels(d, labels) : 0;
+    int k = 0;
+    for (int i = 0; i < run->event_count; ++i) {
+        const jc_Event *e = &run->events[i];
+        while (k < n && labels[k].last < i) ++k;
+        const fig_EventLabel *l = k < n && labels[k].lead <= i ? &labels[k] : NULL;
+        if (!l || i != (l->side < 0 ? l->lead : l->last)) {
+            fprintf(f, "%.10g %.12g %s \"\" 0 \"\" \"\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind));
+            continue;
+        }
+        label_lines(run, &labels[k]);
+        char text[LABEL_MAX];
+        fig_event_cluster_label(run, l->lead, l->last, text, sizeof text);
+        /* Left: the only line nearest the line (line2); right: line1. */
+        const int two = l->line[1][0] != '\0';
+        const char *line1 = two || l->side > 0 ? l->line[0] : "", *line2 = two ? l->line[1] : l->side < 0 ? l->line[0] : "";
+        fprintf(f, "%.10g %.12g %s \"%s\" %d \"%s\" \"%s\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind),
+                text, l->side, line1, line2);
+    }
+    free(labels);
     fig_block_end(f);
     return EXIT_OK;
 }
@@ -309,29 +479,51 @@ static void hop_label(const fig_Hop *h, int first, int last, char *out, size_t l
     }
 }
 
-/* Where a hop's label goes on the panels' axis: at its apex, but clear of
- * the graph's sides. */
-static double label_at(const fig_Data *d, const fig_Hop *h)
+/* Characters of a UTF-8 string. */
+static int utf8_chars(const char *s)
 {
-    const double margin = 0.06 * (d->axis_max - d->axis_min);
-    return fmin(fmax(axis_of(d, h->x_cm / 100, h->t_s), d->axis_min + margin), d->axis_max - margin);
+    int n = 0;
+    for (; *s; ++s) n += ((unsigned char)*s & 0xC0) != 0x80;
+    return n;
 }
 
+/* Where a hop's label goes on the panels' axis (fraction of it): centred
+ * over its apex, but inside the axis. */
+static double label_at(const fig_Data *d, const fig_Hop *h, double width)
+{
+    const double a = (axis_of(d, h->x_cm / 100, h->t_s) - d->axis_min) / fmax(d->axis_max - d->axis_min, 1e-12);
+    return fmin(fmax(a, 0.5 * width), 1.0 - 0.5 * width);
+}
+
+/* Hops close together on the axis share a label ("0.766, 0.0702 mm"); the
+ * labels sit in rows in the top of the panel, above every curve
+ * (LABEL_HEADROOM), each in the first row where it overlaps no other. */
 static void write_hop_rows(FILE *f, const fig_Data *d, const fig_Hop *h, int n)
 {
-    const double tol = HOP_CLUSTER_FRACTION * fmax(d->axis_max - d->axis_min, 1e-12);
+    double row_end[HOP_LABEL_ROWS];
+    for (int r = 0; r < HOP_LABEL_ROWS; ++r) row_end[r] = -INFINITY;
     for (int lead = 0; lead < n;) {
-        /* Grouped by where the labels go, so that two never overprint. */
-        const double at = label_at(d, &h[lead]);
+        const double apex = (axis_of(d, h[lead].x_cm / 100, h[lead].t_s) - d->axis_min) / fmax(d->axis_max - d->axis_min, 1e-12);
         int last = lead, top = lead;
-        while (last + 1 < n && fabs(label_at(d, &h[last + 1]) - at) <= tol) ++last;
+        while (last + 1 < n &&
+               fabs((axis_of(d, h[last + 1].x_cm / 100, h[last + 1].t_s) - d->axis_min) / fmax(d->axis_max - d->axis_min, 1e-12) -
+                    apex) <= HOP_CLUSTER_FRACTION)
+            ++last;
         for (int i = lead; i <= last; ++i)
             if (h[i].height_mm > h[top].height_mm) top = i;
         char label[64];
         hop_label(h, lead, last, label, sizeof label);
+        const double width = utf8_chars(label) * HOP_LABEL_CHAR_FRACTION + HOP_LABEL_GAP;
+        const double at = label_at(d, &h[top], width);
+        int row = -1; /* no label: outside the axis, or no room */
+        if (apex >= 0.0 && apex <= 1.0)
+            for (int r = 0; r < HOP_LABEL_ROWS && row < 0; ++r)
+                if (at - 0.5 * width >= row_end[r]) row = r;
+        if (row >= 0) row_end[row] = at + 0.5 * width;
+        const double at_axis = d->axis_min + at * (d->axis_max - d->axis_min);
         for (int i = lead; i <= last; ++i)
-            fprintf(f, "%.10g %.12g %.12g %.10g %.10g \"%s\" %.10g\n", h[i].x_cm, h[i].t_s, h[i].start_t_s,
-                    h[i].height_mm, h[i].flight_s, i == top ? label : "", label_at(d, &h[top]));
+            fprintf(f, "%.10g %.12g %.12g %.10g %.10g \"%s\" %.10g %d\n", h[i].x_cm, h[i].t_s, h[i].start_t_s,
+                    h[i].height_mm, h[i].flight_s, i == top && row >= 0 ? label : "", at_axis, i == top ? row : -1);
         lead = last + 1;
     }
 }
@@ -343,8 +535,9 @@ static int write_hops(fig_Data *d)
     fputs("# jumpcyl plot: every flight (a lift-off, or a bounce into flight) of the run. height: the largest\n"
           "# gap between rim and incline (jc_Event hop_height_m); x, t: the centre at the flight's highest\n"
           "# sample (its middle when too short to sample). Hops close together share the label, placed\n"
-          "# at label_at on the panels' axis (cm, or s when the panels are against time).\n"
-          "# columns: x_apex_cm t_apex_s t_start_s height_mm flight_time_s label label_at\n",
+          "# at label_at on the panels' axis (cm, or s when the panels are against time), in label_row\n"
+          "# of the rows at the panel's top (0 the highest; -1: no label on this row).\n"
+          "# columns: x_apex_cm t_apex_s t_start_s height_mm flight_time_s label label_at label_row\n",
           f);
     fig_Hop *hops = d->run.event_count ? malloc(sizeof *hops * (size_t)d->run.event_count) : NULL;
     if (d->run.event_count && !hops) {
@@ -381,8 +574,34 @@ static double time_forward_to(const jc_Run *run, double t_s, double x_cm)
     return NAN;
 }
 
+/* Where the first warning of a lift-off comes before time t_s (cm): the
+ * first slip, or the first near-miss of N = 0 (N below NEAR_MISS_FRACTION
+ * of M g cos a in contact); +inf if none. */
+static double first_warning_cm(const fig_Data *d, double t_s)
+{
+    const jc_Run *run = &d->run;
+    const jc_Model *m = d->model;
+    const double weight_n = m->body.mass_kg * m->setup.gravity_mps2 * m->cos_incline;
+    double at = INFINITY;
+    for (int i = 0; i < run->event_count && run->events[i].state.t_s < t_s; ++i)
+        if (run->events[i].kind == JC_EVENT_SLIP) {
+            at = run->events[i].state.x_m * 100;
+            break;
+        }
+    for (int i = 0; i < run->sample_count && run->samples[i].state.t_s < t_s; ++i) {
+        const jc_Sample *p = &run->samples[i];
+        if (p->mode != JC_MODE_FLIGHT && p->normal_N < NEAR_MISS_FRACTION * weight_n) {
+            at = fmin(at, p->state.x_m * 100);
+            break;
+        }
+    }
+    return at;
+}
+
 /* The zoom: from ZOOM_BEFORE_RADII rim radii (or 15 % of the hops' span)
- * before the first lift-off to ZOOM_AFTER_RADII radii (or 5 %) after the
+ * before what matters first — in the overview (d->zoom_wanted) the first
+ * slip or near-miss of N = 0 when they come earlier, else the first
+ * lift-off to ZOOM_AFTER_RADII radii (or 5 %) after the
  * last flight's landing, within the run. In time, the same stretch; when
  * the body never gets that far again (it rocks), a quarter of the stretch
  * after the last landing. */
@@ -402,7 +621,10 @@ static void find_zoom(fig_Data *d)
     const double start_cm = a->state.x_m * 100;
     const double end_cm = (isnan(b->landing_x_m) ? run->final_state.x_m : b->landing_x_m) * 100;
     const double span = fabs(end_cm - start_cm), t_end = b->state.t_s + b->flight_time_s;
-    d->zoom_x_lo_cm = fmax(fmin(start_cm, end_cm) - fmax(ZOOM_BEFORE_RADII * r_cm, 0.15 * span), d->x_min_cm);
+    const double warning_cm = d->zoom_wanted && !d->time_axis ? first_warning_cm(d, a->state.t_s) : INFINITY;
+    d->zoom_from_warning = warning_cm < start_cm;
+    const double from_cm = fmin(start_cm, warning_cm);
+    d->zoom_x_lo_cm = fmax(fmin(from_cm, end_cm) - fmax(ZOOM_BEFORE_RADII * r_cm, 0.15 * span), d->x_min_cm);
     d->zoom_x_hi_cm = fmin(fmax(start_cm, end_cm) + fmax(ZOOM_AFTER_RADII * r_cm, 0.05 * span), d->x_max_cm);
     int i = 0;
     while (i + 1 < run->sample_count && run->samples[i + 1].state.t_s <= a->state.t_s) ++i;
@@ -410,12 +632,17 @@ static void find_zoom(fig_Data *d)
     const double reached = time_forward_to(run, t_end, d->zoom_x_hi_cm);
     d->zoom_t_hi_s = isnan(reached) || d->time_axis ? fmin(d->t_max_s, t_end + 0.25 * (t_end - d->zoom_t_lo_s)) : reached;
     if (!(d->zoom_t_hi_s > d->zoom_t_lo_s)) d->zoom_t_hi_s = d->t_max_s;
+    /* A zoom over most of the run is none (45°: the first slip is near the start). */
+    if (d->zoom_wanted && !d->time_axis && d->zoom_x_hi_cm - d->zoom_x_lo_cm >= ZOOM_WHOLE_FRACTION * (d->x_max_cm - d->x_min_cm))
+        d->zoomed = 0;
 }
 
 void fig_zoom_caption(const fig_Data *d, char *out, size_t len)
 {
-    snprintf(out, len, "zoomed to x = %.3g–%.3g cm (t = %.3g–%.3g s), around the first lift-off and the hops",
-             d->zoom_x_lo_cm, d->zoom_x_hi_cm, d->zoom_t_lo_s, d->zoom_t_hi_s);
+    snprintf(out, len, "zoomed to x = %.3g–%.3g cm (t = %.3g–%.3g s), %s", d->zoom_x_lo_cm, d->zoom_x_hi_cm, d->zoom_t_lo_s,
+             d->zoom_t_hi_s,
+             d->zoom_from_warning ? "from the first slip or near-miss of N = 0 to the hops"
+                                  : "around the first lift-off and the hops");
 }
 
 /* Distance down the incline is the natural axis, unless the body goes back

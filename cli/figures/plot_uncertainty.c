@@ -49,10 +49,12 @@ int fig_uncertainty_prepare(fig_Data *d)
     return EXIT_OK;
 }
 
+/* The panels side by side on a 1800 x 900 page (2:1, for a slide), one
+ * key for all of them centred below. */
 void fig_uncertainty_panels(FILE *gp, const fig_Data *d)
 {
     fprintf(gp, "\nset multiplot layout 1,%d title \"The paper's jump sites: printed, the full model with its 95 %% "
-                "band (Monte Carlo, %d samples), measured\" font F_TITLE\n",
+                "band\\n(Monte Carlo, %d samples), measured\" font F_TITLE margins 0.08,0.98,0.24,0.8 spacing 0.07,0\n",
             d->table_rows, d->mc_samples);
     for (int i = 0; i < d->table_rows; ++i) {
         fig_panel_begin(gp, "paper-uncertainty");
@@ -71,16 +73,18 @@ void fig_uncertainty_panels(FILE *gp, const fig_Data *d)
                 "pad = 0.15 * (ymax - ymin)\n"
                 "set yrange [ymin - pad : ymax + pad]\n"
                 "set xrange [0.4 : 3.6]\n"
-                "set xtics ('printed' 1, 'full model' 2, 'measured' 3)\n"
+                "set xtics ('printed' 1, 'model' 2, 'measured' 3)\n"
                 "set grid noxtics\n"
-                "set ylabel 'jump site along the incline (cm)'\n"
+                "%s"
                 "set title sprintf('%%g° incline', A_min)\n"
-                "set key below center horizontal\n"
+                "# One key for the page, centred below the panels (drawn with the first)\n"
+                "%s"
                 "plot $sites every ::row::row using (1):2 with points pt 5 ps 2.2*PS lc rgb C_INK title 'printed (Table 1)', \\\n"
-                "     '' every ::row::row using (2):5:4:6 with yerrorbars pt 7 ps 2.0*PS lw 3 lc rgb C_BLUE title 'median, 95 %% band', \\\n"
+                "     '' every ::row::row using (2):5:4:6 with yerrorbars pt 7 ps 2.0*PS lw 3 lc rgb C_BLUE title 'full model: median, 95 %% band', \\\n"
                 "     '' every ::row::row using (2.18):3 with points pt 12 ps 2.0*PS lw 2 lc rgb C_GREEN title 'nominal run', \\\n"
-                "     '' every ::row::row using (3):7:8 with yerrorbars pt 9 ps 2.2*PS lw 3 lc rgb C_RED title 'measured'\n",
-                i);
+                "     '' every ::row::row using (3):7:8 with yerrorbars pt 9 ps 2.2*PS lw 3 lc rgb C_RED title 'measured (± error)'\n",
+                i, i == 0 ? "set ylabel 'jump site along the incline (cm)'\n" : "",
+                i == 0 ? "set key at screen 0.5, 0.02 center bottom vertical maxrows 2 width 2 font F_SMALL\n" : "unset key\n");
     }
     fputs("unset multiplot\n", gp);
 }

@@ -440,9 +440,27 @@ static double xrange_after(const char *script, const char *marker, double *hi)
     return lo;
 }
 
-/* The overview zooms its run panels on the first lift-off and the hops
- * (15 degrees: lift-off at 181 cm, hops to the ramp's end) and says so;
- * without a lift-off it shows the whole run. */
+/* The first slip's distance down the incline (cm) on the paper's cylinder
+ * at incline_deg, from the library's run; NaN if none. */
+static double first_slip_cm(double incline_deg)
+{
+    jc_Model m;
+    if (init_model(&m, incline_deg)) return NAN;
+    jc_Run run;
+    char err[256];
+    const jc_SimOptions o = jc_default_sim_options();
+    double x = NAN;
+    if (jc_simulate(&m, &o, &run, err, sizeof err) == JC_OK)
+        for (int i = 0; i < run.event_count && isnan(x); ++i)
+            if (run.events[i].kind == JC_EVENT_SLIP) x = run.events[i].state.x_m * 100;
+    jc_run_free(&run);
+    return x;
+}
+
+/* The overview zooms its run panels from before the first slip (15
+ * degrees: slip at 125 cm, lift-off at 181 cm, hops to the ramp's end) and
+ * says so; at 45 degrees (slip at 13 cm) that would be the whole run, which
+ * it shows unzoomed; without a lift-off it shows the whole run. */
 static int test_overview_zoom(void)
 {
     char args[2048], out[1100], script[1200];
@@ -452,7 +470,10 @@ static int test_overview_zoom(void)
     snprintf(script, sizeof script, "%s/o15.gp", dir);
     double hi = NAN;
     const double lo = xrange_after(script, "panel: forces", &hi);
-    ENSURE_MSG(lo > 120 && lo < 180 && hi > 300, "forces xrange [%g:%g]", lo, hi);
+    const double slip = first_slip_cm(15), r_cm = 10.0;
+    /* 3 r before the first slip (or before a near-miss of N = 0 just before it) */
+    ENSURE_MSG(lo <= slip - 3 * r_cm + 1e-6 && lo > slip - 3 * r_cm - 10 && hi > 300, "forces xrange [%g:%g], slip at %g cm",
+               lo, hi, slip);
     ENSURE(count_lines(script, "set multiplot") == 1);
     FILE *f = fopen(script, "r");
     ENSURE(f);
@@ -461,12 +482,41 @@ static int test_overview_zoom(void)
     while (fgets(line, sizeof line, f)) said += strstr(line, "set multiplot") && strstr(line, "zoomed to x =");
     fclose(f);
     ENSURE_MSG(said == 1, "the page title does not say it is zoomed");
-    snprintf(out, sizeof out, "%s/o5.png", dir);
-    snprintf(args, sizeof args, "plot --incline 5 --what overview --keep-script --output '%s'", out);
+    const char *whole[] = {"5", "45"}; /* no lift-off; the first slip near the start */
+    for (int k = 0; k < 2; ++k) {
+        snprintf(out, sizeof out, "%s/o%s.png", dir, whole[k]);
+        snprintf(args, sizeof args, "plot --incline %s --what overview --keep-script --output '%s'", whole[k], out);
+        ENSURE(plot_ok(args));
+        snprintf(script, sizeof script, "%s/o%s.gp", dir, whole[k]);
+        const double lo_w = xrange_after(script, "panel: forces", &hi);
+        ENSURE_MSG(lo_w == 0 && hi > 300, "%s deg: xrange [%g:%g], not the whole run", whole[k], lo_w, hi);
+    }
+    ENSURE_MSG(first_slip_cm(45) < 30, "45 deg: the first slip at %g cm", first_slip_cm(45));
+    return 0;
+}
+
+/* paper-criterion at 30 degrees: an inset whose view holds the paper's
+ * first two crossings (jc_paper_solve: 6.12 and 6.87 rad), narrower than a
+ * tenth of the main panel's axis. */
+static int test_criterion_inset(void)
+{
+    char args[2048], out[1100], script[1200];
+    snprintf(out, sizeof out, "%s/ci30.png", dir);
+    snprintf(args, sizeof args, "plot --incline 30 --what paper-criterion --keep-script --output '%s'", out);
     ENSURE(plot_ok(args));
-    snprintf(script, sizeof script, "%s/o5.gp", dir);
-    const double lo5 = xrange_after(script, "panel: forces", &hi);
-    ENSURE_MSG(lo5 == 0 && hi > 300, "no lift-off, yet xrange [%g:%g]", lo5, hi);
+    snprintf(script, sizeof script, "%s/ci30.gp", dir);
+    double main_hi = NAN, hi = NAN;
+    const double main_lo = xrange_after(script, "panel: paper-criterion (", &main_hi);
+    const double lo = xrange_after(script, "panel: paper-criterion inset", &hi);
+    jc_Model m;
+    if (init_model(&m, 30)) return 1;
+    jc_PaperResult pr;
+    char err[256];
+    ENSURE_OK(jc_paper_solve(&m, &pr, err, sizeof err), err);
+    ENSURE(pr.first >= 0 && pr.first + 1 < pr.root_count);
+    const double a = pr.theta_rad[pr.first], b = pr.theta_rad[pr.first + 1];
+    ENSURE_MSG(lo < a && hi > b && hi - lo < 0.1 * (main_hi - main_lo), "inset [%g:%g], crossings %g, %g, main [%g:%g]", lo,
+               hi, a, b, main_lo, main_hi);
     return 0;
 }
 
@@ -550,6 +600,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_run_data);
     RUN_TEST(test_trajectory_geometry);
     RUN_TEST(test_overview_zoom);
+    RUN_TEST(test_criterion_inset);
     RUN_TEST(test_kept_script_reruns);
     RUN_TEST(test_bad_input);
     RUN_TEST(test_missing_gnuplot);

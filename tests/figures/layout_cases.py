@@ -1,0 +1,35 @@
+"""The figures the layout check covers (tests/figures/test_layout.py): a name,
+the arguments of `jumpcyl` that draw it as SVG (the output is added), and the
+rules it is allowed to break, each with its reason (layout_check.py --allow).
+
+To check another figure, add a line here; `test_layout.py JUMPCYL --only NAME`
+checks one, `--keep DIR` keeps the SVGs. The trajectory figures (cases
+TRAJECTORY below) are listed but left out until their layout passes; run them
+with `--with-trajectory`.
+"""
+
+# paper-uncertainty's axis is the jump site along the incline: the band, the
+# printed site and the measurement with its error bar are close together on
+# some inclines and far apart on others; the axis spans all three with room.
+_PU = ["span:*:x"]
+
+CASES = [
+    ("overview-15", ["plot", "--incline", "15", "--what", "overview"], []),
+    ("overview-30", ["plot", "--incline", "30", "--what", "overview"], []),
+    ("overview-45", ["plot", "--incline", "45", "--what", "overview"], []),
+    # No lift-off, one event (the ramp's end): nothing zoomed, no inset.
+    ("overview-5", ["plot", "--incline", "5", "--what", "overview"], []),
+]
+for _kind in ("paper-criterion", "forces", "gap", "energy"):
+    for _a in ("15", "30", "45"):
+        CASES.append(("%s-%s" % (_kind, _a), ["plot", "--incline", _a, "--what", _kind], []))
+    CASES.append(("%s-hoop" % _kind, ["plot", "--preset", "hoop", "--what", _kind], []))
+CASES.append(("paper-uncertainty", ["plot", "--what", "paper-uncertainty"], _PU))
+
+# The trajectory figures (plot_trajectory.c): checked with --with-trajectory.
+TRAJECTORY = [
+    ("trajectory-15", ["plot", "--incline", "15", "--what", "trajectory"], []),
+    ("trajectory-30", ["plot", "--incline", "30", "--what", "trajectory"], []),
+    ("trajectory-45", ["plot", "--incline", "45", "--what", "trajectory"], []),
+    ("trajectory-hoop", ["plot", "--preset", "hoop", "--what", "trajectory"], []),
+]
