@@ -30,7 +30,7 @@ FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := options config simulate names batch track part
 LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/test_signals.c tests/test_closed_stdout.c tests/test_fuzz_findings.c tests/cli_run.h \
-                tests/test_safe_output.c tests/test_sim_json.c tests/test_json_text.c tests/sim/test_stream.c tests/batch/test_map.c tests/batch/test_part.c tests/design/test_design.c tests/track \
+                tests/test_safe_output.c tests/test_waits.c tests/test_sim_json.c tests/test_json_text.c tests/sim/test_stream.c tests/batch/test_map.c tests/batch/test_part.c tests/design/test_design.c tests/track \
                 tests/fit/test_fit_cli.c tests/fit/test_fit_stats.c tests/fit/make_track.c tests/fit/test_fit_api.c \
                 tests/test_study.c examples/mc_example.c
 

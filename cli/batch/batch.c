@@ -13,6 +13,7 @@
 #include "batch.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
@@ -386,9 +387,10 @@ static int rows_open(const job *j, rows_file *w, long lo, long hi, long *done)
             cli_error("%s: --resume needs --output FILE, a regular file ('%s' is not one)", b->cmd, b->output);
             return EXIT_USAGE;
         }
-        w->f = fopen(b->output, "w");
+        char why[128]; /* a FIFO without a reader is an error, not a hang */
+        w->f = cli_fopen_nowait(b->output, "w", O_WRONLY, 0, why, sizeof why);
         if (!w->f) {
-            cli_error("%s: cannot open %s: %s", b->cmd, b->output, strerror(errno));
+            cli_error("%s: cannot open %s: %s", b->cmd, b->output, why);
             return EXIT_FAIL;
         }
         w->to_stdout = w->opened = 1;

@@ -9,6 +9,7 @@
 #include "films.h"
 
 #include <ctype.h>
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -132,6 +133,15 @@ static int parse_positive(const char *name, const char *text, double max, double
     return EXIT_OK;
 }
 
+/* Whether a path's last name is "-" ("-", "-/", "dir/-"): standard
+ * output's name, never made a file or directory. */
+static int names_dash(const char *path)
+{
+    size_t n = strlen(path);
+    while (n > 1 && path[n - 1] == '/') --n;
+    return n >= 1 && path[n - 1] == '-' && (n == 1 || path[n - 2] == '/');
+}
+
 static int check_args(const animate_args *a, animate_opts *o)
 {
     if (!a->output || !*a->output) {
@@ -140,6 +150,11 @@ static int check_args(const animate_args *a, animate_opts *o)
     }
     if (cli_output_file_only("animate", "output", a->output, "a film or its frames") != 0) return EXIT_USAGE;
     o->output = a->output;
+    if (names_dash(a->output)) {
+        cli_error("animate: --output '%s': a film cannot go to standard output, and a file or directory named "
+                  "'-' is refused; give FILE.gif, FILE.mp4 or a directory", a->output);
+        return EXIT_USAGE;
+    }
     if (vid_format_from_path(a->output, &o->format) != 0) {
         cli_error("animate: --output '%s': unknown format '.%s' (allowed: .gif, .mp4, or a directory: a name "
                   "ending in '/' or without extension)", a->output, cli_path_ext(a->output));
@@ -155,8 +170,9 @@ static int check_args(const animate_args *a, animate_opts *o)
     if (a->fps && parse_positive("fps", a->fps, MAX_FPS, &o->fps)) return EXIT_USAGE;
     if (a->slowmo && parse_positive("slowmo", a->slowmo, MAX_SLOWMO, &o->slowmo)) return EXIT_USAGE;
     double max_frames = DEFAULT_MAX_FRAMES;
-    if (a->max_frames && (parse_positive("max-frames", a->max_frames, VID_MAX_FRAMES, &max_frames) ||
-                          max_frames != floor(max_frames))) {
+    char msg[256];
+    if (a->max_frames && (cli_parse_quantity(a->max_frames, Q_NUMBER, &max_frames, msg, sizeof msg) != 0 ||
+                          !(max_frames >= 1 && max_frames <= VID_MAX_FRAMES) || max_frames != floor(max_frames))) {
         cli_error("animate: --max-frames '%s' is out of range (allowed: a whole number from 1 to %d)", a->max_frames,
                   VID_MAX_FRAMES);
         return EXIT_USAGE;
@@ -292,8 +308,39 @@ typedef struct {
     draw_Marks marks;
 } animate_job;
 
+/* The PNG written through our own stream, so that a failed write keeps its
+ * errno (cairo_surface_write_to_png says only "write error"). */
+typedef struct {
+    FILE *f;
+    int err;
+} png_sink;
+
+static cairo_status_t png_write(void *ctx, const unsigned char *data, unsigned int len)
+{
+    png_sink *s = ctx;
+    if (fwrite(data, 1, len, s->f) == len) return CAIRO_STATUS_SUCCESS;
+    if (!s->err) s->err = errno ? errno : EIO;
+    return CAIRO_STATUS_WRITE_ERROR;
+}
+
+/* 0, or -1 with the reason in *err (errno). */
+static int write_png(cairo_surface_t *surface, const char *path, int *err)
+{
+    png_sink s = {fopen(path, "wb"), 0};
+    if (!s.f) {
+        *err = errno;
+        return -1;
+    }
+    const cairo_status_t st = cairo_surface_write_to_png_stream(surface, png_write, &s);
+    if (fflush(s.f) != 0 && !s.err) s.err = errno;
+    if (fclose(s.f) != 0 && !s.err) s.err = errno;
+    if (st != CAIRO_STATUS_SUCCESS && !s.err) s.err = st == CAIRO_STATUS_NO_MEMORY ? ENOMEM : EIO;
+    *err = s.err;
+    return s.err ? -1 : 0;
+}
+
 static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *job, const draw_TracePoint *trace,
-                      int k, const char *dir)
+                      int k, const char *dir, int *err)
 {
     const int i = job->frames[k];
     const jc_Sample *p = &job->run->samples[i];
@@ -316,8 +363,11 @@ static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *
     draw_frame(cr, &f);
     cairo_surface_flush(surface);
     char path[CLI_PATH_MAX];
-    if (vid_frame_path(path, sizeof path, dir, k) != 0) return -1;
-    return cairo_surface_write_to_png(surface, path) == CAIRO_STATUS_SUCCESS ? 0 : -1;
+    if (vid_frame_path(path, sizeof path, dir, k) != 0) {
+        *err = ENAMETOOLONG;
+        return -1;
+    }
+    return write_png(surface, path, err);
 }
 
 static int render_frames(const animate_job *job, const char *dir)
@@ -328,12 +378,16 @@ static int render_frames(const animate_job *job, const char *dir)
     int rc = cairo_status(cr) == CAIRO_STATUS_SUCCESS && trace ? EXIT_OK : EXIT_FAIL;
     if (rc != EXIT_OK) cli_error("animate: out of memory for %dx%d frames", job->opts->width, job->opts->height);
     cli_Progress progress;
+    int err = 0;
     cli_progress_begin(&progress, "animate: frame");
     for (int k = 0; rc == EXIT_OK && k < job->frame_count; ++k) {
         if (cli_stop_requested()) rc = cli_stop_status();
-        else if (render_one(cr, surface, job, trace, k, dir) != 0) {
-            cli_error("cannot write frame %d in %s", k, dir);
-            rc = EXIT_FAIL;
+        else if (render_one(cr, surface, job, trace, k, dir, &err) != 0) {
+            if (cli_stop_requested()) rc = cli_stop_status();
+            else {
+                cli_error("animate: cannot write frame %d in %s: %s", k, dir, strerror(err));
+                rc = EXIT_FAIL;
+            }
         }
         cli_progress_update(&progress, k + 1, job->frame_count);
     }

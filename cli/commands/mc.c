@@ -7,6 +7,7 @@
 
 #include <cjson/cJSON.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -224,9 +225,10 @@ static int report(const cli_McJob *job, jc_Tally *t, long samples, double gap, c
  * read back and summarised as the job would have been. */
 static int summarize(const mc_opts *o, double gap)
 {
-    FILE *f = fopen(o->summarize, "r");
+    char why[128]; /* a FIFO's open does not wait; its reads end on a stop signal */
+    FILE *f = cli_fopen_nowait(o->summarize, "r", O_RDONLY, 0, why, sizeof why);
     if (!f) {
-        cli_error("mc: --summarize '%s': %s", o->summarize, strerror(errno));
+        cli_error("mc: --summarize '%s': %s", o->summarize, why);
         return EXIT_USAGE;
     }
     char *line = NULL;
@@ -236,7 +238,9 @@ static int summarize(const mc_opts *o, double gap)
     for (ssize_t i = 0; i < n; ++i) commas += line[i] == ',';
     const int inputs = commas - JC_CASE_COLUMNS;
     int st = EXIT_OK;
-    if (n <= 0 || strncmp(line, "case,", 5) != 0 || inputs < 0) {
+    if (n <= 0 && cli_stop_requested()) {
+        st = cli_stop_status(); /* a pipe's silent writer: the wait ended by a signal */
+    } else if (n <= 0 || strncmp(line, "case,", 5) != 0 || inputs < 0) {
         cli_error("mc: --summarize '%s': the first line is not the header of mc or sweep rows (case,...)",
                   o->summarize);
         st = EXIT_USAGE;
@@ -262,7 +266,18 @@ static int summarize(const mc_opts *o, double gap)
         ++rows;
     }
     free(line);
+    if (st == EXIT_OK && ferror(f)) {
+        const int err = errno;
+        if (cli_stop_requested()) st = cli_stop_status();
+        else {
+            cli_error("mc: --summarize '%s': %s", o->summarize, strerror(err));
+            st = EXIT_FAIL;
+        }
+    }
     fclose(f);
+    if (st == cli_stop_status() && cli_stop_requested())
+        cli_error("mc: --summarize '%s': stopped by %s after %ld rows; nothing was summarized", o->summarize,
+                  cli_signal_name(cli_stop_requested()), rows);
     if (st == EXIT_OK) {
         const int text = !stdout_taken(o, NULL);
         if (text) printf("Summary of %ld rows in %s\n", rows, o->summarize);

@@ -3,10 +3,13 @@
  * path for the figure. */
 #include "commands.h"
 
+#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 int cli_track_args_take(const char *cmd, cli_TrackArgs *a, int opt, const char *arg)
 {
@@ -149,6 +152,35 @@ static int incline_given(const cli_SetupArgs *sa)
     return cli_config_load(sa->config, &probe, err, sizeof err) == 0 && !isnan(probe.incline_rad);
 }
 
+/* The file's bytes, read here rather than by jc_track_read_file: the open
+ * never waits (a FIFO without a writer yet), and the first stop signal ends
+ * a wait for a pipe's or FIFO's writer (cli_read_all: poll). EXIT_OK, the
+ * stop status (main says it), or an exit status after a message. */
+static int read_track_bytes(const char *cmd, const char *path, char **data, size_t *len)
+{
+    char why[256];
+    const int fd = cli_open_nowait(path, O_RDONLY, 0, 0, why, sizeof why);
+    if (fd < 0) {
+        cli_error("%s: %s: cannot open: %s", cmd, path, why);
+        return EXIT_USAGE;
+    }
+    struct stat st;
+    int r;
+    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > (off_t)JC_TRACK_MAX_BYTES) {
+        snprintf(why, sizeof why, "larger than %ld bytes", JC_TRACK_MAX_BYTES); /* refused before reading */
+        r = -1;
+    } else {
+        r = cli_read_all(fd, JC_TRACK_MAX_BYTES, data, len, why, sizeof why);
+    }
+    close(fd);
+    if (r > 0) return cli_stop_status();
+    if (r < 0) {
+        cli_error("%s: %s: %s", cmd, path, why);
+        return strcmp(why, "out of memory") == 0 ? EXIT_FAIL : EXIT_USAGE;
+    }
+    return EXIT_OK;
+}
+
 int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *a, const cli_SetupArgs *sa,
                         const jc_Setup *setup, jc_Track *t)
 {
@@ -162,8 +194,14 @@ int cli_track_args_load(const char *cmd, const char *path, const cli_TrackArgs *
     opt.fit_tilt = a->fit_tilt;
     opt.axes = a->axes && strcmp(a->axes, "incline") == 0 ? JC_TRACK_AXES_INCLINE : JC_TRACK_AXES_LEVEL;
     if (a->hop_sigmas) opt.hop_sigmas = a->hop_sigmas_k;
+    char *data;
+    size_t len;
+    memset(t, 0, sizeof *t);
+    const int rc = read_track_bytes(cmd, path, &data, &len);
+    if (rc != EXIT_OK) return rc;
     char err[1024];
-    const int st = jc_track_read_file(path, &opt, t, err, sizeof err);
+    const int st = jc_track_parse(path, data, len, &opt, t, err, sizeof err);
+    free(data);
     if (st != JC_OK) cli_error("%s: %s", cmd, err);
     return cli_exit_status(st, CLI_INPUTS_VIDEO);
 }

@@ -61,14 +61,32 @@ static int file_url(const char *path, char *out, size_t len)
     return snprintf(out, len, "file:%s", abs_path) < (int)len ? 0 : -1;
 }
 
+/* The frames' directory with each '%' doubled: ffmpeg reads the whole
+ * input name as an image2 pattern, where "%%" is a '%' and "%d" a number
+ * (a TMPDIR or an output name with a '%'). -1 if it does not fit. */
+static int escape_percent(const char *dir, char *out, size_t len)
+{
+    size_t n = 0;
+    for (const char *p = dir; *p; ++p) {
+        if (n + 3 > len) return -1;
+        if (*p == '%') out[n++] = '%';
+        out[n++] = *p;
+    }
+    if (n + 1 > len) return -1;
+    out[n] = '\0';
+    return 0;
+}
+
 /* The arguments of the ffmpeg command; strings live in cmd. */
 static int build_command(vid_Command *cmd, const char *frames_dir, double fps, const char *output, vid_Format f,
                          int quiet)
 {
     int n = 0;
-    char pattern[CLI_PATH_MAX];
+    char pattern[CLI_PATH_MAX], dir[CLI_PATH_MAX], abs_dir[CLI_PATH_MAX];
     snprintf(cmd->fps, sizeof cmd->fps, "%g", fps);
-    if (cli_path_join(pattern, sizeof pattern, frames_dir, VID_FRAME_PATTERN) != 0 ||
+    /* Made absolute before the escape: the working directory may hold a '%' too. */
+    if (cli_path_absolute(frames_dir, abs_dir, sizeof abs_dir) != 0 || escape_percent(abs_dir, dir, sizeof dir) != 0 ||
+        cli_path_join(pattern, sizeof pattern, dir, VID_FRAME_PATTERN) != 0 ||
         file_url(pattern, cmd->input, sizeof cmd->input) != 0 || file_url(output, cmd->output, sizeof cmd->output) != 0)
         return -1;
     cmd->argv[n++] = "ffmpeg";

@@ -58,6 +58,7 @@ int cli_exit_status(int jc_status, cli_Inputs inputs)
 {
     if (jc_status == JC_OK) return EXIT_OK;
     if (jc_status == JC_ESTOPPED && cli_stop_requested()) return cli_stop_status();
+    if (jc_status == JC_ENOMEM) return EXIT_FAIL; /* the machine's limit, not the input's fault */
     if (inputs == CLI_INPUTS_VIDEO || (inputs == CLI_INPUTS_GIVEN && jc_status == JC_EINVAL)) return EXIT_USAGE;
     return EXIT_FAIL;
 }

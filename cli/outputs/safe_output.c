@@ -105,14 +105,12 @@ int cli_output_begin(cli_Output *o, const char *target, int allow_stdout)
     if (cli_output_check_target(target) != 0) return -1;
     struct stat st;
     if (stat(target, &st) == 0 && !S_ISREG(st.st_mode)) {
-        /* O_NONBLOCK: a FIFO without a reader is an error, not a hang. */
-        const int fd = open(target, O_WRONLY | O_NONBLOCK | O_CLOEXEC);
-        if (fd < 0 || !(o->f = fdopen(fd, "w"))) {
-            cli_error("cannot write %s: %s", target, strerror(errno));
-            if (fd >= 0) close(fd);
+        /* A FIFO without a reader is an error, not a hang. */
+        char why[128];
+        if (!(o->f = cli_fopen_nowait(target, "w", O_WRONLY, 0, why, sizeof why))) {
+            cli_error("cannot write %s: %s", target, why);
             return -1;
         }
-        fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
         o->in_place = 1;
         return 0;
     }
@@ -235,7 +233,8 @@ void cli_sync_dir(const char *path)
 
 int cli_output_finish(cli_Output *o, cli_Check check)
 {
-    int err = EIO; /* an earlier write failed and its errno is gone */
+    /* An earlier write failed and stdio lost its errno: the likely reason. */
+    int err = ferror(o->f) ? cli_lost_write_errno(fileno(o->f)) : EIO;
     int bad = ferror(o->f);
     if (fflush(o->f) != 0) {
         bad = 1;
@@ -254,7 +253,7 @@ int cli_output_finish(cli_Output *o, cli_Check check)
         o->f = NULL;
     }
     if (bad) {
-        if (!(o->is_stdout && cli_pipe_closed(err)))
+        if (!(o->is_stdout && cli_pipe_closed(err)) && !(o->in_place && cli_write_stopped(err)))
             cli_error("cannot write %s: %s", o->is_stdout ? "standard output" : o->target, strerror(err));
         cli_output_abort(o);
         return -1;
@@ -312,13 +311,13 @@ void cli_safe_name(const char *name, char *out, size_t len)
  * returns after SIGPIPE. */
 static int stdout_failed(int err)
 {
-    if (!cli_pipe_closed(err)) cli_error("cannot write standard output: %s", strerror(err));
+    if (!cli_pipe_closed(err) && !cli_write_stopped(err)) cli_error("cannot write standard output: %s", strerror(err));
     return cli_stop_requested() ? cli_stop_status() : EXIT_FAIL;
 }
 
 int cli_stdout_finish(void)
 {
-    int err = EIO;
+    int err = ferror(stdout) ? cli_lost_write_errno(fileno(stdout)) : EIO;
     int bad = ferror(stdout);
     if (fflush(stdout) != 0) {
         bad = 1;

@@ -8,6 +8,7 @@
 
 #include <signal.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <sys/types.h>
 
 /* Exit statuses: what cmd_* returns, and every function of the tool whose
@@ -59,6 +60,35 @@ int cli_tmpfile_finish(int slot, const char *tmp_path, const char *final_path);
  * process; returns the record (-1 if none is free) for cli_tmpdir_untrack. */
 int cli_tmpdir_track(const char *path);
 void cli_tmpdir_untrack(int slot);
+
+/* Whether a write to a pipe, FIFO or terminal that failed with err (errno;
+ * EIO when stdio lost it) was cut short by the stop signal that came
+ * (EINTR): the stop is what to report, not the write. */
+int cli_write_stopped(int err);
+/* The reason of a write error whose errno stdio lost (ferror set, errno
+ * gone): EFBIG when a write crossed the file size limit (SIGXFSZ came),
+ * ENOSPC when fd's file system is full, else EIO. */
+int cli_lost_write_errno(int fd);
+
+/* ---- files.c: opening and reading without waiting for ever ---- */
+
+/* open(path, flags, mode) with O_NONBLOCK (cleared once open), O_CLOEXEC and
+ * O_NOCTTY: the open itself never waits. A FIFO without a reader refuses a
+ * writer (ENXIO: "... (a FIFO without a reader)"); a FIFO opened to read
+ * opens at once. A directory is refused; so is anything but a regular file
+ * when regular_only. Returns the descriptor, or -1 with the reason (strerror
+ * or "not a regular file (a FIFO)") in why. The one open for every file the
+ * tool names: outputs in place, batch rows, inputs. */
+int cli_open_nowait(const char *path, int flags, mode_t mode, int regular_only, char *why, size_t why_len);
+/* The same as a stdio stream (stdio_mode as for fdopen); NULL with why. */
+FILE *cli_fopen_nowait(const char *path, const char *stdio_mode, int flags, int regular_only, char *why,
+                       size_t why_len);
+/* Reads fd to its end into *buf (malloc'd, *len bytes), refusing more than
+ * max bytes ("larger than MAX bytes"). Waits with poll, so that the first
+ * stop signal ends a wait on a pipe or FIFO whose writer is silent (or has
+ * not come yet). 0; 1 when a stop signal came (no message: main says it);
+ * -1 with the reason in why. */
+int cli_read_all(int fd, long max, char **buf, size_t *len, char *why, size_t why_len);
 
 /* ---- spawn.c: external programs ---- */
 

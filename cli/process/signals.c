@@ -17,7 +17,14 @@
  * request to stop, so it never ends the process at once.
  *
  * SIGXFSZ (a file grew past `ulimit -f`): caught and otherwise ignored, so
- * that the write fails with EFBIG and is reported as "File too large".
+ * that the write fails with EFBIG and is reported as "File too large"; it
+ * is noted, as stdio may have lost the errno by the time the error shows
+ * (cli_lost_write_errno).
+ *
+ * No SA_RESTART: a read or write that waits on a pipe, FIFO or terminal
+ * (`sleep 30 | jumpcyl track /dev/stdin`) returns EINTR on the first stop
+ * signal instead of waiting on, and the command stops there. Reads and
+ * writes of regular files are not interrupted by signals.
  *
  * This state is the command-line tool's, process-wide by nature (signal
  * dispositions are); the library has none. */
@@ -32,6 +39,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/statvfs.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
@@ -43,6 +51,7 @@ static const int stop_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE};
 #define STOP_SIGNAL_COUNT (int)(sizeof stop_signals / sizeof stop_signals[0])
 
 static volatile sig_atomic_t stop_signal;
+static volatile sig_atomic_t size_limit_crossed;
 static volatile sig_atomic_t child_pid;
 static volatile sig_atomic_t tracked_used[TRACK_SLOTS];
 static char tracked_path[TRACK_SLOTS][CLI_PATH_MAX];
@@ -78,6 +87,7 @@ static void on_signal(int sig)
 {
     const int saved = errno;
     if (sig == SIGXFSZ) { /* the write that crossed the limit returns EFBIG */
+        size_limit_crossed = 1;
         errno = saved;
         return;
     }
@@ -113,7 +123,7 @@ static void install(int sig)
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART; /* output calls are not cut short by a signal */
+    sa.sa_flags = 0; /* no SA_RESTART: a wait on a pipe ends with EINTR (above) */
     sigaction(sig, &sa, NULL);
 }
 
@@ -128,6 +138,16 @@ int cli_stop_requested(void) { return stop_signal; }
 int cli_stop_status(void) { return 128 + stop_signal; }
 
 int cli_pipe_closed(int err) { return stop_signal == SIGPIPE || err == EPIPE; }
+
+int cli_write_stopped(int err) { return stop_signal && (err == EINTR || err == EIO); }
+
+int cli_lost_write_errno(int fd)
+{
+    if (size_limit_crossed) return EFBIG;
+    struct statvfs vfs;
+    if (fd >= 0 && fstatvfs(fd, &vfs) == 0 && (geteuid() == 0 ? vfs.f_bfree : vfs.f_bavail) == 0) return ENOSPC;
+    return EIO;
+}
 
 const char *cli_signal_name(int sig)
 {

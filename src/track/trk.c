@@ -19,20 +19,32 @@
  * by -yscale), translate to the origin.
  *
  * Hostile files: no DTD is accepted (so no entity can be declared, let alone
- * expanded), the network is off, the file size is bounded by the caller and
- * the number of elements here, before libxml2 builds anything. */
+ * expanded), the network is off, the file size is bounded by the caller, and
+ * the tree libxml2 builds by a budget of elements, attributes and nodes
+ * counted as it parses (TRK_MAX_*). */
 #include "track_internal.h"
 
 #include <stdio.h>
 #include <errno.h>
+#include <libxml/SAX2.h>
+#include <libxml/xmlerror.h>
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Elements: a frame of a track takes 4, so this allows 10^5 frames of 16 tracks. */
-#define TRK_MAX_ELEMENTS 8000000L
+/* The budget of the tree libxml2 builds, counted as it parses (trk_budget)
+ * and stopped at the first count past its cap, so that a file of a million
+ * empty elements costs what its first few hundred thousand do (about 100 MB
+ * at most), not gigabytes. A frame of a track takes 4 elements, 7
+ * attributes and about 25 nodes (elements, attributes, their values, text):
+ * the caps allow some 30 000 frames of one track, or 7 500 of four (a
+ * minute of 120 fps video), more than a clip of the kind the model
+ * describes has. */
+#define TRK_MAX_ELEMENTS 200000L
+#define TRK_MAX_ATTRIBUTES 300000L
+#define TRK_MAX_NODES 800000L
 
 static const xmlChar *X(const char *s) { return (const xmlChar *)s; }
 
@@ -158,7 +170,27 @@ static long item_index(const xmlNode *item)
 typedef struct {
     long start, step, count;
     double dt_s;
+    double width_px, height_px; /* the picture's size (0 when the file does not say) */
 } trk_clip;
+
+/* How far outside the picture a point or an origin may lie (pixels): far
+ * enough for any real clip, near enough that no digit is lost. */
+#define TRK_MAX_OUTSIDE_PX 1e6
+
+/* Whether an image point lies within TRK_MAX_OUTSIDE_PX of the picture. */
+static int in_picture(const trk_clip *clip, double x_px, double y_px)
+{
+    return x_px >= -TRK_MAX_OUTSIDE_PX && x_px <= clip->width_px + TRK_MAX_OUTSIDE_PX &&
+           y_px >= -TRK_MAX_OUTSIDE_PX && y_px <= clip->height_px + TRK_MAX_OUTSIDE_PX;
+}
+
+static void outside_message(const trk_ctx *c, const trk_clip *clip, const char *what, const char *names, double x_px,
+                            double y_px)
+{
+    snprintf(c->err, c->err_len,
+             "%s: %s: %s (%.6g, %.6g) px, more than %g px outside the %g x %g px picture (refused)", c->file,
+             what, names, x_px, y_px, TRK_MAX_OUTSIDE_PX, clip->width_px, clip->height_px);
+}
 
 static long max_item_index(const xmlNode *array)
 {
@@ -178,6 +210,13 @@ static int read_clip(const trk_ctx *c, const xmlNode *panel, const xmlNode *firs
     clip->start = 0;
     clip->step = 1;
     clip->count = -1;
+    clip->width_px = clip->height_px = 0;
+    double size[2] = {0, 0};
+    if (prop_double(c, panel, "TrackerPanel", "width", &size[0]) < 0 ||
+        prop_double(c, panel, "TrackerPanel", "height", &size[1]) < 0)
+        return -1;
+    if (size[0] > 0 && size[0] <= TRK_MAX_OUTSIDE_PX) clip->width_px = size[0];
+    if (size[1] > 0 && size[1] <= TRK_MAX_OUTSIDE_PX) clip->height_px = size[1];
     if (vc) {
         if (prop_long(c, vc, "videoclip", "startframe", &clip->start) < 0) return -1;
         if (prop_long(c, vc, "videoclip", "stepsize", &clip->step) < 0) return -1;
@@ -225,7 +264,8 @@ static void coords_free(trk_coords *k)
     free(k->sy);
 }
 
-static int read_coords(const trk_ctx *c, const xmlNode *panel, long frames, trk_coords *k, int *varies)
+static int read_coords(const trk_ctx *c, const xmlNode *panel, const trk_clip *clip, long frames, trk_coords *k,
+                       int *varies)
 {
     const xmlNode *cs = prop_object(prop(panel, "coords"));
     const xmlNode *fd = prop(cs, "framedata");
@@ -257,6 +297,12 @@ static int read_coords(const trk_ctx *c, const xmlNode *panel, long frames, trk_
                 snprintf(c->err, c->err_len, "%s: coords framedata [%ld]: no %s", c->file, f, names[i]);
                 return -1;
             }
+        }
+        if (!in_picture(clip, v[0], v[1])) {
+            char what[64];
+            snprintf(what, sizeof what, "coords framedata [%ld]", f);
+            outside_message(c, clip, what, "the origin", v[0], v[1]);
+            return -1;
         }
         if (!(v[3] > 1e-9 && v[4] > 1e-9 && v[3] < 1e12 && v[4] < 1e12)) {
             snprintf(c->err, c->err_len, "%s: coords framedata [%ld]: scale %g, %g px per unit (must be > 0)", c->file,
@@ -329,6 +375,10 @@ static int read_track(const trk_ctx *c, const xmlNode *o, const trk_clip *clip, 
             snprintf(c->err, c->err_len, "%s: %s: no %s", c->file, what, sx == 0 ? "x" : "y");
             return -1;
         }
+        if (!in_picture(clip, ix, iy)) {
+            outside_message(c, clip, what, "x, y", ix, iy);
+            return -1;
+        }
         const double u = (ix - k->ox[f]) / k->sx[f], v = -(iy - k->oy[f]) / k->sy[f];
         const long row = (f - clip->start) / clip->step;
         t->x_m[row] = (k->cos_a[f] * u + k->sin_a[f] * v) * m_per_unit;
@@ -337,20 +387,130 @@ static int read_track(const trk_ctx *c, const xmlNode *o, const trk_clip *clip, 
     return 0;
 }
 
-static int contains(const char *data, size_t len, const char *needle)
+/* Whether a declaration "<!NAME" (needle without its "<!") is in data:
+ * found by its '!', which is rare in XML, not by '<', which is not. */
+static int has_declaration(const char *data, size_t len, const char *needle)
 {
     const size_t n = strlen(needle);
-    for (size_t i = 0; i + n <= len; ++i)
-        if (data[i] == needle[0] && memcmp(data + i, needle, n) == 0) return 1;
+    for (const char *p = data, *end = data + len; (p = memchr(p, '!', (size_t)(end - p))) != NULL; ++p)
+        if (p > data && p[-1] == '<' && (size_t)(end - p - 1) >= n && memcmp(p + 1, needle, n) == 0) return 1;
     return 0;
 }
 
-/* Counts '<' before parsing: no more elements than that can exist. */
-static long count_tags(const char *data, size_t len)
+/* What the parser has built so far, against the caps; the parser's own
+ * callbacks (libxml2's SAX2 tree builder) are called only within them. */
+typedef struct {
+    long elements, attributes, nodes;
+    const char *over; /* the count past its cap ("elements", ...), NULL within */
+    int no_memory;    /* libxml2 ran out of memory (its errors come here, not to stderr) */
+    long cap;
+    xmlSAXHandler sax2; /* libxml2's tree builder, called on */
+} trk_budget;
+
+/* Adds to the counts; 0 within the caps, else -1 and the parser stopped. */
+static int budget_take(void *ctx, long elements, long attributes, long nodes)
 {
-    long n = 0;
-    for (size_t i = 0; i < len; ++i) n += data[i] == '<';
-    return n;
+    xmlParserCtxt *ctxt = ctx;
+    trk_budget *b = ctxt->_private;
+    if (b->over) return -1;
+    b->elements += elements;
+    b->attributes += attributes;
+    b->nodes += nodes;
+    if (b->elements > TRK_MAX_ELEMENTS) b->over = "elements", b->cap = TRK_MAX_ELEMENTS;
+    else if (b->attributes > TRK_MAX_ATTRIBUTES) b->over = "attributes", b->cap = TRK_MAX_ATTRIBUTES;
+    else if (b->nodes > TRK_MAX_NODES) b->over = "nodes", b->cap = TRK_MAX_NODES;
+    if (!b->over) return 0;
+    xmlStopParser(ctxt);
+    return -1;
+}
+
+static void budget_start(void *ctx, const xmlChar *localname, const xmlChar *prefix, const xmlChar *uri,
+                         int nb_namespaces, const xmlChar **namespaces, int nb_attributes, int nb_defaulted,
+                         const xmlChar **attributes)
+{
+    /* An element, its attributes and each attribute's value. */
+    if (budget_take(ctx, 1, nb_attributes, 1 + 2L * nb_attributes + nb_namespaces) != 0) return;
+    const trk_budget *b = ((xmlParserCtxt *)ctx)->_private;
+    b->sax2.startElementNs(ctx, localname, prefix, uri, nb_namespaces, namespaces, nb_attributes, nb_defaulted,
+                           attributes);
+}
+
+static void budget_characters(void *ctx, const xmlChar *ch, int len)
+{
+    if (budget_take(ctx, 0, 0, 1) != 0) return;
+    ((trk_budget *)((xmlParserCtxt *)ctx)->_private)->sax2.characters(ctx, ch, len);
+}
+
+static void budget_whitespace(void *ctx, const xmlChar *ch, int len)
+{
+    if (budget_take(ctx, 0, 0, 1) != 0) return;
+    ((trk_budget *)((xmlParserCtxt *)ctx)->_private)->sax2.ignorableWhitespace(ctx, ch, len);
+}
+
+static void budget_cdata(void *ctx, const xmlChar *ch, int len)
+{
+    if (budget_take(ctx, 0, 0, 1) != 0) return;
+    ((trk_budget *)((xmlParserCtxt *)ctx)->_private)->sax2.cdataBlock(ctx, ch, len);
+}
+
+static void budget_comment(void *ctx, const xmlChar *value)
+{
+    if (budget_take(ctx, 0, 0, 1) != 0) return;
+    ((trk_budget *)((xmlParserCtxt *)ctx)->_private)->sax2.comment(ctx, value);
+}
+
+static void budget_pi(void *ctx, const xmlChar *target, const xmlChar *data)
+{
+    if (budget_take(ctx, 0, 0, 1) != 0) return;
+    ((trk_budget *)((xmlParserCtxt *)ctx)->_private)->sax2.processingInstruction(ctx, target, data);
+}
+
+/* The file's bytes handed to the parser a piece at a time. */
+typedef struct {
+    const char *data;
+    size_t left;
+} trk_source;
+
+static int source_read(void *ctx, char *buf, int len)
+{
+    trk_source *src = ctx;
+    const size_t n = src->left < (size_t)len ? src->left : (size_t)len;
+    memcpy(buf, src->data, n);
+    src->data += n;
+    src->left -= n;
+    return (int)n;
+}
+
+/* The parser's errors: kept in the context (xmlCtxtGetLastError) as ever,
+ * and a memory failure noted, as a later error may replace it there. */
+static void budget_error(void *ctx, xmlError *e)
+{
+    trk_budget *b = ((xmlParserCtxt *)ctx)->_private;
+    if (e && e->code == XML_ERR_NO_MEMORY) b->no_memory = 1;
+}
+
+/* Errors libxml2 reports outside a parser context (the tree's allocations):
+ * not printed, as the library prints nothing; their reason is memory. */
+static void quiet_generic_error(void *ctx, const char *msg, ...)
+{
+    trk_budget *b = ctx;
+    (void)msg;
+    b->no_memory = 1;
+}
+
+/* Puts the counting callbacks in front of the tree builder's. */
+static void budget_install(xmlParserCtxt *ctxt, trk_budget *b)
+{
+    memset(b, 0, sizeof *b);
+    b->sax2 = *ctxt->sax;
+    ctxt->_private = b;
+    ctxt->sax->serror = budget_error;
+    if (b->sax2.startElementNs) ctxt->sax->startElementNs = budget_start;
+    if (b->sax2.characters) ctxt->sax->characters = budget_characters;
+    if (b->sax2.ignorableWhitespace) ctxt->sax->ignorableWhitespace = budget_whitespace;
+    if (b->sax2.cdataBlock) ctxt->sax->cdataBlock = budget_cdata;
+    if (b->sax2.comment) ctxt->sax->comment = budget_comment;
+    if (b->sax2.processingInstruction) ctxt->sax->processingInstruction = budget_pi;
 }
 
 static int parse_doc(const trk_ctx *c, xmlDoc *doc, jc_TrackRaw *raw)
@@ -387,7 +547,7 @@ static int parse_doc(const trk_ctx *c, xmlDoc *doc, jc_TrackRaw *raw)
     if (read_clip(c, panel, first_data, &clip) != 0) return -1;
     const long frames_total = clip.start + (clip.count - 1) * clip.step + 1;
     trk_coords k = {0};
-    const int coords = read_coords(c, panel, frames_total, &k, &raw->scale_varies);
+    const int coords = read_coords(c, panel, &clip, frames_total, &k, &raw->scale_varies);
     if (coords != 0) {
         coords_free(&k);
         return coords;
@@ -435,12 +595,8 @@ int jc_track_trk_parse(const char *name, const char *data, size_t len, jc_TrackR
         snprintf(err, err_len, "%s: too large", name);
         return JC_EINVAL;
     }
-    if (count_tags(data, len) > TRK_MAX_ELEMENTS) {
-        snprintf(err, err_len, "%s: more than %ld XML elements", name, TRK_MAX_ELEMENTS);
-        return JC_EINVAL;
-    }
     /* A DTD is where entities are declared: refused before libxml2 reads it. */
-    if (contains(data, len, "<!DOCTYPE") || contains(data, len, "<!ENTITY")) {
+    if (has_declaration(data, len, "DOCTYPE") || has_declaration(data, len, "ENTITY")) {
         snprintf(err, err_len, "%s: has a DTD or entity declaration (refused)", name);
         return JC_EINVAL;
     }
@@ -449,12 +605,32 @@ int jc_track_trk_parse(const char *name, const char *data, size_t len, jc_TrackR
         snprintf(err, err_len, "%s: out of memory", name);
         return JC_ENOMEM;
     }
-    /* No network, no entity substitution, no DTD loading, no huge text nodes. */
-    xmlDoc *doc = xmlCtxtReadMemory(ctxt, data, (int)len, NULL, NULL,
-                                    XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+    trk_budget budget;
+    budget_install(ctxt, &budget);
+    /* Fed in pieces (xmlCtxtReadMemory would copy the whole file first);
+     * no network, no entity substitution, no DTD loading, no huge text
+     * nodes; short strings kept in their nodes (COMPACT: less memory). */
+    trk_source src = {data, len};
+    /* The generic error handler is this thread's: ours for the parse only. */
+    xmlGenericErrorFunc old_handler = xmlGenericError;
+    void *old_handler_ctx = xmlGenericErrorContext;
+    xmlSetGenericErrorFunc(&budget, quiet_generic_error);
+    xmlDoc *doc = xmlCtxtReadIO(ctxt, source_read, NULL, &src, NULL, NULL,
+                                XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_COMPACT);
+    xmlSetGenericErrorFunc(old_handler_ctx, old_handler);
+    const xmlError *e = xmlCtxtGetLastError(ctxt);
     int st = -1;
-    if (!doc) {
-        const xmlError *e = xmlCtxtGetLastError(ctxt);
+    if (budget.over) {
+        snprintf(err, err_len,
+                 "%s: line %d: more than %ld XML %s, where the reading stopped (%ld elements, %ld attributes, "
+                 "%ld nodes; allowed: %ld, %ld, %ld, some 30000 frames of one track)",
+                 name, xmlSAX2GetLineNumber(ctxt), budget.cap, budget.over, budget.elements, budget.attributes,
+                 budget.nodes, TRK_MAX_ELEMENTS, TRK_MAX_ATTRIBUTES, TRK_MAX_NODES);
+    } else if (budget.no_memory || ctxt->errNo == XML_ERR_NO_MEMORY || (e && e->code == XML_ERR_NO_MEMORY)) {
+        snprintf(err, err_len, "%s: out of memory reading its XML (%ld elements, %ld nodes so far)", name,
+                 budget.elements, budget.nodes);
+        st = JC_ENOMEM;
+    } else if (!doc) {
         char msg[160] = "not well-formed XML";
         if (e && e->message) {
             snprintf(msg, sizeof msg, "%s", e->message);
