@@ -3,9 +3,9 @@ the arguments of `jumpcyl` that draw it as SVG (the output is added), and the
 rules it is allowed to break, each with its reason (layout_check.py --allow).
 
 To check another figure, add a line here; `test_layout.py JUMPCYL --only NAME`
-checks one, `--keep DIR` keeps the SVGs. The trajectory figures (cases
-TRAJECTORY below) are listed but left out until their layout passes; run them
-with `--with-trajectory`.
+checks one, `--keep DIR` keeps the SVGs. Every figure of `make run` is
+here (overview-15/30/45, trajectory-15/30/45/hoop), every kind of `plot
+--what`, and the trajectory of the other presets.
 """
 
 # paper-uncertainty's axis is the jump site along the incline: the band, the
@@ -26,10 +26,14 @@ for _kind in ("paper-criterion", "forces", "gap", "energy"):
     CASES.append(("%s-hoop" % _kind, ["plot", "--preset", "hoop", "--what", _kind], []))
 CASES.append(("paper-uncertainty", ["plot", "--what", "paper-uncertainty"], _PU))
 
-# The trajectory figures (plot_trajectory.c): checked with --with-trajectory.
+# The trajectory figures (plot_trajectory.c).
 TRAJECTORY = [
     ("trajectory-15", ["plot", "--incline", "15", "--what", "trajectory"], []),
     ("trajectory-30", ["plot", "--incline", "30", "--what", "trajectory"], []),
     ("trajectory-45", ["plot", "--incline", "45", "--what", "trajectory"], []),
     ("trajectory-hoop", ["plot", "--preset", "hoop", "--what", "trajectory"], []),
 ]
+# The other presets: a rocking hoop that never lifts off, a plain disc.
+for _preset in ("rocking-hoop", "disc"):
+    TRAJECTORY.append(("trajectory-%s" % _preset, ["plot", "--preset", _preset, "--what", "trajectory"], []))
+CASES += TRAJECTORY

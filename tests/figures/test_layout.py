@@ -3,7 +3,7 @@
 through the layout check (layout_check.py); prints each failure and
 "N passed, N failed", exits 1 on a failure.
 
-usage: test_layout.py JUMPCYL [--only NAME]... [--keep DIR] [--with-trajectory] [--jobs N]
+usage: test_layout.py JUMPCYL [--only NAME]... [--keep DIR] [--jobs N]
 """
 import concurrent.futures
 import os
@@ -42,14 +42,11 @@ def main(argv):
         elif argv[i] == "--jobs":
             jobs = int(argv[i + 1])
             i += 2
-        elif argv[i] == "--with-trajectory":
-            cases += layout_cases.TRAJECTORY
-            i += 1
         else:
             print("test_layout.py: unknown argument %s" % argv[i], file=sys.stderr)
             return 2
     if only:
-        every = {c[0]: c for c in layout_cases.CASES + layout_cases.TRAJECTORY}
+        every = {c[0]: c for c in layout_cases.CASES}
         cases = [every[n] for n in dict.fromkeys(only) if n in every]
         if len(cases) != len(set(only)):
             print("test_layout.py: no such case among %s" % only, file=sys.stderr)
