@@ -204,6 +204,38 @@ static void circle(cairo_t *cr, const draw_View *v, double x, double y, double r
     cairo_arc(cr, px, py, radius_px, 0, 2 * PI);
 }
 
+/* ---- what was drawn where (draw_Layout) ---- */
+
+/* A box in user coordinates (a translation of the frame's pixels: the inset),
+ * recorded in the frame's pixels. */
+static void layout_add(cairo_t *cr, draw_Layout *L, draw_BoxKind kind, double x0, double y0, double x1, double y1,
+                       double width_px, const char *text)
+{
+    if (!L) return;
+    if (L->count >= DRAW_LAYOUT_MAX) {
+        L->dropped++;
+        return;
+    }
+    cairo_user_to_device(cr, &x0, &y0);
+    cairo_user_to_device(cr, &x1, &y1);
+    draw_Box *b = &L->boxes[L->count++];
+    const int is_arrow = kind == DRAW_BOX_ARROW;
+    *b = (draw_Box){kind, L->panel_now, is_arrow ? x0 : fmin(x0, x1), is_arrow ? y0 : fmin(y0, y1),
+                    is_arrow ? x1 : fmax(x0, x1), is_arrow ? y1 : fmax(y0, y1), width_px, ""};
+    if (text) snprintf(b->text, sizeof b->text, "%s", text);
+}
+
+/* Text with its baseline starting at (x, y); its ink box is recorded. */
+static void show_text(cairo_t *cr, draw_Layout *L, double x, double y, const char *s)
+{
+    cairo_text_extents_t te;
+    cairo_text_extents(cr, s, &te);
+    cairo_move_to(cr, x, y);
+    cairo_show_text(cr, s);
+    layout_add(cr, L, DRAW_BOX_TEXT, x + te.x_bearing, y + te.y_bearing, x + te.x_bearing + te.width,
+               y + te.y_bearing + te.height, 0, s);
+}
+
 /* ---- the incline ---- */
 
 /* Incline x range that can be in view: the frame's diagonal around its centre. */
@@ -245,7 +277,7 @@ static void draw_ramp_body(cairo_t *cr, const draw_View *v, double x0, double x1
     cairo_stroke(cr);
 }
 
-static void draw_scale(cairo_t *cr, const draw_View *v, double x0, double x1)
+static void draw_scale(cairo_t *cr, const draw_View *v, draw_Layout *L, double x0, double x1)
 {
     const double u = unit_px(v), s = v->scale_px_per_m, major = major_spacing(v), minor = major / 5;
     cairo_set_line_width(cr, 1.2 * u);
@@ -264,14 +296,14 @@ static void draw_scale(cairo_t *cr, const draw_View *v, double x0, double x1)
         cairo_text_extents(cr, label, &te);
         double px, py;
         draw_to_pixel(v, x, -26 * u / s, &px, &py);
-        cairo_move_to(cr, px - te.width / 2 - te.x_bearing, py - te.height / 2 - te.y_bearing);
-        cairo_show_text(cr, label);
+        show_text(cr, L, px - te.width / 2 - te.x_bearing, py - te.height / 2 - te.y_bearing, label);
     }
 }
 
 /* A mark: a line across the surface from just above it down to its label,
  * which hangs level units under the surface and ends at the line. */
-static void draw_mark(cairo_t *cr, const draw_View *v, double x, double level, unsigned colour, const char *label)
+static void draw_mark(cairo_t *cr, const draw_View *v, draw_Layout *L, double x, double level, unsigned colour,
+                      const char *label)
 {
     /* Without a label (the close-up) the line only crosses the surface. */
     if (!label) level = 8;
@@ -290,8 +322,7 @@ static void draw_mark(cairo_t *cr, const draw_View *v, double x, double level, u
     cairo_text_extents(cr, label, &te);
     /* Right-aligned: the incline descends to the right, so the text runs
      * away from its surface. */
-    cairo_move_to(cr, px - 3 * u - te.x_advance, py - te.y_bearing - te.height / 2);
-    cairo_show_text(cr, label);
+    show_text(cr, L, px - 3 * u - te.x_advance, py - te.y_bearing - te.height / 2, label);
 }
 
 /* The measured band: a thick stripe just under the surface. */
@@ -309,7 +340,7 @@ static void draw_band(cairo_t *cr, const draw_View *v, double x, double err)
 /* Labels hang below the scale's labels, one level each, so that marks a
  * few pixels apart (the paper's and the model's on a whole-ramp view)
  * still read; without labels, short lines across the surface and the band. */
-static void draw_marks(cairo_t *cr, const draw_View *v, const draw_Marks *mk, int labels)
+static void draw_marks(cairo_t *cr, const draw_View *v, draw_Layout *L, const draw_Marks *mk, int labels)
 {
     if (!mk) return;
     char label[64];
@@ -317,12 +348,12 @@ static void draw_marks(cairo_t *cr, const draw_View *v, const draw_Marks *mk, in
     if (isfinite(mk->measured_x_m)) {
         snprintf(label, sizeof label, "measured %.1f \xc2\xb1 %.1f cm", mk->measured_x_m * 100,
                  mk->measured_error_m * 100);
-        draw_mark(cr, v, mk->measured_x_m, 68, COL_MEASURED, labels ? label : NULL);
+        draw_mark(cr, v, L, mk->measured_x_m, 68, COL_MEASURED, labels ? label : NULL);
     }
     snprintf(label, sizeof label, "model %.1f cm", mk->model_x_m * 100);
-    draw_mark(cr, v, mk->model_x_m, 54, COL_MODEL, labels ? label : NULL);
+    draw_mark(cr, v, L, mk->model_x_m, 54, COL_MODEL, labels ? label : NULL);
     snprintf(label, sizeof label, "paper %.1f cm", mk->paper_x_m * 100);
-    draw_mark(cr, v, mk->paper_x_m, 40, COL_PAPER, labels ? label : NULL);
+    draw_mark(cr, v, L, mk->paper_x_m, 40, COL_PAPER, labels ? label : NULL);
 }
 
 static void draw_incline(cairo_t *cr, const draw_Frame *f)
@@ -335,8 +366,8 @@ static void draw_incline(cairo_t *cr, const draw_Frame *f)
     const double x0 = fmax(lo, -2 * f->model->body.radius_m), x1 = fmin(hi, f->model->setup.ramp_length_m);
     if (x1 <= x0) return;
     draw_ramp_body(cr, v, x0, x1);
-    draw_scale(cr, v, x0, x1);
-    draw_marks(cr, v, f->marks, 0);
+    draw_scale(cr, v, f->layout, x0, x1);
+    draw_marks(cr, v, f->layout, f->marks, 0);
 }
 
 /* ---- the trace of the centre ---- */
@@ -455,6 +486,10 @@ static void draw_body(cairo_t *cr, const draw_Frame *f)
     cairo_stroke(cr);
     draw_parts_of(cr, f, JC_PART_ROD);
     draw_parts_of(cr, f, JC_PART_POINT);
+    double cx, cy;
+    const double rim_px = r * v->scale_px_per_m + 1.25 * u;
+    draw_to_pixel(v, s->x_m, s->y_m, &cx, &cy);
+    layout_add(cr, f->layout, DRAW_BOX_BODY, cx - rim_px, cy - rim_px, cx + rim_px, cy + rim_px, 0, NULL);
     circle(cr, v, s->x_m, s->y_m, 2.5 * u); /* the axis C */
     rgb_hex(cr, COL_RIM, 1);
     cairo_fill(cr);
@@ -463,11 +498,12 @@ static void draw_body(cairo_t *cr, const draw_Frame *f)
 
 /* ---- contact and forces ---- */
 
-static void arrow(cairo_t *cr, double x0, double y0, double x1, double y1, double u)
+static void arrow(cairo_t *cr, draw_Layout *L, double x0, double y0, double x1, double y1, double u)
 {
     const double len = hypot(x1 - x0, y1 - y0);
     if (len < 2) return;
     const double ux = (x1 - x0) / len, uy = (y1 - y0) / len, head = fmin(10 * u, 0.6 * len);
+    layout_add(cr, L, DRAW_BOX_ARROW, x0, y0, x1, y1, 0.9 * head, NULL);
     cairo_set_line_width(cr, 3 * u);
     cairo_move_to(cr, x0, y0);
     cairo_line_to(cr, x1 - ux * head * 0.8, y1 - uy * head * 0.8);
@@ -498,7 +534,7 @@ static void force_arrow(cairo_t *cr, const draw_Frame *f, double fx, double fy, 
     draw_to_pixel(v, f->sample->state.x_m, 0, &px1, &py1);
     const double px0 = px1 - len * dx, py0 = py1 - len * dy;
     rgb_hex(cr, colour, 1);
-    arrow(cr, px0, py0, px1, py1, u);
+    arrow(cr, f->layout, px0, py0, px1, py1, u);
     if (len < 8 * u) return;
     char label[48];
     if (force_N > cap_N) snprintf(label, sizeof label, "%s %.3g N", name, force_N);
@@ -509,8 +545,7 @@ static void force_arrow(cairo_t *cr, const draw_Frame *f, double fx, double fy, 
     cairo_text_extents(cr, label, &te);
     const double lift = fy == 0.0 ? 10 * u : 0.0, gap = 9 * u + 0.5 * fabs(te.width * dx);
     const double cx = px0 - gap * dx + lift * sin(a), cy = py0 - gap * dy - lift * cos(a);
-    cairo_move_to(cr, cx - te.width / 2 - te.x_bearing, cy - te.height / 2 - te.y_bearing);
-    cairo_show_text(cr, label);
+    show_text(cr, f->layout, cx - te.width / 2 - te.x_bearing, cy - te.height / 2 - te.y_bearing, label);
 }
 
 static void draw_contact(cairo_t *cr, const draw_Frame *f)
@@ -527,12 +562,11 @@ static void draw_contact(cairo_t *cr, const draw_Frame *f)
 /* ---- readouts, legend, force scale ---- */
 
 /* Right-aligned text at (right, baseline). */
-static void text_right(cairo_t *cr, const char *s, double right, double baseline)
+static void text_right(cairo_t *cr, draw_Layout *L, const char *s, double right, double baseline)
 {
     cairo_text_extents_t te;
     cairo_text_extents(cr, s, &te);
-    cairo_move_to(cr, right - te.x_advance, baseline);
-    cairo_show_text(cr, s);
+    show_text(cr, L, right - te.x_advance, baseline, s);
 }
 
 static void draw_mode_badge(cairo_t *cr, const draw_Frame *f, double right, double top, double u)
@@ -546,6 +580,7 @@ static void draw_mode_badge(cairo_t *cr, const draw_Frame *f, double right, doub
     rgb_hex(cr, mode == JC_MODE_ROLLING ? COL_ROLLING : mode == JC_MODE_SLIDING ? COL_SLIDING : COL_FLIGHT, 1);
     cairo_rectangle(cr, right - w, top, w, h);
     cairo_fill(cr);
+    layout_add(cr, f->layout, DRAW_BOX_TEXT, right - w, top, right, top + h, 0, name);
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_move_to(cr, right - w + 7 * u, top + 13.5 * u);
     cairo_show_text(cr, name);
@@ -561,23 +596,23 @@ static void draw_readouts(cairo_t *cr, const draw_Frame *f, double right, double
     cairo_set_font_size(cr, 17 * u);
     rgb_hex(cr, COL_INK, 1);
     snprintf(line, sizeof line, "t = %.3f s", s->t_s);
-    text_right(cr, line, right, 22 * u);
+    text_right(cr, f->layout, line, right, 22 * u);
     cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, 11 * u);
     rgb_hex(cr, COL_GREY, 1);
     if (f->slowmo > 0 && f->slowmo != 1) snprintf(line, sizeof line, "slow motion \xc3\x97%g", f->slowmo);
     else snprintf(line, sizeof line, "real time");
-    text_right(cr, line, right, 36 * u);
+    text_right(cr, f->layout, line, right, 36 * u);
     rgb_hex(cr, COL_INK, 1);
     snprintf(line, sizeof line, "x = %.1f cm on %.4g\xc2\xb0", s->x_m * 100, f->model->setup.incline_rad * 180 / PI);
-    text_right(cr, line, right, 51 * u);
+    text_right(cr, f->layout, line, right, 51 * u);
     snprintf(line, sizeof line, "\xce\xb8 = %.0f\xc2\xb0   \xcf\x89 = %.1f rad/s", s->theta_rad * 180 / PI, s->omega_radps);
-    text_right(cr, line, right, 65 * u);
+    text_right(cr, f->layout, line, right, 65 * u);
     if (p->mode == JC_MODE_FLIGHT) snprintf(line, sizeof line, "N = 0 N   |F|/N: none");
     else if (p->normal_N > 0)
         snprintf(line, sizeof line, "N = %.3f N   |F|/N = %.3f", p->normal_N, fabs(p->friction_N) / p->normal_N);
     else snprintf(line, sizeof line, "N = %.3f N", p->normal_N);
-    text_right(cr, line, right, 79 * u);
+    text_right(cr, f->layout, line, right, 79 * u);
     draw_mode_badge(cr, f, right, 85 * u, u);
 }
 
@@ -597,18 +632,35 @@ static void draw_force_bar(cairo_t *cr, const draw_Frame *f, double u)
     char label[64];
     snprintf(label, sizeof label, "forces: %g N", fs.bar_N);
     cairo_set_font_size(cr, 11 * u);
-    text_right(cr, label, fs.bar_x_px - 6 * u, fs.bar_y_px + 4 * u);
+    text_right(cr, f->layout, label, fs.bar_x_px - 6 * u, fs.bar_y_px + 4 * u);
+}
+
+/* The legend's box: everything drawn in it. */
+static void record_legend(cairo_t *cr, draw_Layout *L, int first, const draw_Frame *f)
+{
+    const draw_ForceScale fs = draw_force_scale(&f->view, f->model);
+    const double u = unit_px(&f->view);
+    double x0 = fs.bar_x_px, y0 = fs.bar_y_px - 5 * u, x1 = fs.bar_x_px + fs.bar_N * fs.px_per_N, y1 = fs.bar_y_px + 5 * u;
+    for (int i = first; i < L->count; ++i) {
+        x0 = fmin(x0, L->boxes[i].x0), y0 = fmin(y0, L->boxes[i].y0);
+        x1 = fmax(x1, L->boxes[i].x1), y1 = fmax(y1, L->boxes[i].y1);
+    }
+    layout_add(cr, L, DRAW_BOX_LEGEND, x0, y0, x1, y1, 0, NULL);
 }
 
 static void draw_hud(cairo_t *cr, const draw_Frame *f)
 {
     const draw_View *v = &f->view;
     const double u = unit_px(v), right = v->width_px - 10 * u;
+    const int first = f->layout->count;
+    f->layout->panel_now = DRAW_PANEL_LEGEND;
     draw_readouts(cr, f, right, u);
     cairo_set_font_size(cr, 10 * u);
     rgb_hex(cr, COL_GREY, 1);
-    text_right(cr, "arrows: N (blue), F (orange)  \xe2\x97\x90 centre of mass", right, 117 * u);
+    text_right(cr, f->layout, "arrows: N (blue), F (orange)  \xe2\x97\x90 centre of mass", right, 117 * u);
     draw_force_bar(cr, f, u);
+    f->layout->panel_now = DRAW_PANEL_FRAME;
+    record_legend(cr, f->layout, first, f);
 }
 
 /* ---- the frame ---- */
@@ -636,6 +688,7 @@ static void draw_zoom_box(cairo_t *cr, const draw_Frame *f)
     const double shorter = fmin(w, h), r = f->model->body.radius_m;
     const double radii = fmin(ZOOM_RADII, shorter / (ZOOM_MIN * f->view.scale_px_per_m * r));
     g.view = draw_view_zoom(f->model, (int)w, (int)h, &f->sample->state, radii, u);
+    f->layout->panel_now = DRAW_PANEL_INSET;
     cairo_save(cr);
     cairo_translate(cr, x, y);
     cairo_rectangle(cr, 0, 0, w, h);
@@ -647,17 +700,26 @@ static void draw_zoom_box(cairo_t *cr, const draw_Frame *f)
     snprintf(label, sizeof label, "close-up \xc3\x97%.2g", g.view.scale_px_per_m / f->view.scale_px_per_m);
     cairo_set_font_size(cr, 11 * u);
     rgb_hex(cr, COL_INK, 1);
-    cairo_move_to(cr, 6 * u, 14 * u);
-    cairo_show_text(cr, label);
+    show_text(cr, f->layout, 6 * u, 14 * u, label);
     cairo_restore(cr);
+    f->layout->panel_now = DRAW_PANEL_FRAME;
+    layout_add(cr, f->layout, DRAW_BOX_INSET, x, y, x + w, y + h, 0, NULL);
     cairo_rectangle(cr, x, y, w, h);
     rgb_hex(cr, COL_INK, 1);
     cairo_set_line_width(cr, 1.5 * u);
     cairo_stroke(cr);
 }
 
-void draw_frame(cairo_t *cr, const draw_Frame *f)
+void draw_frame(cairo_t *cr, const draw_Frame *frame)
 {
+    /* The boxes are always kept (labels give way to what is drawn); the
+     * caller sees them when it asked. */
+    draw_Layout local;
+    draw_Frame g = *frame;
+    if (!g.layout) g.layout = &local;
+    g.layout->count = g.layout->dropped = 0;
+    g.layout->panel_now = DRAW_PANEL_FRAME;
+    const draw_Frame *f = &g;
     cairo_save(cr);
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
@@ -665,7 +727,7 @@ void draw_frame(cairo_t *cr, const draw_Frame *f)
     draw_scene(cr, f);
     if (f->zoom_box && f->model->body.radius_m * f->view.scale_px_per_m < ZOOM_BELOW_UNITS * unit_px(&f->view))
         draw_zoom_box(cr, f);
-    draw_marks(cr, &f->view, f->marks, 1);
+    draw_marks(cr, &f->view, f->layout, f->marks, 1);
     draw_hud(cr, f);
     cairo_restore(cr);
 }

@@ -1,6 +1,6 @@
 /* `jumpcyl animate`'s films (cli/films/): one frame drawn with cairo
- * (draw.c), numbered PNG frames and what becomes of them: ffmpeg's film or
- * a directory of frames (video.c). */
+ * (draw.c), a run's frames (film.c), numbered PNG frames and what becomes
+ * of them: ffmpeg's film or a directory of frames (video.c). */
 #ifndef JUMPCYL_FILMS_H
 #define JUMPCYL_FILMS_H
 
@@ -86,6 +86,33 @@ typedef struct {
     double measured_error_m; /* ... and its stated error: a band */
 } draw_Marks;
 
+/* What a frame drew where, for a layout check (tests/figures): every text's
+ * ink box, the readouts' block (the legend), the inset, the body's rim and
+ * each force arrow, in the frame's pixels. */
+typedef enum { DRAW_BOX_TEXT, DRAW_BOX_LEGEND, DRAW_BOX_INSET, DRAW_BOX_BODY, DRAW_BOX_ARROW } draw_BoxKind;
+
+/* Which part of the frame a box belongs to: the frame itself, the inset (its
+ * boxes must lie inside the inset's box) or the legend (the readouts). */
+typedef enum { DRAW_PANEL_FRAME, DRAW_PANEL_INSET, DRAW_PANEL_LEGEND } draw_Panel;
+
+typedef struct {
+    draw_BoxKind kind;
+    draw_Panel panel;
+    /* Text, legend, inset: the rectangle's corners (x0 < x1, y0 < y1). Body:
+     * the rim's bounding square, the rim the circle inscribed in it. Arrow:
+     * its tail (x0, y0) and tip (x1, y1), width_px across its head. */
+    double x0, y0, x1, y1, width_px;
+    char text[48]; /* text: its first characters (for messages) */
+} draw_Box;
+
+#define DRAW_LAYOUT_MAX 128
+typedef struct {
+    int count;    /* boxes[0 .. count) */
+    int dropped;  /* boxes that did not fit */
+    draw_Panel panel_now; /* the panel being drawn (draw.c sets it) */
+    draw_Box boxes[DRAW_LAYOUT_MAX];
+} draw_Layout;
+
 typedef struct {
     const jc_Model *model;
     draw_View view;
@@ -98,6 +125,7 @@ typedef struct {
     int path_count;
     const draw_Marks *marks;        /* may be NULL */
     int zoom_box;                   /* 1: a box in the corner shows the body up close (when it is small) */
+    draw_Layout *layout;            /* NULL, or filled with what was drawn where */
 } draw_Frame;
 
 /* Draws the whole frame (it paints the background first). */
@@ -109,6 +137,29 @@ void draw_part_rgb(jc_PartKind kind, double rgb[3]);
 /* Colours of what tests look for, 0..1 each. */
 typedef enum { DRAW_MARK_PAPER, DRAW_MARK_MODEL, DRAW_MARK_MEASURED, DRAW_NORMAL, DRAW_FRICTION, DRAW_INK } draw_Colour;
 void draw_colour_rgb(draw_Colour c, double rgb[3]);
+
+/* ---- film.c ---- */
+
+typedef enum { FILM_CAMERA_FIXED, FILM_CAMERA_FOLLOW } film_Camera;
+
+/* A run made into frames: frame film_frame(film, i) shows sample i. */
+typedef struct {
+    const jc_Model *model;
+    const jc_Run *run;
+    int width_px, height_px;
+    double slowmo;          /* playback slow-down: the trace fades over 2 s of playback */
+    film_Camera camera;
+    draw_Marks marks;
+    draw_View fixed;        /* the fixed camera's view: the whole ramp, or the way travelled */
+    draw_TracePoint *trace; /* the run's centres */
+} film_Film;
+
+/* 0, or -1 out of memory; marks may be NULL (none). Release with film_free. */
+int film_init(film_Film *film, const jc_Model *m, const jc_Run *run, int width_px, int height_px, double slowmo,
+              film_Camera camera, const draw_Marks *marks);
+void film_free(film_Film *film);
+/* The frame that shows the run's sample i (it points into film). */
+draw_Frame film_frame(const film_Film *film, int i);
 
 /* ---- video.c ---- */
 
