@@ -36,7 +36,7 @@ LINT_SOURCES := src cli fuzz tests/test_bad_input.c tests/test_config.c tests/te
 
 .PHONY: all deps configure build run test test-long asan test-asan bench install-check clean help
 .PHONY: test-valgrind fuzz lint lint-layers test-mpi install deps-fuzz deps-valgrind deps-lint deps-mpi deps-install
-.PHONY: python test-python deps-python notebook deps-notebook docs-examples
+.PHONY: python test-python deps-python notebook deps-notebook docs-examples docs-timing
 
 all: build
 
@@ -57,6 +57,7 @@ help:
 	@echo "make bench      build and run the benchmarks"
 	@echo "make docs-examples  run every '\$$ jumpcyl ...' example of README.md and docs/*.md and write"
 	@echo "                what it prints into the docs (the test docs_examples checks them)"
+	@echo "make docs-timing  measure the figures' and films' CPU times and write docs/figures.md's table"
 	@echo "make python     the Python package (python/, docs/python.md) in $(BUILD)/python-venv;"
 	@echo "                make test-python: its tests (make test runs them when Python is there);"
 	@echo "                make notebook: examples/jumpcyl.ipynb executed into $(BUILD)/notebook/"
@@ -198,6 +199,11 @@ bench: build
 # them). Typed numbers drift; these are regenerated.
 docs-examples: build
 	python3 tests/docs/check_examples.py $(BUILD)/jumpcyl --update --slow
+
+# docs/figures.md's timing table: each figure and film job's CPU time, the
+# least of three runs, measured and written (tests/docs/figures_timing.py).
+docs-timing: build
+	python3 tests/docs/figures_timing.py $(BUILD)/jumpcyl
 
 # The Python package built against this build's library and installed into
 # $(BUILD)/python-venv (python/venv.sh): $(BUILD)/python-venv/bin/python -c 'import jumpcyl'.

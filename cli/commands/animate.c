@@ -25,29 +25,22 @@
 /* Frames a film may have unless --max-frames says otherwise (about three
  * minutes at 30 fps); VID_MAX_FRAMES is the most the frame names allow. */
 #define DEFAULT_MAX_FRAMES 5000
-/* The trace of the centre fades over this much playback time. */
-#define TRACE_FADE_PLAYBACK_S 2.0
 /* Playback time the last picture stays after the motion ends. */
 #define FILM_HOLD_S 0.5
 /* A run that only reached the default time limit (a body rocking for ever
  * on a floor) is filmed to this much simulated time after its last landing. */
 #define FILM_AFTER_LANDING_S 1.0
-/* A ramp longer than this many times the distance the body travels is
- * "very long": the fixed camera shows the travel, not the whole ramp. */
-#define LONG_RAMP_FACTOR 3.0
 
 typedef struct {
     const char *output, *size, *fps, *slowmo, *max_frames, *camera;
 } animate_args;
-
-typedef enum { CAMERA_FIXED, CAMERA_FOLLOW } animate_Camera;
 
 typedef struct {
     int width, height;
     int max_frames;
     double fps, slowmo;
     vid_Format format;
-    animate_Camera camera;
+    film_Camera camera;
     int t_max_given; /* --t-max: film to it, even past the last landing */
     const char *output;
 } animate_opts;
@@ -74,8 +67,10 @@ static void help(void)
            "                 240 fps camera played at 30 fps; 0 < K <= %g). Frames are %s\n"
            "                 apart in simulated time: dt = 1/(F K).\n"
            "  --camera C     fixed (default): the laboratory's view of the whole ramp (on a floor or\n"
-           "                 a very long ramp: of the way the body travels), with a close-up box\n"
-           "                 that follows the body; follow: a camera that follows the body\n"
+           "                 a very long ramp: of the way the body travels); where the body would\n"
+           "                 be less than a sixth of the frame's height across, a camera follows it\n"
+           "                 and an inset shows the whole ramp; follow: a camera that follows the\n"
+           "                 body, without the inset\n"
            "  --max-frames N refuse a film of more than N frames (default %d; at most %d),\n"
            "                 counted (and the count printed) before any frame is drawn\n"
            "  -h, --help     this help\n"
@@ -178,13 +173,13 @@ static int check_args(const animate_args *a, animate_opts *o)
         return EXIT_USAGE;
     }
     o->max_frames = (int)max_frames;
-    o->camera = CAMERA_FIXED;
+    o->camera = FILM_CAMERA_FIXED;
     if (a->camera && strcmp(a->camera, "fixed") != 0) {
         if (strcmp(a->camera, "follow") != 0) {
             cli_error("animate: --camera '%s' is not a camera (allowed: fixed, follow)", a->camera);
             return EXIT_USAGE;
         }
-        o->camera = CAMERA_FOLLOW;
+        o->camera = FILM_CAMERA_FOLLOW;
     }
     return EXIT_OK;
 }
@@ -256,14 +251,6 @@ static int select_frames(const jc_Run *run, const animate_opts *o, int **idx)
     return n;
 }
 
-static draw_TracePoint *make_trace(const jc_Run *run)
-{
-    draw_TracePoint *tr = malloc(sizeof *tr * (size_t)(run->sample_count ? run->sample_count : 1));
-    for (int i = 0; tr && i < run->sample_count; ++i)
-        tr[i] = (draw_TracePoint){run->samples[i].state.x_m, run->samples[i].state.y_m, run->samples[i].state.t_s};
-    return tr;
-}
-
 /* The run's first lift-off, and Table 1's printed and measured jump points
  * for the paper's cylinder on one of its inclines. */
 static draw_Marks make_marks(const jc_Model *m, const jc_Run *run)
@@ -280,34 +267,14 @@ static draw_Marks make_marks(const jc_Model *m, const jc_Run *run)
     return mk;
 }
 
-/* The fixed camera: the whole ramp from above the start to its lower end
- * (and wherever the body went), or on a floor or a very long ramp the
- * stretch the body travels, with the air above up to its highest rim. */
-static draw_View fixed_view(const jc_Model *m, const jc_Run *run, const animate_opts *o)
-{
-    const double r = m->body.radius_m, ramp = m->setup.ramp_length_m;
-    double x_lo = 0, x_hi = 0, y_hi = r;
-    for (int i = 0; i < run->sample_count; ++i) {
-        const jc_State *s = &run->samples[i].state;
-        x_lo = fmin(x_lo, s->x_m);
-        x_hi = fmax(x_hi, s->x_m);
-        y_hi = fmax(y_hi, s->y_m);
-    }
-    const int whole_ramp = m->setup.incline_rad > 0 && ramp <= LONG_RAMP_FACTOR * fmax(x_hi - x_lo, r);
-    if (whole_ramp) x_hi = fmax(x_hi, ramp);
-    return draw_view_fixed(m, o->width, o->height, x_lo - 1.5 * r, x_hi + 1.5 * r, y_hi + 1.5 * r);
-}
-
 typedef struct {
-    const jc_Model *model;
-    const jc_Run *run;
+    const film_Film *film;
     const animate_opts *opts;
-    const int *frames;
+    const int *frames; /* the sample each frame shows */
     int frame_count;
-    draw_View fixed; /* the fixed camera's view (CAMERA_FIXED) */
-    draw_Marks marks;
 } animate_job;
 
+<<<<<<< HEAD
 /* The PNG written through our own stream, so that a failed write keeps its
  * errno (cairo_surface_write_to_png says only "write error"). */
 typedef struct {
@@ -341,25 +308,11 @@ static int write_png(cairo_surface_t *surface, const char *path, int *err)
 
 static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *job, const draw_TracePoint *trace,
                       int k, const char *dir, int *err)
+=======
+static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *job, int k, const char *dir)
+>>>>>>> filmlayout
 {
-    const int i = job->frames[k];
-    const jc_Sample *p = &job->run->samples[i];
-    const double fade = TRACE_FADE_PLAYBACK_S / job->opts->slowmo;
-    int first = i;
-    while (first > 0 && trace[first - 1].t_s >= p->state.t_s - fade) --first;
-    const int fixed = job->opts->camera == CAMERA_FIXED;
-    const draw_Frame f = {.model = job->model,
-                          .view = fixed ? job->fixed
-                                        : draw_view_follow(job->model, job->opts->width, job->opts->height, &p->state),
-                          .sample = p,
-                          .trace = trace + first,
-                          .trace_count = i - first + 1,
-                          .trace_fade_s = fade,
-                          .slowmo = job->opts->slowmo,
-                          .path = trace,
-                          .path_count = i + 1,
-                          .marks = &job->marks,
-                          .zoom_box = fixed};
+    const draw_Frame f = film_frame(job->film, job->frames[k]);
     draw_frame(cr, &f);
     cairo_surface_flush(surface);
     char path[CLI_PATH_MAX];
@@ -374,25 +327,29 @@ static int render_frames(const animate_job *job, const char *dir)
 {
     cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, job->opts->width, job->opts->height);
     cairo_t *cr = cairo_create(surface);
-    draw_TracePoint *trace = make_trace(job->run);
-    int rc = cairo_status(cr) == CAIRO_STATUS_SUCCESS && trace ? EXIT_OK : EXIT_FAIL;
+    int rc = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? EXIT_OK : EXIT_FAIL;
     if (rc != EXIT_OK) cli_error("animate: out of memory for %dx%d frames", job->opts->width, job->opts->height);
     cli_Progress progress;
     int err = 0;
     cli_progress_begin(&progress, "animate: frame");
     for (int k = 0; rc == EXIT_OK && k < job->frame_count; ++k) {
         if (cli_stop_requested()) rc = cli_stop_status();
+<<<<<<< HEAD
         else if (render_one(cr, surface, job, trace, k, dir, &err) != 0) {
             if (cli_stop_requested()) rc = cli_stop_status();
             else {
                 cli_error("animate: cannot write frame %d in %s: %s", k, dir, strerror(err));
                 rc = EXIT_FAIL;
             }
+=======
+        else if (render_one(cr, surface, job, k, dir) != 0) {
+            cli_error("cannot write frame %d in %s", k, dir);
+            rc = EXIT_FAIL;
+>>>>>>> filmlayout
         }
         cli_progress_update(&progress, k + 1, job->frame_count);
     }
     cli_progress_end(&progress);
-    free(trace);
     cairo_destroy(cr);
     cairo_surface_destroy(surface);
     cairo_debug_reset_static_data(); /* font caches: leak checkers see a clean exit */
@@ -493,8 +450,16 @@ static int animate_run(const jc_Model *model, const jc_Run *run, const animate_o
         else cli_error("animate: out of memory");
         return n < 0 ? EXIT_USAGE : EXIT_FAIL;
     }
-    const animate_job job = {model, run, o, frames, n, fixed_view(model, run, o), make_marks(model, run)};
+    const draw_Marks marks = make_marks(model, run);
+    film_Film film;
+    if (film_init(&film, model, run, o->width, o->height, o->slowmo, o->camera, &marks) != 0) {
+        free(frames);
+        cli_error("animate: out of memory");
+        return EXIT_FAIL;
+    }
+    const animate_job job = {&film, o, frames, n};
     const int rc = make_film(&job);
+    film_free(&film);
     free(frames);
     if (rc == EXIT_OK)
         printf("Animation: %s (%d frames, %dx%d, %g fps, slow motion x%g, %.4g s simulated)\n", o->output, n,

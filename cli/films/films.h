@@ -1,6 +1,6 @@
 /* `jumpcyl animate`'s films (cli/films/): one frame drawn with cairo
- * (draw.c), numbered PNG frames and what becomes of them: ffmpeg's film or
- * a directory of frames (video.c). */
+ * (draw.c), a run's frames (film.c), numbered PNG frames and what becomes
+ * of them: ffmpeg's film or a directory of frames (video.c). */
 #ifndef JUMPCYL_FILMS_H
 #define JUMPCYL_FILMS_H
 
@@ -18,8 +18,9 @@
  * scale and marks (the paper's jump point, the model's first lift-off, the
  * measured band), the cylinder to scale with every body part where it is,
  * the centre of mass, the contact forces to a stated scale (a scale bar),
- * the centre's whole path and a fading recent trace, readouts, and with a
- * fixed camera a zoom box that follows the body.
+ * the centre's whole path and a fading recent trace, readouts, and an
+ * inset with the whole ramp when the view follows a body too small to see
+ * on it.
  *
  * Geometry. Incline coordinates: x downhill along the incline, y along the
  * outward normal. Picture coordinates (X right, Y up) put the incline
@@ -40,6 +41,14 @@ typedef struct {
 
 /* Picture coordinates of the incline point (x, y). */
 void draw_picture(double incline_rad, double x, double y, double *X, double *Y);
+/* Places along the incline (x of the contact point, m); NaN: not shown. */
+typedef struct {
+    double paper_x_m;        /* the paper's printed jump position (Table 1) */
+    double model_x_m;        /* the run's first lift-off */
+    double measured_x_m;     /* Table 1's measured position ... */
+    double measured_error_m; /* ... and its stated error: a band */
+} draw_Marks;
+
 /* Pixel of the incline point (x, y). */
 void draw_to_pixel(const draw_View *v, double x, double y, double *px, double *py);
 /* Incline coordinates of a body part's axis (or of the CM with offset d,
@@ -48,25 +57,30 @@ void draw_body_point(const jc_Model *m, const jc_State *s, double offset_m, doub
                      double *y);
 
 /* A camera that follows the centre along the incline (not across it, so a
- * hop shows as the cylinder leaving the incline), showing about eight rim
- * radii across the frame's shorter side. */
+ * hop shows as the cylinder leaving the incline), showing eight rim radii
+ * across the frame's shorter side. */
 draw_View draw_view_follow(const jc_Model *m, int width_px, int height_px, const jc_State *s);
-/* The same with radii rim radii across the shorter side and the line and
- * text unit of the frame the view is part of (the zoom box). */
-draw_View draw_view_zoom(const jc_Model *m, int width_px, int height_px, const jc_State *s, double radii,
-                         double unit_px);
 
 /* A fixed laboratory camera: the incline from x_lo_m to x_hi_m and the air
- * above it up to y_top_m (incline coordinates) fill the frame, less margins
- * for the scale's labels under the incline and room for the readouts. */
+ * above it up to y_top_m (incline coordinates) as large as they fit, with
+ * margins for the scale's labels under the incline, clear of the legend in
+ * the top right corner (the readouts, and the key of marks: may be NULL). */
 draw_View draw_view_fixed(const jc_Model *m, int width_px, int height_px, double x_lo_m, double x_hi_m,
-                          double y_top_m);
+                          double y_top_m, const draw_Marks *marks);
 
-/* The zoom box of a fixed camera's frame: its top-left pixel and size. */
-void draw_inset_rect(const draw_View *v, double *x_px, double *y_px, double *w_px, double *h_px);
+/* The inset beside a view v that follows the body: the incline from
+ * x_lo_m to x_hi_m and the air above it up to y_top_m fitted into a box in
+ * the bottom left corner, under the incline and its scale's labels.
+ * *overview: the view in the box (its size the box's); (*x_px, *y_px): the
+ * box's top left pixel. */
+void draw_inset(const draw_View *v, double x_lo_m, double x_hi_m, double y_top_m, draw_View *overview,
+                double *x_px, double *y_px);
 
-/* Forces are drawn at px_per_N (from M g and the frame's size, the same in
- * the zoom box); the scale bar, bar_N long (1, 2 or 5 times a power of ten
+/* The legend's box in a frame of view v (readouts, force scale and the
+ * key of marks, which may be NULL): x0, y0, x1, y1 in pixels. */
+void draw_legend_box(const draw_View *v, const draw_Marks *marks, double box[4]);
+
+/* Forces are drawn at px_per_N (from M g and the frame's size); the scale bar, bar_N long (1, 2 or 5 times a power of ten
  * newtons, at most M g), starts at pixel (bar_x_px, bar_y_px) and runs to
  * the right. */
 typedef struct {
@@ -78,13 +92,34 @@ typedef struct {
     double x_m, y_m, t_s;
 } draw_TracePoint;
 
-/* Places along the incline (x of the contact point, m); NaN: not shown. */
+
+/* What a frame drew where, for a layout check (tests/figures): every text's
+ * ink box, the readouts' block (the legend), the inset, the body's rim and
+ * each force arrow, in the frame's pixels. */
+typedef enum { DRAW_BOX_TEXT, DRAW_BOX_LEGEND, DRAW_BOX_INSET, DRAW_BOX_BODY, DRAW_BOX_ARROW } draw_BoxKind;
+
+/* Which part of the frame a box belongs to: the frame itself, the inset (its
+ * boxes must lie inside the inset's box) or the legend (the readouts). */
+typedef enum { DRAW_PANEL_FRAME, DRAW_PANEL_INSET, DRAW_PANEL_LEGEND } draw_Panel;
+
 typedef struct {
-    double paper_x_m;        /* the paper's printed jump position (Table 1) */
-    double model_x_m;        /* the run's first lift-off */
-    double measured_x_m;     /* Table 1's measured position ... */
-    double measured_error_m; /* ... and its stated error: a band */
-} draw_Marks;
+    draw_BoxKind kind;
+    draw_Panel panel;
+    /* Text, legend, inset: the rectangle's corners (x0 < x1, y0 < y1). Body:
+     * the rim's bounding square, the rim the circle inscribed in it. Arrow:
+     * its tail (x0, y0) and tip (x1, y1), width_px across its head. */
+    double x0, y0, x1, y1, width_px;
+    char text[48]; /* text: its first characters (for messages) */
+} draw_Box;
+
+#define DRAW_LAYOUT_MAX 128
+typedef struct {
+    int count;    /* boxes[0 .. count) */
+    int dropped;  /* boxes that did not fit */
+    draw_Panel panel_now;  /* the panel being drawn (draw.c sets it) ... */
+    double panel_box[4];   /* ... and its box: x0, y0, x1, y1 */
+    draw_Box boxes[DRAW_LAYOUT_MAX];
+} draw_Layout;
 
 typedef struct {
     const jc_Model *model;
@@ -97,7 +132,9 @@ typedef struct {
     const draw_TracePoint *path;    /* the centre's whole path so far, oldest first; may be NULL */
     int path_count;
     const draw_Marks *marks;        /* may be NULL */
-    int zoom_box;                   /* 1: a box in the corner shows the body up close (when it is small) */
+    draw_View overview;             /* the inset's whole-ramp view (draw_inset); width_px 0: none */
+    double inset_x_px, inset_y_px;  /* the inset's top left corner */
+    draw_Layout *layout;            /* NULL, or filled with what was drawn where */
 } draw_Frame;
 
 /* Draws the whole frame (it paints the background first). */
@@ -109,6 +146,31 @@ void draw_part_rgb(jc_PartKind kind, double rgb[3]);
 /* Colours of what tests look for, 0..1 each. */
 typedef enum { DRAW_MARK_PAPER, DRAW_MARK_MODEL, DRAW_MARK_MEASURED, DRAW_NORMAL, DRAW_FRICTION, DRAW_INK } draw_Colour;
 void draw_colour_rgb(draw_Colour c, double rgb[3]);
+
+/* ---- film.c ---- */
+
+typedef enum { FILM_CAMERA_FIXED, FILM_CAMERA_FOLLOW } film_Camera;
+
+/* A run made into frames: frame film_frame(film, i) shows sample i. */
+typedef struct {
+    const jc_Model *model;
+    const jc_Run *run;
+    int width_px, height_px;
+    double slowmo;          /* playback slow-down: the trace fades over 2 s of playback */
+    film_Camera camera;
+    draw_Marks marks;
+    double x_lo_m, x_hi_m, y_top_m; /* the fixed camera's stretch of incline and air */
+    draw_View fixed;        /* the fixed camera's view of them (the whole ramp, or the way travelled) */
+    int fixed_follows;      /* 1: the body is too small on it; a camera follows, the inset shows it */
+    draw_TracePoint *trace; /* the run's centres */
+} film_Film;
+
+/* 0, or -1 out of memory; marks may be NULL (none). Release with film_free. */
+int film_init(film_Film *film, const jc_Model *m, const jc_Run *run, int width_px, int height_px, double slowmo,
+              film_Camera camera, const draw_Marks *marks);
+void film_free(film_Film *film);
+/* The frame that shows the run's sample i (it points into film). */
+draw_Frame film_frame(const film_Film *film, int i);
 
 /* ---- video.c ---- */
 

@@ -164,7 +164,7 @@ static int test_to_pixel(void)
 static int test_fixed_view_whole_ramp(void)
 {
     const double r = model.body.radius_m, L = model.setup.ramp_length_m;
-    const draw_View v = draw_view_fixed(&model, W, H, -r, L + r, 3 * r);
+    const draw_View v = draw_view_fixed(&model, W, H, -r, L + r, 3 * r, NULL);
     const double xs[4] = {0, L, -r, L + r}, ys[4] = {0, 0, 3 * r, 3 * r};
     double lo_x = W, hi_x = 0, lo_y = H, hi_y = 0;
     for (int i = 0; i < 4; ++i) {
@@ -182,7 +182,7 @@ static cairo_surface_t *render(const draw_View *view, const jc_Sample *sample, c
     cairo_surface_t *surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
     cairo_t *cr = cairo_create(surface);
     const draw_Frame frame = {.model = &model, .view = *view, .sample = sample, .slowmo = 8, .marks = marks,
-                              .zoom_box = 1};
+                              };
     draw_frame(cr, &frame);
     cairo_surface_flush(surface);
     cairo_destroy(cr);
@@ -211,7 +211,7 @@ static double run_length(cairo_surface_t *surface, double px, double py, double 
 static int test_force_scale_bar(void)
 {
     const double r = model.body.radius_m, L = model.setup.ramp_length_m, a = model.setup.incline_rad;
-    const draw_View view = draw_view_fixed(&model, W, H, -r, L + r, 3 * r);
+    const draw_View view = draw_view_fixed(&model, W, H, -r, L + r, 3 * r, NULL);
     const draw_ForceScale fs = draw_force_scale(&view, &model);
     const double weight = model.body.mass_kg * model.setup.gravity_mps2;
     const double mantissa = fs.bar_N / pow(10, floor(log10(fs.bar_N)));
@@ -241,7 +241,7 @@ static int test_force_scale_bar(void)
 static int test_marks(void)
 {
     const double r = model.body.radius_m, L = model.setup.ramp_length_m;
-    const draw_View view = draw_view_fixed(&model, W, H, -r, L + r, 3 * r);
+    const draw_View view = draw_view_fixed(&model, W, H, -r, L + r, 3 * r, NULL);
     const draw_Marks marks = {1.6, 1.9, 2.4, 0.1};
     const jc_Sample sample = {.state = {0, 0.3, r, 1, 0, 3, 10}, .mode = JC_MODE_ROLLING, .normal_N = 0.1};
     cairo_surface_t *surface = render(&view, &sample, &marks);
