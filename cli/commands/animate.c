@@ -274,7 +274,6 @@ typedef struct {
     int frame_count;
 } animate_job;
 
-<<<<<<< HEAD
 /* The PNG written through our own stream, so that a failed write keeps its
  * errno (cairo_surface_write_to_png says only "write error"). */
 typedef struct {
@@ -306,11 +305,7 @@ static int write_png(cairo_surface_t *surface, const char *path, int *err)
     return s.err ? -1 : 0;
 }
 
-static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *job, const draw_TracePoint *trace,
-                      int k, const char *dir, int *err)
-=======
-static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *job, int k, const char *dir)
->>>>>>> filmlayout
+static int render_one(cairo_t *cr, cairo_surface_t *surface, const animate_job *job, int k, const char *dir, int *err)
 {
     const draw_Frame f = film_frame(job->film, job->frames[k]);
     draw_frame(cr, &f);
@@ -334,18 +329,12 @@ static int render_frames(const animate_job *job, const char *dir)
     cli_progress_begin(&progress, "animate: frame");
     for (int k = 0; rc == EXIT_OK && k < job->frame_count; ++k) {
         if (cli_stop_requested()) rc = cli_stop_status();
-<<<<<<< HEAD
-        else if (render_one(cr, surface, job, trace, k, dir, &err) != 0) {
+        else if (render_one(cr, surface, job, k, dir, &err) != 0) {
             if (cli_stop_requested()) rc = cli_stop_status();
             else {
                 cli_error("animate: cannot write frame %d in %s: %s", k, dir, strerror(err));
                 rc = EXIT_FAIL;
             }
-=======
-        else if (render_one(cr, surface, job, k, dir) != 0) {
-            cli_error("cannot write frame %d in %s", k, dir);
-            rc = EXIT_FAIL;
->>>>>>> filmlayout
         }
         cli_progress_update(&progress, k + 1, job->frame_count);
     }
