@@ -314,6 +314,13 @@ static int write_all(int fd, const char *buf, size_t len, size_t *done)
     return rc;
 }
 
+/* What a file that is not a regular one is, for messages. */
+static const char *kind_of(mode_t mode)
+{
+    return S_ISLNK(mode) ? "a symbolic link" : S_ISDIR(mode) ? "a directory" : S_ISFIFO(mode) ? "a FIFO"
+           : S_ISSOCK(mode) ? "a socket" : "a device";
+}
+
 /* A new FILE.part: EXIT_OK, or an exit status after a message. */
 static int create(cli_PartFile *p, const char *cmd)
 {
@@ -331,7 +338,7 @@ static int create(cli_PartFile *p, const char *cmd)
         struct stat st;
         if (lstat(p->path, &st) == 0 && !S_ISREG(st.st_mode))
             cli_error("%s: %s exists and is not a regular file (%s); it is left as it is: remove it or give another "
-                      "--output", cmd, p->path, S_ISLNK(st.st_mode) ? "a symbolic link" : "a directory, FIFO or device");
+                      "--output", cmd, p->path, kind_of(st.st_mode));
         else if (busy)
             cli_error("%s: another job is writing %s now (it holds its lock): wait for it to end, or give another "
                       "--output", cmd, p->path);
@@ -360,8 +367,11 @@ static int open_existing(cli_PartFile *p, const char *cmd)
         return EXIT_USAGE;
     }
     struct stat st;
-    const char *why = fstat(p->fd, &st) != 0 ? strerror(errno)
-                      : !S_ISREG(st.st_mode)  ? "it is not a regular file"
+    char not_regular[64];
+    const int stat_ok = fstat(p->fd, &st) == 0;
+    if (stat_ok) snprintf(not_regular, sizeof not_regular, "it is not a regular file (%s)", kind_of(st.st_mode));
+    const char *why = !stat_ok ? strerror(errno)
+                      : !S_ISREG(st.st_mode)  ? not_regular
                       : st.st_uid != geteuid() ? "it is not owned by you"
                       : st.st_nlink != 1     ? "it has other names (hard links)"
                                               : NULL;

@@ -128,15 +128,6 @@ static int parse_positive(const char *name, const char *text, double max, double
     return EXIT_OK;
 }
 
-/* Whether a path's last name is "-" ("-", "-/", "dir/-"): standard
- * output's name, never made a file or directory. */
-static int names_dash(const char *path)
-{
-    size_t n = strlen(path);
-    while (n > 1 && path[n - 1] == '/') --n;
-    return n >= 1 && path[n - 1] == '-' && (n == 1 || path[n - 2] == '/');
-}
-
 static int check_args(const animate_args *a, animate_opts *o)
 {
     if (!a->output || !*a->output) {
@@ -145,11 +136,6 @@ static int check_args(const animate_args *a, animate_opts *o)
     }
     if (cli_output_file_only("animate", "output", a->output, "a film or its frames") != 0) return EXIT_USAGE;
     o->output = a->output;
-    if (names_dash(a->output)) {
-        cli_error("animate: --output '%s': a film cannot go to standard output, and a file or directory named "
-                  "'-' is refused; give FILE.gif, FILE.mp4 or a directory", a->output);
-        return EXIT_USAGE;
-    }
     if (vid_format_from_path(a->output, &o->format) != 0) {
         cli_error("animate: --output '%s': unknown format '.%s' (allowed: .gif, .mp4, or a directory: a name "
                   "ending in '/' or without extension)", a->output, cli_path_ext(a->output));

@@ -25,9 +25,9 @@ static int dir_of(const char *path, char *dir, size_t len)
 
 int cli_output_file_only(const char *cmd, const char *option, const char *target, const char *what)
 {
-    if (!target || strcmp(target, "-") != 0) return 0;
-    cli_error("%s: --%s -: %s cannot go to standard output; give a file name (./- for a file named '-')", cmd,
-              option, what);
+    if (!target || strspn(target, "-") != 1 || target[1 + strspn(target + 1, "/")] != '\0') return 0; /* -, -/ */
+    cli_error("%s: --%s %s: %s cannot go to standard output; give a file name (./- for a file named '-')", cmd,
+              option, target, what);
     return -1;
 }
 
