@@ -506,10 +506,23 @@ static double roll_ode_x(const roll_ode *c, double th)
  * direction 0), it has come to rest: the run ends with termination rest. */
 #define ROLL_REST_BAND_RADPS 1e-3
 
+/* The law the phase integrates, at y: rolling resistance by its ramp alone,
+ * b_s = b clamp(w / band), 0 at w = 0 (direction 0 to jc_roll_law). The
+ * full lever against the direction about to be taken at w = 0 is the static
+ * question (rest_direction), not the motion's: after a turn the phase starts
+ * at w = 0 exactly, and a right-hand side of b dir there and of ~0 at the
+ * first stage beyond made the first step's error estimate linear in its
+ * length, rejected down to 1e-11 s at every turn until the step floor
+ * (1e-12 t) stopped the run ("integration diverged"). */
+static void roll_ode_law(const roll_ode *c, const double y[], jc_RollForces *rf)
+{
+    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], 0, rf);
+}
+
 static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f)
 {
     jc_RollForces rf;
-    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, &rf);
+    roll_ode_law(c, y, &rf);
     *thdd = rf.thdd_radps2;
     *n = rf.normal_N;
     *f = rf.friction_N;
@@ -521,7 +534,7 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     const roll_ode *c = params;
     const double w = y[JC_Y_W];
     jc_RollForces rf;
-    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], w, c->dir, &rf);
+    roll_ode_law(c, y, &rf);
     const double r = c->k.r_m, thdd = rf.thdd_radps2;
     dydt[JC_Y_X] = r * w;
     dydt[JC_Y_Y] = 0.0;
