@@ -20,7 +20,8 @@
  * Both switches are continuous: a sign switch at w = 0 made the integrator
  * chatter for 10^7 steps where the other torques drive w to 0 (found by
  * fuzzing). The rolling phase still treats w = 0 exactly (a turn event and a
- * static check, rolling_phase.c).
+ * static check with the full lever, rolling_phase.c); the motion from there
+ * takes the ramp, 0 at w = 0.
  */
 #ifndef JUMPCYL_AIR_H
 #define JUMPCYL_AIR_H

@@ -113,7 +113,10 @@ typedef struct {
 
 /* The law at th given by its sine s and cosine c, spin w; dir is the
  * direction about to be taken when w = 0, against which rolling resistance
- * acts then. */
+ * acts then with its full lever: the static question, whether a body at
+ * rest starts (rest_direction, rolling_phase.c). The motion itself takes
+ * dir 0, the ramp's own value at w = 0, so that the lever is continuous in
+ * w (rolling_phase.c's roll_ode_law). */
 static inline void jc_roll_law(const jc_RollConsts *k, double s, double c, double w, int dir, jc_RollForces *out)
 {
     const double r = k->r_m, d = k->d_m, w2 = w * w;

@@ -484,6 +484,7 @@ typedef struct {
     const jc_Model *m;
     int dir;   /* sign of w during the phase */
     int armed; /* 1: watch for w falling into the rolling-resistance band */
+    int hold;  /* 1: watch for the full lever coming to hold the body (hold_margin) */
     double x0_m, th0_rad; /* at the start of the integration: x = x0 + r (th - th0) */
     jc_RollConsts k;      /* the rolling law's constants, with the model's resistances */
     /* N and F at the last state the events were evaluated at (sin, cos, w):
@@ -503,13 +504,42 @@ static double roll_ode_x(const roll_ode *c, double th)
 /* rad/s: rolling resistance ramps to 0 below 1 mrad/s (JC_RR_BAND_RADPS), which lets a
  * body creep toward equilibrium for ever instead of stopping. Where the spin
  * falls below this and the resistance can hold the body at rest (rest
- * direction 0), it has come to rest: the run ends with termination rest. */
+ * direction 0), it has come to rest: the run ends with termination rest.
+ * Between a turn (or a rest check that failed) and the spin's leaving twice
+ * the band, the spin stays below that; where the full lever comes to hold
+ * the body there (hold_margin reaching 0), it has come to rest too: the ramp
+ * alone lets a body started barely beyond the static angle creep with w
+ * decaying for ever (found: the default cylinder on a floor, 1 mm,
+ * omega0 3 rad/s, at w < 1 mrad/s from 19 s to the time limit). */
 #define ROLL_REST_BAND_RADPS 1e-3
+
+/* The law the phase integrates, at y: rolling resistance by its ramp alone,
+ * b_s = b clamp(w / band), 0 at w = 0 (direction 0 to jc_roll_law). The
+ * full lever against the direction about to be taken at w = 0 is the static
+ * question (rest_direction), not the motion's: after a turn the phase starts
+ * at w = 0 exactly, and a right-hand side of b dir there and of ~0 at the
+ * first stage beyond made the first step's error estimate linear in its
+ * length, rejected down to 1e-11 s at every turn until the step floor
+ * (1e-12 t) stopped the run ("integration diverged"). */
+static void roll_ode_law(const roll_ode *c, const double y[], jc_RollForces *rf)
+{
+    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], 0, rf);
+}
+
+/* The acceleration in the direction of motion of a body at rest at th (sine
+ * s, cosine cs) starting that way against the full lever (rest_direction's):
+ * > 0 while rolling resistance cannot hold it that way. */
+static double hold_margin(const roll_ode *c, double s, double cs)
+{
+    jc_RollForces rf;
+    jc_roll_law(&c->k, s, cs, 0.0, c->dir, &rf);
+    return c->dir * rf.thdd_radps2;
+}
 
 static void roll_ode_forces(const roll_ode *c, const double y[], double *thdd, double *n, double *f)
 {
     jc_RollForces rf;
-    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], c->dir, &rf);
+    roll_ode_law(c, y, &rf);
     *thdd = rf.thdd_radps2;
     *n = rf.normal_N;
     *f = rf.friction_N;
@@ -521,7 +551,7 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
     const roll_ode *c = params;
     const double w = y[JC_Y_W];
     jc_RollForces rf;
-    jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], w, c->dir, &rf);
+    roll_ode_law(c, y, &rf);
     const double r = c->k.r_m, thdd = rf.thdd_radps2;
     dydt[JC_Y_X] = r * w;
     dydt[JC_Y_Y] = 0.0;
@@ -541,7 +571,7 @@ static int roll_ode_rhs(double t, const double y[], double dydt[], void *params)
 enum { ROLL_ODE_FIRST = JC_Y_TH, ROLL_ODE_DIM = JC_Y_RR + 1 - JC_Y_TH };
 JC_DOP853_TRY_INSTANCE(roll_ode_try, roll_ode_rhs, ROLL_ODE_FIRST, ROLL_ODE_DIM)
 
-enum { RE_NORMAL, RE_SLIP_POS, RE_SLIP_NEG, RE_TURN, RE_END, RE_TOP, RE_SLOW, RE_COUNT };
+enum { RE_NORMAL, RE_SLIP_POS, RE_SLIP_NEG, RE_TURN, RE_END, RE_TOP, RE_SLOW, RE_HOLD, RE_COUNT };
 
 static void roll_ode_events(void *params, const double y[], double ev[])
 {
@@ -563,6 +593,7 @@ static void roll_ode_events(void *params, const double y[], double ev[])
     ev[RE_TOP] = x + JC_RAMP_TOP_SLACK_M;
     /* Armed: w falls into the band. Not armed: w leaves twice the band (then armed). */
     ev[RE_SLOW] = c->armed ? c->dir * y[JC_Y_W] - ROLL_REST_BAND_RADPS : 2.0 * ROLL_REST_BAND_RADPS - c->dir * y[JC_Y_W];
+    ev[RE_HOLD] = c->hold ? hold_margin(c, y[JC_Y_SIN], y[JC_Y_COS]) : 1.0;
 }
 
 /* The events' rates along the flow at y (f = f(y)): those of w and x in
@@ -595,6 +626,8 @@ static void roll_ode_event_rates(void *params, const double y[], const double f[
     dev[RE_END] = -dx;
     dev[RE_TOP] = dx;
     dev[RE_SLOW] = c->armed ? c->dir * f[JC_Y_W] : -c->dir * f[JC_Y_W];
+    dev[RE_HOLD] = c->hold ? (hold_margin(c, yp[JC_Y_SIN], yp[JC_Y_COS]) - hold_margin(c, y[JC_Y_SIN], y[JC_Y_COS])) / h
+                           : 0.0;
 }
 
 static int roll_ode_sample(jc_Sim *sim, void *params, double t, const double y[])
@@ -642,6 +675,12 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
         const jc_OdeExtras range = {ROLL_ODE_FIRST, NULL};
         ctx.x0_m = sim->s.x_m;
         ctx.th0_rad = sim->s.theta_rad;
+        ctx.hold = 0; /* armed, or no rolling resistance (air alone holds nothing) */
+        if (!ctx.armed && ctx.k.rr_m > 0.0) {
+            double sn, cs;
+            jc_sincos(sim->s.theta_rad, &sn, &cs);
+            ctx.hold = hold_margin(&ctx, sn, cs) > 0.0;
+        }
         int which;
         int st = jc_ode_run_with(sim, &phase, &range, &which, err, err_len);
         if (st != JC_OK) return st;
@@ -669,6 +708,16 @@ static int roll_ode_phase(jc_Sim *sim, jc_PhaseEnd *end, char *err, size_t err_l
             }
             ctx.armed = !ctx.armed;
             continue;
+        case RE_HOLD:
+            if (rest_direction(sim->m, sim->s.theta_rad) == 0) {
+                /* w < 2 mrad/s here: its kinetic energy goes to rolling
+                 * resistance, as at RE_SLOW. */
+                sim->rr_loss_J += jc_kinetic_energy(sim->m, &sim->s);
+                sim->s.omega_radps = sim->s.vx_mps = 0.0;
+                *end = PHASE_AT_REST;
+                return JC_OK;
+            }
+            continue; /* the margin is <= 0 now: not watched again (see the start) */
         case RE_END: *end = PHASE_RAMP_END; return JC_OK;
         case RE_TOP: *end = PHASE_RAMP_TOP; return JC_OK;
         case JC_ODE_TIME_LIMIT: *end = PHASE_TIME_LIMIT; return JC_OK;
