@@ -134,6 +134,10 @@ static void write_overview(FILE *gp, const fig_Data *d)
         char words[200];
         fig_zoom_caption(d, words, sizeof words);
         snprintf(zoom, sizeof zoom, "\\nforces, hops, energy %s; the whole run: plot --what forces", words);
+    } else if (d->cut != FIG_CUT_NONE) {
+        char words[256];
+        fig_cut_caption(d, words, sizeof words);
+        snprintf(zoom, sizeof zoom, "\\nforces, hops, energy %s", words);
     }
     fprintf(gp, "\nset multiplot layout 2,2 title \"jumpcyl: %s; %s%s\" font F_TITLE\n", caption, body, zoom);
     fig_criterion_panel(gp, d);

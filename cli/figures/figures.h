@@ -25,6 +25,11 @@ const jc_PaperTableRow *cli_paper_row(const jc_Setup *s);
 
 typedef enum { FIG_PNG, FIG_SVG, FIG_PDF } fig_Format;
 
+/* How a run that only reached the default time limit is cut for the
+ * figures: not at all; 1 s after its last landing; where its losses have
+ * settled (it never lifted off); a few periods of lossless rocking. */
+typedef enum { FIG_CUT_NONE, FIG_CUT_LANDING, FIG_CUT_SETTLED, FIG_CUT_PERIODIC } fig_Cut;
+
 /* Everything the panels need: the model, the computed numbers, and the
  * script being written. Filled by the *_prepare functions, which write their
  * data as data blocks ($run << EOD ... EOD) into the script itself: the
@@ -48,6 +53,7 @@ typedef struct {
     double printed_theta_rad; /* NaN when the setup is not in the paper's table */
     double printed_x_m;
     double theta_max_rad, crit_ymax;
+    int crit_clipped; /* crit_ymax left the kinetic side's peaks where no crossing can be out */
 
     /* forces, path, energy (plot_run.c) */
     jc_Run run;
@@ -62,14 +68,19 @@ typedef struct {
     double energy_min_J, energy_max_J;
     double resistance_loss_max_J; /* air and rolling resistance; 0 when switched off */
     int hop_count;
+    int event_label_chars;     /* the longest line of the forces panel's event labels (characters) */
 
     /* The zoom on what matters: from before the first lift-off to after the
      * last flight's landing (plot_run.c). zoomed is 0 when nothing flies. */
     int zoom_wanted; /* set before fig_run_prepare: forces, gap, energy panels take the zoom (overview) */
     /* Set before fig_run_prepare: a run that only reaches the default time
      * limit (no --t-max given; a body rocking for ever) is shown to 1 s
-     * after its last landing, as animate films it. */
+     * after its last landing, as animate films it; one that never lifts off
+     * until its losses have settled (plot_run.c). cut says which, and
+     * run_end_s where the whole run ends. */
     int end_after_landing;
+    fig_Cut cut;
+    double run_end_s;
     int zoomed;
     int zoom_from_warning; /* the zoom starts before the first slip or near-miss of N = 0 (overview) */
     double zoom_x_lo_cm, zoom_x_hi_cm; /* centre's distance down the incline */
@@ -150,6 +161,11 @@ int fig_event_flies(const jc_Event *e);
 /* "zoomed to x = 53.8–320 cm (t = 0.43–1.09 s), around the first lift-off
  * and the hops": the zoom in words, for titles (d->zoomed). */
 void fig_zoom_caption(const fig_Data *d, char *out, size_t len);
+
+/* "shown to t = 12.2 s, where the losses reach 99 % of their total; it
+ * rocks on to 60 s (all: --t-max 60)": the cut in words, for titles ("" when
+ * d->cut is FIG_CUT_NONE). */
+void fig_cut_caption(const fig_Data *d, char *out, size_t len);
 
 /* ---- plot_trajectory.c: the body's path to scale in the laboratory frame ---- */
 /* Keeps the run's options o (its flights are sampled again densely, with

@@ -17,6 +17,12 @@
 #define INSET_NARROW_FRACTION 0.08
 #define INSET_LOW_FRACTION 0.12
 #define INSET_MIN_WIDTH_RAD 0.3
+/* The kinetic side can peak far higher where the threshold is negative
+ * (cos th < 0: no crossing there) than where it is positive: a hoop's
+ * paper-model I_P nearly vanishes with the mass at the bottom. Past this
+ * ratio the axis is sized to the kinetic side where a crossing can be,
+ * and those peaks run off the top. */
+#define CRIT_CLIP_RATIO 3.0
 
 static void find_printed(fig_Data *d)
 {
@@ -71,21 +77,25 @@ static int write_curves(fig_Data *d)
                   "#   (exact rolling model, d = %.6g m); N = 0 where they are equal. NaN: undefined or not reached.\n"
                   "# columns: theta_rad x_cm(r*theta) paper_lhs_per_m paper_rhs_per_m exact_lhs_per_m exact_rhs_per_m\n",
             m->paper_d_m, m->body.cm_offset_m);
-    double ymax = 0.0;
+    double ymax = 0.0, ymax_crossable = 0.0;
     for (int i = 0; i < CRIT_POINTS; ++i) {
-        const double th = theta_of(d, i), pl = jc_paper_lhs(m, th);
+        const double th = theta_of(d, i), pl = jc_paper_lhs(m, th), pr = jc_paper_rhs(m, th);
         double el, er;
         exact_sides(d, th, &el, &er);
         fprintf(f, "%.17g", th); /* exact: a reader can recompute at the same angle */
         put(f, m->body.radius_m * th * 100);
         put(f, pl);
-        put(f, jc_paper_rhs(m, th));
+        put(f, pr);
         put(f, el);
         put(f, er);
         fputc('\n', f);
         if (isfinite(pl)) ymax = fmax(ymax, pl);
         if (isfinite(el)) ymax = fmax(ymax, el);
+        if (isfinite(pl) && pr > 0) ymax_crossable = fmax(ymax_crossable, pl);
+        if (isfinite(el) && er > 0) ymax_crossable = fmax(ymax_crossable, el);
     }
+    d->crit_clipped = ymax_crossable > 0 && ymax > CRIT_CLIP_RATIO * ymax_crossable;
+    if (d->crit_clipped) ymax = ymax_crossable;
     /* Room above the kinetic side, and the threshold's minimum cos a / d well inside. */
     const double floor_y = m->cos_incline / m->paper_d_m;
     d->crit_ymax = fmax(1.15 * ymax, isfinite(floor_y) ? 2.5 * floor_y : 0.0);
@@ -249,6 +259,9 @@ void fig_criterion_panel(FILE *gp, const fig_Data *d)
     if (d->caption[0])
         fprintf(gp, " — %.4g° incline, d = %.3g cm, g = %.4g m/s^2", cli_deg(m->setup.incline_rad), m->paper_d_m * 100,
                 m->setup.gravity_mps2);
+    if (d->crit_clipped)
+        fputs("\\n{/*0.8 axis sized to θ'^2/g where the threshold is positive; its peaks where it is not run off the top}",
+              gp);
     fputs("\"\n", gp);
     fprintf(gp, "set xlabel 'rotation angle θ (rad)'\n"
                 "set ylabel \"θ'^2/g and lift-off threshold (m^{-1})\"\n"

@@ -7,6 +7,14 @@
 
 /* Top part of the forces and path panels kept free for labels. */
 #define LABEL_HEADROOM 0.62
+/* The forces panel's event labels hang from the top: a line of this many
+ * characters takes this fraction of the plot's height per character (the
+ * labels' font on a panel 750 px high), plus a margin. Shorter labels
+ * leave the curves more of the height, up to FORCES_HEADROOM_MAX (the
+ * dense events' ticks take the top 8 %). */
+#define EVENT_LABEL_CHAR_HEIGHT 0.0245
+#define EVENT_LABEL_MARGIN 0.03
+#define FORCES_HEADROOM_MAX 0.9
 /* More events than this are marked by ticks at the top instead of lines. */
 #define DENSE_EVENTS 60
 
@@ -16,9 +24,15 @@ static void data_var(FILE *gp, const char *name, const char *what)
     fprintf(gp, "%s = '$%s'\n", name, what);
 }
 
+/* The panel's name and the setup; on a page of its own, what of a run
+ * rocking for ever is shown in a second line (the overview's page title
+ * says it there). */
 static void title(FILE *gp, const fig_Data *d, const char *what)
 {
-    fprintf(gp, "set title \"%s%s%s\"\n", what, d->caption[0] ? " — " : "", d->caption);
+    char cut[256] = "";
+    if (d->caption[0]) fig_cut_caption(d, cut, sizeof cut);
+    fprintf(gp, "set title \"%s%s%s%s%s%s\"\n", what, d->caption[0] ? " — " : "", d->caption, cut[0] ? "\\n{/*0.8 " : "",
+            cut, cut[0] ? "}" : "");
 }
 
 /* Whether the panels show the zoom on the lift-off and hops (overview). */
@@ -68,13 +82,22 @@ static void plot_events(FILE *gp)
                 lines[i].side, lines[i].column, lines[i].offset);
 }
 
+/* The part of the forces panel's height the curves may take: below the
+ * longest event label (LABEL_HEADROOM for the longest labels). */
+static double forces_headroom(const fig_Data *d)
+{
+    const double room = 1.0 - EVENT_LABEL_CHAR_HEIGHT * d->event_label_chars - EVENT_LABEL_MARGIN;
+    return fmin(fmax(room, LABEL_HEADROOM), FORCES_HEADROOM_MAX);
+}
+
 void fig_forces_panel(FILE *gp, const fig_Data *d)
 {
     const jc_Setup *s = &d->model->setup;
     fig_panel_begin(gp, "forces (normal force and friction ratio along the ramp)");
     data_var(gp, "RUN", "run");
     data_var(gp, "EVENTS", "events");
-    const double ymin = fmin(0.0, d->n_min), ymax = fmax(d->n_max, 0.1) / LABEL_HEADROOM;
+    const double headroom = forces_headroom(d);
+    const double ymin = fmin(0.0, d->n_min), ymax = fmax(d->n_max, 0.1) / headroom;
     const double mu = fmax(s->mu_static, s->mu_kinetic);
     /* A huge mu (the rolling limit) would flatten the curve: keep it in view. */
     const double top = d->ratio_max > 0 ? fmax(d->ratio_max, fmin(mu, 3 * d->ratio_max)) : fmax(mu, 0.1);
@@ -89,7 +112,7 @@ void fig_forces_panel(FILE *gp, const fig_Data *d)
     title(gp, d, "Contact forces");
     x_axis(gp, d);
     two_axes(gp, "normal force N / (M g cos α)", "C_BLUE", "friction / normal force |F| / N", "C_RED");
-    fprintf(gp, "set yrange [YMIN:YMAX]\nset y2range [0:%.10g]\n", top / LABEL_HEADROOM);
+    fprintf(gp, "set yrange [YMIN:YMAX]\nset y2range [0:%.10g]\n", top / headroom);
     fputs("# Friction band: rolling without slipping needs |F| <= mu_s N\n"
           "set object 1 rect from graph 0, second 0 to graph 1, second MU_S behind fc rgb C_RED fs transparent solid 0.12 noborder\n",
           gp);

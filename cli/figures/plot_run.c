@@ -47,6 +47,17 @@
  * is shown to this much simulated time after its last landing, as animate
  * films it. */
 #define SHOW_AFTER_LANDING_S 1.0
+/* Such a run that never lifted off is shown until its losses (friction,
+ * impacts, air, rolling resistance) reach this fraction of their value at
+ * the limit: what follows dissipates the last 1 %, the same rocking slowly
+ * dying down. They are found on samples this fine (of the whole run). */
+#define SHOW_LOSS_FRACTION 0.99
+#define SHOW_LOSS_SAMPLES 6000.0
+/* A run that loses nothing and rocks periodically (rocking_period_s) is
+ * shown for this many periods after its last event. */
+#define SHOW_PERIODS 3.0
+/* A cut that would keep more than this fraction of the run is none. */
+#define SHOW_WHOLE_FRACTION 0.9
 
 const char *fig_event_label(jc_EventKind k)
 {
@@ -78,18 +89,88 @@ static double last_landing_s(const jc_Run *run)
     return landed;
 }
 
-/* A run that only reached the default time limit (rocking for ever) ends
- * SHOW_AFTER_LANDING_S after its last landing when d->end_after_landing:
- * its events (a run that keeps only them) give the time. */
-static int cut_after_landing(const fig_Data *d, jc_SimOptions *opts, double *t_end)
+static int run_flies(const jc_Run *run)
+{
+    for (int i = 0; i < run->event_count; ++i)
+        if (fig_event_flies(&run->events[i])) return 1;
+    return 0;
+}
+
+static double losses_J(double friction, double impact, double air, double rolling)
+{
+    return friction + impact + air + rolling;
+}
+
+/* The first sample at which the losses reach a target (a recorder that
+ * stops the run there). */
+typedef struct {
+    double target_J, t_s;
+} loss_watch;
+
+static int loss_sample(void *ctx, const jc_Sample *p)
+{
+    loss_watch *w = ctx;
+    if (losses_J(p->friction_loss_J, p->impact_loss_J, p->air_loss_J, p->rolling_resistance_loss_J) < w->target_J)
+        return JC_OK;
+    w->t_s = p->state.t_s;
+    return JC_ESTOPPED;
+}
+
+/* When the run's losses first reach SHOW_LOSS_FRACTION of their value at
+ * its end (probe: the whole run); NaN when it lost nothing. */
+static int settled_s(const fig_Data *d, const jc_SimOptions *o, const jc_Run *probe, double *t_s)
+{
+    const jc_EnergyReport *e = &probe->energy;
+    const double lost = losses_J(e->friction_loss_J, e->impact_loss_J, e->air_loss_J, e->rolling_resistance_loss_J);
+    *t_s = NAN;
+    if (!(lost > 1e-9 * fabs(e->kinetic_J) + 1e-15)) return EXIT_OK;
+    jc_SimOptions opts = *o;
+    opts.sample_dt_s = fmax(probe->final_state.t_s / SHOW_LOSS_SAMPLES, RUN_MIN_DT_S);
+    loss_watch w = {SHOW_LOSS_FRACTION * lost, NAN};
+    const jc_Recorder rec = {&w, NULL, loss_sample};
+    jc_Run run;
+    const int st = cli_simulate_stream(d->model, &opts, &rec, &run, "plot");
+    if (st != JC_OK && !(st == JC_ESTOPPED && isfinite(w.t_s) && !cli_stop_requested()))
+        return cli_exit_status(st, CLI_INPUTS_CHECKED);
+    *t_s = w.t_s;
+    return EXIT_OK;
+}
+
+/* A run that only reached the default time limit (rocking for ever) when
+ * d->end_after_landing: shown to SHOW_AFTER_LANDING_S after its last
+ * landing; when it never flew, until its losses have settled (settled_s),
+ * or when it lost nothing and repeats, SHOW_PERIODS periods after its last
+ * event. Its events (a run that keeps only them) give the times; d->cut
+ * says which, and *t_end becomes the shown end. */
+static int cut_rocking(fig_Data *d, jc_SimOptions *opts, const jc_Run *probe, double *t_end)
 {
     jc_Run events;
     const int st = cli_simulate(d->model, opts, &events, "plot");
     const double landed = st == JC_OK ? last_landing_s(&events) : NAN;
+    const int flies = st == JC_OK && run_flies(&events);
+    const double last_event = st == JC_OK && events.event_count ? events.events[events.event_count - 1].state.t_s : 0.0;
     jc_run_free(&events);
     if (st != JC_OK) return cli_exit_status(st, CLI_INPUTS_CHECKED);
-    if (isfinite(landed) && landed + SHOW_AFTER_LANDING_S < *t_end) {
-        *t_end = landed + SHOW_AFTER_LANDING_S;
+    double cut = NAN;
+    fig_Cut why = FIG_CUT_NONE;
+    if (isfinite(landed)) {
+        cut = landed + SHOW_AFTER_LANDING_S;
+        why = FIG_CUT_LANDING;
+    } else if (!flies) {
+        const int rc = settled_s(d, opts, probe, &cut);
+        if (rc != EXIT_OK) return rc;
+        why = FIG_CUT_SETTLED;
+        if (!isfinite(cut) && probe->rocking_period_s > 0) {
+            cut = last_event + SHOW_PERIODS * probe->rocking_period_s;
+            why = FIG_CUT_PERIODIC;
+        }
+    }
+    /* The landing's cut as before; the others only when they leave out much. */
+    const double keep = why == FIG_CUT_LANDING ? 1.0 : SHOW_WHOLE_FRACTION;
+    if (isfinite(cut) && cut < keep * *t_end) {
+        d->cut = why;
+        d->run_end_s = *t_end;
+        *t_end = cut;
         opts->t_max_s = *t_end;
     }
     return EXIT_OK;
@@ -110,7 +191,7 @@ static int simulate(fig_Data *d, const jc_SimOptions *o, int dt_given, double ma
     if (st != JC_OK) return cli_exit_status(st, CLI_INPUTS_CHECKED);
     double t_end = probe.final_state.t_s;
     if (d->end_after_landing && probe.termination == JC_END_TIME_LIMIT) {
-        const int rc = cut_after_landing(d, &opts, &t_end);
+        const int rc = cut_rocking(d, &opts, &probe, &t_end);
         if (rc != EXIT_OK) return rc;
     }
     opts.sample_dt_s = dt_given ? o->sample_dt_s : fmax(t_end / RUN_TARGET_SAMPLES, RUN_MIN_DT_S);
@@ -257,16 +338,45 @@ static void kind_totals(const jc_Run *run, int first, int last, char *out, size_
     }
 }
 
+static int stick_or_slip(jc_EventKind k)
+{
+    return k == JC_EVENT_SLIP || k == JC_EVENT_STICK || k == JC_EVENT_SLIP_REVERSAL;
+}
+
+/* A stretch of alternating slips and sticks from event i (three of each or
+ * more), up to event last: its last event, and "51 stick–slip cycles" in
+ * part; -1 when there is none. */
+static int stick_slip_cycles(const jc_Run *run, int i, int last, char *part, size_t len)
+{
+    int j = i, sticks = 0, slips = 0;
+    while (j <= last && stick_or_slip(run->events[j].kind)) {
+        sticks += run->events[j].kind == JC_EVENT_STICK;
+        slips += run->events[j].kind == JC_EVENT_SLIP;
+        ++j;
+    }
+    if (sticks < 3 || slips < 3) return -1;
+    snprintf(part, len, "%d stick–slip cycles", sticks > slips ? sticks : slips);
+    return j - 1;
+}
+
 /* "bounce ×4, touchdown": the kinds of events first..last in order, repeats
- * counted; per-kind totals when that is longer than a label can be. */
+ * counted, a stretch of alternating slips and sticks in plain words ("51
+ * stick–slip cycles"); per-kind totals when that is longer than a label can
+ * be. */
 void fig_event_cluster_label(const jc_Run *run, int first, int last, char *out, size_t len)
 {
     char seq[512];
     seq[0] = '\0';
     for (int i = first; i <= last;) {
+        char part[64];
+        const int cycles_end = stick_slip_cycles(run, i, last, part, sizeof part);
+        if (cycles_end >= 0) {
+            append(seq, sizeof seq, part);
+            i = cycles_end + 1;
+            continue;
+        }
         int j = i;
         while (j < last && run->events[j + 1].kind == run->events[i].kind) ++j;
-        char part[64];
         if (j > i) snprintf(part, sizeof part, "%s ×%d", fig_event_label(run->events[i].kind), j - i + 1);
         else snprintf(part, sizeof part, "%s", fig_event_label(run->events[i].kind));
         append(seq, sizeof seq, part);
@@ -380,7 +490,17 @@ static int place_event_labels(const fig_Data *d, fig_EventLabel *out)
     return n;
 }
 
-static int write_events(const fig_Data *d)
+/* Characters of a UTF-8 string. */
+static int utf8_chars(const char *s)
+{
+    int n = 0;
+    for (; *s; ++s) n += ((unsigned char)*s & 0xC0) != 0x80;
+    return n;
+}
+
+static int imax(int a, int b) { return a > b ? a : b; }
+
+static int write_events(fig_Data *d)
 {
     FILE *f = d->gp;
     fig_block_begin(f, "events");
@@ -412,6 +532,7 @@ static int write_events(const fig_Data *d)
         /* Left: the only line nearest the line (line2); right: line1. */
         const int two = l->line[1][0] != '\0';
         const char *line1 = two || l->side > 0 ? l->line[0] : "", *line2 = two ? l->line[1] : l->side < 0 ? l->line[0] : "";
+        d->event_label_chars = imax(d->event_label_chars, imax(utf8_chars(line1), utf8_chars(line2)));
         fprintf(f, "%.10g %.12g %s \"%s\" %d \"%s\" \"%s\"\n", e->state.x_m * 100, e->state.t_s, jc_event_name(e->kind),
                 text, l->side, line1, line2);
     }
@@ -477,14 +598,6 @@ static void hop_label(const fig_Hop *h, int first, int last, char *out, size_t l
         snprintf(part, sizeof part, "%.3g%s", h[i].height_mm, i == last ? " mm" : "");
         append(out, len, part);
     }
-}
-
-/* Characters of a UTF-8 string. */
-static int utf8_chars(const char *s)
-{
-    int n = 0;
-    for (; *s; ++s) n += ((unsigned char)*s & 0xC0) != 0x80;
-    return n;
 }
 
 /* Where a hop's label goes on the panels' axis (fraction of it): centred
@@ -643,6 +756,27 @@ void fig_zoom_caption(const fig_Data *d, char *out, size_t len)
              d->zoom_t_hi_s,
              d->zoom_from_warning ? "from the first slip or near-miss of N = 0 to the hops"
                                   : "around the first lift-off and the hops");
+}
+
+void fig_cut_caption(const fig_Data *d, char *out, size_t len)
+{
+    const double shown = d->t_max_s, end = d->run_end_s;
+    switch (d->cut) {
+    case FIG_CUT_LANDING:
+        snprintf(out, len, "shown to t = %.3g s, %g s after the last landing; it rocks on to %.3g s (all: --t-max %.3g)", shown,
+                 SHOW_AFTER_LANDING_S, end, end);
+        return;
+    case FIG_CUT_SETTLED:
+        snprintf(out, len, "shown to t = %.3g s, where the losses reach %g %% of their total; it rocks on to %.3g s (all: --t-max %.3g)",
+                 shown, 100 * SHOW_LOSS_FRACTION, end, end);
+        return;
+    case FIG_CUT_PERIODIC:
+        snprintf(out, len, "shown to t = %.3g s, %g periods of its rocking%s; it rocks on to %.3g s (all: --t-max %.3g)", shown,
+                 SHOW_PERIODS, d->run.event_count ? " after the last event" : "", end, end);
+        return;
+    case FIG_CUT_NONE: break;
+    }
+    if (len) out[0] = '\0';
 }
 
 /* Distance down the incline is the natural axis, unless the body goes back

@@ -3,9 +3,13 @@
 estimated, and the figure refused when
 
   - a text box overlaps another text box;
-  - a text box overlaps a data curve or a point of a plot;
+  - a text box overlaps a data curve or a point of a plot (a heat map's
+    cells, opaque rectangles of a plot, are data for the span only: labels
+    on a map are meant to sit on its cells);
   - a text box, a curve or a point leaves the canvas (is clipped);
-  - a panel's data span less than a fraction (60 %) of an axis' range.
+  - a panel's data span less than a fraction (60 %) of an axis' range (a
+    vertical axis that starts at zero, a tic "0" at its bottom: from there
+    to the highest data).
 
 What gnuplot's SVG terminal (5.4) writes, and how it is read here:
 
@@ -118,6 +122,7 @@ class Figure:
     def __init__(self):
         self.width = self.height = 0.0
         self.texts, self.curves, self.borders, self.occluders = [], [], [], []
+        self.cells = []  # a heat map's cells (opaque rectangles of a plot): data for the span only
 
 
 _NUM = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
@@ -254,6 +259,11 @@ def parse(path):
             elif el.get("class") != "gridline":
                 for sp in subs:
                     _maybe_border(fig, sp)
+        elif tag == "polygon" and group is not None and _opaque(el.get("fill"), el.get("fill-opacity")):
+            pts = [float(v) for v in _NUM.findall(el.get("points", ""))]
+            corners = list(zip(pts[0::2], pts[1::2]))
+            if corners and len(set(round(x, 1) for x, _ in corners)) == 2 and len(set(round(y, 1) for _, y in corners)) == 2:
+                fig.cells.append(Curve(corners, group, title, order[0]))
         elif tag == "polygon" and group is None and _opaque(el.get("fill"), el.get("fill-opacity")):
             pts = [float(v) for v in _NUM.findall(el.get("points", ""))]
             xs, ys = pts[0::2], pts[1::2]
@@ -293,11 +303,12 @@ def _hidden(fig, order, box):
                for o, ob in fig.occluders)
 
 
-def _key_samples(fig):
-    """The key entries' samples: what a titled plot draws beside its key text."""
+def _key_samples(fig, curves):
+    """The key entries' samples: what a titled plot draws beside its key
+    text (indices into curves)."""
     keys = {t.group: t for t in fig.texts if t.key}
     samples = set()
-    for i, c in enumerate(fig.curves):
+    for i, c in enumerate(curves):
         t = keys.get(c.group)
         if t is None:
             continue
@@ -375,7 +386,9 @@ def check(path, name=None, allow=()):
     fig = parse(path)
     out = []
     canvas = Box(0, 0, fig.width, fig.height)
-    samples = _key_samples(fig)
+    samples = _key_samples(fig, fig.curves)
+    cell_samples = _key_samples(fig, fig.cells)
+    cells = [c for i, c in enumerate(fig.cells) if i not in cell_samples]
     texts = [t for t in fig.texts if not _hidden(fig, t.order, t.box)]
     curves = [c for i, c in enumerate(fig.curves) if i not in samples]
     # Text against text.
@@ -408,7 +421,7 @@ def check(path, name=None, allow=()):
             out.append('%s: the %s "%s" %s is clipped by the canvas (%.0fx%.0f)'
                        % (name, "point" if c.marker_r else "curve", c.title or "plot " + c.group, c.box,
                           fig.width, fig.height))
-    out.extend(_spans(fig, curves, name, allow))
+    out.extend(_spans(fig, curves + cells, name, allow))
     return out
 
 
@@ -429,13 +442,28 @@ def _spans(fig, curves, name, allow):
         if not inside:
             continue
         title = _panel_title(fig, border)
+        y_hi = border.y1 if _zero_at_bottom(fig, border) else max(p[1] for p in inside)
         for axis, lo, hi, a0, a1 in (("x", min(p[0] for p in inside), max(p[0] for p in inside), border.x0, border.x1),
-                                     ("y", min(p[1] for p in inside), max(p[1] for p in inside), border.y0, border.y1)):
+                                     ("y", min(p[1] for p in inside), y_hi, border.y0, border.y1)):
             span = (hi - lo) / (a1 - a0)
             if span < SPAN_MIN and not _allowed(allow, "span", title, axis):
                 out.append('%s: panel "%s": the data span %.0f %% of the %s axis (data %.0f–%.0f px, axis %.0f–%.0f px)'
                            % (name, title, 100 * span, axis, lo, hi, a0, a1))
     return out
+
+
+def _zero_at_bottom(fig, b):
+    """Whether a vertical axis of the panel starts at zero: a tic label "0"
+    beside the border's bottom, left or right. Such an axis (a force, a
+    gap, a speed) is read against zero, so its data span from there."""
+    for t in fig.texts:
+        if t.string.strip() not in ("0", "0.0", "0.00"):
+            continue
+        cy = (t.box.y0 + t.box.y1) / 2
+        beside = (b.x0 - 80 < t.box.x1 <= b.x0 + 2) or (b.x1 - 2 <= t.box.x0 < b.x1 + 80)
+        if beside and abs(cy - b.y1) < 0.5 * (t.box.y1 - t.box.y0) + 2:
+            return True
+    return False
 
 
 def _reference_line(c, b):

@@ -43,6 +43,17 @@ CLEAN_CURVE = [(100 + 9 * i, 290 - 4.8 * i) for i in range(51)]
 CLEAN = (BORDER + text(325, 30, "A clean panel", anchor="middle") + text(90, 306, "0", anchor="end")
          + text(90, 56, "50", anchor="end") + text(150, 120, "a label") + curve(1, "the curve", CLEAN_CURVE, (180, 360)))
 
+# A heat map: opaque cells over the plot area, a label on them.
+CELLS = "".join("\t<polygon fill = 'rgb(68, 1, 84)' points = '%g,%g %g,%g %g,%g %g,%g '/>\n"
+                % (x, y, x + 90, y, x + 90, y + 50, x, y + 50)
+                for x in range(100, 550, 90) for y in range(50, 300, 50))
+MAP = (BORDER + text(325, 30, "A map", anchor="middle") + '<g id="gnuplot_plot_1" ><title>gnuplot_plot_1</title>\n'
+       + "<g stroke='none' shape-rendering='crispEdges'>\n" + CELLS + "</g>\n</g>\n" + text(300, 150, "on a cell"))
+# A flat curve high on an axis from zero (a tic "0" at the bottom), or not.
+FLAT = [(100 + 9 * i, 100) for i in range(51)]
+ZERO = BORDER + text(325, 30, "A flat panel", anchor="middle") + text(90, 56, "1.2", anchor="end")
+
+
 CASES = [
     # name, body, the words every failure line must hold (empty: passes)
     ("clean", CLEAN, []),
@@ -54,6 +65,10 @@ CASES = [
     ("data in a corner", BORDER + text(325, 30, "A narrow panel", anchor="middle")
      + curve(1, "the curve", [(100 + i, 290 - i) for i in range(100)], (180, 360)),
      ['panel "A narrow panel"', "22 % of the x axis", "40 % of the y axis"]),
+    ("a map's cells are its data", MAP, []),
+    ("flat data on an axis from zero", ZERO + text(90, 306, "0", anchor="end") + curve(1, "the curve", FLAT, (180, 360)), []),
+    ("flat data on an axis not from zero", ZERO + text(90, 306, "0.8", anchor="end") + curve(1, "the curve", FLAT, (180, 360)),
+     ['panel "A flat panel"', "0 % of the y axis"]),
 ]
 
 
@@ -75,7 +90,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="jc-layout-check-") as tmp:
         path = os.path.join(tmp, "case.svg")
         with open(path, "w", encoding="utf-8") as f:
-            f.write(HEAD + CASES[-1][1] + TAIL)
+            f.write(HEAD + dict((c[0], c[1]) for c in CASES)["data in a corner"] + TAIL)
         lines = layout_check.check(path, "allowed", ["span:A narrow:x", "span:A narrow:y"])
         ok = not lines
         print("%s allowance%s" % ("ok  " if ok else "FAIL", "" if ok else ": got %s" % lines))

@@ -495,6 +495,113 @@ static int test_overview_zoom(void)
     return 0;
 }
 
+/* The last row of a kept script's $run block: its time (s). */
+static double last_run_t(const char *script, const char *tag)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/%s-run.dat", dir, tag);
+    if (extract_block(script, "run", path) != 0) return NAN;
+    FILE *f = fopen(path, "r");
+    if (!f) return NAN;
+    double v[16], t = NAN;
+    while (read_row(f, v, 16) > 0) t = v[0];
+    fclose(f);
+    return t;
+}
+
+/* Whether a line of the script holds both needles. */
+static int script_says(const char *script, const char *a, const char *b)
+{
+    FILE *f = fopen(script, "r");
+    if (!f) return 0;
+    char line[4096];
+    int said = 0;
+    while (fgets(line, sizeof line, f)) said |= strstr(line, a) && (!b || strstr(line, b));
+    fclose(f);
+    return said;
+}
+
+/* The rocking hoop never lifts off and rocks until the 60 s limit: the run
+ * panels end where its losses first reach 99 % of their value at 60 s
+ * (found here on the library's own run, sampled every millisecond) and say
+ * so; --t-max shows the whole run. Its many slips and sticks are labelled
+ * as cycles. */
+static int test_rocking_cut(void)
+{
+    jc_Setup s;
+    jc_Model m;
+    char err[256];
+    ENSURE_OK(jc_preset_setup("rocking-hoop", &s, err, sizeof err), err);
+    ENSURE_OK(jc_model_init(&m, &s, err, sizeof err), err);
+    jc_SimOptions o = jc_default_sim_options();
+    o.sample_dt_s = 1e-3;
+    jc_Run run;
+    ENSURE_OK(jc_simulate(&m, &o, &run, err, sizeof err), err);
+    const jc_Sample *end = &run.samples[run.sample_count - 1];
+    const double total = end->friction_loss_J + end->impact_loss_J;
+    double t99 = NAN;
+    for (int i = 0; i < run.sample_count && isnan(t99); ++i)
+        if (run.samples[i].friction_loss_J + run.samples[i].impact_loss_J >= 0.99 * total) t99 = run.samples[i].state.t_s;
+    int flies = 0;
+    for (int i = 0; i < run.event_count; ++i) flies |= run.events[i].kind == JC_EVENT_LIFTOFF;
+    ENSURE_MSG(run.termination == JC_END_TIME_LIMIT && !flies, "the rocking hoop lifted off or ended before the limit");
+    jc_run_free(&run);
+    char args[2048], out[1100], script[1200];
+    snprintf(out, sizeof out, "%s/rock.png", dir);
+    snprintf(args, sizeof args, "plot --preset rocking-hoop --what forces --keep-script --output '%s'", out);
+    ENSURE(plot_ok(args));
+    snprintf(script, sizeof script, "%s/rock.gp", dir);
+    /* The plot finds it on samples 60 s / 6000 apart. */
+    const double shown = last_run_t(script, "rock");
+    ENSURE_MSG(t99 > 5 && t99 < 30 && fabs(shown - t99) <= 0.011, "shown to %g s, losses at 99 %% at %g s", shown, t99);
+    ENSURE_MSG(script_says(script, "set title", "where the losses reach 99 % of their total; it rocks on to 60 s"),
+               "the title does not say what is cut");
+    ENSURE_MSG(script_says(script, "stick–slip cycles", NULL), "no label in cycles");
+    ENSURE_MSG(!script_says(script, "stick ×", NULL) && !script_says(script, "slip ×", NULL), "a label counts kinds");
+    snprintf(args, sizeof args, "plot --preset rocking-hoop --what forces --t-max 60 --keep-script --output '%s'", out);
+    ENSURE(plot_ok(args));
+    ENSURE_NEAR(last_run_t(script, "rock"), 60.0, 1e-9);
+    ENSURE_MSG(!script_says(script, "set title", "shown to t ="), "--t-max 60 still says it is cut");
+    return 0;
+}
+
+/* The hoops' paper-criterion: the paper's kinetic side peaks at 4400 1/m
+ * where its threshold is negative (cos th < 0, the mass at the bottom);
+ * the axis is sized to it where the threshold is positive (from
+ * jc_paper_lhs here), and those peaks run off the top. */
+static int test_criterion_clip(void)
+{
+    jc_Setup s;
+    jc_Model m;
+    char err[256];
+    ENSURE_OK(jc_preset_setup("rocking-hoop", &s, err, sizeof err), err);
+    ENSURE_OK(jc_model_init(&m, &s, err, sizeof err), err);
+    double peak = 0, crossable = 0;
+    const double end = s.ramp_length_m / m.body.radius_m;
+    for (int i = 0; i <= 20000; ++i) {
+        const double th = end * i / 20000, y = jc_paper_lhs(&m, th);
+        if (!isfinite(y)) continue;
+        peak = fmax(peak, y);
+        if (cos(th) > 0) crossable = fmax(crossable, y);
+    }
+    char args[2048], out[1100], script[1200];
+    snprintf(out, sizeof out, "%s/rockc.png", dir);
+    snprintf(args, sizeof args, "plot --preset rocking-hoop --what paper-criterion --keep-script --output '%s'", out);
+    ENSURE(plot_ok(args));
+    snprintf(script, sizeof script, "%s/rockc.gp", dir);
+    FILE *f = fopen(script, "r");
+    ENSURE(f);
+    char line[4096];
+    double ymax = NAN, lo;
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "set yrange [%lf:%lf]", &lo, &ymax) == 2) break;
+    fclose(f);
+    ENSURE_MSG(peak > 10 * ymax && ymax >= 1.15 * crossable, "yrange top %g: peak %g, %g where cos th > 0", ymax, peak,
+               crossable);
+    ENSURE(script_says(script, "set title", "run off the top"));
+    return 0;
+}
+
 /* paper-criterion at 30 degrees: an inset whose view holds the paper's
  * first two crossings (jc_paper_solve: 6.12 and 6.87 rad), narrower than a
  * tenth of the main panel's axis. */
@@ -601,6 +708,8 @@ int main(int argc, char **argv)
     RUN_TEST(test_trajectory_geometry);
     RUN_TEST(test_overview_zoom);
     RUN_TEST(test_criterion_inset);
+    RUN_TEST(test_rocking_cut);
+    RUN_TEST(test_criterion_clip);
     RUN_TEST(test_kept_script_reruns);
     RUN_TEST(test_bad_input);
     RUN_TEST(test_missing_gnuplot);
