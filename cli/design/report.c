@@ -268,22 +268,7 @@ static cJSON *design_json(const cli_DesignJob *job, const jc_DesignResult *r, cl
 
 int cli_design_write_json(const cli_DesignJob *job, const jc_DesignResult *r, const char *path)
 {
-    cJSON *doc = design_json(job, r, cli_design_units(job));
-    char *text = cli_json_text(doc, 1);
-    cJSON_Delete(doc);
-    if (!text) {
-        cli_error("design: out of memory for the JSON document");
-        return EXIT_FAIL;
-    }
-    cli_Output o;
-    int rc = cli_output_begin(&o, path, 1) == 0 ? EXIT_OK : EXIT_FAIL;
-    if (rc == EXIT_OK) {
-        fputs(text, o.f);
-        fputc('\n', o.f);
-        if (cli_output_commit(&o, CLI_CHECK_WRITES) != 0) rc = EXIT_FAIL;
-    }
-    free(text);
-    return rc;
+    return cli_json_write(design_json(job, r, cli_design_units(job)), path);
 }
 
 /* ---- --csv: every point the search ran, in p order ---- */
