@@ -432,11 +432,13 @@ static int percentiles_near(const cJSON *stats, double *v, long n, double tol)
     return 0;
 }
 
+static int write_rows(const char *path, long n, double *x);
+
 /* 3000 samples past --exact-limit 1000: the percentiles estimated within
  * 5 % of the 95 % range of the exact ones of the rows kept (P² with few
  * samples is coarse: about 2 % here), said in the text and the JSON; the
  * mean to rounding, the regions the same as the exact job's; --summarize
- * with the limit estimates too. */
+ * with the limit estimates too, and says when the regions are not known. */
 static int test_mc_estimated_past_the_limit(void)
 {
     char rows[128];
@@ -486,6 +488,22 @@ static int test_mc_estimated_past_the_limit(void)
     cJSON *ds = mc_json(sum, &rs);
     ENSURE(ds && cJSON_GetObjectItemCaseSensitive(ds, "percentiles") != NULL);
     ENSURE(percentiles_near(cJSON_GetObjectItemCaseSensitive(ds, "first_liftoff_x_m"), x, n, 0.05) == 0);
+    /* 70,000 distinct lift-offs, a gap of 1 nm: more cells than the
+     * summary holds (65,536), so no regions, said so. */
+    char many[128];
+    path_in(many, sizeof many, "many.csv");
+    ENSURE(write_rows(many, 70000, NULL) == 0);
+    const char *tiny[] = {"mc", "--summarize", many, "--exact-limit", "1000", "--region-gap", "0.000001mm", NULL};
+    const char *tiny_json[] = {"--summarize", many, "--exact-limit", "1000", "--region-gap", "0.000001mm", NULL};
+    cli_result rt = cli_run(tiny), rtj;
+    cJSON *dt = mc_json(tiny_json, &rtj);
+    ENSURE_MSG(rt.status == 0 && strstr(rt.out, "separate regions: not known"), "%s", rt.out);
+    ENSURE(dt && cJSON_IsNull(cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(dt, "first_liftoff_x_m"),
+                                                                "regions")));
+    cJSON_Delete(dt);
+    cli_result_free(&rt);
+    cli_result_free(&rtj);
+    remove(many);
     const char *bad[] = {"mc", "--exact-limit", "0", NULL};
     cli_result rb = cli_run(bad);
     ENSURE(rb.status == 2 && cli_one_line(rb.err) && strstr(rb.err, "--exact-limit '0'"));
