@@ -18,7 +18,7 @@ list(TRANSFORM JC_LIB_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 # pragmas and calls compile only where _OPENMP is defined.
 set(JC_STUDY_SOURCES
   src/random.c src/study/number.c src/study/outcome.c src/study/case.c src/study/threads.c src/study/run.c
-  src/study/defaults.c src/study/stats.c src/study/design_scan.c src/study/design_solve.c src/study/design.c
+  src/study/defaults.c src/study/stats.c src/study/sketch.c src/study/design_scan.c src/study/design_solve.c src/study/design.c
   src/study/design_range.c)
 list(TRANSFORM JC_STUDY_SOURCES PREPEND "${JC_SOURCE_ROOT}/")
 

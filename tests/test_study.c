@@ -512,6 +512,121 @@ static int test_stats(void)
     return 0;
 }
 
+/* ---- a tally past its bound: the values summarised in one pass ---- */
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The values given as lift-offs (hop x / 10) into a tally keeping at most
+ * keep_max; its summaries. */
+static int tally_of(const double *v, long n, long expected, long keep_max, jc_Stats *lift, jc_Stats *hop)
+{
+    jc_Tally t;
+    ENSURE(jc_tally_init_bounded(&t, expected, keep_max, 0.02, 0.005) == JC_OK);
+    jc_CaseOutcome o;
+    memset(&o, 0, sizeof o);
+    for (long i = 0; i < n; ++i) {
+        o.kind = JC_CASE_LIFTOFF;
+        o.liftoff_x_m = v[i];
+        o.largest_hop_m = v[i] / 10;
+        ENSURE(jc_tally_add(&t, &o) == JC_OK);
+    }
+    ENSURE(t.valid == n && (n <= keep_max) == (t.sketch == NULL) && (t.sketch == NULL) == (t.liftoff_x_m != NULL));
+    jc_tally_stats(&t, lift, hop);
+    jc_tally_free(&t);
+    return 0;
+}
+
+/* The quantile of sorted values written here (R's type 7, as GSL's). */
+static double quantile_here(const double *sorted, long n, double p)
+{
+    const double h = p * (double)(n - 1);
+    const long i = (long)h;
+    return i + 1 < n ? sorted[i] + (h - (double)i) * (sorted[i + 1] - sorted[i]) : sorted[n - 1];
+}
+
+/* The P² estimates against the exact quantiles of the same values: within
+ * tol of the 2.5 .. 97.5 % range. Mean and sd to rounding, regions the
+ * same. */
+static int check_estimate(const char *what, double *v, long n, double tol)
+{
+    jc_Stats est, exact;
+    ENSURE(tally_of(v, n, n, 1000, &est, NULL) == 0);
+    ENSURE(est.estimated == 1 && est.regions_unavailable == 0 && est.n == n);
+    double *sorted = malloc((size_t)n * sizeof *sorted);
+    ENSURE(sorted != NULL);
+    memcpy(sorted, v, (size_t)n * sizeof *v);
+    qsort(sorted, (size_t)n, sizeof *sorted, cmp_double);
+    const double p[3] = {0.025, 0.5, 0.975}, got[3] = {est.p2_5, est.p50, est.p97_5};
+    const double range = quantile_here(sorted, n, 0.975) - quantile_here(sorted, n, 0.025);
+    for (int k = 0; k < 3; ++k) {
+        const double want = quantile_here(sorted, n, p[k]);
+        printf("  %s: p %.3f exact %.6f estimate %.6f, off by %.2e of the 95 %% range\n", what, p[k], want, got[k],
+               fabs(got[k] - want) / range);
+        ENSURE_MSG(fabs(got[k] - want) <= tol * range, "%s p %.3f", what, p[k]);
+    }
+    jc_stats_compute(sorted, n, 0, 0, 0.02, &exact);
+    ENSURE_REL(est.mean, exact.mean, 1e-12);
+    ENSURE_REL(est.sd, exact.sd, 1e-9);
+    ENSURE(est.region_count == exact.region_count && est.regions_truncated == exact.regions_truncated);
+    for (int r = 0; r < exact.region_count; ++r) {
+        ENSURE(est.regions[r].lo_m == exact.regions[r].lo_m && est.regions[r].hi_m == exact.regions[r].hi_m);
+        ENSURE(est.regions[r].count == exact.regions[r].count);
+        ENSURE_REL(est.regions[r].mean_m, exact.regions[r].mean_m, 1e-12);
+    }
+    free(sorted);
+    return 0;
+}
+
+static int test_tally_bounded(void)
+{
+    const long n = 1000000;
+    double *v = malloc((size_t)n * sizeof *v);
+    ENSURE(v != NULL);
+    uint64_t state = 7;
+    /* A normal (Box-Muller), 10^6 values: the estimates within 0.2 % of
+     * the 95 % range (3.92 sd). */
+    for (long i = 0; i < n; i += 2) {
+        const double u = test_uniform(&state, 1e-300, 1), w = test_uniform(&state, 0, 2 * PI);
+        v[i] = 1.18 + 0.015 * sqrt(-2 * log(u)) * cos(w);
+        v[i + 1] = 1.18 + 0.015 * sqrt(-2 * log(u)) * sin(w);
+    }
+    ENSURE(check_estimate("normal", v, n, 2e-3) == 0);
+    /* Lift-offs in two windows of the ramp, 6 % in the earlier one (so the
+     * 2.5 % point falls in it) and a skewed tail (an exponential). */
+    for (long i = 0; i < n; ++i) {
+        const double u = test_uniform(&state, 1e-300, 1);
+        v[i] = i % 50 < 3 ? test_uniform(&state, 0.62, 0.65) : 1.15 - 0.01 * log(u);
+    }
+    ENSURE(check_estimate("two windows", v, n, 5e-3) == 0);
+
+    /* The same values in the same order: the same summary whether the tally
+     * switched on the way (expected 1) or began past its bound. */
+    jc_Stats a, b, ha, hb;
+    ENSURE(tally_of(v, 5000, 1, 1000, &a, &ha) == 0 && tally_of(v, 5000, 5000, 1000, &b, &hb) == 0);
+    ENSURE(memcmp(&a, &b, sizeof a) == 0 && memcmp(&ha, &hb, sizeof ha) == 0);
+    ENSURE(a.estimated == 1 && ha.estimated == 1 && ha.n == 5000 && a.region_count >= 2);
+    /* Up to the bound, every value kept: jc_stats_compute's summary. */
+    ENSURE(tally_of(v, 1000, 1000, 1000, &a, NULL) == 0);
+    memcpy(v + n / 2, v, 1000 * sizeof *v);
+    jc_stats_compute(v + n / 2, 1000, 0, 0, 0.02, &b);
+    ENSURE(a.estimated == 0 && memcmp(&a, &b, sizeof a) == 0);
+    /* Spread over more cells than JC_SKETCH_CELL_MAX: no regions. */
+    for (long i = 0; i < 200000; ++i) v[i] = 0.02 * (double)i;
+    ENSURE(tally_of(v, 200000, 200000, 10, &a, NULL) == 0);
+    ENSURE(a.regions_unavailable == 1 && a.region_count == 0 && a.n == 200000);
+    ENSURE_NEAR(a.p50, 0.02 * 99999.5, 0.02 * 200000 * 1e-3);
+    /* A bound the tally refuses. */
+    jc_Tally t;
+    ENSURE(jc_tally_init_bounded(&t, 10, 0, 0.02, 0.005) == JC_EINVAL);
+    ENSURE(jc_tally_init_bounded(&t, 10, 10, 0.0, 0.005) == JC_EINVAL);
+    free(v);
+    return 0;
+}
+
 static int test_default_spreads(void)
 {
     jc_StudyParam p[JC_STUDY_PARAM_MAX];
@@ -866,6 +981,7 @@ int main(void)
     RUN_TEST(test_mc_attempts);
     RUN_TEST(test_cancel);
     RUN_TEST(test_stats);
+    RUN_TEST(test_tally_bounded);
     RUN_TEST(test_default_spreads);
     RUN_TEST(test_columns_and_invalid_case);
     RUN_TEST(test_design_smooth_branch);

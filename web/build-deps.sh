@@ -6,7 +6,7 @@
 #   web/build-deps.sh BUILD_DIR
 #
 # BUILD_DIR/gsl-wasm/    GSL 2.7.1, only the parts the library uses (roots,
-#                        min, poly, integration, err, sys and what they pull in):
+#                        min, poly, integration, rstat, err, sys and what they pull in):
 #                        include/gsl/*.h, lib/libgsl.a
 # BUILD_DIR/cjson-wasm/  cJSON (Debian's patched cJSON.c): include/cjson/cJSON.h,
 #                        lib/libcjson.a
@@ -48,11 +48,12 @@ fetch_source() {
 
 # ---- GSL ----
 # Sub-libraries the library needs (src/*.c: roots/brent, poly quadratic and
-# cubic, integration qng/qag, errno; src/study/design_solve.c: min/brent)
-# and what they pull in. gsl/ first: it makes the header links. A GSL built
+# cubic, integration qng/qag, errno; src/study/design_solve.c: min/brent;
+# src/study/sketch.c: rstat's P² quantiles, which sort and take a quantile
+# of sorted data below five values) and what they pull in. gsl/ first: it makes the header links. A GSL built
 # with another list of directories (its stamp names them) is built again;
 # the configured source tree is kept, so only the new directories compile.
-GSL_DIRS="gsl utils sys err complex poly roots min integration"
+GSL_DIRS="gsl utils sys err complex poly roots min integration sort statistics rstat"
 if [ -f "$gsl/.built" ] && grep -q "dirs: $GSL_DIRS;" "$gsl/.built"; then
     echo "build-deps: $gsl is there ($(cat "$gsl/.built"))"
 else

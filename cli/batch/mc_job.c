@@ -106,7 +106,7 @@ void cli_mc_consume(void *ctx, long index, const jc_CaseOutcome *o, const char *
     (void)index;
     (void)row;
     (void)row_len;
-    jc_tally_add(ctx, o); /* room for every sample was made first */
+    jc_tally_add(ctx, o); /* room for every sample was made first, or none is kept */
 }
 
 /* The library's cancellation: a stop signal. */

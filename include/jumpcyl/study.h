@@ -255,6 +255,13 @@ typedef struct {
     int region_count; /* separate clusters: sorted neighbours further apart than the gap start a new one */
     jc_StatsRegion regions[JC_STATS_REGION_MAX];
     int regions_truncated;
+    /* 0: from every value, sorted (jc_stats_compute). 1: from a tally past
+     * its keep_max, the values seen once and not kept (jc_tally_stats):
+     * the quantiles are P² estimates (GSL's gsl_rstat_quantile; docs/cli.md
+     * "Memory" states their accuracy), mean and sd exact but for rounding,
+     * the regions exact but for rounding in their means. */
+    int estimated;
+    int regions_unavailable; /* 1: estimated over more than JC_SKETCH_CELL_MAX cells of the gap: no regions */
 } jc_Stats;
 
 /* Sorts v[0 .. n) in place and summarises it: mean and sd (Welford), the
@@ -266,23 +273,43 @@ JC_API double jc_quantile(const double *sorted, long n, double p);
 
 /* A Monte Carlo's outcomes gathered case by case (the rows of jc_study_run,
  * or rows read back from a file: only kind, liftoff_x_m and largest_hop_m
- * are read). */
+ * are read), in the order given. Up to keep_max valid cases their values
+ * are kept (16 bytes a case); past it they are summarised as they come in
+ * bounded memory and not kept (the arrays NULL, sketch set): the kept ones
+ * first, in their order, then each new one. The same cases in the same
+ * order give the same summary, however they were computed. */
+typedef struct jc_TallySketch jc_TallySketch;
 typedef struct {
-    double *liftoff_x_m; /* the first lift-offs of the valid cases */
+    double *liftoff_x_m; /* the first lift-offs of the valid cases (NULL past keep_max) */
     long liftoffs;
-    double *hop_m;       /* the largest hops of the valid cases (0 without a hop) */
+    double *hop_m;       /* the largest hops of the valid cases, 0 without a hop (NULL past keep_max) */
     long valid;          /* neither invalid nor failed */
     long none;           /* valid without a lift-off */
     long slides;         /* JC_CASE_SLIDES_AT_START */
     long invalid;        /* invalid or failed */
     long cap;
+    long keep_max;                  /* the most valid cases whose values are kept */
+    double liftoff_gap_m, hop_gap_m; /* the regions' gaps of jc_tally_stats */
+    jc_TallySketch *sketch;         /* past keep_max: the one-pass summaries, else NULL */
 } jc_Tally;
 
-/* Room for expected cases (it grows past them). JC_OK or JC_ENOMEM. */
+/* Room for expected cases (it grows past them); every value kept, the
+ * regions' gaps JC_MC_LIFTOFF_GAP_M and JC_MC_HOP_GAP_M. JC_OK or JC_ENOMEM. */
 JC_API int jc_tally_init(jc_Tally *t, long expected);
+/* The same, the values kept for at most keep_max (>= 1) valid cases, the
+ * regions' gaps given (> 0). Expecting more than keep_max, it keeps none.
+ * JC_OK, JC_ENOMEM, or JC_EINVAL. */
+JC_API int jc_tally_init_bounded(jc_Tally *t, long expected, long keep_max, double liftoff_gap_m, double hop_gap_m);
 /* JC_OK, or JC_ENOMEM (the case not counted). */
 JC_API int jc_tally_add(jc_Tally *t, const jc_CaseOutcome *o);
+/* The first lift-offs' and the largest hops' summaries (either may be
+ * NULL) with the tally's gaps: jc_stats_compute on the kept values (which
+ * it sorts), or past keep_max the one-pass ones (estimated = 1). */
+JC_API void jc_tally_stats(jc_Tally *t, jc_Stats *liftoff, jc_Stats *hop);
 JC_API void jc_tally_free(jc_Tally *t);
+/* Past keep_max, the regions are found in cells one gap wide; spread over
+ * more cells than this (a ramp more than 65536 gaps long), they are not. */
+#define JC_SKETCH_CELL_MAX 65536L
 /* Region gaps of `jumpcyl mc`: first lift-offs, largest hops. */
 #define JC_MC_LIFTOFF_GAP_M 0.02
 #define JC_MC_HOP_GAP_M 0.005

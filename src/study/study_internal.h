@@ -2,7 +2,8 @@
  * <jumpcyl/study.h>. Numbers written without printf (number.c); a case run
  * and its CSV fields (outcome.c); a study's cases, columns and rows
  * (case.c); the run on OpenMP threads (run.c); the default spreads
- * (defaults.c); statistics and the tally (stats.c); the design search:
+ * (defaults.c); statistics and the tally (stats.c), a one-pass summary
+ * in bounded memory (sketch.c); the design search:
  * its runs, scan, edges and branches (design_scan.c), its roots
  * (design_solve.c), the whole (design.c), the free parameter and its
  * default range (design_range.c); thread counts and the wall clock
@@ -11,7 +12,8 @@
  * Calls run one way, no file calling back into one that calls it:
  *   run.c -> case.c, outcome.c, threads.c;
  *   case.c -> outcome.c, threads.c, ../random.c, ../param_values.c;
- *   outcome.c -> number.c; defaults.c and stats.c call no file of these;
+ *   outcome.c -> number.c; stats.c -> sketch.c; defaults.c and sketch.c call
+ *   no file of these;
  *   design.c -> design_scan.c, design_solve.c, threads.c;
  *   design_solve.c -> design_scan.c -> outcome.c, threads.c, ../param_values.c;
  *   design_range.c -> ../param_values.c. */
@@ -51,6 +53,16 @@ typedef struct {
 void jc_row_text(jc_RowText *t, const char *s);
 void jc_row_number(jc_RowText *t, double v, int precision); /* "%.*g" */
 void jc_row_long(jc_RowText *t, long v);                    /* "%ld" */
+
+/* ---- sketch.c: one outcome summarised in one pass, its values not kept ---- */
+
+typedef struct jc_Sketch jc_Sketch;
+/* NULL without memory; gap_m > 0 is the regions' gap. */
+jc_Sketch *jc_sketch_alloc(double gap_m);
+void jc_sketch_add(jc_Sketch *s, double x);
+/* As jc_stats_compute would, but the quantiles estimated (estimated = 1). */
+void jc_sketch_stats(jc_Sketch *s, long none, long invalid, jc_Stats *out);
+void jc_sketch_free(jc_Sketch *s);
 
 /* ---- threads.c ---- */
 
