@@ -176,6 +176,132 @@ int fig_trajectory_prepare(fig_Data *d, const jc_SimOptions *o);
  * the first flight's gap when the main panel shows it too thin to read. */
 void fig_trajectory_panels(FILE *gp, const fig_Data *d);
 
+/* ---- the trajectory figure's own parts: its files only ----
+ * Data flow one way: trajectory_view.c (the picture's geometry in cm, boxes,
+ * the panels' frames on the page) <- trajectory_labels.c (labels placed
+ * clear of everything) <- trajectory_layout.c (the page laid out, the
+ * titles) <- plot_trajectory.c (the path, the outlines, the script). */
+
+/* The page: a 2400 x 1500 px canvas (plot.c, kind "trajectory"), and the
+ * room its title takes at the top. */
+#define FIG_PAGE_W_PX 2400.0
+#define FIG_PAGE_H_PX 1500.0
+#define FIG_PAGE_TITLE_PX 75.0
+/* A panel's room around its plot area (px): tic labels and the y label on
+ * the left, the x tic labels and label below. */
+#define FIG_MARGIN_L_PX 140.0
+#define FIG_MARGIN_R_PX 50.0
+#define FIG_MARGIN_B_PX 120.0
+/* F_SMALL's line height (px) on the PNG page, the largest of the three terminals. */
+#define FIG_SMALL_LINE_PX 24.0
+/* Outlines drawn at most, and the length of an outline's label. */
+#define FIG_MAX_OUTLINES 24
+#define FIG_LABEL_MAX 64
+
+typedef struct {
+    double X, Y; /* picture coordinates, cm (or page px) */
+} fig_Pt;
+
+typedef struct {
+    double lo_X, hi_X, lo_Y, hi_Y; /* cm (or page px) */
+} fig_Box;
+
+/* The samples drawn: the run's, each flight's replaced by denser ones. */
+typedef struct {
+    jc_Sample *s;
+    int n;
+} fig_Path;
+
+/* An outline at the events: the body drawn at one event's state, named for
+ * every event nearest to it. */
+typedef struct {
+    int event;           /* the event whose state is drawn */
+    fig_Pt c;            /* its centre (picture cm) */
+    char label[FIG_LABEL_MAX];
+} fig_Outline;
+
+/* A panel on the page: its ranges (cm), its plot area (page px from the
+ * lower left) and the room it was given. */
+typedef struct {
+    fig_Box view, area, region;
+} fig_Frame;
+
+typedef struct {
+    fig_Frame main, ramp, closeup;
+    int ramp_shown, closeup_shown;
+    int key_rows;
+    int title_lines[3]; /* main, ramp, close-up */
+} fig_Layout;
+
+typedef struct {
+    char main[400], ramp[200], closeup[200];
+} fig_Titles;
+
+/* What a label must clear, in page px: curves (polylines broken by NaN),
+ * discs (the outlines), the incline (labels stay above it), labels placed. */
+typedef struct {
+    const fig_Pt *pts;
+    int n;
+    const fig_Pt *disc_c;
+    const double *disc_r;
+    int discs;
+    fig_Pt incline_at, incline_dir; /* a point of the incline and its direction (px) */
+    int above_incline;
+    fig_Box *labels;
+    int label_count;
+    fig_Box area; /* labels stay inside */
+} fig_Obstacles;
+
+/* trajectory_view.c: geometry and frames */
+extern const fig_Box fig_empty_box; /* holds nothing: fig_box_add grows it to the first point */
+/* Incline coordinates (m) to the picture (cm). */
+fig_Pt fig_picture(double incline_rad, double x_m, double y_m);
+/* A body point (offset from C, body angle) for the state s, in the picture. */
+fig_Pt fig_body_point(const jc_Model *m, const jc_State *s, double offset_m, double body_angle_rad);
+/* Whether a part's axis is off the centre (it traces its own path). */
+int fig_off_centre(const jc_Part *p);
+/* Whether the centre of mass sits on an off-centre part's axis, or on C. */
+int fig_cm_on_a_part(const jc_Model *m);
+void fig_box_add(fig_Box *b, fig_Pt p, double pad);
+void fig_box_join(fig_Box *b, fig_Box o);
+double fig_box_w(fig_Box b);
+double fig_box_h(fig_Box b);
+int fig_box_overlaps(fig_Box a, fig_Box b);
+int fig_box_inside(fig_Box in, fig_Box out);
+/* The page px of a picture point in a frame; the frame's scale. */
+fig_Pt fig_to_px(const fig_Frame *f, fig_Pt p);
+double fig_px_per_cm(const fig_Frame *f);
+/* The frame of a picture box in a region of the page (fill: the plot area
+ * takes the whole room, the box widened to it). */
+fig_Frame fig_frame_in(fig_Box region, fig_Box box, double top_px, double bottom_px, int fill);
+/* Room above a plot area for a title of so many lines. */
+double fig_title_px(int lines);
+/* The main panel's region: on top or on the left, whichever is larger. */
+fig_Box fig_main_region(fig_Box box, double top_px, double bottom_px, int alone, int *on_top);
+/* The box of the curves drawn between t_lo and t_hi. */
+fig_Box fig_curves_box(const fig_Data *d, const fig_Path *path, double t_lo, double t_hi);
+/* A box grown by a small fraction of its size. */
+fig_Box fig_box_margin(fig_Box b);
+/* The close-up's box about the first flight's gap at sample s. */
+fig_Box fig_closeup_box(const fig_Data *d, const jc_Sample *s);
+/* The whole ramp's and the close-up's frames in the room the main panel leaves. */
+void fig_side_frames(fig_Layout *l, int on_top, fig_Box ramp_box, fig_Box close_box);
+
+/* trajectory_labels.c: labels clear of everything */
+/* The place (page px) of a w x h px label next to a mark at c of radius r_px. */
+fig_Box fig_place_label(const fig_Obstacles *o, fig_Pt c, double r_px, double prefer, double w, double h);
+/* A label's width in page px (F_SMALL). */
+double fig_label_w_px(const char *s);
+/* Places the outlines' labels in the main frame; how many fall outside it. */
+int fig_place_outline_labels(const fig_Data *d, const fig_Path *path, const fig_Frame *f, double t_lo, double t_hi,
+                             const fig_Outline *o, int n, fig_Box *labels);
+
+/* trajectory_layout.c: the page */
+/* The frames and titles, the main panel's view grown until the outlines'
+ * labels fit in it (placed in labels); apex: the close-up's sample or NULL. */
+void fig_trajectory_lay_out(const fig_Data *d, const fig_Path *path, double t_lo, double t_hi, const fig_Outline *o,
+                            int n, fig_Box *labels, fig_Layout *l, fig_Titles *t, const jc_Sample *apex, double sep_cm);
+
 /* ---- plot_panels.c: the three panels drawn from a run ---- */
 void fig_forces_panel(FILE *gp, const fig_Data *d);
 void fig_path_panel(FILE *gp, const fig_Data *d);
