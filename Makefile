@@ -154,10 +154,10 @@ test-valgrind: deps-valgrind
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L valgrind --no-tests=error
 
 # The batch commands built with MPI, run under mpirun -n 2 against one process.
-test-mpi: deps-mpi
+test-mpi: deps-mpi build
 	cmake -S . -B $(MPI_BUILD) -DJUMPCYL_MPI=ON -DJC_BUILD_TESTS=OFF -DJC_WERROR=$(WERROR) $(CMAKE_ARGS)
 	cmake --build $(MPI_BUILD) -j $(JOBS) --target jumpcyl_cli
-	tests/batch/test_mpi.sh $(MPI_BUILD)/jumpcyl
+	tests/batch/test_mpi.sh $(MPI_BUILD)/jumpcyl $(BUILD)/jumpcyl
 
 # libFuzzer targets (fuzz/) in their own build directory, each run for
 # FUZZ_SECONDS from its corpus (fuzz/run.sh); skipped, with a message, where
