@@ -509,18 +509,16 @@ static double roll_ode_x(const roll_ode *c, double th)
  * the band, the spin stays below that; where the full lever comes to hold
  * the body there (hold_margin reaching 0), it has come to rest too: the ramp
  * alone lets a body started barely beyond the static angle creep with w
- * decaying for ever (found: the default cylinder on a floor, 1 mm,
- * omega0 3 rad/s, at w < 1 mrad/s from 19 s to the time limit). */
+ * decaying for ever. */
 #define ROLL_REST_BAND_RADPS 1e-3
 
 /* The law the phase integrates, at y: rolling resistance by its ramp alone,
  * b_s = b clamp(w / band), 0 at w = 0 (direction 0 to jc_roll_law). The
  * full lever against the direction about to be taken at w = 0 is the static
  * question (rest_direction), not the motion's: after a turn the phase starts
- * at w = 0 exactly, and a right-hand side of b dir there and of ~0 at the
- * first stage beyond made the first step's error estimate linear in its
- * length, rejected down to 1e-11 s at every turn until the step floor
- * (1e-12 t) stopped the run ("integration diverged"). */
+ * at w = 0 exactly, and a right-hand side that jumps from b dir there to ~0
+ * at the next stage makes every step's error estimate linear in its length,
+ * so the integrator cannot step past the turn. */
 static void roll_ode_law(const roll_ode *c, const double y[], jc_RollForces *rf)
 {
     jc_roll_law(&c->k, y[JC_Y_SIN], y[JC_Y_COS], y[JC_Y_W], 0, rf);
